@@ -1,0 +1,137 @@
+#include "modifications.h"
+
+#include "types.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace gearkit
+{
+bool
+ToothModifications::any() const
+{
+  return tip_relief != 0 || root_relief != 0 || lead_crowning != 0 || end_relief != 0 ||
+         profile_crowning != 0 || profile_slope != 0 || helix_slope != 0 ||
+         (waviness_amplitude != 0 && waviness_wavelength > 0);
+}
+
+namespace
+{
+// A relief ramp that starts at 0 with zero value and grows to 1 at s = 1; s in [0, 1].
+void
+ramp(ReliefShape shape, double s, double &value, double &slope)
+{
+  if (shape == ReliefShape::linear)
+    {
+      value = s;
+      slope = 1;
+    }
+  else
+    {
+      value = s * s;
+      slope = 2 * s;
+    }
+}
+} // namespace
+
+NormalDeviation
+evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, double L, double z)
+{
+  NormalDeviation d;
+  const double    L_alpha = f.roll_length_tip - f.roll_length_form;
+  const double    L_mid   = 0.5 * (f.roll_length_tip + f.roll_length_form);
+  const double    half_b  = 0.5 * f.face_width;
+
+  if (m.tip_relief != 0 && m.tip_relief_length > 0)
+    {
+      const double start = f.roll_length_tip - m.tip_relief_length;
+      if (L > start)
+        {
+          double v, s;
+          ramp(m.tip_relief_shape, (L - start) / m.tip_relief_length, v, s);
+          d.value -= m.tip_relief * v;
+          d.d_dL -= m.tip_relief * s / m.tip_relief_length;
+        }
+    }
+  if (m.root_relief != 0 && m.root_relief_length > 0)
+    {
+      const double end = f.roll_length_form + m.root_relief_length;
+      if (L < end)
+        {
+          double v, s;
+          ramp(m.root_relief_shape, (end - L) / m.root_relief_length, v, s);
+          d.value -= m.root_relief * v;
+          d.d_dL += m.root_relief * s / m.root_relief_length;
+        }
+    }
+  if (m.profile_crowning != 0)
+    {
+      const double s = 2 * (L - L_mid) / L_alpha;
+      d.value -= m.profile_crowning * s * s;
+      d.d_dL -= m.profile_crowning * 2 * s * 2 / L_alpha;
+    }
+  if (m.profile_slope != 0)
+    {
+      d.value += m.profile_slope * (L - L_mid) / L_alpha;
+      d.d_dL += m.profile_slope / L_alpha;
+    }
+  if (m.waviness_amplitude != 0 && m.waviness_wavelength > 0)
+    {
+      const double k = 2 * pi / m.waviness_wavelength;
+      const double a = k * (L - f.roll_length_form) + m.waviness_phase;
+      d.value += m.waviness_amplitude * std::sin(a);
+      d.d_dL += m.waviness_amplitude * k * std::cos(a);
+    }
+  if (m.lead_crowning != 0)
+    {
+      const double s = z / half_b;
+      d.value -= m.lead_crowning * s * s;
+      d.d_dz -= m.lead_crowning * 2 * s / half_b;
+    }
+  if (m.end_relief != 0 && m.end_relief_length > 0)
+    {
+      const double start = half_b - m.end_relief_length;
+      if (std::abs(z) > start)
+        {
+          const double s = (std::abs(z) - start) / m.end_relief_length;
+          d.value -= m.end_relief * s;
+          d.d_dz -= m.end_relief / m.end_relief_length * (z > 0 ? 1 : -1);
+        }
+    }
+  if (m.helix_slope != 0)
+    {
+      d.value += m.helix_slope * z / f.face_width;
+      d.d_dz += m.helix_slope / f.face_width;
+    }
+  return d;
+}
+
+void
+check_modifications(const ToothModifications &m, const ModificationFrame &f,
+                    const std::string &prefix)
+{
+  const double L_alpha = f.roll_length_tip - f.roll_length_form;
+  auto         fail    = [&](const std::string &what, double value, const std::string &allowed) {
+    std::ostringstream s;
+    s << prefix << ": " << what << " = " << value * 1e3 << " mm is not allowed; " << allowed;
+    throw InputError(s.str());
+  };
+  if (m.tip_relief_length < 0 || m.tip_relief_length > L_alpha)
+    fail("tip relief length", m.tip_relief_length,
+         "it must lie in [0, " + std::to_string(L_alpha * 1e3) + "] mm (the active profile)");
+  if (m.root_relief_length < 0 || m.root_relief_length > L_alpha)
+    fail("root relief length", m.root_relief_length,
+         "it must lie in [0, " + std::to_string(L_alpha * 1e3) + "] mm (the active profile)");
+  if (m.end_relief_length < 0 || m.end_relief_length > 0.5 * f.face_width)
+    fail("end relief length", m.end_relief_length,
+         "it must lie in [0, b/2 = " + std::to_string(0.5 * f.face_width * 1e3) + "] mm");
+  if (m.waviness_wavelength < 0)
+    fail("waviness wavelength", m.waviness_wavelength, "it must be >= 0 (0 = no waviness)");
+  if (m.tip_relief != 0 && m.tip_relief_length == 0)
+    fail("tip relief length", 0, "a tip relief needs a length > 0");
+  if (m.root_relief != 0 && m.root_relief_length == 0)
+    fail("root relief length", 0, "a root relief needs a length > 0");
+  if (m.end_relief != 0 && m.end_relief_length == 0)
+    fail("end relief length", 0, "an end relief needs a length > 0");
+}
+} // namespace gearkit

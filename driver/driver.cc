@@ -1,0 +1,244 @@
+#include "driver.h"
+
+#include "stages.h"
+
+#include <deal.II/base/exceptions.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#ifndef GEARKIT_SOURCE_DIR
+#  define GEARKIT_SOURCE_DIR "."
+#endif
+
+namespace gearkit
+{
+namespace fs = std::filesystem;
+
+namespace
+{
+// FNV-1a, 64 bit: a cache key, not a security measure.
+std::uint64_t
+fnv1a(const std::string &text, std::uint64_t h = 1469598103934665603ull)
+{
+  for (unsigned char c : text)
+    {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
+  return h;
+}
+
+const StageDefinition &
+definition(const std::string &name)
+{
+  for (const StageDefinition &s : stage_definitions())
+    if (s.name == name)
+      return s;
+  throw std::logic_error("unknown stage " + name);
+}
+
+std::string
+file_contents(const std::string &path)
+{
+  std::ifstream      in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+} // namespace
+
+std::vector<std::string>
+required_stages(const std::vector<std::string> &outputs)
+{
+  std::set<std::string> needed;
+  std::function<void(const std::string &)> add = [&](const std::string &stage) {
+    if (needed.insert(stage).second)
+      for (const std::string &up : definition(stage).upstream)
+        add(up);
+  };
+  for (const std::string &o : outputs)
+    add(output_stages().at(o));
+  std::vector<std::string> order; // stage_definitions() is already in dependency order
+  for (const StageDefinition &s : stage_definitions())
+    if (needed.count(s.name))
+      order.push_back(s.name);
+  return order;
+}
+
+std::string
+stage_key(const Scene &scene, const std::string &stage)
+{
+  const StageDefinition &s    = definition(stage);
+  std::string            text = s.name + "\nversion " + std::to_string(s.version) + "\n";
+  for (const std::string &section : s.sections)
+    {
+      const auto it = scene.sections.find(section);
+      text += "[" + section + "]\n" + (it == scene.sections.end() ? "" : it->second);
+    }
+  for (const std::string &f : s.input_files(scene))
+    text += "file " + f + " " + std::to_string(fnv1a(file_contents(f))) + "\n";
+  for (const std::string &up : s.upstream)
+    text += "upstream " + up + " " + stage_key(scene, up) + "\n";
+  std::ostringstream hex;
+  hex << std::hex << std::setw(16) << std::setfill('0') << fnv1a(text);
+  return hex.str();
+}
+
+RunSummary
+run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
+{
+  const fs::path dir   = fs::path(output_root) / scene.name;
+  const fs::path cache = dir / "cache";
+  fs::create_directories(cache);
+  log << "gearkit: scene " << scene.file << " -> " << dir.string() << "\n";
+
+  RunSummary                                     summary;
+  std::map<std::string, std::unique_ptr<H5File>> files;
+  for (const std::string &name : required_stages(scene.outputs))
+    {
+      const StageDefinition &s = definition(name);
+      StageRun               run;
+      run.name       = name;
+      run.cache_file = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();
+      const auto start = std::chrono::steady_clock::now();
+      if (fs::exists(run.cache_file))
+        run.reused = true;
+      else
+        {
+          log << "stage " << name << ": running (" << s.description << ")" << std::endl;
+          // Upstream results as stored in their cache files.
+          std::vector<H5Group> groups;
+          groups.reserve(s.upstream.size());
+          Upstream upstream;
+          for (const std::string &up : s.upstream)
+            {
+              groups.push_back(files.at(up)->root().group(up));
+              upstream[up] = &groups.back();
+            }
+          H5File out = H5File::create(run.cache_file);
+          s.run(scene, upstream, out.root().group(name), log);
+          out.commit();
+        }
+      files[name] = std::make_unique<H5File>(H5File::open(run.cache_file));
+      run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      log << "stage " << name << ": " << (run.reused ? "reused" : "ran") << " in " << std::fixed
+          << std::setprecision(3) << run.seconds << " s (" << fs::path(run.cache_file).filename().string()
+          << ")" << std::endl;
+      log.unsetf(std::ios::fixed);
+      summary.stages.push_back(run);
+    }
+
+  summary.results_file = (dir / "results.h5").string();
+  H5File results       = H5File::create(summary.results_file);
+  {
+    const H5Group root = results.root();
+    root.attribute("scene", scene.name);
+    root.attribute("scene_file", scene.file);
+    root.attribute("gearkit_version", "0.1.0");
+    std::string stages;
+    for (const StageRun &r : summary.stages)
+      stages += r.name + (r.reused ? " (reused)" : " (ran)") + "\n";
+    root.attribute("stages", stages);
+  }
+  for (const StageRun &r : summary.stages)
+    results.copy_from(*files.at(r.name), "/" + r.name, "/" + r.name);
+  results.commit();
+  log << "results: " << summary.results_file << std::endl;
+  return summary;
+}
+
+namespace
+{
+const char *usage = R"(usage: gearkit [options] SCENE.prm
+
+Reads one scene file, runs the stages its outputs need (reusing cached results of unchanged
+stages) and writes <output root>/<scene name>/results.h5.
+
+options:
+  --help                  this text
+  --print-parameters      every scene parameter with its default, allowed values and help
+  --output-root DIR       where scene result folders go (default: out)
+  --plot                  also draw the PNG pictures of the results (scripts/plot_results.py)
+)";
+} // namespace
+
+int
+gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostream &err)
+{
+  std::string output_root = "out", scene_file;
+  bool        plot        = false;
+  for (std::size_t i = 0; i < args.size(); ++i)
+    {
+      const std::string &a = args[i];
+      if (a == "--help" || a == "-h")
+        {
+          out << usage;
+          return 0;
+        }
+      else if (a == "--print-parameters")
+        {
+          print_parameters(out);
+          return 0;
+        }
+      else if (a == "--output-root" && i + 1 < args.size())
+        output_root = args[++i];
+      else if (a == "--plot")
+        plot = true;
+      else if (!a.empty() && a[0] == '-')
+        {
+          err << "gearkit: unknown option '" << a << "'\n" << usage;
+          return 2;
+        }
+      else if (scene_file.empty())
+        scene_file = a;
+      else
+        {
+          err << "gearkit: more than one scene given ('" << scene_file << "', '" << a << "')\n";
+          return 2;
+        }
+    }
+  if (scene_file.empty())
+    {
+      err << "gearkit: no scene file given\n" << usage;
+      return 2;
+    }
+  try
+    {
+      const Scene      scene   = read_scene(scene_file);
+      const RunSummary summary = run_scene(scene, output_root, out);
+      if (plot)
+        {
+          const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR
+                                  "/scripts/plot_results.py' '" +
+                                  summary.results_file + "'";
+          if (std::system(cmd.c_str()) != 0)
+            {
+              err << "gearkit: plotting failed (" << cmd << ")\n";
+              return 1;
+            }
+        }
+      return 0;
+    }
+  catch (const InputError &e)
+    {
+      err << "gearkit: error: " << e.what() << "\n";
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      err << "gearkit: error: " << e.what() << "\n";
+    }
+  catch (const std::exception &e)
+    {
+      err << "gearkit: error: " << e.what() << "\n";
+    }
+  return 1;
+}
+} // namespace gearkit

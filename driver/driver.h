@@ -1,0 +1,44 @@
+// The gearkit driver: scene -> stage graph -> cached stage results -> results.h5 (+ plots).
+#pragma once
+
+#include "scene.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+struct StageRun
+{
+  std::string name;
+  bool        reused  = false;
+  double      seconds = 0;
+  std::string cache_file;
+};
+
+struct RunSummary
+{
+  std::string           results_file;
+  std::vector<StageRun> stages;
+};
+
+/// The stages the requested outputs need, upstream first.
+std::vector<std::string>
+required_stages(const std::vector<std::string> &outputs);
+
+/// Cache key of a stage: a hash of its version, its scene sections, its input files' contents
+/// and the keys of its upstream stages (hex string).
+std::string
+stage_key(const Scene &scene, const std::string &stage);
+
+/// Runs (or reuses) every stage the scene's outputs need and writes
+/// <output_root>/<scene name>/results.h5 atomically. Logs to `log`.
+RunSummary
+run_scene(const Scene &scene, const std::string &output_root, std::ostream &log);
+
+/// The command line: gearkit [--help] [--print-parameters] [--output-root DIR] [--plot] SCENE.
+/// Returns the process exit code; messages go to out / err.
+int
+gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostream &err);
+} // namespace gearkit

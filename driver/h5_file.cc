@@ -1,0 +1,282 @@
+#include "h5_file.h"
+
+#include "types.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace gearkit
+{
+namespace
+{
+// HDF5 prints its own error stack by default; we report our own message instead.
+struct SilenceHdf5
+{
+  SilenceHdf5()
+  {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+};
+const SilenceHdf5 silence_hdf5;
+
+hid_t
+check(hid_t id, const std::string &what)
+{
+  if (id < 0)
+    throw std::runtime_error("HDF5: " + what + " failed");
+  return id;
+}
+
+void
+write_string_attribute(hid_t object, const std::string &name, const std::string &value)
+{
+  H5Handle type(check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  H5Tset_size(type.id(), std::max<std::size_t>(value.size(), 1));
+  H5Tset_cset(type.id(), H5T_CSET_UTF8);
+  H5Handle space(check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose);
+  if (H5Aexists(object, name.c_str()) > 0)
+    H5Adelete(object, name.c_str());
+  H5Handle attr(check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT,
+                                 H5P_DEFAULT),
+                      "attribute " + name),
+                H5Aclose);
+  check(H5Awrite(attr.id(), type.id(), value.empty() ? "" : value.c_str()), "attribute write");
+}
+
+template <typename T>
+void
+write_dataset(hid_t group, const std::string &path, const std::string &name, hid_t mem_type,
+              hid_t file_type, const std::vector<T> &values, const std::vector<hsize_t> &shape,
+              const std::string &units, const std::string &description)
+{
+  hsize_t count = 1;
+  for (hsize_t s : shape)
+    count *= s;
+  if (count != values.size())
+    throw std::logic_error("HDF5 dataset " + path + name + ": shape does not match the data");
+  H5Handle space(check(shape.empty() ? H5Screate(H5S_SCALAR)
+                                     : H5Screate_simple(int(shape.size()), shape.data(), nullptr),
+                       "data space"),
+                 H5Sclose);
+  H5Handle set(check(H5Dcreate2(group, name.c_str(), file_type, space.id(), H5P_DEFAULT,
+                                H5P_DEFAULT, H5P_DEFAULT),
+                     "create dataset " + path + name),
+               H5Dclose);
+  if (count > 0)
+    check(H5Dwrite(set.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+          "write dataset " + path + name);
+  write_string_attribute(set.id(), "units", units);
+  write_string_attribute(set.id(), "description", description);
+}
+
+template <typename T>
+std::vector<T>
+read_dataset(hid_t group, const std::string &path, const std::string &name, hid_t mem_type,
+             std::vector<hsize_t> *shape)
+{
+  H5Handle set(check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open dataset " + path + name),
+               H5Dclose);
+  H5Handle space(check(H5Dget_space(set.id()), "data space"), H5Sclose);
+  const int            rank = H5Sget_simple_extent_ndims(space.id());
+  std::vector<hsize_t> dims(rank);
+  H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
+  hsize_t count = 1;
+  for (hsize_t s : dims)
+    count *= s;
+  std::vector<T> values(count);
+  if (count > 0)
+    check(H5Dread(set.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+          "read dataset " + path + name);
+  if (shape)
+    *shape = dims;
+  return values;
+}
+} // namespace
+
+H5Handle::H5Handle(hid_t id, herr_t (*close)(hid_t))
+  : handle(id)
+  , closer(close)
+{}
+
+H5Handle::H5Handle(H5Handle &&o) noexcept
+  : handle(o.handle)
+  , closer(o.closer)
+{
+  o.handle = -1;
+}
+
+H5Handle &
+H5Handle::operator=(H5Handle &&o) noexcept
+{
+  std::swap(handle, o.handle);
+  std::swap(closer, o.closer);
+  return *this;
+}
+
+H5Handle::~H5Handle()
+{
+  if (handle >= 0 && closer)
+    closer(handle);
+}
+
+H5Group::H5Group(H5Handle h, std::string path)
+  : handle(std::move(h))
+  , group_path(std::move(path))
+{}
+
+bool
+H5Group::has(const std::string &name) const
+{
+  return H5Lexists(handle.id(), name.c_str(), H5P_DEFAULT) > 0;
+}
+
+H5Group
+H5Group::group(const std::string &name) const
+{
+  const hid_t id = has(name) ? H5Gopen2(handle.id(), name.c_str(), H5P_DEFAULT)
+                             : H5Gcreate2(handle.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT,
+                                          H5P_DEFAULT);
+  return H5Group(H5Handle(check(id, "group " + group_path + name), H5Gclose),
+                 group_path + name + "/");
+}
+
+void
+H5Group::write(const std::string &name, const std::vector<double> &values,
+               const std::vector<hsize_t> &shape, const std::string &units,
+               const std::string &description) const
+{
+  for (double v : values)
+    if (!std::isfinite(v))
+      throw std::runtime_error("refusing to write a non-finite value to " + group_path + name);
+  write_dataset(handle.id(), group_path, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values, shape,
+                units, description);
+}
+
+void
+H5Group::write(const std::string &name, double value, const std::string &units,
+               const std::string &description) const
+{
+  write(name, std::vector<double>{value}, {}, units, description);
+}
+
+void
+H5Group::write(const std::string &name, const std::vector<int> &values,
+               const std::vector<hsize_t> &shape, const std::string &units,
+               const std::string &description) const
+{
+  write_dataset(handle.id(), group_path, name, H5T_NATIVE_INT, H5T_STD_I32LE, values, shape,
+                units, description);
+}
+
+void
+H5Group::attribute(const std::string &name, const std::string &value) const
+{
+  write_string_attribute(handle.id(), name, value);
+}
+
+std::vector<double>
+H5Group::read_doubles(const std::string &name, std::vector<hsize_t> *shape) const
+{
+  return read_dataset<double>(handle.id(), group_path, name, H5T_NATIVE_DOUBLE, shape);
+}
+
+std::vector<int>
+H5Group::read_ints(const std::string &name, std::vector<hsize_t> *shape) const
+{
+  return read_dataset<int>(handle.id(), group_path, name, H5T_NATIVE_INT, shape);
+}
+
+double
+H5Group::read_double(const std::string &name) const
+{
+  const std::vector<double> v = read_doubles(name);
+  if (v.size() != 1)
+    throw std::runtime_error("HDF5 dataset " + group_path + name + " is not a scalar");
+  return v[0];
+}
+
+std::string
+H5Group::read_attribute(const std::string &name) const
+{
+  H5Handle attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT), "attribute " + name),
+                H5Aclose);
+  H5Handle    type(check(H5Aget_type(attr.id()), "attribute type"), H5Tclose);
+  std::string value(H5Tget_size(type.id()), '\0');
+  check(H5Aread(attr.id(), type.id(), value.data()), "attribute read");
+  return value.substr(0, value.find('\0'));
+}
+
+std::vector<std::string>
+H5Group::children() const
+{
+  std::vector<std::string> names;
+  H5Literate(
+    handle.id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr,
+    [](hid_t, const char *name, const H5L_info_t *, void *data) -> herr_t {
+      static_cast<std::vector<std::string> *>(data)->push_back(name);
+      return 0;
+    },
+    &names);
+  return names;
+}
+
+H5File::H5File(H5Handle h, std::string path, bool w)
+  : handle(std::move(h))
+  , final_path(std::move(path))
+  , writing(w)
+{}
+
+H5File
+H5File::create(const std::string &path)
+{
+  const std::string tmp = path + ".tmp";
+  const hid_t       id  = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (id < 0)
+    throw InputError("cannot create " + tmp + " (is the directory writable?)");
+  return H5File(H5Handle(id, H5Fclose), path, true);
+}
+
+H5File
+H5File::open(const std::string &path)
+{
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (id < 0)
+    throw InputError("cannot open HDF5 file " + path);
+  return H5File(H5Handle(id, H5Fclose), path, false);
+}
+
+H5File::~H5File()
+{
+  if (writing && !committed)
+    {
+      handle = H5Handle();
+      std::remove((final_path + ".tmp").c_str());
+    }
+}
+
+H5Group
+H5File::root() const
+{
+  return H5Group(H5Handle(check(H5Gopen2(handle.id(), "/", H5P_DEFAULT), "root"), H5Gclose), "/");
+}
+
+void
+H5File::copy_from(const H5File &source, const std::string &source_path,
+                  const std::string &target_path)
+{
+  check(H5Ocopy(source.handle.id(), source_path.c_str(), handle.id(), target_path.c_str(),
+                H5P_DEFAULT, H5P_DEFAULT),
+        "copy " + source_path);
+}
+
+void
+H5File::commit()
+{
+  handle = H5Handle(); // closes the file
+  const std::string tmp = final_path + ".tmp";
+  if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
+    throw std::runtime_error("cannot rename " + tmp + " to " + final_path);
+  committed = true;
+}
+} // namespace gearkit

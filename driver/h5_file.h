@@ -1,0 +1,118 @@
+// A small RAII layer over the HDF5 C API: files, groups, datasets with `units` and
+// `description` attributes, and whole-group copies between files (stage cache -> results.h5).
+#pragma once
+
+#include <hdf5.h>
+
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+/// Owns one HDF5 identifier and closes it with the matching H5*close.
+class H5Handle
+{
+public:
+  H5Handle() = default;
+  H5Handle(hid_t id, herr_t (*close)(hid_t));
+  H5Handle(H5Handle &&other) noexcept;
+  H5Handle &
+  operator=(H5Handle &&other) noexcept;
+  H5Handle(const H5Handle &) = delete;
+  H5Handle &
+  operator=(const H5Handle &) = delete;
+  ~H5Handle();
+  hid_t
+  id() const
+  {
+    return handle;
+  }
+
+private:
+  hid_t handle = -1;
+  herr_t (*closer)(hid_t) = nullptr;
+};
+
+/// A group (or the root of a file) to write to and read from.
+class H5Group
+{
+public:
+  explicit H5Group(H5Handle handle, std::string path = "/");
+
+  /// Child group, created when missing.
+  H5Group
+  group(const std::string &name) const;
+  bool
+  has(const std::string &name) const;
+  const std::string &
+  path() const
+  {
+    return group_path;
+  }
+  hid_t
+  id() const
+  {
+    return handle.id();
+  }
+
+  /// Dataset of doubles with the given shape (row-major); shape {} writes a scalar.
+  void
+  write(const std::string &name, const std::vector<double> &values,
+        const std::vector<hsize_t> &shape, const std::string &units,
+        const std::string &description) const;
+  void
+  write(const std::string &name, double value, const std::string &units,
+        const std::string &description) const;
+  void
+  write(const std::string &name, const std::vector<int> &values, const std::vector<hsize_t> &shape,
+        const std::string &units, const std::string &description) const;
+  /// A string attribute on this group.
+  void
+  attribute(const std::string &name, const std::string &value) const;
+
+  std::vector<double>
+  read_doubles(const std::string &name, std::vector<hsize_t> *shape = nullptr) const;
+  std::vector<int>
+  read_ints(const std::string &name, std::vector<hsize_t> *shape = nullptr) const;
+  double
+  read_double(const std::string &name) const;
+  std::string
+  read_attribute(const std::string &name) const;
+  /// Names of the children (groups and datasets) in creation order.
+  std::vector<std::string>
+  children() const;
+
+private:
+  H5Handle    handle;
+  std::string group_path;
+};
+
+/// An HDF5 file. Writing goes to `<path>.tmp`; commit() closes it and renames it into place, so
+/// a failed run never leaves a half-written file under the final name.
+class H5File
+{
+public:
+  static H5File
+  create(const std::string &path);
+  static H5File
+  open(const std::string &path);
+  H5File(H5File &&) = default;
+  ~H5File();
+
+  H5Group
+  root() const;
+  /// Copies group `source_path` of `source` (with everything below it) to `target_path` here.
+  void
+  copy_from(const H5File &source, const std::string &source_path, const std::string &target_path);
+  /// Close and rename the temporary into place (files opened for writing only).
+  void
+  commit();
+
+private:
+  H5File(H5Handle handle, std::string path, bool writing);
+  H5Handle    handle;
+  std::string final_path;
+  bool        writing = false;
+  bool        committed = false;
+};
+} // namespace gearkit

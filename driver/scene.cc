@@ -1,0 +1,515 @@
+#include "scene.h"
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace gearkit
+{
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+namespace fs       = std::filesystem;
+
+namespace
+{
+constexpr double mm = 1e-3, um = 1e-6, deg = pi / 180;
+
+const char *output_names = "flanks|measured";
+
+// --- declarations ----------------------------------------------------------------------------
+
+void
+declare_modifications(ParameterHandler &prm)
+{
+  prm.declare_entry("tip relief", "0", Patterns::Double(0), "[um] C_a, removal at the tip.");
+  prm.declare_entry("tip relief length", "0", Patterns::Double(0),
+                    "[mm] Roll length (transverse, along the line of action) from the tip over "
+                    "which the tip relief acts.");
+  prm.declare_entry("tip relief shape", "linear", Patterns::Selection("linear|parabolic"),
+                    "Shape of the tip relief.");
+  prm.declare_entry("root relief", "0", Patterns::Double(0),
+                    "[um] C_f, removal at the start of the involute (form circle).");
+  prm.declare_entry("root relief length", "0", Patterns::Double(0),
+                    "[mm] Roll length from the form circle over which the root relief acts.");
+  prm.declare_entry("root relief shape", "linear", Patterns::Selection("linear|parabolic"),
+                    "Shape of the root relief.");
+  prm.declare_entry("lead crowning", "0", Patterns::Double(0),
+                    "[um] C_beta, parabolic removal at each face end relative to the middle.");
+  prm.declare_entry("end relief", "0", Patterns::Double(0),
+                    "[um] C_I, linear removal at each face end.");
+  prm.declare_entry("end relief length", "0", Patterns::Double(0),
+                    "[mm] Axial length from each face end over which the end relief acts.");
+  prm.declare_entry("profile crowning", "0", Patterns::Double(0),
+                    "[um] C_alpha, parabolic removal at both ends of the active profile.");
+  prm.declare_entry("profile slope deviation", "0", Patterns::Double(),
+                    "[um] f_Halpha over the active profile; positive adds material at the tip.");
+  prm.declare_entry("helix slope deviation", "0", Patterns::Double(),
+                    "[um] f_Hbeta over the face width; positive adds material at the +z end.");
+  prm.declare_entry("waviness amplitude", "0", Patterns::Double(0),
+                    "[um] Amplitude of a sinusoidal profile waviness.");
+  prm.declare_entry("waviness wavelength", "0", Patterns::Double(0),
+                    "[mm] Wavelength of the profile waviness along the roll length; 0 = none.");
+  prm.declare_entry("waviness phase", "0", Patterns::Double(-360, 360),
+                    "[deg] Phase of the waviness at the form circle.");
+}
+
+void
+declare_member(ParameterHandler &prm, const std::string &defaults_teeth)
+{
+  prm.declare_entry("number of teeth", defaults_teeth, Patterns::Integer(3, 100000),
+                    "Number of teeth z.");
+  prm.declare_entry("normal module", "3", Patterns::Double(0), "[mm] Normal module m_n.");
+  prm.declare_entry("normal pressure angle", "20", Patterns::Double(0, 45),
+                    "[deg] Normal pressure angle alpha_n of the basic rack.");
+  prm.declare_entry("helix angle", "0", Patterns::Double(0, 60),
+                    "[deg] Helix angle beta at the reference circle (0 = spur).");
+  prm.declare_entry("hand", "right", Patterns::Selection("right|left"),
+                    "Hand of the helix (a pair of external helical gears has opposite hands).");
+  prm.declare_entry("profile shift coefficient", "0", Patterns::Double(-3, 3),
+                    "Profile shift coefficient x.");
+  prm.declare_entry("face width", "20", Patterns::Double(0), "[mm] Face width b.");
+  prm.declare_entry("addendum factor", "1", Patterns::Double(0, 3),
+                    "h_aP*: tip radius r_a = r + (h_aP* + x) m_n.");
+  prm.declare_entry("dedendum factor", "1.25", Patterns::Double(0, 3),
+                    "h_fP*: root radius r_f = r - (h_fP* - x) m_n.");
+  prm.declare_entry("root radius factor", "0.38", Patterns::Double(0, 1),
+                    "rho_fP*: tip radius of the generating rack cutter / m_n; it forms the "
+                    "trochoidal root fillet.");
+  prm.declare_entry("bore diameter", "0", Patterns::Double(0), "[mm] Bore diameter (0 = solid).");
+  prm.declare_entry("density", "7850", Patterns::Double(0), "[kg/m^3] Density of the gear body.");
+  for (const char *side : {"Drive flank modifications", "Coast flank modifications"})
+    {
+      prm.enter_subsection(side);
+      declare_modifications(prm);
+      prm.leave_subsection();
+    }
+  prm.enter_subsection("Deviations");
+  prm.declare_entry("single pitch deviations", "", Patterns::List(Patterns::Double(), 0, 100000),
+                    "[um] f_p per tooth (entry k: pitch from tooth k-1 to tooth k along the "
+                    "reference circle); empty, or one per tooth adding up to zero.");
+  prm.declare_entry("runout", "0", Patterns::Double(0),
+                    "[um] Eccentricity of the toothing relative to the axis of rotation.");
+  prm.declare_entry("runout phase", "0", Patterns::Double(-360, 360),
+                    "[deg] Direction of the runout eccentricity in the member frame.");
+  prm.declare_entry("eccentric tooth", "-1", Patterns::Integer(-1),
+                    "Index of a tooth whose flank is moved along its normal (-1 = none).");
+  prm.declare_entry("eccentric tooth flank", "drive", Patterns::Selection("drive|coast"),
+                    "Which flank of the eccentric tooth moves.");
+  prm.declare_entry("eccentric tooth offset", "0", Patterns::Double(),
+                    "[um] Normal offset of the eccentric tooth flank (positive adds material).");
+  prm.declare_entry("chipped tooth", "-1", Patterns::Integer(-1),
+                    "Index of a chipped tooth (-1 = none).");
+  prm.declare_entry("chip diameter", "0", Patterns::Double(0),
+                    "[mm] Material above this diameter is gone from the chipped tooth (the root "
+                    "diameter removes the whole tooth).");
+  prm.declare_entry("chip face fraction", "1", Patterns::Double(0, 1),
+                    "Axial extent of the chip from the -z face end, as a fraction of b.");
+  prm.leave_subsection();
+}
+
+void
+declare_measured(ParameterHandler &prm)
+{
+  prm.declare_entry("source", "none",
+                    Patterns::Selection("none|virtual cmm|synthesised|cmm files|topography files"),
+                    "Where measured flanks come from: none; virtual cmm (sampled from the "
+                    "theoretical flanks); synthesised (theoretical plus the errors below); cmm "
+                    "files or topography files (see docs/cmm-format.md).");
+  prm.declare_entry("pinion file", "", Patterns::Anything(),
+                    "Pinion CMM or topography file, relative to the scene file.");
+  prm.declare_entry("gear file", "", Patterns::Anything(),
+                    "Gear CMM or topography file, relative to the scene file.");
+  prm.declare_entry("profile points", "9", Patterns::Integer(2, 10000),
+                    "Grid points along the profile per flank (virtual CMM).");
+  prm.declare_entry("face points", "29", Patterns::Integer(2, 10000),
+                    "Grid points along the face per flank (virtual CMM).");
+  prm.declare_entry("edge margin", "0", Patterns::Double(0, 0.45),
+                    "Fraction of the profile and face ranges left out at each edge.");
+  prm.declare_entry("pinion teeth", "", Patterns::List(Patterns::Integer(0), 0, 100000),
+                    "Pinion teeth to measure (empty = all).");
+  prm.declare_entry("gear teeth", "", Patterns::List(Patterns::Integer(0), 0, 100000),
+                    "Gear teeth to measure (empty = all).");
+  prm.enter_subsection("Synthesis");
+  prm.declare_entry("seed", "1", Patterns::Integer(0), "Random seed (same seed, same flanks).");
+  prm.declare_entry("form error", "2", Patterns::Double(0),
+                    "[um] Amplitude of smooth low-order form deviations per flank.");
+  prm.declare_entry("waviness amplitude", "0.5", Patterns::Double(0), "[um] Waviness amplitude.");
+  prm.declare_entry("waviness wavelength", "1", Patterns::Double(0),
+                    "[mm] Waviness wavelength along the flank.");
+  prm.declare_entry("roughness", "0.3", Patterns::Double(0), "[um] Roughness amplitude.");
+  prm.declare_entry("noise", "1", Patterns::Double(0),
+                    "[um] Standard deviation of the measurement noise.");
+  prm.declare_entry("pitch error", "3", Patterns::Double(0),
+                    "[um] Standard deviation of the single pitch deviations.");
+  prm.leave_subsection();
+}
+
+void
+declare_scene(ParameterHandler &prm)
+{
+  prm.enter_subsection("Scene");
+  prm.declare_entry("name", "", Patterns::Anything(),
+                    "Name of the scene; results go to <output root>/<name>/. Empty = the scene "
+                    "file name without extension.");
+  prm.declare_entry("outputs", "flanks", Patterns::MultipleSelection(output_names),
+                    "What to compute; the driver runs only the stages these need.");
+  prm.declare_entry("pairs", "pair", Patterns::List(Patterns::Anything(), 1),
+                    "Names of the gear pairs in this scene; each has a subsection of that name "
+                    "in every stage subsection (letters, digits, _ and -).");
+  prm.leave_subsection();
+}
+
+void
+declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs)
+{
+  declare_scene(prm);
+  prm.enter_subsection("Flanks");
+  for (const std::string &pair : pairs)
+    {
+      prm.enter_subsection(pair);
+      prm.declare_entry("grid profile points", "9", Patterns::Integer(2, 10000),
+                        "Profile points per flank in the stored flank grids (/flanks).");
+      prm.declare_entry("grid face points", "29", Patterns::Integer(2, 10000),
+                        "Face points per flank in the stored flank grids (/flanks).");
+      prm.enter_subsection("Pinion");
+      declare_member(prm, "20");
+      prm.leave_subsection();
+      prm.enter_subsection("Gear");
+      declare_member(prm, "40");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+  prm.leave_subsection();
+  prm.enter_subsection("Measured flanks");
+  for (const std::string &pair : pairs)
+    {
+      prm.enter_subsection(pair);
+      declare_measured(prm);
+      prm.leave_subsection();
+    }
+  prm.leave_subsection();
+}
+
+// --- reading ---------------------------------------------------------------------------------
+
+std::vector<std::string>
+split_list(const std::string &text)
+{
+  std::vector<std::string> items;
+  std::stringstream        s(text);
+  std::string              item;
+  while (std::getline(s, item, ','))
+    {
+      const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+      if (b != std::string::npos)
+        items.push_back(item.substr(b, e - b + 1));
+    }
+  return items;
+}
+
+ToothModifications
+get_modifications(ParameterHandler &prm)
+{
+  auto shape = [&](const char *name) {
+    return prm.get(name) == "linear" ? ReliefShape::linear : ReliefShape::parabolic;
+  };
+  ToothModifications m;
+  m.tip_relief          = prm.get_double("tip relief") * um;
+  m.tip_relief_length   = prm.get_double("tip relief length") * mm;
+  m.tip_relief_shape    = shape("tip relief shape");
+  m.root_relief         = prm.get_double("root relief") * um;
+  m.root_relief_length  = prm.get_double("root relief length") * mm;
+  m.root_relief_shape   = shape("root relief shape");
+  m.lead_crowning       = prm.get_double("lead crowning") * um;
+  m.end_relief          = prm.get_double("end relief") * um;
+  m.end_relief_length   = prm.get_double("end relief length") * mm;
+  m.profile_crowning    = prm.get_double("profile crowning") * um;
+  m.profile_slope       = prm.get_double("profile slope deviation") * um;
+  m.helix_slope         = prm.get_double("helix slope deviation") * um;
+  m.waviness_amplitude  = prm.get_double("waviness amplitude") * um;
+  m.waviness_wavelength = prm.get_double("waviness wavelength") * mm;
+  m.waviness_phase      = prm.get_double("waviness phase") * deg;
+  return m;
+}
+
+InvoluteGearData
+get_member(ParameterHandler &prm, const std::string &name)
+{
+  InvoluteGearData d;
+  d.name                  = name;
+  d.teeth                 = prm.get_integer("number of teeth");
+  d.normal_module         = prm.get_double("normal module") * mm;
+  d.normal_pressure_angle = prm.get_double("normal pressure angle") * deg;
+  d.helix_angle           = prm.get_double("helix angle") * deg;
+  d.hand                  = prm.get("hand") == "right" ? Hand::right : Hand::left;
+  d.profile_shift         = prm.get_double("profile shift coefficient");
+  d.face_width            = prm.get_double("face width") * mm;
+  d.addendum_factor       = prm.get_double("addendum factor");
+  d.dedendum_factor       = prm.get_double("dedendum factor");
+  d.root_radius_factor    = prm.get_double("root radius factor");
+  d.bore_diameter         = prm.get_double("bore diameter") * mm;
+  d.density               = prm.get_double("density");
+  prm.enter_subsection("Drive flank modifications");
+  d.drive_modifications = get_modifications(prm);
+  prm.leave_subsection();
+  prm.enter_subsection("Coast flank modifications");
+  d.coast_modifications = get_modifications(prm);
+  prm.leave_subsection();
+  prm.enter_subsection("Deviations");
+  for (const std::string &v : split_list(prm.get("single pitch deviations")))
+    d.single_pitch_deviations.push_back(std::stod(v) * um);
+  d.runout = {prm.get_double("runout") * um, prm.get_double("runout phase") * deg};
+  if (const int k = prm.get_integer("eccentric tooth"); k >= 0)
+    d.eccentric_teeth.push_back({k,
+                                 prm.get("eccentric tooth flank") == "drive" ? FlankSide::drive
+                                                                             : FlankSide::coast,
+                                 prm.get_double("eccentric tooth offset") * um});
+  if (const int k = prm.get_integer("chipped tooth"); k >= 0)
+    d.chipped_teeth.push_back(
+      {k, prm.get_double("chip diameter") * mm / 2, prm.get_double("chip face fraction")});
+  prm.leave_subsection();
+  return d;
+}
+
+MeasuredScene
+get_measured(ParameterHandler &prm, const fs::path &scene_dir, const std::string &pair)
+{
+  static const std::map<std::string, MeasuredSource> sources = {
+    {"none", MeasuredSource::none},
+    {"virtual cmm", MeasuredSource::virtual_cmm},
+    {"synthesised", MeasuredSource::synthesised},
+    {"cmm files", MeasuredSource::cmm_files},
+    {"topography files", MeasuredSource::topography_files}};
+  MeasuredScene m;
+  m.source = sources.at(prm.get("source"));
+  auto path = [&](const char *key) {
+    const std::string f = prm.get(key);
+    return f.empty() ? f : (scene_dir / f).lexically_normal().string();
+  };
+  m.pinion_file    = path("pinion file");
+  m.gear_file      = path("gear file");
+  if (m.source == MeasuredSource::cmm_files || m.source == MeasuredSource::topography_files)
+    for (const auto &[key, f] : {std::pair{"pinion file", m.pinion_file}, {"gear file", m.gear_file}})
+      if (f.empty() || !fs::is_regular_file(f))
+        throw InputError("Measured flanks/" + pair + ": " + std::string(key) + " = '" + f +
+                         "' does not name a readable file (source = " + prm.get("source") + ")");
+  m.profile_points = prm.get_integer("profile points");
+  m.face_points    = prm.get_integer("face points");
+  m.edge_margin    = prm.get_double("edge margin");
+  for (const std::string &v : split_list(prm.get("pinion teeth")))
+    m.pinion_teeth.push_back(std::stoi(v));
+  for (const std::string &v : split_list(prm.get("gear teeth")))
+    m.gear_teeth.push_back(std::stoi(v));
+  prm.enter_subsection("Synthesis");
+  m.seed                = prm.get_integer("seed");
+  m.form_error          = prm.get_double("form error") * um;
+  m.waviness_amplitude  = prm.get_double("waviness amplitude") * um;
+  m.waviness_wavelength = prm.get_double("waviness wavelength") * mm;
+  m.roughness           = prm.get_double("roughness") * um;
+  m.noise               = prm.get_double("noise") * um;
+  m.pitch_error         = prm.get_double("pitch error") * um;
+  prm.leave_subsection();
+  return m;
+}
+
+// Both members must build (InvoluteGear checks every parameter) and mesh with each other.
+void
+check_pair(const PairScene &p)
+{
+  InvoluteGear::create(p.pinion);
+  InvoluteGear::create(p.gear);
+  const InvoluteGearData &a = p.pinion, &b = p.gear;
+  auto fail = [&](const std::string &what) {
+    throw InputError("Flanks/" + p.name + ": pinion and gear " + what);
+  };
+  if (std::abs(a.normal_module - b.normal_module) > 1e-12)
+    fail("must have the same normal module (" + std::to_string(a.normal_module / mm) + " and " +
+         std::to_string(b.normal_module / mm) + " mm)");
+  if (std::abs(a.normal_pressure_angle - b.normal_pressure_angle) > 1e-12)
+    fail("must have the same normal pressure angle");
+  if (std::abs(a.helix_angle - b.helix_angle) > 1e-12)
+    fail("must have the same helix angle (external parallel-axis pair)");
+  if (a.helix_angle > 0 && a.hand == b.hand)
+    fail("must have opposite hands (external helical pair); both are " +
+         std::string(a.hand == Hand::right ? "right" : "left"));
+}
+
+// deal.II exceptions carry a long report; the user needs the "Additional information" part,
+// which names the file, the line and the pattern.
+std::string
+brief(const dealii::ExceptionBase &e)
+{
+  std::string       text = e.what();
+  const std::string key  = "Additional information:";
+  if (const auto p = text.find(key); p != std::string::npos)
+    text = text.substr(p + key.size());
+  if (const auto p = text.find("Stacktrace:"); p != std::string::npos)
+    text = text.substr(0, p);
+  std::string out;
+  for (char c : text) // collapse whitespace and line breaks
+    if (!std::isspace(static_cast<unsigned char>(c)) || (!out.empty() && out.back() != ' '))
+      out += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;
+  while (!out.empty() && (out.back() == ' ' || out.back() == '-'))
+    out.pop_back();
+  return out;
+}
+
+// Top-level "subsection X ... end" blocks of a ShortPRM print, keyed by X.
+std::map<std::string, std::string>
+section_blocks(const std::string &prm_text)
+{
+  std::map<std::string, std::string> blocks;
+  std::istringstream                 in(prm_text);
+  std::string                        line, current, body;
+  int                                depth = 0;
+  while (std::getline(in, line))
+    {
+      const auto        b       = line.find_first_not_of(" \t");
+      const std::string trimmed = b == std::string::npos ? "" : line.substr(b);
+      if (trimmed.rfind("subsection ", 0) == 0)
+        {
+          if (depth++ == 0)
+            {
+              current = trimmed.substr(11);
+              body.clear();
+              continue;
+            }
+        }
+      else if (trimmed == "end" && --depth == 0)
+        {
+          blocks[current] = body;
+          continue;
+        }
+      if (depth > 0 && !trimmed.empty())
+        body += trimmed + "\n";
+    }
+  return blocks;
+}
+} // namespace
+
+Scene
+read_scene(const std::string &file)
+{
+  if (!fs::is_regular_file(file))
+    throw InputError("scene file " + file + " does not exist or is not a file");
+  Scene scene;
+  scene.file = file;
+  try
+    {
+      // Pass 1: the scene header only, to learn the pair names that the other sections use.
+      ParameterHandler header;
+      declare_scene(header);
+      header.parse_input(file, "", true);
+      header.enter_subsection("Scene");
+      std::vector<std::string> pairs = split_list(header.get("pairs"));
+      header.leave_subsection();
+      static const std::regex identifier("[A-Za-z0-9_-]+");
+      for (const std::string &p : pairs)
+        if (!std::regex_match(p, identifier))
+          throw InputError(file + ": Scene/pairs: the pair name '" + p +
+                           "' is not allowed; use letters, digits, _ and -");
+
+      // Pass 2: everything, strictly (unknown entries and bad values are errors).
+      ParameterHandler prm;
+      declare_all(prm, pairs);
+      prm.parse_input(file);
+
+      prm.enter_subsection("Scene");
+      scene.name    = prm.get("name");
+      scene.outputs = split_list(prm.get("outputs"));
+      prm.leave_subsection();
+      if (scene.name.empty())
+        scene.name = fs::path(file).stem().string();
+      if (!std::regex_match(scene.name, identifier))
+        throw InputError(file + ": Scene/name: '" + scene.name +
+                         "' is not allowed; use letters, digits, _ and -");
+
+      const fs::path dir = fs::path(file).parent_path();
+      for (const std::string &p : pairs)
+        {
+          PairScene pair;
+          pair.name = p;
+          prm.enter_subsection("Flanks");
+          prm.enter_subsection(p);
+          pair.grid_profile_points = prm.get_integer("grid profile points");
+          pair.grid_face_points    = prm.get_integer("grid face points");
+          prm.enter_subsection("Pinion");
+          pair.pinion = get_member(prm, "Flanks/" + p + "/Pinion");
+          prm.leave_subsection();
+          prm.enter_subsection("Gear");
+          pair.gear = get_member(prm, "Flanks/" + p + "/Gear");
+          prm.leave_subsection();
+          prm.leave_subsection();
+          prm.leave_subsection();
+          prm.enter_subsection("Measured flanks");
+          prm.enter_subsection(p);
+          scene.measured[p] = get_measured(prm, dir, p);
+          prm.leave_subsection();
+          prm.leave_subsection();
+          check_pair(pair);
+          scene.pairs.push_back(pair);
+        }
+
+      std::ostringstream text;
+      prm.print_parameters(text, ParameterHandler::ShortPRM);
+      scene.sections = section_blocks(text.str());
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      throw InputError("scene " + file + ": " + brief(e));
+    }
+  catch (const InputError &e)
+    {
+      const std::string what = e.what();
+      throw InputError(what.rfind(file, 0) == 0 ? what : "scene " + file + ": " + what);
+    }
+  return scene;
+}
+
+void
+print_parameters(std::ostream &out, const std::vector<std::string> &pairs)
+{
+  // deal.II's PRM listing omits the allowed values and its Description listing the defaults;
+  // this one has both and is itself a valid scene file.
+  ParameterHandler prm;
+  declare_all(prm, pairs);
+  std::stringstream json;
+  prm.print_parameters(json, ParameterHandler::JSON);
+  boost::property_tree::ptree tree;
+  boost::property_tree::read_json(json, tree);
+
+  std::function<void(const boost::property_tree::ptree &, int)> print =
+    [&](const boost::property_tree::ptree &node, int depth) {
+      const std::string indent(2 * depth, ' ');
+      for (const auto &[name, child] : node) // entries first, then subsections
+        if (child.count("value"))
+          out << indent << "# " << child.get<std::string>("documentation") << "\n"
+              << indent << "# allowed: " << child.get<std::string>("pattern_description") << "\n"
+              << indent << "set " << name << " = " << child.get<std::string>("default_value")
+              << "\n\n";
+      for (const auto &[name, child] : node)
+        if (!child.count("value"))
+          {
+            out << indent << "subsection " << name << "\n";
+            print(child, depth + 1);
+            out << indent << "end\n\n";
+          }
+    };
+  out << "# gearkit scene parameters: every entry with its help text, allowed values and default.\n"
+      << "# Pair subsections repeat for every name in Scene/pairs (here: the example pair names).\n\n";
+  boost::property_tree::ptree scene_first;
+  scene_first.add_child("Scene", tree.get_child("Scene"));
+  for (const auto &[name, child] : tree)
+    if (name != "Scene")
+      scene_first.add_child(name, child);
+  print(scene_first, 0);
+}
+} // namespace gearkit

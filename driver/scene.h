@@ -1,0 +1,70 @@
+// The scene file: a deal.II ParameterHandler input with one subsection per stage, turned into
+// plain data for the stage libraries (which never see a ParameterHandler).
+#pragma once
+
+#include "involute_gear.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+/// A gear pair as the flank stage needs it: pinion (driver) and gear (driven).
+struct PairScene
+{
+  std::string      name;
+  int              grid_profile_points = 9; ///< stored flank grids
+  int              grid_face_points    = 29;
+  InvoluteGearData pinion;
+  InvoluteGearData gear;
+};
+
+/// Where the "measured" flanks of a pair come from.
+enum class MeasuredSource
+{
+  none,
+  virtual_cmm,      ///< sampled from the theoretical flanks (a perfect CMM)
+  synthesised,      ///< theoretical + form error, waviness, roughness, noise, pitch errors
+  cmm_files,        ///< one CMM point file per member
+  topography_files  ///< one topography deviation-grid file per member
+};
+
+struct MeasuredScene
+{
+  MeasuredSource source = MeasuredSource::none;
+  std::string    pinion_file, gear_file; ///< absolute paths (resolved against the scene file)
+  int            profile_points = 9, face_points = 29;
+  double         edge_margin    = 0;  ///< fraction of each parameter range left out at the edges
+  std::vector<int> pinion_teeth, gear_teeth; ///< teeth to measure (empty = all)
+  unsigned long  seed               = 1;
+  double         form_error         = 0;
+  double         waviness_amplitude = 0;
+  double         waviness_wavelength = 0;
+  double         roughness          = 0;
+  double         noise              = 0;
+  double         pitch_error        = 0;
+};
+
+struct Scene
+{
+  std::string              file;    ///< the scene file as given
+  std::string              name;    ///< results go to <output root>/<name>/
+  std::vector<std::string> outputs; ///< what the user asked for
+  std::vector<PairScene>   pairs;
+  std::map<std::string, MeasuredScene> measured; ///< by pair name
+  /// The scene's parameters in canonical text form, one block per top-level subsection
+  /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
+  std::map<std::string, std::string> sections;
+};
+
+/// Reads and checks a scene file. Throws InputError naming the file, line, parameter and what is
+/// allowed.
+Scene
+read_scene(const std::string &file);
+
+/// The fully documented parameter list (defaults, patterns, help) for a scene with the given
+/// pair names.
+void
+print_parameters(std::ostream &out, const std::vector<std::string> &pairs = {"pair"});
+} // namespace gearkit

@@ -1,0 +1,148 @@
+// Stage "flanks": the nominal geometry of every member, its transverse outline, flank grids of
+// every tooth and side (with modifications and deviations), and mass properties.
+#include "stages.h"
+
+#include <cmath>
+#include <ostream>
+
+namespace gearkit
+{
+namespace
+{
+std::vector<double>
+flatten(const std::vector<Vec2> &points)
+{
+  std::vector<double> v;
+  for (const Vec2 &p : points)
+    v.insert(v.end(), {p.x(), p.y()});
+  return v;
+}
+
+void
+write_member(const InvoluteGear &g, int n_u, int n_v, const H5Group &out, std::ostream &log,
+             Progress &progress)
+{
+  const InvoluteGearData &d = g.data();
+  out.write("number_of_teeth", std::vector<int>{d.teeth}, {}, "1", "number of teeth z");
+  out.write("normal_module", d.normal_module, "m", "normal module m_n");
+  out.write("normal_pressure_angle", d.normal_pressure_angle, "rad", "normal pressure angle");
+  out.write("helix_angle", g.helix_sign * d.helix_angle, "rad",
+            "helix angle at the reference circle, positive for a right hand");
+  out.write("profile_shift", d.profile_shift, "1", "profile shift coefficient x");
+  out.write("face_width", d.face_width, "m", "face width b");
+  out.write("bore_radius", d.bore_diameter / 2, "m", "bore radius (0 = solid)");
+  out.write("transverse_pressure_angle", g.transverse_pressure_angle, "rad", "alpha_t");
+  out.write("reference_radius", g.reference_radius, "m", "r = z m_t / 2");
+  out.write("base_radius", g.base_radius, "m", "r_b = r cos alpha_t");
+  out.write("tip_radius", g.tip_radius, "m", "r_a = r + (h_aP* + x) m_n");
+  out.write("root_radius", g.root_radius, "m", "r_f = r - (h_fP* - x) m_n");
+  out.write("form_radius", g.form_radius, "m",
+            "start of the involute, end of the rack-generated root fillet");
+  out.write("base_helix_angle", g.base_helix_angle, "rad", "beta_b");
+  out.write("lead", g.lead, "m", "helix lead p_z = 2 pi r / tan beta (0 for spur gears)");
+  out.write("tooth_thickness_reference", g.tooth_thickness_reference, "m",
+            "transverse arc tooth thickness on the reference circle s_t");
+  out.write("tip_thickness_normal", g.checks().tip_thickness_normal, "m",
+            "normal tooth thickness at the tip s_an");
+  out.write("undercut", std::vector<int>{g.checks().undercut ? 1 : 0}, {}, "1",
+            "1 if the rack cutter undercuts the involute");
+  std::string warnings;
+  for (const std::string &w : g.checks().warnings)
+    {
+      log << "  warning: " << w << "\n";
+      warnings += w + "\n";
+    }
+  out.attribute("warnings", warnings);
+
+  const MassProperties mp = g.mass_properties();
+  out.write("mass", mp.mass, "kg", "mass of the gear body (nominal section minus bore, chips)");
+  out.write("polar_inertia", mp.polar_inertia, "kg m^2", "moment of inertia about the axis");
+  out.write("diametral_inertia", mp.diametral_inertia, "kg m^2",
+            "moment of inertia about a diameter through the centre of mass");
+
+  const std::vector<Vec2> outline = g.transverse_outline(40);
+  out.write("transverse_outline", flatten(outline), {outline.size(), 2}, "m",
+            "closed nominal transverse outline (x, y) of the whole gear at z = 0, "
+            "counter-clockwise, tooth 0 on +x");
+  const std::vector<Vec2> half = g.half_tooth_profile(40);
+  out.write("drive_half_profile", flatten(half), {half.size(), 2}, "m",
+            "drive side of tooth 0 at z = 0 from the middle of the root land: root land, "
+            "fillet, involute, tip land");
+
+  for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+    {
+      const H5Group       s = out.group(to_string(side));
+      std::vector<double> points, normals, deviation, u, v;
+      for (int k = 0; k < d.teeth; ++k)
+        {
+          const InvoluteFlank flank = g.flank(k, side);
+          const FlankGrid     grid  = sample_flank(flank, n_u, n_v);
+          for (std::size_t i = 0; i < grid.positions.size(); ++i)
+            {
+              points.insert(points.end(), grid.positions[i].data(), grid.positions[i].data() + 3);
+              normals.insert(normals.end(), grid.normals[i].data(), grid.normals[i].data() + 3);
+              const FlankPoint nominal = flank.nominal(grid.u[i / n_v], grid.v[i % n_v]);
+              deviation.push_back((grid.positions[i] - nominal.position).dot(nominal.normal));
+            }
+          u = grid.u;
+          v = grid.v;
+          progress.step();
+        }
+      const std::vector<hsize_t> shape = {hsize_t(d.teeth), hsize_t(n_u), hsize_t(n_v), 3};
+      s.write("points", points, shape, "m",
+              "flank points [tooth][profile][face][xyz] in the member frame, with all "
+              "modifications and deviations");
+      s.write("normals", normals, shape, "1", "unit outward normals [tooth][profile][face][xyz]");
+      s.write("deviation", deviation, {shape[0], shape[1], shape[2]}, "m",
+              "flank topography [tooth][profile][face]: modifications and deviations along the "
+              "nominal outward normal (positive = material added; runout and pitch included)");
+      s.write("roll_angle", u, {u.size()}, "rad", "profile parameter xi of the grid rows");
+      s.write("z", v, {v.size()}, "m", "axial position of the grid columns");
+    }
+}
+
+// Working transverse pressure angle from inv(alpha_wt) = inv(alpha_t) + 2 tan(alpha_n)
+// (x1 + x2) / (z1 + z2) (zero backlash), solved by Newton.
+double
+working_pressure_angle(const InvoluteGear &p, const InvoluteGear &g)
+{
+  const double an  = p.data().normal_pressure_angle;
+  const double rhs = std::tan(p.transverse_pressure_angle) - p.transverse_pressure_angle +
+                     2 * std::tan(an) * (p.data().profile_shift + g.data().profile_shift) /
+                       (p.teeth() + g.teeth());
+  double a = p.transverse_pressure_angle;
+  for (int i = 0; i < 50; ++i)
+    {
+      const double f = std::tan(a) - a - rhs, df = std::tan(a) * std::tan(a);
+      a -= f / df;
+      if (std::abs(f) < 1e-16)
+        break;
+    }
+  return a;
+}
+} // namespace
+
+void
+run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+{
+  std::size_t total = 0;
+  for (const PairScene &pair : scene.pairs)
+    total += 2 * (pair.pinion.teeth + pair.gear.teeth);
+  Progress progress(log, "flanks", total);
+  for (const PairScene &pair : scene.pairs)
+    {
+      const H5Group pg     = out.group(pair.name);
+      const auto    pinion = InvoluteGear::create(pair.pinion);
+      const auto    gear   = InvoluteGear::create(pair.gear);
+      write_member(*pinion, pair.grid_profile_points, pair.grid_face_points, pg.group("pinion"),
+                   log, progress);
+      write_member(*gear, pair.grid_profile_points, pair.grid_face_points, pg.group("gear"), log,
+                   progress);
+      const double alpha_w = working_pressure_angle(*pinion, *gear);
+      pg.write("working_pressure_angle", alpha_w, "rad",
+               "transverse working pressure angle for zero backlash");
+      pg.write("working_centre_distance", (pinion->base_radius + gear->base_radius) / std::cos(alpha_w),
+               "m", "centre distance for zero backlash, a_w = (r_b1 + r_b2) / cos alpha_wt");
+    }
+}
+} // namespace gearkit

@@ -1,0 +1,61 @@
+#include "stages.h"
+
+#include <ostream>
+
+namespace gearkit
+{
+Progress::Progress(std::ostream &l, std::string s, std::size_t t)
+  : log(l)
+  , stage(std::move(s))
+  , total(t)
+  , last(std::chrono::steady_clock::now())
+{}
+
+void
+Progress::step(std::size_t n)
+{
+  done += n;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last > std::chrono::seconds(2) && total > 0)
+    {
+      log << "  " << stage << ": " << 100 * done / total << " %" << std::endl;
+      last = now;
+    }
+}
+
+const std::vector<StageDefinition> &
+stage_definitions()
+{
+  static const std::vector<StageDefinition> stages = {
+    {"flanks",
+     "involute flank geometry, profiles, flank grids and mass properties",
+     {},
+     {"Flanks"},
+     1,
+     [](const Scene &) { return std::vector<std::string>{}; },
+     run_flanks_stage},
+    {"measured",
+     "measured flank point sets (virtual CMM, synthesised, or read from files)",
+     {"flanks"},
+     {"Measured flanks"},
+     1,
+     [](const Scene &scene) {
+       std::vector<std::string> files;
+       for (const auto &[pair, m] : scene.measured)
+         if (m.source == MeasuredSource::cmm_files || m.source == MeasuredSource::topography_files)
+           files.insert(files.end(), {m.pinion_file, m.gear_file});
+       return files;
+     },
+     run_measured_stage},
+  };
+  return stages;
+}
+
+const std::map<std::string, std::string> &
+output_stages()
+{
+  static const std::map<std::string, std::string> map = {{"flanks", "flanks"},
+                                                         {"measured", "measured"}};
+  return map;
+}
+} // namespace gearkit

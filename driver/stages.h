@@ -1,0 +1,62 @@
+// The stages the driver can run, each a function from the scene (and upstream stage results,
+// read back from their cache files) to one HDF5 group. The driver works out which stages the
+// requested outputs need, keys each by a hash of exactly what it depends on, and reuses cached
+// results.
+#pragma once
+
+#include "h5_file.h"
+#include "scene.h"
+
+#include <chrono>
+#include <functional>
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+/// Progress of a long stage: prints "stage: 40 %" at most every two seconds.
+class Progress
+{
+public:
+  Progress(std::ostream &log, std::string stage, std::size_t total);
+  void
+  step(std::size_t n = 1);
+
+private:
+  std::ostream                         &log;
+  std::string                           stage;
+  std::size_t                           total, done = 0;
+  std::chrono::steady_clock::time_point last;
+};
+
+/// Upstream results a stage may read: stage name -> its group in its cache file.
+using Upstream = std::map<std::string, const H5Group *>;
+
+struct StageDefinition
+{
+  std::string              name;
+  std::string              description;
+  std::vector<std::string> upstream; ///< stages whose results this one needs
+  std::vector<std::string> sections; ///< scene sections whose parameters enter the key
+  int                      version;  ///< bump when the stage's code changes its results
+  /// Input files whose contents enter the key (e.g. CMM files).
+  std::function<std::vector<std::string>(const Scene &)> input_files;
+  std::function<void(const Scene &, const Upstream &, const H5Group &, std::ostream &)> run;
+};
+
+/// All stages in dependency order.
+const std::vector<StageDefinition> &
+stage_definitions();
+
+/// Output name (Scene/outputs) -> the stage that produces it.
+const std::map<std::string, std::string> &
+output_stages();
+
+// The stages (one source file each).
+void
+run_flanks_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+void
+run_measured_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+} // namespace gearkit

@@ -1,0 +1,115 @@
+#!/usr/bin/python3
+"""Pictures of a gearkit result file: one PNG per kind of result, next to results.h5.
+
+usage: plot_results.py out/<scene>/results.h5
+
+  profiles.png  transverse tooth profiles of every pair, in mesh at the working centre distance
+  topography.png  modifications of tooth 0 (drive, coast) of every member, um over the flank
+  measured.png  measured minus theoretical flank deviation maps (when /measured exists)
+"""
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def save(fig, path):
+    """Write atomically: a reader never sees a half-written PNG."""
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=130)
+    plt.close(fig)
+    os.replace(tmp, path)
+    print("picture:", path)
+
+
+def rotate(xy, angle):
+    c, s = np.cos(angle), np.sin(angle)
+    return xy @ np.array([[c, s], [-s, c]])
+
+
+def plot_profiles(flanks, out_dir):
+    pairs = list(flanks)
+    fig, axes = plt.subplots(len(pairs), 2, figsize=(12, 5.2 * len(pairs)), squeeze=False)
+    for row, name in zip(axes, pairs):
+        pair = flanks[name]
+        a = pair["working_centre_distance"][()]
+        p, g = pair["pinion"], pair["gear"]
+        z1, z2 = int(p["number_of_teeth"][()]), int(g["number_of_teeth"][()])
+        # Pinion at the origin with tooth 0 on +x; gear at (a, 0) turned so that a tooth space
+        # faces the pinion tooth.
+        pin = p["transverse_outline"][:] * 1e3
+        gea = rotate(g["transverse_outline"][:], np.pi + np.pi / z2) * 1e3 + [a * 1e3, 0]
+        for ax, zoom in zip(row, (False, True)):
+            for xy, member, colour in ((pin, p, "tab:blue"), (gea, g, "tab:red")):
+                closed = np.vstack([xy, xy[:1]])
+                ax.fill(closed[:, 0], closed[:, 1], color=colour, alpha=0.15, lw=0)
+                ax.plot(closed[:, 0], closed[:, 1], color=colour, lw=0.8)
+            for member, centre, colour in ((p, 0.0, "tab:blue"), (g, a * 1e3, "tab:red")):
+                t = np.linspace(0, 2 * np.pi, 400)
+                for key, style in (("base_radius", ":"), ("reference_radius", "--")):
+                    r = member[key][()] * 1e3
+                    ax.plot(centre + r * np.cos(t), r * np.sin(t), style, color=colour, lw=0.6)
+            for member, centre in ((p, 0.0), (g, a * 1e3)):
+                r = member["bore_radius"][()] * 1e3
+                if r > 0:
+                    ax.add_patch(plt.Circle((centre, 0), r, color="white", ec="k", lw=0.6))
+            ax.set_aspect("equal")
+            ax.set_xlabel("x [mm]")
+            ax.set_ylabel("y [mm]")
+            if zoom:
+                r1 = p["reference_radius"][()] * 1e3
+                m = p["normal_module"][()] * 1e3
+                ax.set_xlim(r1 - 3.5 * m, r1 + 3.5 * m)
+                ax.set_ylim(-4 * m, 4 * m)
+                ax.set_title(f"{name}: mesh region (dotted: base circles, dashed: reference)")
+            else:
+                ax.set_title(
+                    f"{name}: z {z1}/{z2}, m_n {p['normal_module'][()] * 1e3:g} mm, "
+                    f"beta {np.degrees(abs(p['helix_angle'][()])):g} deg, a_w {a * 1e3:.3f} mm"
+                )
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "profiles.png"))
+
+
+def plot_topography(flanks, out_dir):
+    """Flank topography of tooth 0, drive and coast, of every member: the modifications and
+    deviations along the normal in um over roll length (profile) and face width."""
+    members = [(pn, mn, flanks[pn][mn]) for pn in flanks for mn in ("pinion", "gear")]
+    fig, axes = plt.subplots(2, len(members), figsize=(4.2 * len(members), 7.5), squeeze=False)
+    for col, (pn, mn, m) in enumerate(members):
+        rb = m["base_radius"][()]
+        for row, side in enumerate(("drive", "coast")):
+            ax = axes[row][col]
+            s = m[side]
+            dev = s["deviation"][0] * 1e6
+            L = rb * s["roll_angle"][:] * 1e3
+            z = s["z"][:] * 1e3
+            span = max(np.abs(dev).max(), 1.0)
+            im = ax.pcolormesh(z, L, dev, shading="gouraud", cmap="coolwarm", vmin=-span,
+                               vmax=span)
+            fig.colorbar(im, ax=ax, label="deviation [um]")
+            ax.set_title(f"{pn} {mn}, tooth 0, {side}")
+            ax.set_xlabel("face z [mm]")
+            ax.set_ylabel("roll length L [mm] (root to tip)")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "topography.png"))
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    path = sys.argv[1]
+    out_dir = os.path.dirname(os.path.abspath(path))
+    with h5py.File(path, "r") as f:
+        if "flanks" in f:
+            plot_profiles(f["flanks"], out_dir)
+            plot_topography(f["flanks"], out_dir)
+
+
+if __name__ == "__main__":
+    main()

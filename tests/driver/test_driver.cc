@@ -1,0 +1,217 @@
+// The driver end to end: scene reading, the stage graph and its cache, the result file, and the
+// handling of bad input (clear message, non-zero exit, no result file).
+#include "driver.h"
+#include "h5_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+using namespace gearkit;
+namespace fs = std::filesystem;
+
+namespace
+{
+const std::string source_dir = GEARKIT_SOURCE_DIR;
+
+// A fresh directory per test, removed afterwards.
+class DriverTest : public ::testing::Test
+{
+protected:
+  void
+  SetUp() override
+  {
+    dir = fs::temp_directory_path() /
+          ("gearkit-test-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void
+  TearDown() override
+  {
+    fs::remove_all(dir);
+  }
+
+  // Writes a scene file with the given text; returns its path.
+  std::string
+  scene(const std::string &text, const std::string &name = "scene.prm") const
+  {
+    const fs::path p = dir / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+
+  // Runs the command line; returns the exit code and captures the output.
+  int
+  run(std::vector<std::string> args)
+  {
+    out.str("");
+    err.str("");
+    args.insert(args.begin(), {"--output-root", (dir / "out").string()});
+    return gearkit_main(args, out, err);
+  }
+
+  fs::path           dir;
+  std::ostringstream out, err;
+};
+
+std::string
+read_text(const std::string &path)
+{
+  std::ifstream      in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const std::string small_scene = R"(
+subsection Scene
+  set name    = small
+  set outputs = flanks
+  set pairs   = p1
+end
+subsection Flanks
+  subsection p1
+    set grid profile points = 3
+    set grid face points    = 4
+    subsection Pinion
+      set number of teeth = 19
+      set normal module   = 2
+    end
+    subsection Gear
+      set number of teeth = 37
+      set normal module   = 2
+    end
+  end
+end
+)";
+} // namespace
+
+TEST_F(DriverTest, DefaultCaseCentreDistancesMatchPublishedPairs)
+{
+  // reference-data.md: FZG C-type a = 91.5 mm (section 5), ISO/TR 6336-30 example a = 500 mm
+  // (section 3). Their profile shifts are published to 4 and 3 decimals, which moves a_w by
+  // < 0.01 mm.
+  ASSERT_EQ(run({source_dir + "/cases/default.prm"}), 0) << err.str();
+  const H5File  f       = H5File::open((dir / "out/default/results.h5").string());
+  const H5Group flanks  = f.root().group("flanks");
+  EXPECT_NEAR(flanks.group("spur").read_double("working_centre_distance"), 91.5e-3, 1e-5);
+  EXPECT_NEAR(flanks.group("helical").read_double("working_centre_distance"), 500e-3, 1e-5);
+  // ISO 21771 values of the C-type pinion: d = 72 mm, d_b = 67.6578 mm
+  const H5Group pinion = flanks.group("spur").group("pinion");
+  EXPECT_NEAR(pinion.read_double("reference_radius"), 36e-3, 1e-15);
+  EXPECT_NEAR(pinion.read_double("base_radius"), 36e-3 * std::cos(20 * pi / 180), 1e-15);
+}
+
+TEST_F(DriverTest, EveryDatasetHasUnitsAndDescription)
+{
+  ASSERT_EQ(run({scene(small_scene)}), 0) << err.str();
+  const std::string path = (dir / "out/small/results.h5").string();
+  const hid_t       file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  struct Count
+  {
+    int datasets = 0, missing = 0;
+  } count;
+  H5Ovisit(
+    file, H5_INDEX_NAME, H5_ITER_NATIVE,
+    [](hid_t root, const char *name, const H5O_info_t *info, void *data) -> herr_t {
+      auto *c = static_cast<Count *>(data);
+      if (info->type == H5O_TYPE_DATASET)
+        {
+          ++c->datasets;
+          for (const char *attr : {"units", "description"})
+            if (H5Aexists_by_name(root, name, attr, H5P_DEFAULT) <= 0)
+              ++c->missing;
+        }
+      return 0;
+    },
+    &count);
+  H5Fclose(file);
+  EXPECT_GT(count.datasets, 40);
+  EXPECT_EQ(count.missing, 0);
+}
+
+TEST_F(DriverTest, UnchangedSceneReusesEveryStageAndChangedFlankReruns)
+{
+  const std::string file = scene(small_scene);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: ran"), std::string::npos) << out.str();
+
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: reused"), std::string::npos) << out.str();
+  EXPECT_EQ(out.str().find(": ran"), std::string::npos) << out.str();
+
+  // A changed flank parameter re-runs the flank stage; whitespace and comments do not matter.
+  std::string changed = std::regex_replace(small_scene, std::regex("number of teeth = 19"),
+                                           "number of teeth = 21   # changed");
+  scene(changed);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: ran"), std::string::npos) << out.str();
+  const H5File f = H5File::open((dir / "out/small/results.h5").string());
+  std::vector<int> z = f.root().group("flanks").group("p1").group("pinion").read_ints("number_of_teeth");
+  EXPECT_EQ(z.at(0), 21);
+
+  std::string spaced = std::regex_replace(changed, std::regex("  set"), "      set");
+  scene(spaced);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: reused"), std::string::npos) << out.str();
+}
+
+TEST_F(DriverTest, HelpAndParameterList)
+{
+  EXPECT_EQ(run({"--help"}), 0);
+  EXPECT_NE(out.str().find("usage: gearkit"), std::string::npos);
+  EXPECT_EQ(run({"--print-parameters"}), 0);
+  for (const char *text : {"normal module", "[mm] Normal module", "tip relief", "single pitch",
+                           "Measured flanks", "allowed: [Integer range 3...100000"})
+    EXPECT_NE(out.str().find(text), std::string::npos) << text;
+  EXPECT_EQ(run({"--frobnicate"}), 2);
+  EXPECT_EQ(run({}), 2);
+}
+
+namespace
+{
+struct BadScene
+{
+  const char *what;
+  std::string from, to;       // replacement applied to small_scene
+  std::vector<std::string> expected; // substrings of the message
+};
+} // namespace
+
+TEST_F(DriverTest, BadScenesFailCleanlyWithoutResults)
+{
+  const std::vector<BadScene> cases = {
+    {"unknown parameter", "set normal module   = 2\n    end\n    subsection Gear",
+     "set normal modulus = 2\n    end\n    subsection Gear", {"scene.prm", "normal modulus"}},
+    {"out of range", "number of teeth = 19", "number of teeth = 2", {"scene.prm", "number of teeth", "2"}},
+    {"non-numeric", "number of teeth = 19", "number of teeth = nineteen", {"scene.prm", "nineteen"}},
+    {"bad selection", "set outputs = flanks", "set outputs = flanks, coffee", {"scene.prm", "coffee"}},
+    {"bad pair name", "set pairs   = p1", "set pairs   = p 1", {"scene.prm", "pair name"}},
+    {"modules differ", "set number of teeth = 37\n      set normal module   = 2",
+     "set number of teeth = 37\n      set normal module   = 2.5", {"scene.prm", "Flanks/p1", "normal module"}},
+    {"pointed tooth", "set normal module   = 2\n    end\n    subsection Gear",
+     "set normal module   = 2\n      set profile shift coefficient = 1.5\n    end\n    subsection Gear",
+     {"scene.prm", "Flanks/p1/Pinion", "pointed"}},
+    {"pitch deviations do not close", "set normal module   = 2\n    end\n    subsection Gear",
+     "set normal module   = 2\n      subsection Deviations\n        set single pitch deviations = "
+     "1,2,3\n      end\n    end\n    subsection Gear",
+     {"scene.prm", "Flanks/p1/Pinion", "single pitch deviations"}},
+  };
+  for (const BadScene &c : cases)
+    {
+      const std::string text = std::regex_replace(small_scene, std::regex(c.from), c.to);
+      ASSERT_NE(text, small_scene) << c.what;
+      EXPECT_EQ(run({scene(text)}), 1) << c.what << "\n" << out.str();
+      for (const std::string &e : c.expected)
+        EXPECT_NE(err.str().find(e), std::string::npos) << c.what << ": " << err.str();
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5.tmp")) << c.what;
+    }
+  EXPECT_EQ(run({(dir / "missing.prm").string()}), 1);
+  EXPECT_NE(err.str().find("missing.prm"), std::string::npos);
+}

@@ -15,7 +15,7 @@
 #include <sstream>
 
 #ifndef GEARKIT_SOURCE_DIR
-#  define GEARKIT_SOURCE_DIR "."
+#define GEARKIT_SOURCE_DIR "."
 #endif
 
 namespace gearkit
@@ -58,7 +58,7 @@ file_contents(const std::string &path)
 std::vector<std::string>
 required_stages(const std::vector<std::string> &outputs)
 {
-  std::set<std::string> needed;
+  std::set<std::string>                    needed;
   std::function<void(const std::string &)> add = [&](const std::string &stage) {
     if (needed.insert(stage).second)
       for (const std::string &up : definition(stage).upstream)
@@ -106,8 +106,8 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
     {
       const StageDefinition &s = definition(name);
       StageRun               run;
-      run.name       = name;
-      run.cache_file = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();
+      run.name         = name;
+      run.cache_file   = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();
       const auto start = std::chrono::steady_clock::now();
       if (fs::exists(run.cache_file))
         run.reused = true;
@@ -130,8 +130,8 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
       files[name] = std::make_unique<H5File>(H5File::open(run.cache_file));
       run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       log << "stage " << name << ": " << (run.reused ? "reused" : "ran") << " in " << std::fixed
-          << std::setprecision(3) << run.seconds << " s (" << fs::path(run.cache_file).filename().string()
-          << ")" << std::endl;
+          << std::setprecision(3) << run.seconds << " s ("
+          << fs::path(run.cache_file).filename().string() << ")" << std::endl;
       log.unsetf(std::ios::fixed);
       summary.stages.push_back(run);
     }

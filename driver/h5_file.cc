@@ -13,10 +13,7 @@ namespace
 // HDF5 prints its own error stack by default; we report our own message instead.
 struct SilenceHdf5
 {
-  SilenceHdf5()
-  {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
+  SilenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 };
 const SilenceHdf5 silence_hdf5;
 
@@ -37,10 +34,10 @@ write_string_attribute(hid_t object, const std::string &name, const std::string 
   H5Handle space(check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose);
   if (H5Aexists(object, name.c_str()) > 0)
     H5Adelete(object, name.c_str());
-  H5Handle attr(check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT,
-                                 H5P_DEFAULT),
-                      "attribute " + name),
-                H5Aclose);
+  H5Handle attr(
+      check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
+            "attribute " + name),
+      H5Aclose);
   check(H5Awrite(attr.id(), type.id(), value.empty() ? "" : value.c_str()), "attribute write");
 }
 
@@ -75,10 +72,10 @@ std::vector<T>
 read_dataset(hid_t group, const std::string &path, const std::string &name, hid_t mem_type,
              std::vector<hsize_t> *shape)
 {
-  H5Handle set(check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open dataset " + path + name),
-               H5Dclose);
-  H5Handle space(check(H5Dget_space(set.id()), "data space"), H5Sclose);
-  const int            rank = H5Sget_simple_extent_ndims(space.id());
+  H5Handle  set(check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open dataset " + path + name),
+                H5Dclose);
+  H5Handle  space(check(H5Dget_space(set.id()), "data space"), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.id());
   std::vector<hsize_t> dims(rank);
   H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
   hsize_t count = 1;
@@ -95,13 +92,14 @@ read_dataset(hid_t group, const std::string &path, const std::string &name, hid_
 } // namespace
 
 H5Handle::H5Handle(hid_t id, herr_t (*close)(hid_t))
-  : handle(id)
-  , closer(close)
-{}
+    : handle(id)
+    , closer(close)
+{
+}
 
 H5Handle::H5Handle(H5Handle &&o) noexcept
-  : handle(o.handle)
-  , closer(o.closer)
+    : handle(o.handle)
+    , closer(o.closer)
 {
   o.handle = -1;
 }
@@ -121,9 +119,10 @@ H5Handle::~H5Handle()
 }
 
 H5Group::H5Group(H5Handle h, std::string path)
-  : handle(std::move(h))
-  , group_path(std::move(path))
-{}
+    : handle(std::move(h))
+    , group_path(std::move(path))
+{
+}
 
 bool
 H5Group::has(const std::string &name) const
@@ -134,9 +133,9 @@ H5Group::has(const std::string &name) const
 H5Group
 H5Group::group(const std::string &name) const
 {
-  const hid_t id = has(name) ? H5Gopen2(handle.id(), name.c_str(), H5P_DEFAULT)
-                             : H5Gcreate2(handle.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT,
-                                          H5P_DEFAULT);
+  const hid_t id =
+      has(name) ? H5Gopen2(handle.id(), name.c_str(), H5P_DEFAULT)
+                : H5Gcreate2(handle.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   return H5Group(H5Handle(check(id, "group " + group_path + name), H5Gclose),
                  group_path + name + "/");
 }
@@ -165,8 +164,8 @@ H5Group::write(const std::string &name, const std::vector<int> &values,
                const std::vector<hsize_t> &shape, const std::string &units,
                const std::string &description) const
 {
-  write_dataset(handle.id(), group_path, name, H5T_NATIVE_INT, H5T_STD_I32LE, values, shape,
-                units, description);
+  write_dataset(handle.id(), group_path, name, H5T_NATIVE_INT, H5T_STD_I32LE, values, shape, units,
+                description);
 }
 
 void
@@ -199,8 +198,8 @@ H5Group::read_double(const std::string &name) const
 std::string
 H5Group::read_attribute(const std::string &name) const
 {
-  H5Handle attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT), "attribute " + name),
-                H5Aclose);
+  H5Handle    attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT), "attribute " + name),
+                   H5Aclose);
   H5Handle    type(check(H5Aget_type(attr.id()), "attribute type"), H5Tclose);
   std::string value(H5Tget_size(type.id()), '\0');
   check(H5Aread(attr.id(), type.id(), value.data()), "attribute read");
@@ -212,20 +211,21 @@ H5Group::children() const
 {
   std::vector<std::string> names;
   H5Literate(
-    handle.id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr,
-    [](hid_t, const char *name, const H5L_info_t *, void *data) -> herr_t {
-      static_cast<std::vector<std::string> *>(data)->push_back(name);
-      return 0;
-    },
-    &names);
+      handle.id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr,
+      [](hid_t, const char *name, const H5L_info_t *, void *data) -> herr_t {
+        static_cast<std::vector<std::string> *>(data)->push_back(name);
+        return 0;
+      },
+      &names);
   return names;
 }
 
 H5File::H5File(H5Handle h, std::string path, bool w)
-  : handle(std::move(h))
-  , final_path(std::move(path))
-  , writing(w)
-{}
+    : handle(std::move(h))
+    , final_path(std::move(path))
+    , writing(w)
+{
+}
 
 H5File
 H5File::create(const std::string &path)
@@ -273,7 +273,7 @@ H5File::copy_from(const H5File &source, const std::string &source_path,
 void
 H5File::commit()
 {
-  handle = H5Handle(); // closes the file
+  handle                = H5Handle(); // closes the file
   const std::string tmp = final_path + ".tmp";
   if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
     throw std::runtime_error("cannot rename " + tmp + " to " + final_path);

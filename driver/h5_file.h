@@ -29,7 +29,7 @@ public:
   }
 
 private:
-  hid_t handle = -1;
+  hid_t handle            = -1;
   herr_t (*closer)(hid_t) = nullptr;
 };
 
@@ -112,7 +112,7 @@ private:
   H5File(H5Handle handle, std::string path, bool writing);
   H5Handle    handle;
   std::string final_path;
-  bool        writing = false;
+  bool        writing   = false;
   bool        committed = false;
 };
 } // namespace gearkit

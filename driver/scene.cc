@@ -1,14 +1,13 @@
 #include "scene.h"
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <boost/property_tree/json_parser.hpp>
-#include <boost/property_tree/ptree.hpp>
-
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 
@@ -268,13 +267,12 @@ get_member(ParameterHandler &prm, const std::string &name)
     d.single_pitch_deviations.push_back(std::stod(v) * um);
   d.runout = {prm.get_double("runout") * um, prm.get_double("runout phase") * deg};
   if (const int k = prm.get_integer("eccentric tooth"); k >= 0)
-    d.eccentric_teeth.push_back({k,
-                                 prm.get("eccentric tooth flank") == "drive" ? FlankSide::drive
-                                                                             : FlankSide::coast,
-                                 prm.get_double("eccentric tooth offset") * um});
+    d.eccentric_teeth.push_back(
+        {k, prm.get("eccentric tooth flank") == "drive" ? FlankSide::drive : FlankSide::coast,
+         prm.get_double("eccentric tooth offset") * um});
   if (const int k = prm.get_integer("chipped tooth"); k >= 0)
     d.chipped_teeth.push_back(
-      {k, prm.get_double("chip diameter") * mm / 2, prm.get_double("chip face fraction")});
+        {k, prm.get_double("chip diameter") * mm / 2, prm.get_double("chip face fraction")});
   prm.leave_subsection();
   return d;
 }
@@ -283,21 +281,22 @@ MeasuredScene
 get_measured(ParameterHandler &prm, const fs::path &scene_dir, const std::string &pair)
 {
   static const std::map<std::string, MeasuredSource> sources = {
-    {"none", MeasuredSource::none},
-    {"virtual cmm", MeasuredSource::virtual_cmm},
-    {"synthesised", MeasuredSource::synthesised},
-    {"cmm files", MeasuredSource::cmm_files},
-    {"topography files", MeasuredSource::topography_files}};
+      {"none", MeasuredSource::none},
+      {"virtual cmm", MeasuredSource::virtual_cmm},
+      {"synthesised", MeasuredSource::synthesised},
+      {"cmm files", MeasuredSource::cmm_files},
+      {"topography files", MeasuredSource::topography_files}};
   MeasuredScene m;
-  m.source = sources.at(prm.get("source"));
+  m.source  = sources.at(prm.get("source"));
   auto path = [&](const char *key) {
     const std::string f = prm.get(key);
     return f.empty() ? f : (scene_dir / f).lexically_normal().string();
   };
-  m.pinion_file    = path("pinion file");
-  m.gear_file      = path("gear file");
+  m.pinion_file = path("pinion file");
+  m.gear_file   = path("gear file");
   if (m.source == MeasuredSource::cmm_files || m.source == MeasuredSource::topography_files)
-    for (const auto &[key, f] : {std::pair{"pinion file", m.pinion_file}, {"gear file", m.gear_file}})
+    for (const auto &[key, f] :
+         {std::pair{"pinion file", m.pinion_file}, {"gear file", m.gear_file}})
       if (f.empty() || !fs::is_regular_file(f))
         throw InputError("Measured flanks/" + pair + ": " + std::string(key) + " = '" + f +
                          "' does not name a readable file (source = " + prm.get("source") + ")");
@@ -327,7 +326,7 @@ check_pair(const PairScene &p)
   InvoluteGear::create(p.pinion);
   InvoluteGear::create(p.gear);
   const InvoluteGearData &a = p.pinion, &b = p.gear;
-  auto fail = [&](const std::string &what) {
+  auto                    fail = [&](const std::string &what) {
     throw InputError("Flanks/" + p.name + ": pinion and gear " + what);
   };
   if (std::abs(a.normal_module - b.normal_module) > 1e-12)
@@ -487,24 +486,25 @@ print_parameters(std::ostream &out, const std::vector<std::string> &pairs)
   boost::property_tree::read_json(json, tree);
 
   std::function<void(const boost::property_tree::ptree &, int)> print =
-    [&](const boost::property_tree::ptree &node, int depth) {
-      const std::string indent(2 * depth, ' ');
-      for (const auto &[name, child] : node) // entries first, then subsections
-        if (child.count("value"))
-          out << indent << "# " << child.get<std::string>("documentation") << "\n"
-              << indent << "# allowed: " << child.get<std::string>("pattern_description") << "\n"
-              << indent << "set " << name << " = " << child.get<std::string>("default_value")
-              << "\n\n";
-      for (const auto &[name, child] : node)
-        if (!child.count("value"))
-          {
-            out << indent << "subsection " << name << "\n";
-            print(child, depth + 1);
-            out << indent << "end\n\n";
-          }
-    };
+      [&](const boost::property_tree::ptree &node, int depth) {
+        const std::string indent(2 * depth, ' ');
+        for (const auto &[name, child] : node) // entries first, then subsections
+          if (child.count("value"))
+            out << indent << "# " << child.get<std::string>("documentation") << "\n"
+                << indent << "# allowed: " << child.get<std::string>("pattern_description") << "\n"
+                << indent << "set " << name << " = " << child.get<std::string>("default_value")
+                << "\n\n";
+        for (const auto &[name, child] : node)
+          if (!child.count("value"))
+            {
+              out << indent << "subsection " << name << "\n";
+              print(child, depth + 1);
+              out << indent << "end\n\n";
+            }
+      };
   out << "# gearkit scene parameters: every entry with its help text, allowed values and default.\n"
-      << "# Pair subsections repeat for every name in Scene/pairs (here: the example pair names).\n\n";
+      << "# Pair subsections repeat for every name in Scene/pairs (here: the example pair "
+         "names).\n\n";
   boost::property_tree::ptree scene_first;
   scene_first.add_child("Scene", tree.get_child("Scene"));
   for (const auto &[name, child] : tree)

@@ -24,34 +24,34 @@ struct PairScene
 enum class MeasuredSource
 {
   none,
-  virtual_cmm,      ///< sampled from the theoretical flanks (a perfect CMM)
-  synthesised,      ///< theoretical + form error, waviness, roughness, noise, pitch errors
-  cmm_files,        ///< one CMM point file per member
-  topography_files  ///< one topography deviation-grid file per member
+  virtual_cmm,     ///< sampled from the theoretical flanks (a perfect CMM)
+  synthesised,     ///< theoretical + form error, waviness, roughness, noise, pitch errors
+  cmm_files,       ///< one CMM point file per member
+  topography_files ///< one topography deviation-grid file per member
 };
 
 struct MeasuredScene
 {
-  MeasuredSource source = MeasuredSource::none;
-  std::string    pinion_file, gear_file; ///< absolute paths (resolved against the scene file)
-  int            profile_points = 9, face_points = 29;
-  double         edge_margin    = 0;  ///< fraction of each parameter range left out at the edges
+  MeasuredSource   source = MeasuredSource::none;
+  std::string      pinion_file, gear_file; ///< absolute paths (resolved against the scene file)
+  int              profile_points = 9, face_points = 29;
+  double           edge_margin = 0; ///< fraction of each parameter range left out at the edges
   std::vector<int> pinion_teeth, gear_teeth; ///< teeth to measure (empty = all)
-  unsigned long  seed               = 1;
-  double         form_error         = 0;
-  double         waviness_amplitude = 0;
-  double         waviness_wavelength = 0;
-  double         roughness          = 0;
-  double         noise              = 0;
-  double         pitch_error        = 0;
+  unsigned long    seed                = 1;
+  double           form_error          = 0;
+  double           waviness_amplitude  = 0;
+  double           waviness_wavelength = 0;
+  double           roughness           = 0;
+  double           noise               = 0;
+  double           pitch_error         = 0;
 };
 
 struct Scene
 {
-  std::string              file;    ///< the scene file as given
-  std::string              name;    ///< results go to <output root>/<name>/
-  std::vector<std::string> outputs; ///< what the user asked for
-  std::vector<PairScene>   pairs;
+  std::string                          file;    ///< the scene file as given
+  std::string                          name;    ///< results go to <output root>/<name>/
+  std::vector<std::string>             outputs; ///< what the user asked for
+  std::vector<PairScene>               pairs;
   std::map<std::string, MeasuredScene> measured; ///< by pair name
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.

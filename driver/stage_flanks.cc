@@ -109,7 +109,7 @@ working_pressure_angle(const InvoluteGear &p, const InvoluteGear &g)
   const double an  = p.data().normal_pressure_angle;
   const double rhs = std::tan(p.transverse_pressure_angle) - p.transverse_pressure_angle +
                      2 * std::tan(an) * (p.data().profile_shift + g.data().profile_shift) /
-                       (p.teeth() + g.teeth());
+                         (p.teeth() + g.teeth());
   double a = p.transverse_pressure_angle;
   for (int i = 0; i < 50; ++i)
     {
@@ -141,8 +141,9 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
       const double alpha_w = working_pressure_angle(*pinion, *gear);
       pg.write("working_pressure_angle", alpha_w, "rad",
                "transverse working pressure angle for zero backlash");
-      pg.write("working_centre_distance", (pinion->base_radius + gear->base_radius) / std::cos(alpha_w),
-               "m", "centre distance for zero backlash, a_w = (r_b1 + r_b2) / cos alpha_wt");
+      pg.write("working_centre_distance",
+               (pinion->base_radius + gear->base_radius) / std::cos(alpha_w), "m",
+               "centre distance for zero backlash, a_w = (r_b1 + r_b2) / cos alpha_wt");
     }
 }
 } // namespace gearkit

@@ -5,11 +5,12 @@
 namespace gearkit
 {
 Progress::Progress(std::ostream &l, std::string s, std::size_t t)
-  : log(l)
-  , stage(std::move(s))
-  , total(t)
-  , last(std::chrono::steady_clock::now())
-{}
+    : log(l)
+    , stage(std::move(s))
+    , total(t)
+    , last(std::chrono::steady_clock::now())
+{
+}
 
 void
 Progress::step(std::size_t n)
@@ -27,26 +28,27 @@ const std::vector<StageDefinition> &
 stage_definitions()
 {
   static const std::vector<StageDefinition> stages = {
-    {"flanks",
-     "involute flank geometry, profiles, flank grids and mass properties",
-     {},
-     {"Flanks"},
-     1,
-     [](const Scene &) { return std::vector<std::string>{}; },
-     run_flanks_stage},
-    {"measured",
-     "measured flank point sets (virtual CMM, synthesised, or read from files)",
-     {"flanks"},
-     {"Measured flanks"},
-     1,
-     [](const Scene &scene) {
-       std::vector<std::string> files;
-       for (const auto &[pair, m] : scene.measured)
-         if (m.source == MeasuredSource::cmm_files || m.source == MeasuredSource::topography_files)
-           files.insert(files.end(), {m.pinion_file, m.gear_file});
-       return files;
-     },
-     run_measured_stage},
+      {"flanks",
+       "involute flank geometry, profiles, flank grids and mass properties",
+       {},
+       {"Flanks"},
+       1,
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_flanks_stage},
+      {"measured",
+       "measured flank point sets (virtual CMM, synthesised, or read from files)",
+       {"flanks"},
+       {"Measured flanks"},
+       1,
+       [](const Scene &scene) {
+         std::vector<std::string> files;
+         for (const auto &[pair, m] : scene.measured)
+           if (m.source == MeasuredSource::cmm_files ||
+               m.source == MeasuredSource::topography_files)
+             files.insert(files.end(), {m.pinion_file, m.gear_file});
+         return files;
+       },
+       run_measured_stage},
   };
   return stages;
 }

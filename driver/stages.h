@@ -42,7 +42,7 @@ struct StageDefinition
   std::vector<std::string> sections; ///< scene sections whose parameters enter the key
   int                      version;  ///< bump when the stage's code changes its results
   /// Input files whose contents enter the key (e.g. CMM files).
-  std::function<std::vector<std::string>(const Scene &)> input_files;
+  std::function<std::vector<std::string>(const Scene &)>                                input_files;
   std::function<void(const Scene &, const Upstream &, const H5Group &, std::ostream &)> run;
 };
 

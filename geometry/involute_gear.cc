@@ -120,10 +120,38 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
   roll_angle_tip         = roll_angle(tip_radius);
   rack_h_tip             = xm - (base_radius * roll_angle_tip - reference_radius * st) * st;
   if (gear_checks.undercut)
-    gear_checks.warnings.push_back(
-        d.name + ": the rack cutter undercuts the involute (profile shift " + str(d.profile_shift) +
-        " is below the limit " + str((rack_h_form - reference_radius * st * st) / mn) +
-        "); the flank starts at the base circle and the fillet shown is the uncut trochoid");
+    {
+      // The cutter tip rounding cuts into the involute: the tooth is bounded by the trochoid
+      // below the point where it crosses the involute and by the involute above it. Find the
+      // crossing (first sign change of the polar-angle difference, refined by bisection) and end
+      // the fillet there.
+      auto inside = [&](double t) { // trochoid inside the involute at this radius?
+        fillet_t_end   = t;
+        const Vec2   q = fillet_point(1.0);
+        const double r = q.norm();
+        return r <= base_radius ||
+               std::atan2(q.y(), q.x()) < half_angle_base - inv(std::acos(base_radius / r));
+      };
+      double lo = 0, hi = 1;
+      for (int i = 1; i <= 1000; ++i)
+        if (!inside(i / 1000.0))
+          {
+            lo = (i - 1) / 1000.0;
+            hi = i / 1000.0;
+            break;
+          }
+      for (int i = 0; i < 60; ++i)
+        (inside(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+      fillet_t_end    = hi;
+      form_radius     = fillet_point(1.0).norm();
+      roll_angle_form = roll_angle(form_radius);
+      gear_checks.warnings.push_back(d.name +
+                                     ": the rack cutter undercuts the involute (profile shift " +
+                                     str(d.profile_shift) + " is below the limit " +
+                                     str((rack_h_form - reference_radius * st * st) / mn) +
+                                     "); the involute starts at d = " + str(2 * form_radius * 1e3) +
+                                     " mm where the root trochoid crosses it");
+    }
   require(form_radius < tip_radius, d, "addendum factor", d.addendum_factor, "",
           "the tip circle (d_a = " + str(2 * tip_radius * 1e3) +
               " mm) must lie outside the form circle (d_Ff = " + str(2 * form_radius * 1e3) +
@@ -215,7 +243,10 @@ InvoluteGear::generate(const Vec2 &q, const Vec2 &n, Vec2 *gear_normal) const
 std::pair<double, double>
 InvoluteGear::rack_flank_height_range() const
 {
-  return {rack_h_tip, rack_h_form};
+  // The heights whose Willis contact lies at the tip and form roll lengths.
+  const double st = std::sin(transverse_pressure_angle);
+  const double xm = d.profile_shift * d.normal_module;
+  return {rack_h_tip, xm + (reference_radius * st - base_radius * roll_angle_form) * st};
 }
 
 Vec2
@@ -239,14 +270,14 @@ InvoluteGear::fillet_point(double t, Vec2 *normal) const
   const double rho = d.root_radius_factor * mn;
   const double hc  = d.dedendum_factor * mn - rho;
   const double zc  = pi * mn / 4 + hc * std::tan(an) + rho / std::cos(an); // normal section
-  const double psi = pi / 2 + t * (an - pi / 2);
+  const double psi = pi / 2 + t * fillet_t_end * (an - pi / 2);
   const Vec2   q((zc - rho * std::cos(psi)) / cb, hc + rho * std::sin(psi));
   const Vec2   n = Vec2(-std::cos(psi), std::sin(psi) / cb).normalized();
   if (rho == 0) // sharp cutter corner: the fillet degenerates to the trochoid of that corner
     {
       const double at = transverse_pressure_angle;
       const Vec2   corner(pi * transverse_module / 4 + rack_h_form * std::tan(at), rack_h_form);
-      const double a = pi / 2 + t * (at - pi / 2);
+      const double a = pi / 2 + t * fillet_t_end * (at - pi / 2);
       return generate(corner, Vec2(-std::cos(a), std::sin(a)), normal);
     }
   return generate(q, n, normal);

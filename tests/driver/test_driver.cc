@@ -25,7 +25,8 @@ protected:
   SetUp() override
   {
     dir = fs::temp_directory_path() /
-          ("gearkit-test-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+          ("gearkit-test-" +
+           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir);
     fs::create_directories(dir);
   }
@@ -96,8 +97,8 @@ TEST_F(DriverTest, DefaultCaseCentreDistancesMatchPublishedPairs)
   // (section 3). Their profile shifts are published to 4 and 3 decimals, which moves a_w by
   // < 0.01 mm.
   ASSERT_EQ(run({source_dir + "/cases/default.prm"}), 0) << err.str();
-  const H5File  f       = H5File::open((dir / "out/default/results.h5").string());
-  const H5Group flanks  = f.root().group("flanks");
+  const H5File  f      = H5File::open((dir / "out/default/results.h5").string());
+  const H5Group flanks = f.root().group("flanks");
   EXPECT_NEAR(flanks.group("spur").read_double("working_centre_distance"), 91.5e-3, 1e-5);
   EXPECT_NEAR(flanks.group("helical").read_double("working_centre_distance"), 500e-3, 1e-5);
   // ISO 21771 values of the C-type pinion: d = 72 mm, d_b = 67.6578 mm
@@ -117,19 +118,19 @@ TEST_F(DriverTest, EveryDatasetHasUnitsAndDescription)
     int datasets = 0, missing = 0;
   } count;
   H5Ovisit(
-    file, H5_INDEX_NAME, H5_ITER_NATIVE,
-    [](hid_t root, const char *name, const H5O_info_t *info, void *data) -> herr_t {
-      auto *c = static_cast<Count *>(data);
-      if (info->type == H5O_TYPE_DATASET)
-        {
-          ++c->datasets;
-          for (const char *attr : {"units", "description"})
-            if (H5Aexists_by_name(root, name, attr, H5P_DEFAULT) <= 0)
-              ++c->missing;
-        }
-      return 0;
-    },
-    &count);
+      file, H5_INDEX_NAME, H5_ITER_NATIVE,
+      [](hid_t root, const char *name, const H5O_info_t *info, void *data) -> herr_t {
+        auto *c = static_cast<Count *>(data);
+        if (info->type == H5O_TYPE_DATASET)
+          {
+            ++c->datasets;
+            for (const char *attr : {"units", "description"})
+              if (H5Aexists_by_name(root, name, attr, H5P_DEFAULT) <= 0)
+                ++c->missing;
+          }
+        return 0;
+      },
+      &count);
   H5Fclose(file);
   EXPECT_GT(count.datasets, 40);
   EXPECT_EQ(count.missing, 0);
@@ -151,8 +152,9 @@ TEST_F(DriverTest, UnchangedSceneReusesEveryStageAndChangedFlankReruns)
   scene(changed);
   ASSERT_EQ(run({file}), 0) << err.str();
   EXPECT_NE(out.str().find("stage flanks: ran"), std::string::npos) << out.str();
-  const H5File f = H5File::open((dir / "out/small/results.h5").string());
-  std::vector<int> z = f.root().group("flanks").group("p1").group("pinion").read_ints("number_of_teeth");
+  const H5File     f = H5File::open((dir / "out/small/results.h5").string());
+  std::vector<int> z =
+      f.root().group("flanks").group("p1").group("pinion").read_ints("number_of_teeth");
   EXPECT_EQ(z.at(0), 21);
 
   std::string spaced = std::regex_replace(changed, std::regex("  set"), "      set");
@@ -177,8 +179,8 @@ namespace
 {
 struct BadScene
 {
-  const char *what;
-  std::string from, to;       // replacement applied to small_scene
+  const char              *what;
+  std::string              from, to; // replacement applied to small_scene
   std::vector<std::string> expected; // substrings of the message
 };
 } // namespace
@@ -186,21 +188,38 @@ struct BadScene
 TEST_F(DriverTest, BadScenesFailCleanlyWithoutResults)
 {
   const std::vector<BadScene> cases = {
-    {"unknown parameter", "set normal module   = 2\n    end\n    subsection Gear",
-     "set normal modulus = 2\n    end\n    subsection Gear", {"scene.prm", "normal modulus"}},
-    {"out of range", "number of teeth = 19", "number of teeth = 2", {"scene.prm", "number of teeth", "2"}},
-    {"non-numeric", "number of teeth = 19", "number of teeth = nineteen", {"scene.prm", "nineteen"}},
-    {"bad selection", "set outputs = flanks", "set outputs = flanks, coffee", {"scene.prm", "coffee"}},
-    {"bad pair name", "set pairs   = p1", "set pairs   = p 1", {"scene.prm", "pair name"}},
-    {"modules differ", "set number of teeth = 37\n      set normal module   = 2",
-     "set number of teeth = 37\n      set normal module   = 2.5", {"scene.prm", "Flanks/p1", "normal module"}},
-    {"pointed tooth", "set normal module   = 2\n    end\n    subsection Gear",
-     "set normal module   = 2\n      set profile shift coefficient = 1.5\n    end\n    subsection Gear",
-     {"scene.prm", "Flanks/p1/Pinion", "pointed"}},
-    {"pitch deviations do not close", "set normal module   = 2\n    end\n    subsection Gear",
-     "set normal module   = 2\n      subsection Deviations\n        set single pitch deviations = "
-     "1,2,3\n      end\n    end\n    subsection Gear",
-     {"scene.prm", "Flanks/p1/Pinion", "single pitch deviations"}},
+      {"unknown parameter",
+       "set normal module   = 2\n    end\n    subsection Gear",
+       "set normal modulus = 2\n    end\n    subsection Gear",
+       {"scene.prm", "normal modulus"}},
+      {"out of range",
+       "number of teeth = 19",
+       "number of teeth = 2",
+       {"scene.prm", "number of teeth", "2"}},
+      {"non-numeric",
+       "number of teeth = 19",
+       "number of teeth = nineteen",
+       {"scene.prm", "nineteen"}},
+      {"bad selection",
+       "set outputs = flanks",
+       "set outputs = flanks, coffee",
+       {"scene.prm", "coffee"}},
+      {"bad pair name", "set pairs   = p1", "set pairs   = p 1", {"scene.prm", "pair name"}},
+      {"modules differ",
+       "set number of teeth = 37\n      set normal module   = 2",
+       "set number of teeth = 37\n      set normal module   = 2.5",
+       {"scene.prm", "Flanks/p1", "normal module"}},
+      {"pointed tooth",
+       "set normal module   = 2\n    end\n    subsection Gear",
+       "set normal module   = 2\n      set profile shift coefficient = 1.5\n    end\n    "
+       "subsection Gear",
+       {"scene.prm", "Flanks/p1/Pinion", "pointed"}},
+      {"pitch deviations do not close",
+       "set normal module   = 2\n    end\n    subsection Gear",
+       "set normal module   = 2\n      subsection Deviations\n        set single pitch deviations "
+       "= "
+       "1,2,3\n      end\n    end\n    subsection Gear",
+       {"scene.prm", "Flanks/p1/Pinion", "single pitch deviations"}},
   };
   for (const BadScene &c : cases)
     {

@@ -95,8 +95,8 @@ TEST(InvoluteGear, ToothThicknessOfRackGeneratedProfileMatchesIso21771)
 
 TEST(InvoluteGear, FlankEqualsRackGeneratedInvolute)
 {
-  const auto g = InvoluteGear::create(helical());
-  const auto f = g->flank(0, FlankSide::drive);
+  const auto g        = InvoluteGear::create(helical());
+  const auto f        = g->flank(0, FlankSide::drive);
   const auto [h0, h1] = g->rack_flank_height_range();
   for (int i = 0; i <= 10; ++i)
     {
@@ -112,7 +112,7 @@ TEST(InvoluteGear, FlankEqualsRackGeneratedInvolute)
 
 TEST(InvoluteGear, NormalsOrthogonalToTangentsWithAllModifications)
 {
-  InvoluteGearData d = helical(Hand::left);
+  InvoluteGearData    d = helical(Hand::left);
   ToothModifications &m = d.drive_modifications;
   m.tip_relief = 20e-6, m.tip_relief_length = 1.5e-3, m.tip_relief_shape = ReliefShape::parabolic;
   m.root_relief = 10e-6, m.root_relief_length = 1e-3;
@@ -147,17 +147,17 @@ TEST(InvoluteGear, DerivativesMatchFiniteDifferencesOfModifiedSurface)
 {
   // d_du and d_dv of the modified surface are analytic; central differences (h = 1e-6 of the
   // range, error ~ h^2 |r'''| ~ 1e-12 relative) must agree.
-  InvoluteGearData d = helical();
-  d.drive_modifications.lead_crowning      = 10e-6;
-  d.drive_modifications.waviness_amplitude = 2e-6;
+  InvoluteGearData d                        = helical();
+  d.drive_modifications.lead_crowning       = 10e-6;
+  d.drive_modifications.waviness_amplitude  = 2e-6;
   d.drive_modifications.waviness_wavelength = 0.5e-3;
-  d.drive_modifications.profile_slope      = 5e-6;
-  const auto        g   = InvoluteGear::create(d);
-  const auto        f   = g->flank(2, FlankSide::drive);
-  const FlankDomain dom = f.domain();
+  d.drive_modifications.profile_slope       = 5e-6;
+  const auto        g                       = InvoluteGear::create(d);
+  const auto        f                       = g->flank(2, FlankSide::drive);
+  const FlankDomain dom                     = f.domain();
   const double      u = 0.6 * dom.u_min + 0.4 * dom.u_max, v = 0.3 * dom.v_max;
   const double      hu = 1e-6 * (dom.u_max - dom.u_min), hv = 1e-6 * (dom.v_max - dom.v_min);
-  const auto        p  = f.evaluate(u, v);
+  const auto        p = f.evaluate(u, v);
   const Vec3 fd_u = (f.evaluate(u + hu, v).position - f.evaluate(u - hu, v).position) / (2 * hu);
   const Vec3 fd_v = (f.evaluate(u, v + hv).position - f.evaluate(u, v - hv).position) / (2 * hv);
   EXPECT_LT((fd_u - p.d_du).norm(), 1e-7 * p.d_du.norm());
@@ -177,8 +177,8 @@ TEST(InvoluteGear, NormalIsTangentToBaseCylinder)
           const FlankDomain dom = f.domain();
           for (int i = 0; i <= 8; ++i)
             {
-              const auto p = f.evaluate(dom.u_min + (dom.u_max - dom.u_min) * i / 8, 0.01);
-              const Vec3 &P = p.position, &n = p.normal;
+              const auto   p = f.evaluate(dom.u_min + (dom.u_max - dom.u_min) * i / 8, 0.01);
+              const Vec3  &P = p.position, &n = p.normal;
               const double dist = std::abs(P.x() * n.y() - P.y() * n.x()) / n.head<2>().norm();
               EXPECT_NEAR(dist, g->base_radius, 1e-12 * g->base_radius);
             }
@@ -240,6 +240,23 @@ TEST(InvoluteGear, UndercutLimit)
   EXPECT_TRUE(InvoluteGear::create(spur(12, 0.25))->checks().undercut);
 }
 
+TEST(InvoluteGear, UndercutFilletMeetsInvoluteAboveBaseCircle)
+{
+  // z 10 without shift is deeply undercut: the trochoid of the cutter tip rounding crosses the
+  // involute above the base circle; there the profile has a corner (position continuous, normal
+  // not), and below it the fillet lies inside the involute's extension.
+  const auto g = InvoluteGear::create(spur(10, 0));
+  ASSERT_TRUE(g->checks().undercut);
+  EXPECT_GT(g->form_radius, g->base_radius * (1 + 1e-6));
+  const Vec2 q = g->fillet_point(1.0);
+  const auto f = g->flank(0, FlankSide::drive).evaluate(g->roll_angle_form, 0);
+  EXPECT_NEAR((q - f.position.head<2>()).norm(), 0, 1e-9 * g->tip_radius);
+  const Vec2   below = g->fillet_point(0.95);
+  const double r     = below.norm();
+  if (r > g->base_radius)
+    EXPECT_LT(polar_angle(below), g->tooth_thickness(r) / (2 * r));
+}
+
 TEST(InvoluteGear, PointedToothIsRejected)
 {
   InvoluteGearData d = spur(10, 1.2);
@@ -286,25 +303,25 @@ TEST(InvoluteGear, InvalidDataNamesTheParameter)
   d                         = spur();
   d.single_pitch_deviations = std::vector<double>(20, 1e-6);
   expect_error(d, "sum of single pitch deviations");
-  d                 = spur();
-  d.chipped_teeth   = {{25, 0.05, 1}};
+  d               = spur();
+  d.chipped_teeth = {{25, 0.05, 1}};
   expect_error(d, "chipped tooth index");
-  d                                          = spur();
-  d.drive_modifications.tip_relief           = 1e-5;
-  d.drive_modifications.tip_relief_length    = 1.0;
+  d                                       = spur();
+  d.drive_modifications.tip_relief        = 1e-5;
+  d.drive_modifications.tip_relief_length = 1.0;
   expect_error(d, "tip relief length");
 }
 
 TEST(InvoluteGear, TipReliefAmountsAlongNormal)
 {
   // Linear tip relief Ca over La: zero at L_tip - La, -Ca at the tip, measured along the normal.
-  InvoluteGearData d               = spur(25);
-  d.drive_modifications.tip_relief = 15e-6;
+  InvoluteGearData d                      = spur(25);
+  d.drive_modifications.tip_relief        = 15e-6;
   d.drive_modifications.tip_relief_length = 2e-3;
-  const auto   g    = InvoluteGear::create(d);
-  const auto   f    = g->flank(4, FlankSide::drive);
-  const double rb   = g->base_radius;
-  auto         dev  = [&](double xi) {
+  const auto   g                          = InvoluteGear::create(d);
+  const auto   f                          = g->flank(4, FlankSide::drive);
+  const double rb                         = g->base_radius;
+  auto         dev                        = [&](double xi) {
     const auto p = f.evaluate(xi, 0), q = f.nominal(xi, 0);
     return (p.position - q.position).dot(q.normal);
   };
@@ -314,9 +331,9 @@ TEST(InvoluteGear, TipReliefAmountsAlongNormal)
   EXPECT_EQ(dev(g->roll_angle_form), 0);
   // the coast side is untouched
   const auto c = g->flank(4, FlankSide::coast);
-  EXPECT_EQ((c.evaluate(g->roll_angle_tip, 0).position - c.nominal(g->roll_angle_tip, 0).position)
-              .norm(),
-            0);
+  EXPECT_EQ(
+      (c.evaluate(g->roll_angle_tip, 0).position - c.nominal(g->roll_angle_tip, 0).position).norm(),
+      0);
 }
 
 TEST(InvoluteGear, EccentricToothMovesAlongNormal)
@@ -333,8 +350,8 @@ TEST(InvoluteGear, EccentricToothMovesAlongNormal)
 
 TEST(InvoluteGear, PitchDeviationsAndRunoutAreRigidMotions)
 {
-  InvoluteGearData d        = spur(6 * 4);
-  d.single_pitch_deviations = std::vector<double>(24, 0);
+  InvoluteGearData d           = spur(6 * 4);
+  d.single_pitch_deviations    = std::vector<double>(24, 0);
   d.single_pitch_deviations[3] = 6e-6;  // tooth 3 and all after it advance by 6 um ...
   d.single_pitch_deviations[4] = -6e-6; // ... until tooth 4 takes it back
   d.runout                     = {20e-6, 30 * deg};
@@ -343,9 +360,9 @@ TEST(InvoluteGear, PitchDeviationsAndRunoutAreRigidMotions)
   const Vec3 t(20e-6 * std::cos(30 * deg), 20e-6 * std::sin(30 * deg), 0);
   for (int k : {2, 3, 4})
     {
-      const double xi = 0.5;
-      const Vec3   p  = g->flank(k, FlankSide::drive).evaluate(xi, 0).position - t;
-      const Vec3   q  = ref->flank(k, FlankSide::drive).evaluate(xi, 0).position;
+      const double xi   = 0.5;
+      const Vec3   p    = g->flank(k, FlankSide::drive).evaluate(xi, 0).position - t;
+      const Vec3   q    = ref->flank(k, FlankSide::drive).evaluate(xi, 0).position;
       const double turn = std::atan2(p.y(), p.x()) - std::atan2(q.y(), q.x());
       EXPECT_NEAR(turn, k == 3 ? 6e-6 / g->reference_radius : 0, 1e-15);
       EXPECT_NEAR(p.norm(), q.norm(), 1e-15);
@@ -362,7 +379,7 @@ std::pair<double, double>
 tooth_area_and_polar(const InvoluteGear &g, double r_from)
 {
   double area = 0, polar = 0;
-  auto   add  = [&](double r0, double psi0, double r1, double psi1) {
+  auto   add = [&](double r0, double psi0, double r1, double psi1) {
     area += (psi0 * r0 + psi1 * r1) * (r1 - r0);
     polar += (psi0 * r0 * r0 * r0 + psi1 * r1 * r1 * r1) * (r1 - r0);
   };
@@ -412,14 +429,14 @@ TEST(MassProperties, GearBodyAgainstStripIntegration)
 {
   // Polygon (Green's theorem) against radial strip integration; both converge as h^2, the
   // remaining difference is ~1e-6 relative at these resolutions.
-  InvoluteGearData d = helical();
-  d.bore_diameter    = 20e-3;
-  const auto g       = InvoluteGear::create(d);
+  InvoluteGearData d            = helical();
+  d.bore_diameter               = 20e-3;
+  const auto g                  = InvoluteGear::create(d);
   const auto [A_tooth, J_tooth] = tooth_area_and_polar(*g, g->root_radius);
-  const double rf = g->root_radius, rbore = d.bore_diameter / 2;
-  const double area  = pi * (rf * rf - rbore * rbore) + d.teeth * A_tooth;
-  const double polar = pi / 2 * (std::pow(rf, 4) - std::pow(rbore, 4)) + d.teeth * J_tooth;
-  const MassProperties p = g->mass_properties();
+  const double         rf = g->root_radius, rbore = d.bore_diameter / 2;
+  const double         area  = pi * (rf * rf - rbore * rbore) + d.teeth * A_tooth;
+  const double         polar = pi / 2 * (std::pow(rf, 4) - std::pow(rbore, 4)) + d.teeth * J_tooth;
+  const MassProperties p     = g->mass_properties();
   EXPECT_NEAR(p.mass / (d.density * d.face_width * area), 1, 2e-6);
   EXPECT_NEAR(p.polar_inertia / (d.density * d.face_width * polar), 1, 2e-6);
   // between the root and tip cylinders
@@ -429,14 +446,14 @@ TEST(MassProperties, GearBodyAgainstStripIntegration)
 
 TEST(MassProperties, ChippedToothRemovesItsVolume)
 {
-  InvoluteGearData d = spur(17);
-  d.normal_module    = 4e-3;
-  const auto   whole = InvoluteGear::create(d);
-  const double r_chip = 0.5 * (whole->form_radius + whole->tip_radius);
-  d.chipped_teeth     = {{0, r_chip, 0.5}};
-  const auto   chipped = InvoluteGear::create(d);
-  const auto [A, J]    = tooth_area_and_polar(*whole, r_chip);
-  const double length  = 0.5 * d.face_width;
+  InvoluteGearData d          = spur(17);
+  d.normal_module             = 4e-3;
+  const auto   whole          = InvoluteGear::create(d);
+  const double r_chip         = 0.5 * (whole->form_radius + whole->tip_radius);
+  d.chipped_teeth             = {{0, r_chip, 0.5}};
+  const auto chipped          = InvoluteGear::create(d);
+  const auto [A, J]           = tooth_area_and_polar(*whole, r_chip);
+  const double         length = 0.5 * d.face_width;
   const MassProperties a = whole->mass_properties(), b = chipped->mass_properties();
   EXPECT_NEAR((a.mass - b.mass) / (d.density * length * A), 1, 1e-5);
   EXPECT_NEAR((a.polar_inertia - b.polar_inertia) / (d.density * length * J), 1, 1e-5);

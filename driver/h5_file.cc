@@ -25,20 +25,22 @@ check(hid_t id, const std::string &what)
   return id;
 }
 
+// Variable-length UTF-8 strings: h5py reads them as str.
 void
 write_string_attribute(hid_t object, const std::string &name, const std::string &value)
 {
   H5Handle type(check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-  H5Tset_size(type.id(), std::max<std::size_t>(value.size(), 1));
+  H5Tset_size(type.id(), H5T_VARIABLE);
   H5Tset_cset(type.id(), H5T_CSET_UTF8);
   H5Handle space(check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose);
   if (H5Aexists(object, name.c_str()) > 0)
     H5Adelete(object, name.c_str());
-  H5Handle attr(
-      check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
-            "attribute " + name),
-      H5Aclose);
-  check(H5Awrite(attr.id(), type.id(), value.empty() ? "" : value.c_str()), "attribute write");
+  H5Handle    attr(check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT,
+                                    H5P_DEFAULT),
+                         "attribute " + name),
+                   H5Aclose);
+  const char *text = value.c_str();
+  check(H5Awrite(attr.id(), type.id(), &text), "attribute write");
 }
 
 template <typename T>
@@ -198,12 +200,16 @@ H5Group::read_double(const std::string &name) const
 std::string
 H5Group::read_attribute(const std::string &name) const
 {
-  H5Handle    attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT), "attribute " + name),
-                   H5Aclose);
-  H5Handle    type(check(H5Aget_type(attr.id()), "attribute type"), H5Tclose);
-  std::string value(H5Tget_size(type.id()), '\0');
-  check(H5Aread(attr.id(), type.id(), value.data()), "attribute read");
-  return value.substr(0, value.find('\0'));
+  H5Handle attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT), "attribute " + name),
+                H5Aclose);
+  H5Handle type(check(H5Aget_type(attr.id()), "attribute type"), H5Tclose);
+  if (!H5Tis_variable_str(type.id()))
+    throw std::runtime_error("HDF5 attribute " + group_path + name + " is not a text");
+  char *text = nullptr;
+  check(H5Aread(attr.id(), type.id(), &text), "attribute read");
+  std::string value = text ? text : "";
+  H5free_memory(text);
+  return value;
 }
 
 std::vector<std::string>

@@ -145,6 +145,8 @@ TEST_F(DriverTest, UnchangedSceneReusesEveryStageAndChangedFlankReruns)
   ASSERT_EQ(run({file}), 0) << err.str();
   EXPECT_NE(out.str().find("stage flanks: reused"), std::string::npos) << out.str();
   EXPECT_EQ(out.str().find(": ran"), std::string::npos) << out.str();
+  EXPECT_EQ(H5File::open((dir / "out/small/results.h5").string()).root().read_attribute("stages"),
+            "flanks (reused)\n");
 
   // A changed flank parameter re-runs the flank stage; whitespace and comments do not matter.
   std::string changed = std::regex_replace(small_scene, std::regex("number of teeth = 19"),

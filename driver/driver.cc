@@ -152,6 +152,9 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
     results.copy_from(*files.at(r.name), "/" + r.name, "/" + r.name);
   results.commit();
   log << "results: " << summary.results_file << std::endl;
+  if (files.count("measured"))
+    export_measured_cmm(scene, files.at("measured")->root().group("measured"),
+                        (dir / "cmm").string(), log);
   return summary;
 }
 

@@ -35,10 +35,10 @@ write_string_attribute(hid_t object, const std::string &name, const std::string 
   H5Handle space(check(H5Screate(H5S_SCALAR), "scalar space"), H5Sclose);
   if (H5Aexists(object, name.c_str()) > 0)
     H5Adelete(object, name.c_str());
-  H5Handle    attr(check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT,
-                                    H5P_DEFAULT),
-                         "attribute " + name),
-                   H5Aclose);
+  H5Handle attr(
+      check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
+            "attribute " + name),
+      H5Aclose);
   const char *text = value.c_str();
   check(H5Awrite(attr.id(), type.id(), &text), "attribute write");
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "h5_file.h"
+#include "measured_flank.h"
 #include "scene.h"
 
 #include <chrono>
@@ -59,4 +60,14 @@ void
 run_flanks_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 void
 run_measured_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+
+/// A member's measured flanks as the measured stage stored them (for later stages and exports).
+MeasuredMember
+read_measured(const H5Group &member_group, const std::string &member);
+
+/// Writes the virtual or synthesised measurements of every pair as CMM point files
+/// <dir>/<pair>_<member>.cmm (a starting point for users and for `source = cmm files`).
+void
+export_measured_cmm(const Scene &scene, const H5Group &measured, const std::string &dir,
+                    std::ostream &log);
 } // namespace gearkit

@@ -5,7 +5,7 @@ usage: plot_results.py out/<scene>/results.h5
 
   profiles.png  transverse tooth profiles of every pair, in mesh at the working centre distance
   topography.png  modifications of tooth 0 (drive, coast) of every member, um over the flank
-  measured.png  measured minus theoretical flank deviation maps (when /measured exists)
+  measured.png    measured minus theoretical flank of the first measured tooth, um
 """
 import os
 import sys
@@ -100,6 +100,39 @@ def plot_topography(flanks, out_dir):
     save(fig, os.path.join(out_dir, "topography.png"))
 
 
+def plot_measured(measured, out_dir):
+    """Measured minus theoretical flank (um), drive and coast of the first measured tooth of
+    every member whose measurement deviates from its theoretical counterpart."""
+    rows = []
+    for pn in measured:
+        for mn in ("pinion", "gear"):
+            groups = measured[pn][mn] if mn in measured[pn] else {}
+            names = [n for n in groups if n.startswith("tooth_") and "deviation" in groups[n]]
+            if not names:
+                continue
+            tooth = min(int(n.split("_")[1]) for n in names)
+            sides = [groups[f"tooth_{tooth}_{s}"] for s in ("drive", "coast")
+                     if f"tooth_{tooth}_{s}" in groups]
+            if max(np.abs(g["deviation"][:]).max() for g in sides) > 1e-9:
+                rows.append((pn, mn, tooth, sides))
+    if not rows:
+        return
+    fig, axes = plt.subplots(len(rows), 2, figsize=(9, 3.3 * len(rows)), squeeze=False)
+    for row, (pn, mn, tooth, sides) in zip(axes, rows):
+        for ax, g in zip(row, sides):
+            dev = g["deviation"][:] * 1e6
+            span = max(np.abs(dev).max(), 1.0)
+            im = ax.imshow(dev, origin="lower", aspect="auto", cmap="coolwarm", vmin=-span,
+                           vmax=span)
+            fig.colorbar(im, ax=ax, label="measured - theory [um]")
+            ax.set_title(f"{pn} {mn}, tooth {tooth}, {g.attrs['side']}")
+            ax.set_xlabel("face point (-z to +z)")
+            ax.set_ylabel("profile point (root to tip)")
+    fig.suptitle("Measured flanks against theory")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "measured.png"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -109,6 +142,8 @@ def main():
         if "flanks" in f:
             plot_profiles(f["flanks"], out_dir)
             plot_topography(f["flanks"], out_dir)
+        if "measured" in f:
+            plot_measured(f["measured"], out_dir)
 
 
 if __name__ == "__main__":

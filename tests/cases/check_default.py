@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Checks the default case's output folder: results.h5 holds both pairs with their flank
-grids and the pictures exist and are real PNG images of a sensible size."""
+grids and measurements, the CMM files were exported, and the pictures exist and are real PNG
+images of a sensible size."""
 import os
 import sys
 
@@ -23,7 +24,23 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
             r = np.hypot(nominal[..., 0], nominal[..., 1])
             assert r.min() > g["form_radius"][()] - 1e-7, (pair, member, r.min())
             assert r.max() < g["tip_radius"][()] + 1e-7, (pair, member, r.max())
-for png in ("profiles.png", "topography.png"):
+    # synthesised spur measurement: all teeth, both sides, 261 points, deviations of a few um
+    for member, z in (("pinion", 16), ("gear", 24)):
+        g = f["measured"]["spur"][member]
+        flanks = [n for n in g if n.startswith("tooth_")]
+        assert len(flanks) == 2 * z, (member, len(flanks))
+        dev = np.array([g[n]["deviation"][:] for n in flanks])
+        assert dev.shape[1:] == (9, 29)
+        # Per flank, the pitch error is a near-constant offset; what is left has the spread of
+        # noise (1 um sd), roughness (0.3), waviness (0.5 amplitude) and form (2 um peak):
+        # sqrt(1 + 0.09 + 0.06 + ~0.15) = 1.14 um expected.
+        offsets = dev.mean(axis=(1, 2))
+        rest = dev - offsets[:, None, None]
+        assert 0.9e-6 < rest.std() < 1.5e-6, rest.std()
+        assert offsets.std() > 1e-6, offsets.std()  # pitch errors of 3 um sd are there
+for name in ("spur_pinion", "spur_gear", "helical_pinion", "helical_gear"):
+    assert os.path.getsize(os.path.join(out, "cmm", name + ".cmm")) > 1000, name
+for png in ("profiles.png", "topography.png", "measured.png"):
     path = os.path.join(out, png)
     with open(path, "rb") as fh:
         assert fh.read(8) == b"\x89PNG\r\n\x1a\n", path

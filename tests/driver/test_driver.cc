@@ -2,6 +2,7 @@
 // handling of bad input (clear message, non-zero exit, no result file).
 #include "driver.h"
 #include "h5_file.h"
+#include "stages.h"
 
 #include <gtest/gtest.h>
 
@@ -235,4 +236,109 @@ TEST_F(DriverTest, BadScenesFailCleanlyWithoutResults)
     }
   EXPECT_EQ(run({(dir / "missing.prm").string()}), 1);
   EXPECT_NE(err.str().find("missing.prm"), std::string::npos);
+}
+
+namespace
+{
+const std::string measured_scene =
+    std::regex_replace(small_scene, std::regex("set outputs = flanks"),
+                       "set outputs = flanks, measured") +
+    R"(
+subsection Measured flanks
+  subsection p1
+    set source         = synthesised
+    set profile points = 5
+    set face points    = 7
+    set pinion teeth   = 0, 3
+    set gear teeth     = 1
+    subsection Synthesis
+      set noise = 1
+    end
+  end
+end
+)";
+} // namespace
+
+TEST_F(DriverTest, ChangedMeasurementParameterRerunsOnlyThatStage)
+{
+  const std::string file = scene(measured_scene);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: ran"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("stage measured: ran"), std::string::npos) << out.str();
+
+  scene(std::regex_replace(measured_scene, std::regex("set noise = 1"), "set noise = 2"));
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: reused"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("stage measured: ran"), std::string::npos) << out.str();
+
+  // a flank parameter changes both (measured depends on flanks)
+  scene(std::regex_replace(measured_scene, std::regex("number of teeth = 37"),
+                           "number of teeth = 38"));
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: ran"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("stage measured: ran"), std::string::npos) << out.str();
+
+  // only the measured output: the flank stage still runs first (it is upstream), reused here
+  scene(std::regex_replace(measured_scene, std::regex("set outputs = flanks, measured"),
+                           "set outputs = measured"));
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: reused"), std::string::npos) << out.str();
+}
+
+TEST_F(DriverTest, ExportedCmmFilesReadBackAsMeasurement)
+{
+  // Run 1 measures with a perfect virtual CMM and exports CMM files; run 2 reads those files as
+  // its measurement: the points must agree to the files' printed precision (5e-13 m).
+  const std::string virtual_scene =
+      std::regex_replace(measured_scene, std::regex("set source         = synthesised"),
+                         "set source         = virtual cmm");
+  ASSERT_EQ(run({scene(virtual_scene)}), 0) << err.str();
+  const fs::path cmm = dir / "out/small/cmm";
+  ASSERT_TRUE(fs::exists(cmm / "p1_pinion.cmm")) << out.str();
+  fs::copy(cmm / "p1_pinion.cmm", dir / "pinion.cmm");
+  fs::copy(cmm / "p1_gear.cmm", dir / "gear.cmm");
+  const MeasuredMember first = read_measured(H5File::open((dir / "out/small/results.h5").string())
+                                                 .root()
+                                                 .group("measured")
+                                                 .group("p1")
+                                                 .group("pinion"),
+                                             "pinion");
+
+  std::string from_files = std::regex_replace(
+      virtual_scene, std::regex("set source         = virtual cmm"),
+      "set source = cmm files\n    set pinion file = pinion.cmm\n    set gear file = gear.cmm");
+  from_files =
+      std::regex_replace(from_files, std::regex("set name    = small"), "set name    = fromfiles");
+  ASSERT_EQ(run({scene(from_files, "files.prm")}), 0) << err.str();
+  const MeasuredMember second =
+      read_measured(H5File::open((dir / "out/fromfiles/results.h5").string())
+                        .root()
+                        .group("measured")
+                        .group("p1")
+                        .group("pinion"),
+                    "pinion");
+  ASSERT_EQ(first.flanks.size(), 4u); // teeth 0 and 3, both sides
+  ASSERT_EQ(second.flanks.size(), first.flanks.size());
+  for (std::size_t f = 0; f < first.flanks.size(); ++f)
+    for (std::size_t k = 0; k < first.flanks[f].points.size(); ++k)
+      EXPECT_LE((first.flanks[f].points[k] - second.flanks[f].points[k]).lpNorm<Eigen::Infinity>(),
+                5.1e-13);
+
+  // A file that changes changes the key: the measured stage runs again.
+  std::ofstream(dir / "gear.cmm", std::ios::app) << "# edited\n";
+  ASSERT_EQ(run({(dir / "files.prm").string()}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage measured: ran"), std::string::npos) << out.str();
+
+  // A broken file stops the run with file and line, and no result file is left behind.
+  fs::remove_all(dir / "out/fromfiles");
+  std::ofstream(dir / "gear.cmm", std::ios::app) << "begin flank\ntooth = 99\nside = drive\ngrid = 1 1\n";
+  EXPECT_EQ(run({(dir / "files.prm").string()}), 1);
+  EXPECT_NE(err.str().find("gear.cmm:"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("tooth index 99"), std::string::npos) << err.str();
+  EXPECT_FALSE(fs::exists(dir / "out/fromfiles/results.h5"));
+
+  // A missing file is named with its parameter.
+  fs::remove(dir / "gear.cmm");
+  EXPECT_EQ(run({(dir / "files.prm").string()}), 1);
+  EXPECT_NE(err.str().find("gear file"), std::string::npos) << err.str();
 }

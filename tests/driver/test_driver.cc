@@ -1,7 +1,9 @@
 // The driver end to end: scene reading, the stage graph and its cache, the result file, and the
 // handling of bad input (clear message, non-zero exit, no result file).
+#include "../malformed_cmm.h"
 #include "driver.h"
 #include "h5_file.h"
+#include "measured_flank.h"
 #include "stages.h"
 
 #include <gtest/gtest.h>
@@ -331,7 +333,8 @@ TEST_F(DriverTest, ExportedCmmFilesReadBackAsMeasurement)
 
   // A broken file stops the run with file and line, and no result file is left behind.
   fs::remove_all(dir / "out/fromfiles");
-  std::ofstream(dir / "gear.cmm", std::ios::app) << "begin flank\ntooth = 99\nside = drive\ngrid = 1 1\n";
+  std::ofstream(dir / "gear.cmm", std::ios::app)
+      << "begin flank\ntooth = 99\nside = drive\ngrid = 1 1\n";
   EXPECT_EQ(run({(dir / "files.prm").string()}), 1);
   EXPECT_NE(err.str().find("gear.cmm:"), std::string::npos) << err.str();
   EXPECT_NE(err.str().find("tooth index 99"), std::string::npos) << err.str();
@@ -341,4 +344,59 @@ TEST_F(DriverTest, ExportedCmmFilesReadBackAsMeasurement)
   fs::remove(dir / "gear.cmm");
   EXPECT_EQ(run({(dir / "files.prm").string()}), 1);
   EXPECT_NE(err.str().find("gear file"), std::string::npos) << err.str();
+}
+
+TEST_F(DriverTest, EveryMalformedCmmClassStopsTheRunWithoutResults)
+{
+  const std::string from_files = std::regex_replace(
+      std::regex_replace(
+          measured_scene, std::regex("set source         = synthesised"),
+          "set source = cmm files\n    set pinion file = bad.cmm\n    set gear file = "
+          "bad.cmm"),
+      std::regex("set pinion teeth   = 0, 3\n    set gear teeth     = 1\n"), "");
+  const std::string file = scene(from_files);
+  for (const test_data::MalformedCmm &c : test_data::malformed_cmm_cases())
+    {
+      const std::string bad = std::regex_replace(test_data::valid_cmm(), std::regex(c.from), c.to,
+                                                 std::regex_constants::format_first_only);
+      std::ofstream(dir / "bad.cmm") << bad;
+      EXPECT_EQ(run({file}), 1) << c.what;
+      EXPECT_NE(err.str().find((dir / "bad.cmm").string() + c.line), std::string::npos)
+          << c.what << ": " << err.str();
+      EXPECT_NE(err.str().find(c.expected), std::string::npos) << c.what << ": " << err.str();
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5.tmp")) << c.what;
+    }
+}
+
+TEST_F(DriverTest, TopographyFilesBecomeMeasuredFlanks)
+{
+  // A constant +2 um topography on tooth 1 of each member: the measured points are the nominal
+  // flank moved 2 um along its normal, and /measured keeps the deviation.
+  const Scene probe = read_scene(scene(small_scene));
+  for (const auto &[member, data] :
+       {std::pair{"pinion", probe.pairs[0].pinion}, std::pair{"gear", probe.pairs[0].gear}})
+    {
+      const auto       g = InvoluteGear::create(data);
+      TopographyMember t{member, g->teeth(), {}};
+      t.flanks.push_back({1,
+                          FlankSide::drive,
+                          {2 * g->form_radius * 1.001, g->reference_radius * 2, 2 * g->tip_radius},
+                          {-5e-3, 5e-3},
+                          std::vector<double>(6, 2e-6)});
+      write_topography_file((dir / (std::string(member) + ".topo")).string(), t);
+    }
+  const std::string text = std::regex_replace(
+      std::regex_replace(measured_scene, std::regex("set source         = synthesised"),
+                         "set source = topography files\n    set pinion file = pinion.topo\n    "
+                         "set gear file = gear.topo"),
+      std::regex("set pinion teeth   = 0, 3\n    set gear teeth     = 1\n"), "");
+  ASSERT_EQ(run({scene(text)}), 0) << err.str();
+  const H5File  f = H5File::open((dir / "out/small/results.h5").string());
+  const H5Group g = f.root().group("measured").group("p1").group("gear").group("tooth_1_drive");
+  for (double d : g.read_doubles("deviation"))
+    EXPECT_EQ(d, 2e-6);
+  std::vector<hsize_t> shape;
+  g.read_doubles("points", &shape);
+  EXPECT_EQ(shape, (std::vector<hsize_t>{3, 2, 3}));
 }

@@ -1,5 +1,6 @@
 // Measured flanks: CMM and topography files (round trips and every malformed-input class), the
 // virtual CMM, and the synthesiser.
+#include "../malformed_cmm.h"
 #include "measured_flank.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 using namespace gearkit;
+using namespace gearkit::test_data;
 namespace fs = std::filesystem;
 
 namespace
@@ -129,29 +131,9 @@ TEST(VirtualCmm, PointsLieOnTheFlank)
     }
 }
 
-namespace
-{
-const std::string valid_cmm = R"(format = gearkit-cmm 1
-member = pinion
-teeth = 3
-units = mm
-normals = no
-
-begin flank
-tooth = 1
-side = drive
-grid = 2 2
-0 0 10.0 1.0 -1.0
-0 1 10.0 1.2 1.0
-1 0 11.0 0.9 -1.0
-1 1 11.0 1.1 1.0
-end flank
-)";
-} // namespace
-
 TEST_F(MeasuredFiles, SmallHandWrittenFileReads)
 {
-  const MeasuredMember m = read_cmm_file(file("ok.cmm", valid_cmm));
+  const MeasuredMember m = read_cmm_file(file("ok.cmm", valid_cmm()));
   ASSERT_EQ(m.flanks.size(), 1u);
   EXPECT_EQ(m.flanks[0].tooth, 1);
   EXPECT_NEAR(m.flanks[0].points[3].y(), 1.1e-3, 1e-18);
@@ -160,42 +142,20 @@ TEST_F(MeasuredFiles, SmallHandWrittenFileReads)
 
 TEST_F(MeasuredFiles, EveryMalformedCmmFileIsRejectedWithFileLineAndExpectation)
 {
-  struct Case
-  {
-    const char *what, *from, *to, *line, *expected;
-  };
-  const std::vector<Case> cases = {
-      {"missing header key", "member = pinion\n", "", ":", "'member"},
-      {"unknown header key", "units = mm\n", "units = mm\ncolour = red\n",
-       ":5:", "documented keys"},
-      {"wrong count", "1 1 11.0 1.1 1.0\n", "", ":14:", "4 = 2 x 2"},
-      {"non-numeric", "11.0 1.1 1.0", "11.0 one 1.0", ":14:", "a decimal number"},
-      {"NaN", "11.0 1.1 1.0", "11.0 nan 1.0", ":14:", "finite"},
-      {"duplicate index", "1 1 11.0", "1 0 11.0", ":14:", "each grid index once"},
-      {"duplicate point", "1 1 11.0 1.1 1.0", "1 1 11.0 0.9 -1.0", ":14:", "line 13"},
-      {"index outside the grid", "1 1 11.0", "2 1 11.0", ":14:", "[0, 1]"},
-      {"mixed units", "grid = 2 2\n", "grid = 2 2\nunits = m\n", ":11:", "one unit"},
-      {"tooth beyond z", "tooth = 1", "tooth = 3", ":8:", "[0, 2]"},
-      {"unknown side", "side = drive", "side = left", ":9:", "drive or coast"},
-      {"missing end", "end flank\n", "", ":7:", "'end flank'"},
-      {"wrong column count", "0 0 10.0 1.0 -1.0", "0 0 10.0 1.0", ":11:", "5 (i j x y z)"},
-      {"bad units", "units = mm", "units = inch", ":", "units = mm or units = m"},
-      {"bad format", "gearkit-cmm 1", "gearkit-cmm 7", ":1:", "'gearkit-cmm 1'"},
-  };
-  for (const Case &c : cases)
+  for (const MalformedCmm &c : malformed_cmm_cases())
     {
-      const std::string bad = std::regex_replace(valid_cmm, std::regex(c.from), c.to,
+      const std::string bad = std::regex_replace(valid_cmm(), std::regex(c.from), c.to,
                                                  std::regex_constants::format_first_only);
-      ASSERT_NE(bad, valid_cmm) << c.what;
+      ASSERT_NE(bad, valid_cmm()) << c.what;
       const std::string path = file("bad.cmm", bad);
       const std::string msg  = error_of([&] { read_cmm_file(path); });
       EXPECT_NE(msg.find(path + c.line), std::string::npos) << c.what << ": " << msg;
       EXPECT_NE(msg.find(c.expected), std::string::npos) << c.what << ": " << msg;
     }
   // normals that are not unit vectors
-  const std::string with_normals =
-      std::regex_replace(std::regex_replace(valid_cmm, std::regex("normals = no"), "normals = yes"),
-                         std::regex("(\\d+ \\d+ [-0-9.]+ [-0-9.]+ [-0-9.]+)\n"), "$1 0 0 1\n");
+  const std::string with_normals = std::regex_replace(
+      std::regex_replace(valid_cmm(), std::regex("normals = no"), "normals = yes"),
+      std::regex("(\\d+ \\d+ [-0-9.]+ [-0-9.]+ [-0-9.]+)\n"), "$1 0 0 1\n");
   EXPECT_NO_THROW(read_cmm_file(file("n.cmm", with_normals)));
   const std::string long_normal =
       std::regex_replace(with_normals, std::regex("0 0 1\nend"), "0 0 1.01\nend");
@@ -214,7 +174,7 @@ TEST_F(MeasuredFiles, GarbageNeverCrashesTheReader)
   std::mt19937 rng(7);
   for (int trial = 0; trial < 300; ++trial)
     {
-      std::string bad = valid_cmm;
+      std::string bad = valid_cmm();
       for (int m = 0; m < 3; ++m)
         bad[rng() % bad.size()] = " =#\n.-0123456789abcdefgnx"[rng() % 24];
       const std::string path = file("fuzz.cmm", bad);

@@ -463,3 +463,22 @@ TEST(MassProperties, ChippedToothRemovesItsVolume)
   EXPECT_TRUE(f.contains(whole->roll_angle_tip, +0.01));
   EXPECT_TRUE(f.contains(whole->roll_angle_form, -0.01));
 }
+
+TEST(InvoluteGear, NormalDerivativesOfSpurFlank)
+{
+  // Drive flank of a spur gear: n = e_theta(theta_b - xi), so dn/dxi = e_r(theta_b - xi) (unit
+  // length, the involute's curvature times its arc-length rate) and dn/dz = 0. Central
+  // differences with h = 1e-5 of the range: error ~ h^2 ~ 1e-10.
+  const auto        g = InvoluteGear::create(spur(27, 0.1));
+  const auto        f = g->flank(0, FlankSide::drive);
+  const FlankDomain d = f.domain();
+  for (double t : {0.1, 0.5, 0.9})
+    {
+      const double u        = d.u_min + t * (d.u_max - d.u_min);
+      const auto [n_u, n_v] = f.normal_derivatives(u, 0.003);
+      const Vec3   q        = f.evaluate(u, 0.003).position;
+      const double a = std::atan2(q.y(), q.x()) - std::atan(g->roll_angle(q.head<2>().norm()));
+      EXPECT_NEAR((n_u - Vec3(std::cos(a), std::sin(a), 0)).norm(), 0, 1e-8);
+      EXPECT_LT(n_v.norm(), 1e-8);
+    }
+}

@@ -2,21 +2,14 @@
 
 #include "stages.h"
 
-#include <deal.II/base/exceptions.h>
-
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <iostream>
 #include <set>
 #include <sstream>
 
-#ifndef GEARKIT_SOURCE_DIR
-#define GEARKIT_SOURCE_DIR "."
-#endif
 
 namespace gearkit
 {
@@ -142,7 +135,7 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
     const H5Group root = results.root();
     root.attribute("scene", scene.name);
     root.attribute("scene_file", scene.file);
-    root.attribute("gearkit_version", "0.1.0");
+    root.attribute("gearkit_version", GEARKIT_VERSION);
     std::string stages;
     for (const StageRun &r : summary.stages)
       stages += r.name + (r.reused ? " (reused)" : " (ran)") + "\n";
@@ -231,10 +224,6 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostre
       return 0;
     }
   catch (const InputError &e)
-    {
-      err << "gearkit: error: " << e.what() << "\n";
-    }
-  catch (const dealii::ExceptionBase &e)
     {
       err << "gearkit: error: " << e.what() << "\n";
     }

@@ -2,137 +2,62 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <numeric>
 #include <random>
 #include <set>
-#include <sstream>
 
 namespace gearkit
 {
 namespace
 {
-// --- reading: one small line reader for both formats ----------------------------------------
+// --- text: one tokenizer and one number parser for both formats -------------------------------
 
-/// The content lines of a text file (comments after '#' and blank lines dropped), with line
-/// numbers, and the error messages "<file>:<line>: <what>; expected <what>".
-class TextReader
+const char *const blanks = " \t\r";
+
+std::string
+trim(const std::string &s)
 {
-public:
-  explicit TextReader(const std::string &path)
-      : path(path)
-  {
-    std::ifstream in(path);
-    if (!in)
-      throw InputError(path + ": cannot open the file; expected a readable text file");
-    std::string text;
-    for (int number = 1; std::getline(in, text); ++number)
-      {
-        text         = text.substr(0, text.find('#'));
-        const auto b = text.find_first_not_of(" \t\r"), e = text.find_last_not_of(" \t\r");
-        if (b != std::string::npos)
-          lines.push_back({number, text.substr(b, e - b + 1)});
-      }
-    if (lines.empty())
-      throw InputError(path + ":1: the file is empty; expected a header (format = ...)");
-  }
+  const auto b = s.find_first_not_of(blanks), e = s.find_last_not_of(blanks);
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
 
-  bool
-  done() const
-  {
-    return next_line >= lines.size();
-  }
-  const std::string &
-  peek() const
-  {
-    return lines.at(next_line).text;
-  }
-  const std::string &
-  take()
-  {
-    current = lines.at(next_line).number;
-    return lines.at(next_line++).text;
-  }
-  int
-  line() const
-  {
-    return current;
-  }
-  /// Report the following errors at this line (e.g. the line of a key read earlier).
-  TextReader &
-  at(int line)
-  {
-    current = line;
-    return *this;
-  }
+std::vector<std::string>
+tokens(const std::string &text)
+{
+  std::vector<std::string> t;
+  for (auto b = text.find_first_not_of(blanks); b != std::string::npos;)
+    {
+      const auto e = text.find_first_of(blanks, b);
+      t.push_back(text.substr(b, e - b));
+      b = text.find_first_not_of(blanks, e);
+    }
+  return t;
+}
 
-  [[noreturn]] void
-  fail(const std::string &what, const std::string &expected) const
-  {
-    throw InputError(path + ":" + std::to_string(current) + ": " + what + "; expected " + expected);
-  }
+/// Shortest decimal that reads back to exactly v (digits = -1), or v with that many decimals.
+/// Locale-independent.
+std::string
+decimal(double v, int digits = -1)
+{
+  char buffer[400];
+  const auto [end, error] =
+      digits < 0
+          ? std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed)
+          : std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, digits);
+  if (error != std::errc())
+    throw InputError("cannot print " + std::to_string(v) + "; expected a finite value");
+  return std::string(buffer, end);
+}
 
-  /// "key = value" -> (key, value); fails on other lines.
-  std::pair<std::string, std::string>
-  key_value(const std::string &text) const
-  {
-    const auto eq = text.find('=');
-    if (eq == std::string::npos)
-      fail("'" + text + "' is not a 'key = value' line", "a 'key = value' line");
-    auto trim = [](std::string s) {
-      const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
-      return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-    };
-    return {trim(text.substr(0, eq)), trim(text.substr(eq + 1))};
-  }
-
-  double
-  number(const std::string &token, const std::string &what) const
-  {
-    char        *end   = nullptr;
-    const double value = std::strtod(token.c_str(), &end);
-    if (token.empty() || *end != '\0')
-      fail(what + " '" + token + "' is not a number", "a decimal number");
-    if (!std::isfinite(value))
-      fail(what + " is " + token, "a finite number (no NaN or inf)");
-    return value;
-  }
-
-  int
-  integer(const std::string &token, const std::string &what, int lo, int hi) const
-  {
-    const double v = number(token, what);
-    if (v != std::floor(v) || v < lo || v > hi)
-      fail(what + " " + token + " is out of range",
-           "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(v);
-  }
-
-  std::vector<double>
-  numbers(const std::string &text, const std::string &what) const
-  {
-    std::istringstream  s(text);
-    std::vector<double> values;
-    for (std::string token; s >> token;)
-      values.push_back(number(token, what));
-    return values;
-  }
-
-  std::string path;
-
-private:
-  struct Line
-  {
-    int         number;
-    std::string text;
-  };
-  std::vector<Line> lines;
-  std::size_t       next_line = 0;
-  int               current   = 0;
+struct Line
+{
+  int         number;
+  std::string text; ///< without comment and surrounding blanks; never empty
 };
 
 /// A "key = value" line's value and where it stood.
@@ -143,97 +68,301 @@ struct Entry
 };
 using Entries = std::map<std::string, Entry>;
 
-/// Header "key = value" lines up to the first "begin flank": every required key once, nothing
-/// unknown.
-Entries
-read_header(TextReader &in, const std::set<std::string> &required,
-            const std::set<std::string> &optional)
+/// The content lines of a text file and the parsing of its values; every error is an InputError
+/// "<file>:<line>: <what is wrong>; expected <what is allowed>".
+class Reader
 {
-  Entries header;
-  while (!in.done() && in.peek() != "begin flank")
+public:
+  explicit Reader(const std::string &path)
+      : path(path)
+  {
+    std::ifstream in(path);
+    if (!in)
+      throw InputError(path + ": cannot open the file; expected a readable text file");
+    std::string text;
+    for (int number = 1; std::getline(in, text); ++number)
+      if (std::string t = trim(text.substr(0, text.find('#'))); !t.empty())
+        lines.push_back({number, std::move(t)});
+    if (lines.empty())
+      fail(1, "the file is empty (nothing but comments and blank lines)",
+           "a header starting with 'format = ...'");
+  }
+
+  bool
+  done() const
+  {
+    return next == lines.size();
+  }
+  const Line &
+  peek() const
+  {
+    return lines.at(next);
+  }
+  const Line &
+  take()
+  {
+    return lines.at(next++);
+  }
+  /// The line where the current list ended: the next line, or the last one at the end.
+  int
+  here() const
+  {
+    return done() ? lines.back().number : peek().number;
+  }
+
+  [[noreturn]] void
+  fail(int line, const std::string &what, const std::string &expected) const
+  {
+    throw InputError(path + ":" + std::to_string(line) + ": " + what + "; expected " + expected);
+  }
+
+  double
+  number(int line, const std::string &token, const std::string &what) const
+  {
+    const char *b = token.data(), *e = b + token.size();
+    if (e - b > 1 && b[0] == '+' && b[1] != '-') // from_chars does not take a leading '+'
+      ++b;
+    double v          = 0;
+    const auto [p, r] = std::from_chars(b, e, v);
+    if (r == std::errc::result_out_of_range)
+      fail(line, what + " '" + token + "' is out of range", "a finite number");
+    if (r != std::errc() || p != e)
+      fail(line, what + " '" + token + "' is not a number", "a decimal number such as -12.345");
+    if (!std::isfinite(v))
+      fail(line, what + " is '" + token + "'", "a finite number (no NaN or inf)");
+    return v;
+  }
+
+  int
+  integer(int line, const std::string &token, const std::string &what, int lo, int hi) const
+  {
+    int v             = 0;
+    const auto [p, r] = std::from_chars(token.data(), token.data() + token.size(), v);
+    const std::string range =
+        "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (r != std::errc() || p != token.data() + token.size())
+      fail(line, what + " '" + token + "' is not an integer", range);
+    if (v < lo || v > hi)
+      fail(line, what + " " + token + " is out of range", range);
+    return v;
+  }
+
+  /// The value of `key` if it is one of `allowed`.
+  const std::string &
+  choice(const Entries &keys, const std::string &key, const std::set<std::string> &allowed,
+         const std::string &expected) const
+  {
+    const Entry &e = keys.at(key);
+    if (!allowed.count(e.value))
+      fail(e.line, key + " '" + e.value + "' is not allowed", expected);
+    return e.value;
+  }
+
+  /// Consecutive "key = value" lines: each key once, all of `required`, others from `optional`.
+  Entries
+  keys(const std::string &where, const std::set<std::string> &required,
+       const std::set<std::string> &optional)
+  {
+    Entries found;
+    while (!done() && peek().text.find('=') != std::string::npos)
+      {
+        const Line       &l   = take();
+        const auto        eq  = l.text.find('=');
+        const std::string key = trim(l.text.substr(0, eq)), value = trim(l.text.substr(eq + 1));
+        if (!required.count(key) && !optional.count(key))
+          {
+            std::string known;
+            for (const auto *set : {&required, &optional})
+              for (const std::string &k : *set)
+                known += (known.empty() ? "" : ", ") + k;
+            fail(l.number, "unknown " + where + " key '" + key + "'",
+                 "one of the documented keys (" + known + ")");
+          }
+        if (value.empty())
+          fail(l.number, "'" + key + "' has no value", "'" + key + " = <value>'");
+        if (!found.emplace(key, Entry{value, l.number}).second)
+          fail(l.number, where + " key '" + key + "' appears twice", "each key once");
+      }
+    for (const std::string &key : required)
+      if (!found.count(key))
+        fail(here(), "the " + where + " has no '" + key + "' key",
+             "'" + key + " = ...' among the " + where + " keys");
+    return found;
+  }
+
+  const std::string path;
+
+private:
+  std::vector<Line> lines;
+  std::size_t       next = 0;
+};
+
+const std::string frame_description = "member axis z, tooth 0 centred on +x at z = 0";
+
+/// The header both formats share: format, member, teeth, frame (optional), units, and `more`.
+struct Header
+{
+  Entries     keys;
+  std::string member;
+  int         teeth;
+};
+
+Header
+read_header(Reader &in, const std::string &format, const std::set<std::string> &more)
+{
+  std::set<std::string> required = {"format", "member", "teeth", "units"};
+  required.insert(more.begin(), more.end());
+  Header h{in.keys("header", required, {"frame"}), "", 0};
+  in.choice(h.keys, "format", {format}, "'" + format + "'");
+  h.member = h.keys.at("member").value;
+  h.teeth  = in.integer(h.keys.at("teeth").line, h.keys.at("teeth").value, "teeth", 1, 100000);
+  return h;
+}
+
+/// One "begin flank" ... "end flank" block: its keys with tooth, side and units checked, and the
+/// lines in between.
+struct Block
+{
+  int               begin, end;
+  int               tooth;
+  FlankSide         side;
+  Entries           keys;
+  std::vector<Line> body;
+};
+
+Block
+read_block(Reader &in, const Header &h, const std::set<std::string> &more,
+           std::set<std::pair<int, FlankSide>> &seen)
+{
+  const Line &first = in.take();
+  if (first.text != "begin flank")
+    in.fail(first.number, "'" + first.text + "' outside a flank block", "'begin flank'");
+  std::set<std::string> required = {"tooth", "side"};
+  required.insert(more.begin(), more.end());
+  Block b{first.number, 0, 0, FlankSide::drive, in.keys("flank block", required, {"units"}), {}};
+  const std::string &units = h.keys.at("units").value;
+  if (const auto u = b.keys.find("units"); u != b.keys.end() && u->second.value != units)
+    in.fail(u->second.line,
+            "the block's units '" + u->second.value + "' differ from the header's (mixed units)",
+            "one unit for the whole file (units = " + units + ")");
+  const Entry &tooth = b.keys.at("tooth");
+  b.tooth            = in.integer(tooth.line, tooth.value, "tooth index", 0, h.teeth - 1);
+  b.side             = in.choice(b.keys, "side", {"drive", "coast"}, "drive or coast") == "drive"
+                           ? FlankSide::drive
+                           : FlankSide::coast;
+  if (!seen.emplace(b.tooth, b.side).second)
+    in.fail(tooth.line, "tooth " + tooth.value + " " + to_string(b.side) + " appears twice",
+            "one block per tooth and side");
+  for (;;)
     {
-      const auto [key, value] = in.key_value(in.take());
-      if (!required.count(key) && !optional.count(key))
-        in.fail("unknown header key '" + key + "'", "one of the documented keys");
-      if (!header.emplace(key, Entry{value, in.line()}).second)
-        in.fail("header key '" + key + "' appears twice", "each key once");
+      if (in.done() || in.peek().text == "begin flank")
+        in.fail(b.begin,
+                "the flank block has no 'end flank'" +
+                    (in.done() ? std::string(" (the file ends first)")
+                               : " before the 'begin flank' on line " + std::to_string(in.here())),
+                "'end flank' after the block's data");
+      const Line &l = in.take();
+      if (l.text == "end flank")
+        {
+          b.end = l.number;
+          return b;
+        }
+      b.body.push_back(l);
     }
-  for (const std::string &key : required)
-    if (!header.count(key))
-      in.fail("the header has no '" + key + "' key", "'" + key + " = ...' before 'begin flank'");
-  return header;
 }
 
-FlankSide
-parse_side(const TextReader &in, const std::string &value)
-{
-  if (value == "drive")
-    return FlankSide::drive;
-  if (value == "coast")
-    return FlankSide::coast;
-  in.fail("side '" + value + "' is unknown", "drive or coast");
-}
+// --- writing ----------------------------------------------------------------------------------
 
-/// Key lines at the top of a flank block (up to the first line without '=').
-Entries
-read_block_keys(TextReader &in, const std::set<std::string> &required,
-                const std::set<std::string> &optional, int begin_line)
-{
-  Entries keys;
-  while (!in.done() && in.peek().find('=') != std::string::npos)
-    {
-      const auto [key, value] = in.key_value(in.take());
-      if (!required.count(key) && !optional.count(key))
-        in.fail("unknown flank key '" + key + "'", "one of the documented keys");
-      if (!keys.emplace(key, Entry{value, in.line()}).second)
-        in.fail("flank key '" + key + "' appears twice", "each key once per block");
-    }
-  for (const std::string &key : required)
-    if (!keys.count(key))
-      throw InputError(in.path + ":" + std::to_string(begin_line) + ": the flank block has no '" +
-                       key + "' key; expected '" + key + " = ...' after 'begin flank'");
-  return keys;
-}
-
-void
-check_format(TextReader &in, const Entry &format, const std::string &expected)
-{
-  if (format.value != expected)
-    in.at(format.line).fail("format '" + format.value + "' is not supported", "'" + expected + "'");
-}
-
-// --- writing -----------------------------------------------------------------------------------
-
-/// Writes through a temporary file that is renamed into place; removes it on failure.
+/// Writes through `path + ".tmp"` renamed into place; on any failure removes it and throws.
 void
 write_atomically(const std::string &path, const std::function<void(std::ostream &)> &body)
 {
   const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out)
-      throw InputError(path + ": cannot write (is the directory there and writable?)");
-    body(out);
-    out.flush();
-    if (!out)
-      {
-        std::remove(tmp.c_str());
-        throw InputError(path + ": writing failed");
-      }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+  std::ofstream     out(tmp);
+  if (!out)
+    throw InputError(path + ": cannot create '" + tmp + "'; expected a writable directory");
+  try
     {
+      body(out);
+      out.close();
+      if (!out)
+        throw InputError(path + ": writing '" + tmp + "' failed; expected room on the disk");
+      if (std::rename(tmp.c_str(), path.c_str()) != 0)
+        throw InputError(path + ": cannot rename '" + tmp + "' to it; expected a replaceable file");
+    }
+  catch (...)
+    {
+      out.close();
       std::remove(tmp.c_str());
-      throw InputError(path + ": cannot rename the temporary file into place");
+      throw;
     }
 }
 
-std::string
-fixed(double v, int decimals)
+/// A member name that reads back unchanged (no comment character, one line, no outer blanks).
+void
+check_name(const std::string &path, const std::string &name)
 {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-  return buffer;
+  if (name.empty() || name != trim(name) || name.find_first_of("#\n") != std::string::npos)
+    throw InputError(path + ": member name '" + name +
+                     "' cannot be written; expected a non-empty name without '#', line breaks "
+                     "or surrounding blanks");
+}
+
+/// The checks every consumer of a MeasuredMember needs; `context` prefixes the message.
+void
+check_member(const MeasuredMember &m, const std::string &context, bool need_normals)
+{
+  auto fail = [&](const std::string &what, const std::string &expected) {
+    throw InputError(context + ": " + what + "; expected " + expected);
+  };
+  if (m.teeth < 1)
+    fail("member with " + std::to_string(m.teeth) + " teeth", "at least one tooth");
+  std::set<std::pair<int, FlankSide>> seen;
+  for (const MeasuredFlank &f : m.flanks)
+    {
+      const std::string name = "tooth " + std::to_string(f.tooth) + " " + to_string(f.side);
+      if (f.tooth < 0 || f.tooth >= m.teeth || !seen.emplace(f.tooth, f.side).second)
+        fail(name + " is out of range or repeated",
+             "distinct flanks of teeth in [0, " + std::to_string(m.teeth - 1) + "]");
+      if (f.n_profile < 1 || f.n_face < 1 || f.points.size() != std::size_t(f.n_profile) * f.n_face)
+        fail(name + " has " + std::to_string(f.points.size()) + " points on a " +
+                 std::to_string(f.n_profile) + " x " + std::to_string(f.n_face) + " grid",
+             "n_profile x n_face >= 1 points");
+      if (f.normals.size() != (need_normals || !f.normals.empty() ? f.points.size() : 0))
+        fail(name + " has " + std::to_string(f.normals.size()) + " normals",
+             std::string(need_normals ? "" : "none or ") + "one per point");
+      for (std::size_t k = 0; k < f.points.size(); ++k)
+        if (!f.points[k].allFinite() ||
+            (!f.normals.empty() && !(std::abs(f.normals[k].norm() - 1) <= 1e-6)))
+          fail(name + " point " + std::to_string(k) + " is not finite or its normal not unit",
+               "finite points and unit normals");
+    }
+}
+
+bool
+strictly_increasing(const std::vector<double> &v)
+{
+  return !v.empty() && std::adjacent_find(v.begin(), v.end(), std::greater_equal<>()) == v.end();
+}
+
+void
+check_topography(const TopographyMember &t, const std::string &context)
+{
+  if (t.teeth < 1)
+    throw InputError(context + ": member with " + std::to_string(t.teeth) +
+                     " teeth; expected at least one tooth");
+  std::set<std::pair<int, FlankSide>> seen;
+  for (const FlankTopography &f : t.flanks)
+    if (f.tooth < 0 || f.tooth >= t.teeth || !seen.emplace(f.tooth, f.side).second ||
+        !strictly_increasing(f.diameters) || !strictly_increasing(f.face) ||
+        f.deviations.size() != f.diameters.size() * f.face.size() ||
+        !std::all_of(f.deviations.begin(), f.deviations.end(),
+                     [](double d) { return std::isfinite(d); }))
+      throw InputError(context + ": tooth " + std::to_string(f.tooth) + " " + to_string(f.side) +
+                       " is inconsistent; expected distinct flanks of teeth in [0, " +
+                       std::to_string(t.teeth - 1) +
+                       "], strictly increasing diameters and face positions, and one finite "
+                       "deviation per grid point");
 }
 
 // --- random numbers, the same on every platform ------------------------------------------------
@@ -246,12 +375,12 @@ public:
   {
   }
   double
-  uniform() // [0, 1)
+  uniform() ///< [0, 1), 53 random bits
   {
-    return (engine() >> 11) * 0x1.0p-53;
+    return double(engine() >> 11) * 0x1.0p-53;
   }
   double
-  normal() // Box-Muller
+  normal() ///< standard normal, Box-Muller (cosine branch)
   {
     const double u = 1 - uniform(), v = uniform();
     return std::sqrt(-2 * std::log(u)) * std::cos(2 * pi * v);
@@ -265,23 +394,45 @@ private:
 // --- virtual CMM -------------------------------------------------------------------------------
 
 MeasuredMember
-virtual_cmm(const InvoluteGear &gear, const std::string &member, int n_profile, int n_face,
-            double margin, const std::vector<int> &teeth)
+virtual_cmm(const std::string &member, int teeth,
+            const std::function<FlankGrid(int tooth, FlankSide side)> &sample,
+            const std::vector<int> &teeth_to_measure, bool both_sides)
 {
-  std::vector<int> list = teeth;
+  std::vector<int> list = teeth_to_measure;
   if (list.empty())
     {
-      list.resize(gear.teeth());
+      list.resize(std::max(teeth, 0));
       std::iota(list.begin(), list.end(), 0);
     }
-  MeasuredMember m{member, gear.teeth(), {}};
+  MeasuredMember m{member, teeth, {}};
   for (int k : list)
     for (FlankSide side : {FlankSide::drive, FlankSide::coast})
-      {
-        const FlankGrid g = sample_flank(gear.flank(k, side), n_profile, n_face, margin);
-        m.flanks.push_back({k, side, n_profile, n_face, g.positions, g.normals});
-      }
+      if (side == FlankSide::drive || both_sides)
+        {
+          if (k < 0 || k >= teeth)
+            throw InputError("virtual CMM of " + member + ": tooth " + std::to_string(k) +
+                             "; expected a tooth in [0, " + std::to_string(teeth - 1) + "]");
+          const FlankGrid g = sample(k, side);
+          m.flanks.push_back({k, side, g.n_u, g.n_v, g.positions, g.normals});
+        }
+  check_member(m, "virtual CMM of " + member, false);
   return m;
+}
+
+MeasuredMember
+virtual_cmm(const InvoluteGear &gear, const std::string &member, int n_profile, int n_face,
+            double margin, const std::vector<int> &teeth_to_measure, bool both_sides)
+{
+  if (n_profile < 1 || n_face < 1 || !(margin >= 0 && margin < 0.5))
+    throw InputError("virtual CMM of " + member + ": grid " + std::to_string(n_profile) + " x " +
+                     std::to_string(n_face) + ", margin " + std::to_string(margin) +
+                     "; expected at least 1 x 1 points and a margin in [0, 0.5)");
+  return virtual_cmm(
+      member, gear.teeth(),
+      [&](int k, FlankSide side) {
+        return sample_flank(gear.flank(k, side), n_profile, n_face, margin);
+      },
+      teeth_to_measure, both_sides);
 }
 
 // --- CMM point files ---------------------------------------------------------------------------
@@ -289,33 +440,34 @@ virtual_cmm(const InvoluteGear &gear, const std::string &member, int n_profile, 
 void
 write_cmm_file(const std::string &path, const MeasuredMember &m, const CmmWriteOptions &o)
 {
+  check_name(path, m.member);
+  check_member(m, path, false);
+  if (o.decimals < 0 || o.decimals > 20)
+    throw InputError(path + ": " + std::to_string(o.decimals) +
+                     " decimals; expected 0 to 20 decimals");
   const bool normals = o.normals && !m.flanks.empty() &&
                        std::all_of(m.flanks.begin(), m.flanks.end(),
                                    [](const MeasuredFlank &f) { return !f.normals.empty(); });
   const double scale = o.millimetres ? 1e3 : 1;
   write_atomically(path, [&](std::ostream &out) {
     out << "# gearkit CMM point file (docs/cmm-format.md)\n"
-        << "format = gearkit-cmm 1\n"
-        << "member = " << m.member << "\n"
-        << "teeth = " << m.teeth << "\n"
-        << "units = " << (o.millimetres ? "mm" : "m") << "\n"
-        << "frame = member axis z, tooth 0 centred on +x at z = 0, right-handed\n"
-        << "normals = " << (normals ? "yes" : "no") << "\n";
+        << "format = gearkit-cmm 1\nmember = " << m.member << "\nteeth = " << m.teeth
+        << "\nframe = " << frame_description << "\nunits = " << (o.millimetres ? "mm" : "m")
+        << "\nnormals = " << (normals ? "yes" : "no") << "\n";
     for (const MeasuredFlank &f : m.flanks)
       {
         out << "\nbegin flank\ntooth = " << f.tooth << "\nside = " << to_string(f.side)
-            << "\ngrid = " << f.n_profile << " " << f.n_face << "\n"
-            << (normals ? "# i_profile i_face x y z nx ny nz\n" : "# i_profile i_face x y z\n");
+            << "\ngrid = " << f.n_profile << " " << f.n_face << "\n# i_profile i_face x y z"
+            << (normals ? " nx ny nz\n" : "\n");
         for (int i = 0; i < f.n_profile; ++i)
           for (int j = 0; j < f.n_face; ++j)
             {
               const std::size_t k = std::size_t(i) * f.n_face + j;
               out << i << " " << j;
               for (int c = 0; c < 3; ++c)
-                out << " " << fixed(f.points[k][c] * scale, o.decimals);
-              if (normals)
-                for (int c = 0; c < 3; ++c)
-                  out << " " << fixed(f.normals[k][c], 15);
+                out << " " << decimal(f.points[k][c] * scale, o.decimals);
+              for (int c = 0; normals && c < 3; ++c)
+                out << " " << decimal(f.normals[k][c]);
               out << "\n";
             }
         out << "end flank\n";
@@ -326,105 +478,81 @@ write_cmm_file(const std::string &path, const MeasuredMember &m, const CmmWriteO
 MeasuredMember
 read_cmm_file(const std::string &path)
 {
-  TextReader in(path);
-  const auto header = read_header(in, {"format", "member", "teeth", "units", "normals"}, {"frame"});
-  check_format(in, header.at("format"), "gearkit-cmm 1");
-  MeasuredMember m;
-  m.member           = header.at("member").value;
-  const Entry &teeth = header.at("teeth"), &units = header.at("units");
-  m.teeth = in.at(teeth.line).integer(teeth.value, "teeth", 1, 1000000);
-  if (units.value != "mm" && units.value != "m")
-    in.at(units.line)
-        .fail("units '" + units.value + "' are not supported", "units = mm or units = m");
-  const double scale         = units.value == "mm" ? 1e-3 : 1;
-  const Entry &normals_entry = header.at("normals");
-  if (normals_entry.value != "yes" && normals_entry.value != "no")
-    in.at(normals_entry.line)
-        .fail("normals = '" + normals_entry.value + "'", "normals = yes or normals = no");
-  const bool normals = normals_entry.value == "yes";
+  Reader       in(path);
+  const Header h = read_header(in, "gearkit-cmm 1", {"normals"});
+  const double scale =
+      in.choice(h.keys, "units", {"mm", "m"}, "units = mm or units = m") == "mm" ? 1e-3 : 1;
+  const bool normals =
+      in.choice(h.keys, "normals", {"yes", "no"}, "normals = yes or normals = no") == "yes";
+  const std::size_t columns = normals ? 8 : 5;
+  const std::string layout  = normals ? "8 (i j x y z nx ny nz)" : "5 (i j x y z)";
+  const char *const names[] = {"x", "y", "z", "nx", "ny", "nz"};
 
-  std::set<std::pair<int, int>> seen_flanks;
+  MeasuredMember                      m{h.member, h.teeth, {}};
+  std::set<std::pair<int, FlankSide>> seen;
   while (!in.done())
     {
-      if (in.take() != "begin flank")
-        in.fail("a line outside a flank block", "'begin flank'");
-      const int  begin      = in.line();
-      const auto keys       = read_block_keys(in, {"tooth", "side", "grid"}, {"units"}, begin);
-      const int  after_keys = in.line();
-      if (keys.count("units") && keys.at("units").value != units.value)
-        in.at(keys.at("units").line)
-            .fail("the block's units '" + keys.at("units").value + "' differ from the header's '" +
-                      units.value + "' (mixed units)",
-                  "one unit for the whole file");
-      const Entry  &tooth = keys.at("tooth"), &side = keys.at("side"), &grid = keys.at("grid");
-      MeasuredFlank f;
-      f.tooth = in.at(tooth.line).integer(tooth.value, "tooth index", 0, m.teeth - 1);
-      f.side  = parse_side(in.at(side.line), side.value);
-      if (!seen_flanks.insert({f.tooth, int(f.side)}).second)
-        in.fail("tooth " + tooth.value + " " + side.value + " appears twice",
-                "one block per tooth and side");
-      std::istringstream       g(grid.value);
-      std::vector<std::string> shape{std::istream_iterator<std::string>(g), {}};
+      const Block  b     = read_block(in, h, {"grid"}, seen);
+      const Entry &grid  = b.keys.at("grid");
+      const auto   shape = tokens(grid.value);
       if (shape.size() != 2)
-        in.at(grid.line).fail("grid = '" + grid.value + "'",
-                              "grid = <profile points> <face points>");
-      f.n_profile = in.at(grid.line).integer(shape[0], "profile points", 1, 100000);
-      f.n_face    = in.integer(shape[1], "face points", 1, 100000);
-      in.at(after_keys);
+        in.fail(grid.line, "grid = '" + grid.value + "'", "grid = <profile points> <face points>");
+      MeasuredFlank     f{b.tooth,
+                      b.side,
+                      in.integer(grid.line, shape[0], "profile points", 1, 1000000),
+                      in.integer(grid.line, shape[1], "face points", 1, 1000000),
+                      {},
+                      {}};
       const std::size_t count = std::size_t(f.n_profile) * f.n_face;
-      f.points.assign(count, Vec3::Zero());
-      if (normals)
-        f.normals.assign(count, Vec3::Zero());
+      const std::string grid_size =
+          std::to_string(count) + " = " + shape[0] + " x " + shape[1] + " points";
 
-      std::vector<int>                     filled(count, 0);
-      std::map<std::array<double, 3>, int> positions; // exact duplicates -> first line
-      const std::size_t                    columns = normals ? 8 : 5;
-      std::size_t                          read    = 0;
-      for (;;)
+      std::map<std::size_t, std::array<double, 6>> by_index;    // grid index -> x y z nx ny nz
+      std::map<std::array<double, 3>, int>         by_position; // -> line
+      for (const Line &l : b.body)
         {
-          if (in.done())
-            throw InputError(path + ":" + std::to_string(begin) +
-                             ": the flank block has no 'end flank'; expected 'end flank' after "
-                             "its points");
-          const std::string &text = in.take();
-          if (text == "end flank")
-            break;
-          std::istringstream       s(text);
-          std::vector<std::string> t;
-          for (std::string token; s >> token;)
-            t.push_back(token);
+          if (by_index.size() == count)
+            in.fail(l.number, "more point lines than the declared grid has points", grid_size);
+          const auto t = tokens(l.text);
           if (t.size() != columns)
-            in.fail(std::to_string(t.size()) + " values on a point line",
-                    std::to_string(columns) + (normals ? " (i j x y z nx ny nz)" : " (i j x y z)"));
-          const int         i = in.integer(t[0], "profile index", 0, f.n_profile - 1);
-          const int         j = in.integer(t[1], "face index", 0, f.n_face - 1);
-          const std::size_t k = std::size_t(i) * f.n_face + j;
-          if (filled[k]++)
-            in.fail("grid point (" + t[0] + ", " + t[1] + ") appears twice",
+            in.fail(l.number, std::to_string(t.size()) + " values on a point line", layout);
+          const int             i = in.integer(l.number, t[0], "profile index", 0, f.n_profile - 1);
+          const int             j = in.integer(l.number, t[1], "face index", 0, f.n_face - 1);
+          std::array<double, 6> v{};
+          for (std::size_t c = 2; c < columns; ++c)
+            v[c - 2] = in.number(l.number, t[c], names[c - 2]);
+          if (!by_index.emplace(std::size_t(i) * f.n_face + j, v).second)
+            in.fail(l.number, "grid point (" + t[0] + ", " + t[1] + ") appears twice",
                     "each grid index once");
-          const std::array<double, 3> p = {in.number(t[2], "x"), in.number(t[3], "y"),
-                                           in.number(t[4], "z")};
-          if (const auto [it, fresh] = positions.emplace(p, in.line()); !fresh)
-            in.fail("the point duplicates the one on line " + std::to_string(it->second),
+          if (const auto [p, fresh] = by_position.emplace(std::array{v[0], v[1], v[2]}, l.number);
+              !fresh)
+            in.fail(l.number, "the point duplicates the one on line " + std::to_string(p->second),
                     "distinct points");
-          f.points[k] = Vec3(p[0], p[1], p[2]) * scale;
-          if (normals)
-            {
-              const Vec3 n(in.number(t[5], "nx"), in.number(t[6], "ny"), in.number(t[7], "nz"));
-              if (std::abs(n.norm() - 1) > 1e-6)
-                in.fail("the normal has length " + fixed(n.norm(), 9), "a unit normal (|n| = 1)");
-              f.normals[k] = n;
-            }
-          ++read;
+          if (const double n = Vec3(v[3], v[4], v[5]).norm(); normals && std::abs(n - 1) > 1e-6)
+            in.fail(l.number, "the normal has length " + decimal(n, 9),
+                    "a unit normal (| |n| - 1 | <= 1e-6)");
         }
-      if (read != count)
-        in.fail("the block has " + std::to_string(read) + " points",
-                std::to_string(count) + " = " + std::to_string(f.n_profile) + " x " +
-                    std::to_string(f.n_face) + " (the declared grid)");
+      if (by_index.size() < count)
+        {
+          std::size_t missing = 0;
+          for (auto it = by_index.begin(); it != by_index.end() && it->first == missing; ++it)
+            ++missing;
+          in.fail(b.end,
+                  std::to_string(by_index.size()) + " point lines, grid point (" +
+                      std::to_string(missing / f.n_face) + ", " +
+                      std::to_string(missing % f.n_face) + ") is missing",
+                  grid_size + ", every grid index once");
+        }
+      for (const auto &[k, v] : by_index)
+        {
+          f.points.emplace_back(Vec3(v[0], v[1], v[2]) * scale);
+          if (normals)
+            f.normals.emplace_back(v[3], v[4], v[5]);
+        }
       m.flanks.push_back(std::move(f));
     }
   if (m.flanks.empty())
-    in.fail("the file has no flank blocks", "at least one 'begin flank' ... 'end flank'");
+    in.fail(in.here(), "the file has no flank blocks", "at least one 'begin flank' block");
   return m;
 }
 
@@ -433,26 +561,28 @@ read_cmm_file(const std::string &path)
 void
 write_topography_file(const std::string &path, const TopographyMember &m)
 {
+  check_name(path, m.member);
+  check_topography(m, path);
+  auto row = [](std::ostream &out, const double *v, std::size_t n, double scale, int digits) {
+    for (std::size_t j = 0; j < n; ++j)
+      out << (j ? " " : "") << decimal(v[j] * scale, digits);
+    out << "\n";
+  };
   write_atomically(path, [&](std::ostream &out) {
     out << "# gearkit flank topography file (docs/cmm-format.md)\n"
         << "format = gearkit-topography 1\nmember = " << m.member << "\nteeth = " << m.teeth
-        << "\nposition units = mm\ndeviation units = um\n";
+        << "\nframe = " << frame_description << "\nunits = mm\ndeviation units = um\n";
     for (const FlankTopography &f : m.flanks)
       {
+        const std::size_t nf = f.face.size();
         out << "\nbegin flank\ntooth = " << f.tooth << "\nside = " << to_string(f.side)
-            << "\ndiameters =";
-        for (double d : f.diameters)
-          out << " " << fixed(d * 1e3, 6);
-        out << "\nface =";
-        for (double z : f.face)
-          out << " " << fixed(z * 1e3, 6);
-        out << "\n# one line per diameter (root to tip): deviations at the face positions [um]\n";
+            << "\ndiameters = ";
+        row(out, f.diameters.data(), f.diameters.size(), 1e3, 9);
+        out << "face = ";
+        row(out, f.face.data(), nf, 1e3, 9);
+        out << "# deviations [um], one row per diameter, one column per face position\n";
         for (std::size_t i = 0; i < f.diameters.size(); ++i)
-          {
-            for (std::size_t j = 0; j < f.face.size(); ++j)
-              out << (j ? " " : "") << fixed(f.deviations[i * f.face.size() + j] * 1e6, 6);
-            out << "\n";
-          }
+          row(out, f.deviations.data() + i * nf, nf, 1e6, 6);
         out << "end flank\n";
       }
   });
@@ -461,106 +591,85 @@ write_topography_file(const std::string &path, const TopographyMember &m)
 TopographyMember
 read_topography_file(const std::string &path)
 {
-  TextReader in(path);
-  const auto header =
-      read_header(in, {"format", "member", "teeth", "position units", "deviation units"}, {});
-  check_format(in, header.at("format"), "gearkit-topography 1");
-  TopographyMember m;
-  m.member           = header.at("member").value;
-  const Entry &teeth = header.at("teeth");
-  m.teeth            = in.at(teeth.line).integer(teeth.value, "teeth", 1, 1000000);
-  const std::map<std::string, double> lengths = {{"m", 1}, {"mm", 1e-3}, {"um", 1e-6}};
-  auto                                unit    = [&](const std::string &key) {
-    const auto it = lengths.find(header.at(key).value);
-    if (it == lengths.end())
-      in.at(header.at(key).line)
-          .fail(key + " '" + header.at(key).value + "' are not supported", "m, mm or um");
-    return it->second;
+  Reader       in(path);
+  const Header h = read_header(in, "gearkit-topography 1", {"deviation units"});
+  in.choice(h.keys, "units", {"mm"}, "units = mm (diameters and face positions)");
+  in.choice(h.keys, "deviation units", {"um"}, "deviation units = um");
+  auto values = [&](int line, const std::string &text, const std::string &what, double scale) {
+    std::vector<double> v;
+    for (const std::string &t : tokens(text))
+      v.push_back(in.number(line, t, what) * scale);
+    return v;
   };
-  const double position = unit("position units"), deviation = unit("deviation units");
 
-  std::set<std::pair<int, int>> seen;
+  TopographyMember                    m{h.member, h.teeth, {}};
+  std::set<std::pair<int, FlankSide>> seen;
   while (!in.done())
     {
-      if (in.take() != "begin flank")
-        in.fail("unexpected line outside a flank block", "'begin flank'");
-      const int       begin = in.line();
-      const auto      keys = read_block_keys(in, {"tooth", "side", "diameters", "face"}, {}, begin);
-      const int       after_keys = in.line();
-      FlankTopography f;
-      f.tooth = in.at(keys.at("tooth").line)
-                    .integer(keys.at("tooth").value, "tooth index", 0, m.teeth - 1);
-      f.side = parse_side(in.at(keys.at("side").line), keys.at("side").value);
-      if (!seen.insert({f.tooth, int(f.side)}).second)
-        in.fail("tooth " + keys.at("tooth").value + " " + keys.at("side").value + " appears twice",
-                "one block per tooth and side");
+      const Block     b = read_block(in, h, {"diameters", "face"}, seen);
+      FlankTopography f{b.tooth, b.side, {}, {}, {}};
       for (auto [key, axis] : {std::pair{"diameters", &f.diameters}, {"face", &f.face}})
         {
-          in.at(keys.at(key).line);
-          for (double v : in.numbers(keys.at(key).value, key))
-            axis->push_back(v * position);
-          if (axis->size() < 2 || !std::is_sorted(axis->begin(), axis->end()) ||
-              std::adjacent_find(axis->begin(), axis->end()) != axis->end())
-            in.fail(std::string(key) + " are not strictly increasing",
-                    "at least two increasing values");
+          const Entry &e = b.keys.at(key);
+          *axis          = values(e.line, e.value, key, 1e-3);
+          if (!strictly_increasing(*axis))
+            in.fail(e.line, std::string(key) + " are not strictly increasing",
+                    "one or more strictly increasing values [mm]");
         }
-      in.at(after_keys);
-      for (std::size_t i = 0;; ++i)
+      const std::size_t rows = f.diameters.size(), nf = f.face.size();
+      if (b.body.size() != rows)
+        in.fail(b.body.size() > rows ? b.body[rows].number : b.end,
+                std::to_string(b.body.size()) + " deviation rows",
+                std::to_string(rows) + " rows, one per diameter");
+      for (const Line &l : b.body)
         {
-          if (in.done())
-            throw InputError(path + ":" + std::to_string(begin) +
-                             ": the flank block has no 'end flank'; expected 'end flank' after "
-                             "its deviation rows");
-          const std::string &text = in.take();
-          if (text == "end flank")
-            {
-              if (i != f.diameters.size())
-                in.fail("the block has " + std::to_string(i) + " deviation rows",
-                        std::to_string(f.diameters.size()) + " (one per diameter)");
-              break;
-            }
-          const std::vector<double> row = in.numbers(text, "deviation");
-          if (row.size() != f.face.size())
-            in.fail(std::to_string(row.size()) + " deviations on the row",
-                    std::to_string(f.face.size()) + " (one per face position)");
-          if (i >= f.diameters.size())
-            in.fail("more deviation rows than diameters",
-                    std::to_string(f.diameters.size()) + " rows");
-          for (double v : row)
-            f.deviations.push_back(v * deviation);
+          const std::vector<double> row = values(l.number, l.text, "deviation", 1e-6);
+          if (row.size() != nf)
+            in.fail(l.number, std::to_string(row.size()) + " deviations on the row",
+                    std::to_string(nf) + " (one per face position)");
+          f.deviations.insert(f.deviations.end(), row.begin(), row.end());
         }
       m.flanks.push_back(std::move(f));
     }
   if (m.flanks.empty())
-    in.fail("the file has no flank blocks", "at least one 'begin flank' ... 'end flank'");
+    in.fail(in.here(), "the file has no flank blocks", "at least one 'begin flank' block");
   return m;
 }
 
 MeasuredMember
 topography_to_points(const InvoluteGear &gear, const TopographyMember &t)
 {
+  const std::string context = "topography of " + t.member;
+  check_topography(t, context);
   if (t.teeth != gear.teeth())
-    throw InputError("topography of " + t.member + ": " + std::to_string(t.teeth) +
-                     " teeth, but the gear has " + std::to_string(gear.teeth()));
+    throw InputError(context + ": " + std::to_string(t.teeth) + " teeth; expected the gear's " +
+                     std::to_string(gear.teeth()));
+  const double   tol = 1e-9, half_face = gear.data().face_width / 2;
   MeasuredMember m{t.member, t.teeth, {}};
   for (const FlankTopography &f : t.flanks)
     {
-      MeasuredFlank       out{f.tooth, f.side, int(f.diameters.size()), int(f.face.size()), {}, {}};
+      const std::string name =
+          context + ", tooth " + std::to_string(f.tooth) + " " + to_string(f.side) + ": ";
+      if (f.diameters.front() < 2 * gear.form_radius * (1 - tol) ||
+          f.diameters.back() > 2 * gear.tip_radius * (1 + tol))
+        throw InputError(name + "diameters " + decimal(f.diameters.front() * 1e3, 6) + " to " +
+                         decimal(f.diameters.back() * 1e3, 6) + " mm; expected the involute [" +
+                         decimal(2e3 * gear.form_radius, 6) + ", " +
+                         decimal(2e3 * gear.tip_radius, 6) + "] mm (form to tip diameter)");
+      if (f.face.front() < -half_face * (1 + tol) || f.face.back() > half_face * (1 + tol))
+        throw InputError(name + "face positions " + decimal(f.face.front() * 1e3, 6) + " to " +
+                         decimal(f.face.back() * 1e3, 6) + " mm; expected [-b/2, b/2] = +-" +
+                         decimal(half_face * 1e3, 6) + " mm");
       const InvoluteFlank flank = gear.flank(f.tooth, f.side);
+      MeasuredFlank       out{f.tooth, f.side, int(f.diameters.size()), int(f.face.size()), {}, {}};
       for (std::size_t i = 0; i < f.diameters.size(); ++i)
-        {
-          const double r = f.diameters[i] / 2;
-          if (r < gear.base_radius || r > gear.tip_radius * (1 + 1e-9))
-            throw InputError("topography of " + t.member + ", tooth " + std::to_string(f.tooth) +
-                             ": diameter " + std::to_string(2e3 * r) +
-                             " mm lies outside the involute [d_b, d_a]");
-          for (std::size_t j = 0; j < f.face.size(); ++j)
-            {
-              const FlankPoint p = flank.nominal(gear.roll_angle(r), f.face[j]);
-              out.points.push_back(p.position + f.deviations[i * f.face.size() + j] * p.normal);
-              out.normals.push_back(p.normal);
-            }
-        }
+        for (std::size_t j = 0; j < f.face.size(); ++j)
+          {
+            const double     xi = gear.roll_angle(std::max(f.diameters[i] / 2, gear.base_radius));
+            const FlankPoint p  = flank.nominal(xi, f.face[j]);
+            out.points.push_back(p.position + f.deviations[i * f.face.size() + j] * p.normal);
+            out.normals.push_back(p.normal);
+          }
       m.flanks.push_back(std::move(out));
     }
   return m;
@@ -571,76 +680,99 @@ topography_to_points(const InvoluteGear &gear, const TopographyMember &t)
 MeasuredMember
 synthesise_measured(const MeasuredMember &theory, const SynthesisOptions &o)
 {
+  const std::string context = "synthesising measured flanks of " + theory.member;
+  for (double v : {o.form_error, o.waviness_amplitude, o.waviness_wavelength, o.roughness, o.noise,
+                   o.pitch_error})
+    if (!(v >= 0 && std::isfinite(v)))
+      throw InputError(context + ": an amplitude or wavelength is " + std::to_string(v) +
+                       "; expected finite values >= 0");
+  check_member(theory, context, true);
   Random rng(o.seed);
-  // Pitch: one single pitch deviation per tooth of the member, closed to zero sum.
-  std::vector<double> cumulative(std::max(theory.teeth, 1), 0.0);
-  if (o.pitch_error > 0)
-    {
-      std::vector<double> fp(theory.teeth);
-      for (double &f : fp)
-        f = o.pitch_error * rng.normal();
-      const double mean = std::accumulate(fp.begin(), fp.end(), 0.0) / theory.teeth;
-      for (int k = 1; k < theory.teeth; ++k)
-        cumulative[k] = cumulative[k - 1] + fp[k] - mean;
-    }
+
+  // Pitch: f_p of every tooth, zero sum, standard deviation pitch_error (the mean removed from z
+  // draws shrinks it by sqrt(1 - 1/z), undone here); positions F_k = f_p1 + ... + f_pk, zero mean.
+  const int           z = theory.teeth;
+  std::vector<double> draw(z), position(z, 0.0);
+  for (double &g : draw)
+    g = rng.normal();
+  const double mean_draw = std::accumulate(draw.begin(), draw.end(), 0.0) / z;
+  const double spread    = z > 1 ? o.pitch_error / std::sqrt(1 - 1.0 / z) : 0;
+  for (int k = 1; k < z; ++k)
+    position[k] = position[k - 1] + spread * (draw[k] - mean_draw);
+  const double mean_position = std::accumulate(position.begin(), position.end(), 0.0) / z;
+  for (double &p : position)
+    p -= mean_position;
 
   MeasuredMember out = theory;
   for (MeasuredFlank &f : out.flanks)
     {
-      if (f.normals.size() != f.points.size())
-        throw InputError("synthesising measured flanks of " + theory.member +
-                         ": the theoretical flanks need normals");
-      const int np = f.n_profile, nf = f.n_face;
-      auto      at = [nf](int i, int j) { return std::size_t(i) * nf + j; };
-      // Arc lengths along the profile (middle column) and the face (middle row).
-      std::vector<double> s(np, 0.0), t(nf, 0.0);
-      for (int i = 1; i < np; ++i)
-        s[i] = s[i - 1] + (f.points[at(i, nf / 2)] - f.points[at(i - 1, nf / 2)]).norm();
-      for (int j = 1; j < nf; ++j)
-        t[j] = t[j - 1] + (f.points[at(np / 2, j)] - f.points[at(np / 2, j - 1)]).norm();
+      const int         np = f.n_profile, nf = f.n_face;
+      const std::size_t n  = f.points.size();
+      auto              at = [nf](int i, int j) { return std::size_t(i) * nf + j; };
+      // Every draw, in this order, whatever the amplitudes.
+      std::array<double, 4> form_coefficient;
+      for (double &c : form_coefficient)
+        c = 2 * rng.uniform() - 1;
+      const double phase_profile = 2 * pi * rng.uniform(), phase_face = 2 * pi * rng.uniform();
+      std::vector<double> white(n), noise(n);
+      for (double &g : white)
+        g = rng.normal();
+      for (double &g : noise)
+        g = rng.normal();
 
-      const double c1 = 2 * rng.uniform() - 1, c2 = 2 * rng.uniform() - 1,
-                   c3             = 2 * rng.uniform() - 1;
-      const double        phase_s = 2 * pi * rng.uniform(), phase_t = 2 * pi * rng.uniform();
-      std::vector<double> white(f.points.size()), rough(f.points.size(), 0.0);
-      for (double &w : white)
-        w = rng.normal();
-      if (o.roughness > 0) // average with the four neighbours; variance 1/5 of white -> rescale
-        for (int i = 0; i < np; ++i)
-          for (int j = 0; j < nf; ++j)
-            {
-              double sum = white[at(i, j)];
-              int    n   = 1;
-              for (auto [di, dj] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}})
-                if (i + di >= 0 && i + di < np && j + dj >= 0 && j + dj < nf)
-                  sum += white[at(i + di, j + dj)], ++n;
-              rough[at(i, j)] = o.roughness * sum / std::sqrt(double(n));
-            }
-
-      double r_mean = 0;
-      for (const Vec3 &p : f.points)
-        r_mean += p.head<2>().norm() / f.points.size();
-      const double turn = cumulative[f.tooth] / r_mean;
-      const double c = std::cos(turn), sn = std::sin(turn);
-
+      std::vector<double> d(n, 0.0);
+      // Form: slopes and crownings over the grid mapped to [-1, 1]^2, peak scaled to form_error.
+      auto unit     = [](int i, int count) { return count > 1 ? 2.0 * i / (count - 1) - 1 : 0.0; };
+      const auto &c = form_coefficient;
+      double      peak = 0;
       for (int i = 0; i < np; ++i)
         for (int j = 0; j < nf; ++j)
           {
-            const std::size_t k  = at(i, j);
-            const double      xs = np > 1 ? 2.0 * i / (np - 1) - 1 : 0;
-            const double      xt = nf > 1 ? 2.0 * j / (nf - 1) - 1 : 0;
-            double            d  = o.form_error / 3 * (c1 * xs + c2 * xt + c3 * (2 * xs * xs - 1));
-            if (o.waviness_wavelength > 0)
-              d += o.waviness_amplitude / 2 *
-                   (std::sin(2 * pi * s[i] / o.waviness_wavelength + phase_s) +
-                    std::sin(2 * pi * t[j] / o.waviness_wavelength + phase_t));
-            d += rough[k];
-            d += o.noise * rng.normal();
-            Vec3 p       = f.points[k] + d * f.normals[k];
-            f.points[k]  = Vec3(c * p.x() - sn * p.y(), sn * p.x() + c * p.y(), p.z());
-            const Vec3 n = f.normals[k];
-            f.normals[k] = Vec3(c * n.x() - sn * n.y(), sn * n.x() + c * n.y(), n.z());
+            const double x = unit(i, np), y = unit(j, nf);
+            d[at(i, j)] = c[0] * x + c[1] * y + c[2] * (2 * x * x - 1) + c[3] * (2 * y * y - 1);
+            peak        = std::max(peak, std::abs(d[at(i, j)]));
           }
+      for (double &v : d)
+        v = peak > 0 ? o.form_error * v / peak : 0;
+      // Waviness along the arc length of the middle column (profile) and middle row (face).
+      if (o.waviness_wavelength > 0)
+        {
+          std::vector<double> s(np, 0.0), t(nf, 0.0);
+          for (int i = 1; i < np; ++i)
+            s[i] = s[i - 1] + (f.points[at(i, nf / 2)] - f.points[at(i - 1, nf / 2)]).norm();
+          for (int j = 1; j < nf; ++j)
+            t[j] = t[j - 1] + (f.points[at(np / 2, j)] - f.points[at(np / 2, j - 1)]).norm();
+          const double k = 2 * pi / o.waviness_wavelength;
+          for (int i = 0; i < np; ++i)
+            for (int j = 0; j < nf; ++j)
+              d[at(i, j)] += o.waviness_amplitude / 2 *
+                             (std::sin(k * s[i] + phase_profile) + std::sin(k * t[j] + phase_face));
+        }
+      // Roughness (white noise averaged with the four neighbours, unit variance) and noise.
+      for (int i = 0; i < np; ++i)
+        for (int j = 0; j < nf; ++j)
+          {
+            double sum   = 0;
+            int    count = 0;
+            for (auto [di, dj] : {std::pair{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}})
+              if (i + di >= 0 && i + di < np && j + dj >= 0 && j + dj < nf)
+                sum += white[at(i + di, j + dj)], ++count;
+            d[at(i, j)] += o.roughness * sum / std::sqrt(double(count)) + o.noise * noise[at(i, j)];
+          }
+
+      double radius = 0;
+      for (const Vec3 &p : f.points)
+        radius += p.head<2>().norm() / double(n);
+      const double turn = radius > 0 ? position[f.tooth] / radius : 0;
+      const double cos = std::cos(turn), sin = std::sin(turn);
+      auto         rotate = [cos, sin](const Vec3 &v) {
+        return Vec3(cos * v.x() - sin * v.y(), sin * v.x() + cos * v.y(), v.z());
+      };
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          f.points[k]  = rotate(f.points[k] + d[k] * f.normals[k]);
+          f.normals[k] = rotate(f.normals[k]);
+        }
     }
   return out;
 }

@@ -10,7 +10,6 @@
 #include <set>
 #include <sstream>
 
-
 namespace gearkit
 {
 namespace fs = std::filesystem;

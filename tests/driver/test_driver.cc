@@ -1,6 +1,7 @@
 // The driver end to end: scene reading, the stage graph and its cache, the result file, and the
 // handling of bad input (clear message, non-zero exit, no result file).
 #include "../malformed_cmm.h"
+#include "../temp_directory_test.h"
 #include "driver.h"
 #include "h5_file.h"
 #include "measured_flank.h"
@@ -20,32 +21,14 @@ namespace
 {
 const std::string source_dir = GEARKIT_SOURCE_DIR;
 
-// A fresh directory per test, removed afterwards.
-class DriverTest : public ::testing::Test
+class DriverTest : public test_data::TempDirectoryTest
 {
 protected:
-  void
-  SetUp() override
-  {
-    dir = fs::temp_directory_path() /
-          ("gearkit-test-" +
-           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void
-  TearDown() override
-  {
-    fs::remove_all(dir);
-  }
-
   // Writes a scene file with the given text; returns its path.
   std::string
   scene(const std::string &text, const std::string &name = "scene.prm") const
   {
-    const fs::path p = dir / name;
-    std::ofstream(p) << text;
-    return p.string();
+    return file(name, text);
   }
 
   // Runs the command line; returns the exit code and captures the output.
@@ -58,7 +41,6 @@ protected:
     return gearkit_main(args, out, err);
   }
 
-  fs::path           dir;
   std::ostringstream out, err;
 };
 

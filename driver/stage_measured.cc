@@ -119,16 +119,12 @@ run_measured_stage(const Scene &scene, const Upstream &, const H5Group &out, std
                 const MeasuredMember theory =
                     virtual_cmm(*gear, member.name, m.profile_points, m.face_points, m.edge_margin,
                                 member.teeth);
-                SynthesisOptions o;
+                measured = theory; // a perfect virtual CMM
                 if (m.source == MeasuredSource::synthesised)
-                  o = {m.seed + (member.name[0] == 'g' ? 1 : 0),
-                       m.form_error,
-                       m.waviness_amplitude,
-                       m.waviness_wavelength,
-                       m.roughness,
-                       m.noise,
-                       m.pitch_error};
-                measured  = synthesise_measured(theory, o);
+                  measured = synthesise_measured(theory, {m.seed + (member.name[0] == 'g' ? 1 : 0),
+                                                          m.form_error, m.waviness_amplitude,
+                                                          m.waviness_wavelength, m.roughness,
+                                                          m.noise, m.pitch_error});
                 deviation = deviation_from(measured, theory);
                 break;
               }

@@ -39,6 +39,24 @@ tokens(const std::string &text)
   return t;
 }
 
+/// Text from a file, quoted for a message: control and non-ASCII bytes as \xHH (a NUL would
+/// cut the message short), at most 40 characters.
+std::string
+quoted(const std::string &s)
+{
+  std::string q = "'";
+  for (const char c : s.substr(0, 40))
+    if (c >= ' ' && c <= '~')
+      q += c;
+    else
+      {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(static_cast<unsigned char>(c)));
+        q += hex;
+      }
+  return q + (s.size() > 40 ? "...'" : "'");
+}
+
 /// Shortest decimal that reads back to exactly v (digits = -1), or v with that many decimals.
 /// Locale-independent.
 std::string
@@ -125,11 +143,12 @@ public:
     double v          = 0;
     const auto [p, r] = std::from_chars(b, e, v);
     if (r == std::errc::result_out_of_range)
-      fail(line, what + " '" + token + "' is out of range", "a finite number");
+      fail(line, what + " " + quoted(token) + " is out of range", "a finite number");
     if (r != std::errc() || p != e)
-      fail(line, what + " '" + token + "' is not a number", "a decimal number such as -12.345");
+      fail(line, what + " " + quoted(token) + " is not a number",
+           "a decimal number such as -12.345");
     if (!std::isfinite(v))
-      fail(line, what + " is '" + token + "'", "a finite number (no NaN or inf)");
+      fail(line, what + " is " + quoted(token), "a finite number (no NaN or inf)");
     return v;
   }
 
@@ -141,7 +160,7 @@ public:
     const std::string range =
         "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     if (r != std::errc() || p != token.data() + token.size())
-      fail(line, what + " '" + token + "' is not an integer", range);
+      fail(line, what + " " + quoted(token) + " is not an integer", range);
     if (v < lo || v > hi)
       fail(line, what + " " + token + " is out of range", range);
     return v;
@@ -154,14 +173,15 @@ public:
   {
     const Entry &e = keys.at(key);
     if (!allowed.count(e.value))
-      fail(e.line, key + " '" + e.value + "' is not allowed", expected);
+      fail(e.line, key + " " + quoted(e.value) + " is not allowed", expected);
     return e.value;
   }
 
-  /// Consecutive "key = value" lines: each key once, all of `required`, others from `optional`.
+  /// Consecutive "key = value" lines: each key once, all of `required`, others from `optional`;
+  /// then the line `next` or the end of the file, if `next` is given.
   Entries
   keys(const std::string &where, const std::set<std::string> &required,
-       const std::set<std::string> &optional)
+       const std::set<std::string> &optional, const std::string &next = "")
   {
     Entries found;
     while (!done() && peek().text.find('=') != std::string::npos)
@@ -175,14 +195,17 @@ public:
             for (const auto *set : {&required, &optional})
               for (const std::string &k : *set)
                 known += (known.empty() ? "" : ", ") + k;
-            fail(l.number, "unknown " + where + " key '" + key + "'",
+            fail(l.number, "unknown " + where + " key " + quoted(key),
                  "one of the documented keys (" + known + ")");
           }
         if (value.empty())
-          fail(l.number, "'" + key + "' has no value", "'" + key + " = <value>'");
+          fail(l.number, quoted(key) + " has no value", "'" + key + " = <value>'");
         if (!found.emplace(key, Entry{value, l.number}).second)
-          fail(l.number, where + " key '" + key + "' appears twice", "each key once");
+          fail(l.number, where + " key " + quoted(key) + " appears twice", "each key once");
       }
+    if (!next.empty() && !done() && peek().text != next)
+      fail(here(), quoted(peek().text) + " is not a 'key = value' line",
+           "the " + where + " keys, then '" + next + "'");
     for (const std::string &key : required)
       if (!found.count(key))
         fail(here(), "the " + where + " has no '" + key + "' key",
@@ -212,7 +235,7 @@ read_header(Reader &in, const std::string &format, const std::set<std::string> &
 {
   std::set<std::string> required = {"format", "member", "teeth", "units"};
   required.insert(more.begin(), more.end());
-  Header h{in.keys("header", required, {"frame"}), "", 0};
+  Header h{in.keys("header", required, {"frame"}, "begin flank"), "", 0};
   in.choice(h.keys, "format", {format}, "'" + format + "'");
   h.member = h.keys.at("member").value;
   h.teeth  = in.integer(h.keys.at("teeth").line, h.keys.at("teeth").value, "teeth", 1, 100000);
@@ -236,14 +259,15 @@ read_block(Reader &in, const Header &h, const std::set<std::string> &more,
 {
   const Line &first = in.take();
   if (first.text != "begin flank")
-    in.fail(first.number, "'" + first.text + "' outside a flank block", "'begin flank'");
+    in.fail(first.number, quoted(first.text) + " outside a flank block", "'begin flank'");
   std::set<std::string> required = {"tooth", "side"};
   required.insert(more.begin(), more.end());
   Block b{first.number, 0, 0, FlankSide::drive, in.keys("flank block", required, {"units"}), {}};
   const std::string &units = h.keys.at("units").value;
   if (const auto u = b.keys.find("units"); u != b.keys.end() && u->second.value != units)
     in.fail(u->second.line,
-            "the block's units '" + u->second.value + "' differ from the header's (mixed units)",
+            "the block's units " + quoted(u->second.value) +
+                " differ from the header's (mixed units)",
             "one unit for the whole file (units = " + units + ")");
   const Entry &tooth = b.keys.at("tooth");
   b.tooth            = in.integer(tooth.line, tooth.value, "tooth index", 0, h.teeth - 1);
@@ -303,8 +327,8 @@ void
 check_name(const std::string &path, const std::string &name)
 {
   if (name.empty() || name != trim(name) || name.find_first_of("#\n") != std::string::npos)
-    throw InputError(path + ": member name '" + name +
-                     "' cannot be written; expected a non-empty name without '#', line breaks "
+    throw InputError(path + ": member name " + quoted(name) +
+                     " cannot be written; expected a non-empty name without '#', line breaks "
                      "or surrounding blanks");
 }
 
@@ -480,8 +504,9 @@ read_cmm_file(const std::string &path)
 {
   Reader       in(path);
   const Header h = read_header(in, "gearkit-cmm 1", {"normals"});
-  const double scale =
-      in.choice(h.keys, "units", {"mm", "m"}, "units = mm or units = m") == "mm" ? 1e-3 : 1;
+  // file units per metre; dividing by an exact power of ten rounds once
+  const double per_metre =
+      in.choice(h.keys, "units", {"mm", "m"}, "units = mm or units = m") == "mm" ? 1e3 : 1;
   const bool normals =
       in.choice(h.keys, "normals", {"yes", "no"}, "normals = yes or normals = no") == "yes";
   const std::size_t columns = normals ? 8 : 5;
@@ -496,16 +521,16 @@ read_cmm_file(const std::string &path)
       const Entry &grid  = b.keys.at("grid");
       const auto   shape = tokens(grid.value);
       if (shape.size() != 2)
-        in.fail(grid.line, "grid = '" + grid.value + "'", "grid = <profile points> <face points>");
+        in.fail(grid.line, "grid = " + quoted(grid.value), "grid = <profile points> <face points>");
       MeasuredFlank     f{b.tooth,
                       b.side,
                       in.integer(grid.line, shape[0], "profile points", 1, 1000000),
                       in.integer(grid.line, shape[1], "face points", 1, 1000000),
                       {},
                       {}};
-      const std::size_t count = std::size_t(f.n_profile) * f.n_face;
-      const std::string grid_size =
-          std::to_string(count) + " = " + shape[0] + " x " + shape[1] + " points";
+      const std::size_t count     = std::size_t(f.n_profile) * f.n_face;
+      const std::string grid_size = std::to_string(count) + " = " + std::to_string(f.n_profile) +
+                                    " x " + std::to_string(f.n_face) + " points";
 
       std::map<std::size_t, std::array<double, 6>> by_index;    // grid index -> x y z nx ny nz
       std::map<std::array<double, 3>, int>         by_position; // -> line
@@ -545,7 +570,7 @@ read_cmm_file(const std::string &path)
         }
       for (const auto &[k, v] : by_index)
         {
-          f.points.emplace_back(Vec3(v[0], v[1], v[2]) * scale);
+          f.points.emplace_back(Vec3(v[0], v[1], v[2]) / per_metre);
           if (normals)
             f.normals.emplace_back(v[3], v[4], v[5]);
         }
@@ -595,10 +620,10 @@ read_topography_file(const std::string &path)
   const Header h = read_header(in, "gearkit-topography 1", {"deviation units"});
   in.choice(h.keys, "units", {"mm"}, "units = mm (diameters and face positions)");
   in.choice(h.keys, "deviation units", {"um"}, "deviation units = um");
-  auto values = [&](int line, const std::string &text, const std::string &what, double scale) {
+  auto values = [&](int line, const std::string &text, const std::string &what, double per_metre) {
     std::vector<double> v;
     for (const std::string &t : tokens(text))
-      v.push_back(in.number(line, t, what) * scale);
+      v.push_back(in.number(line, t, what) / per_metre);
     return v;
   };
 
@@ -611,7 +636,7 @@ read_topography_file(const std::string &path)
       for (auto [key, axis] : {std::pair{"diameters", &f.diameters}, {"face", &f.face}})
         {
           const Entry &e = b.keys.at(key);
-          *axis          = values(e.line, e.value, key, 1e-3);
+          *axis          = values(e.line, e.value, key, 1e3);
           if (!strictly_increasing(*axis))
             in.fail(e.line, std::string(key) + " are not strictly increasing",
                     "one or more strictly increasing values [mm]");
@@ -623,7 +648,7 @@ read_topography_file(const std::string &path)
                 std::to_string(rows) + " rows, one per diameter");
       for (const Line &l : b.body)
         {
-          const std::vector<double> row = values(l.number, l.text, "deviation", 1e-6);
+          const std::vector<double> row = values(l.number, l.text, "deviation", 1e6);
           if (row.size() != nf)
             in.fail(l.number, std::to_string(row.size()) + " deviations on the row",
                     std::to_string(nf) + " (one per face position)");

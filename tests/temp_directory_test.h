@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <unistd.h>
 
 namespace gearkit::test_data
 {
@@ -16,9 +18,12 @@ protected:
   void
   SetUp() override
   {
+    // Unique and flat: suite, test (parameterised names contain '/') and process id.
     const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir              = std::filesystem::temp_directory_path() /
-          ("gearkit-" + std::string(info->test_suite_name()) + "-" + info->name());
+    std::string name = std::string("gearkit-") + info->test_suite_name() + "-" + info->name() +
+                       "-" + std::to_string(::getpid());
+    std::replace(name.begin(), name.end(), '/', '_');
+    dir = std::filesystem::temp_directory_path() / name;
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
   }

@@ -306,6 +306,11 @@ TEST_F(DriverTest, ExportedCmmFilesReadBackAsMeasurement)
                         .group("pinion"),
                     "pinion");
   ASSERT_EQ(first.flanks.size(), 4u); // teeth 0 and 3, both sides
+  for (double d : H5File::open((dir / "out/small/results.h5").string())
+                      .root()
+                      .group("measured/p1/pinion/tooth_3_coast")
+                      .read_doubles("deviation"))
+    EXPECT_EQ(d, 0) << "a virtual CMM measures the theoretical flank exactly";
   ASSERT_EQ(second.flanks.size(), first.flanks.size());
   for (std::size_t f = 0; f < first.flanks.size(); ++f)
     for (std::size_t k = 0; k < first.flanks[f].points.size(); ++k)

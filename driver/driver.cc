@@ -211,6 +211,7 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostre
       const RunSummary summary = run_scene(scene, output_root, out);
       if (plot)
         {
+          out.flush(); // the log first, then the plotting script's lines
           const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR
                                   "/scripts/plot_results.py' '" +
                                   summary.results_file + "'";

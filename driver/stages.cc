@@ -39,7 +39,7 @@ stage_definitions()
        "measured flank point sets (virtual CMM, synthesised, or read from files)",
        {"flanks"},
        {"Measured flanks"},
-       1,
+       2,
        [](const Scene &scene) {
          std::vector<std::string> files;
          for (const auto &[pair, m] : scene.measured)

@@ -101,25 +101,6 @@ write_member(const InvoluteGear &g, int n_u, int n_v, const H5Group &out, std::o
     }
 }
 
-// Working transverse pressure angle from inv(alpha_wt) = inv(alpha_t) + 2 tan(alpha_n)
-// (x1 + x2) / (z1 + z2) (zero backlash), solved by Newton.
-double
-working_pressure_angle(const InvoluteGear &p, const InvoluteGear &g)
-{
-  const double an  = p.data().normal_pressure_angle;
-  const double rhs = std::tan(p.transverse_pressure_angle) - p.transverse_pressure_angle +
-                     2 * std::tan(an) * (p.data().profile_shift + g.data().profile_shift) /
-                         (p.teeth() + g.teeth());
-  double a = p.transverse_pressure_angle;
-  for (int i = 0; i < 50; ++i)
-    {
-      const double f = std::tan(a) - a - rhs, df = std::tan(a) * std::tan(a);
-      a -= f / df;
-      if (std::abs(f) < 1e-16)
-        break;
-    }
-  return a;
-}
 } // namespace
 
 void
@@ -138,11 +119,9 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
                    log, progress);
       write_member(*gear, pair.grid_profile_points, pair.grid_face_points, pg.group("gear"), log,
                    progress);
-      const double alpha_w = working_pressure_angle(*pinion, *gear);
-      pg.write("working_pressure_angle", alpha_w, "rad",
+      pg.write("working_pressure_angle", working_pressure_angle(*pinion, *gear), "rad",
                "transverse working pressure angle for zero backlash");
-      pg.write("working_centre_distance",
-               (pinion->base_radius + gear->base_radius) / std::cos(alpha_w), "m",
+      pg.write("working_centre_distance", working_centre_distance(*pinion, *gear), "m",
                "centre distance for zero backlash, a_w = (r_b1 + r_b2) / cos alpha_wt");
     }
 }

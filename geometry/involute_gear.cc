@@ -494,6 +494,31 @@ InvoluteFlank::evaluate(double xi, double z) const
   return r;
 }
 
+double
+working_pressure_angle(const InvoluteGear &p, const InvoluteGear &g)
+{
+  // Newton on inv(a) = rhs from alpha_t; inv is monotonic and convex on (0, pi/2).
+  const double at  = p.transverse_pressure_angle;
+  const double rhs = inv(at) + 2 * std::tan(p.data().normal_pressure_angle) *
+                                 (p.data().profile_shift + g.data().profile_shift) /
+                                 (p.teeth() + g.teeth());
+  double a = at;
+  for (int i = 0; i < 60; ++i)
+    {
+      const double f = inv(a) - rhs;
+      a -= f / (std::tan(a) * std::tan(a));
+      if (std::abs(f) < 1e-16)
+        break;
+    }
+  return a;
+}
+
+double
+working_centre_distance(const InvoluteGear &p, const InvoluteGear &g)
+{
+  return (p.base_radius + g.base_radius) / std::cos(working_pressure_angle(p, g));
+}
+
 FlankGrid
 sample_flank(const Flank &flank, int n_u, int n_v, double margin)
 {

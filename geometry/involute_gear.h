@@ -198,6 +198,14 @@ private:
   double fillet_t_end = 1; ///< end of the rounding's trochoid (< 1 when it undercuts the involute)
 };
 
+/// Transverse working pressure angle and centre distance of an external pair for zero backlash:
+/// inv(alpha_wt) = inv(alpha_t) + 2 tan(alpha_n) (x1 + x2) / (z1 + z2), a_w = (r_b1 + r_b2) /
+/// cos(alpha_wt).
+double
+working_pressure_angle(const InvoluteGear &pinion, const InvoluteGear &gear);
+double
+working_centre_distance(const InvoluteGear &pinion, const InvoluteGear &gear);
+
 /// A sampled flank: n_u x n_v points stored row-major, index i_u * n_v + i_v.
 struct FlankGrid
 {

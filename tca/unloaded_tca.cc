@@ -1,0 +1,295 @@
+#include "unloaded_tca.h"
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace gearkit
+{
+namespace
+{
+int
+mod(int a, int n)
+{
+  return ((a % n) + n) % n;
+}
+
+double
+wrap(double a) // to (-pi, pi]
+{
+  return a - 2 * pi * std::floor((a + pi) / (2 * pi));
+}
+
+Eigen::Matrix3d
+rot_z(double a)
+{
+  return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix();
+}
+} // namespace
+
+UnloadedTca::UnloadedTca(std::shared_ptr<const InvoluteGear> p,
+                         std::shared_ptr<const InvoluteGear> g, double a, const Misalignment &m,
+                         const TcaOptions &o)
+    : pinion(std::move(p))
+    , gear(std::move(g))
+    , assembly(a, gear->teeth(), m)
+    , options(o)
+    , ratio(double(pinion->teeth()) / gear->teeth())
+{
+  const auto &d1 = pinion->data(), &d2 = gear->data();
+  if (d1.helix_angle > 0 && d1.hand == d2.hand)
+    throw InputError("unloaded TCA: an external helical pair needs opposite hands (" + d1.name +
+                     " and " + d2.name + " have the same)");
+  if (std::abs(d1.normal_module - d2.normal_module) > 1e-12 ||
+      std::abs(d1.normal_pressure_angle - d2.normal_pressure_angle) > 1e-12 ||
+      std::abs(d1.helix_angle - d2.helix_angle) > 1e-12)
+    throw InputError("unloaded TCA: " + d1.name + " and " + d2.name +
+                     " differ in normal module, pressure angle or helix angle and cannot mesh");
+  if (options.positions_per_mesh < 1 || options.mesh_cycles < 1 || options.profile_samples < 2 ||
+      options.face_samples < 2)
+    throw InputError("unloaded TCA: positions per mesh, mesh cycles (>= 1) and search samples "
+                     "(>= 2) must be positive");
+}
+
+bool
+UnloadedTca::touch_angle(int j, const Vec3 &X, double expected, double &psi, double &u2,
+                         double &v2) const
+{
+  // Solve r_g(u2, v2) = Rz(psi) Q for (u2, v2, psi) by Newton, from the involute's own answer:
+  // the roll angle of the point's radius, its axial position, and the polar angle difference.
+  const InvoluteFlank flank = gear->flank(j, options.side);
+  const FlankDomain   d     = flank.domain();
+  const Vec3          Q     = assembly.global_to_gear_unrotated(X);
+  const double        rho   = Q.head<2>().norm();
+  if (rho < gear->base_radius)
+    return false;
+  u2            = std::clamp(gear->roll_angle(rho), d.u_min, d.u_max);
+  v2            = Q.z();
+  const Vec3 r0 = flank.evaluate(u2, v2).position;
+  psi           = expected + wrap(std::atan2(r0.y(), r0.x()) - std::atan2(Q.y(), Q.x()) - expected);
+  for (int it = 0; it < 30; ++it)
+    {
+      const FlankPoint f  = flank.evaluate(u2, v2);
+      const Vec3       RQ = rot_z(psi) * Q;
+      const Vec3       F  = f.position - RQ;
+      Eigen::Matrix3d  J;
+      J.col(0)        = f.d_du;
+      J.col(1)        = f.d_dv;
+      J.col(2)        = -Vec3::UnitZ().cross(RQ);
+      const Vec3 step = J.partialPivLu().solve(-F);
+      u2 += step.x();
+      v2 += step.y();
+      psi += step.z();
+      if (!std::isfinite(psi))
+        return false;
+      if (step.norm() < 1e-15 * (1 + std::abs(psi)) || F.norm() < 1e-16)
+        break;
+    }
+  const double tol_u = 1e-12 * (d.u_max - d.u_min), tol_v = 1e-12 * (d.v_max - d.v_min);
+  return u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u && v2 >= d.v_min - tol_v &&
+         v2 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / gear->teeth() &&
+         flank.contains(u2, v2);
+}
+
+PairContact
+UnloadedTca::pair_contact(int k, double phi) const
+{
+  // Pair k: the k-th pinion tooth to pass the line of centres (tooth -k) and its mate.
+  PairContact  c;
+  const bool   drive           = options.side == FlankSide::drive;
+  const double s               = drive ? 1.0 : -1.0;
+  c.pinion_tooth               = mod(-k, pinion->teeth());
+  c.gear_tooth                 = mod(drive ? k - 1 : k, gear->teeth());
+  const InvoluteFlank flank    = pinion->flank(c.pinion_tooth, options.side);
+  const FlankDomain   d        = flank.domain();
+  const double        expected = ratio * phi;
+
+  // s * touch angle of a pinion flank point; -inf where the gear flank cannot reach it.
+  struct Sample
+  {
+    double value = -HUGE_VAL, u1 = 0, v1 = 0, psi = 0, u2 = 0, v2 = 0;
+  };
+  auto sample = [&](double u1, double v1) {
+    Sample out;
+    out.u1 = std::clamp(u1, d.u_min, d.u_max);
+    out.v1 = std::clamp(v1, d.v_min, d.v_max);
+    if (!flank.contains(out.u1, out.v1))
+      return out;
+    const Vec3 X = assembly.pinion_to_global(flank.evaluate(out.u1, out.v1).position, phi);
+    if (touch_angle(c.gear_tooth, X, expected, out.psi, out.u2, out.v2))
+      out.value = s * out.psi;
+    return out;
+  };
+
+  // A grid over the flank, then a pattern search that halves its step around the best sample
+  // (it follows the maximum into corners and along edges as well as to interior maxima).
+  Sample    best;
+  const int nu = options.profile_samples, nv = options.face_samples;
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l)
+      {
+        const Sample t = sample(d.u_min + (d.u_max - d.u_min) * i / (nu - 1),
+                                d.v_min + (d.v_max - d.v_min) * l / (nv - 1));
+        if (t.value > best.value)
+          best = t;
+      }
+  if (best.value == -HUGE_VAL)
+    return c;
+  double hu = (d.u_max - d.u_min) / (nu - 1), hv = (d.v_max - d.v_min) / (nv - 1);
+  while (hu > 1e-11 * (d.u_max - d.u_min) || hv > 1e-11 * (d.v_max - d.v_min))
+    {
+      Sample next = best;
+      for (int a = -1; a <= 1; ++a)
+        for (int b = -1; b <= 1; ++b)
+          if (a || b)
+            {
+              const Sample t = sample(best.u1 + a * hu, best.v1 + b * hv);
+              if (t.value > next.value)
+                next = t;
+            }
+      if (next.u1 == best.u1 && next.v1 == best.v1)
+        hu /= 2, hv /= 2;
+      best = next;
+    }
+
+  // Newton on the stationarity of the touch angle (the classical tangency condition) in the
+  // free parameters: the pattern search locates the maximum to ~1e-8 (the touch angle is flat
+  // there), Newton pins it to rounding. The gradient follows from the implicit function theorem
+  // on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ. A pseudo-inverse
+  // handles line contact (a singular Hessian along the contact line).
+  const FlankDomain dg      = gear->flank(c.gear_tooth, options.side).domain();
+  auto              at_edge = [](double x, double lo, double hi) {
+    return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
+  };
+  const bool free_u = !at_edge(best.u1, d.u_min, d.u_max);
+  const bool free_v = !at_edge(best.v1, d.v_min, d.v_max);
+  const bool gear_edge =
+      at_edge(best.u2, dg.u_min, dg.u_max) || at_edge(best.v2, dg.v_min, dg.v_max);
+  if ((free_u || free_v) && !gear_edge)
+    {
+      const InvoluteFlank gear_flank = gear->flank(c.gear_tooth, options.side);
+      auto                gradient   = [&](const Sample &t) {
+        const FlankPoint      p = flank.evaluate(t.u1, t.v1);
+        const FlankPoint      q = gear_flank.evaluate(t.u2, t.v2);
+        const Vec3            X = assembly.pinion_to_global(p.position, phi);
+        const Vec3            Q = assembly.global_to_gear_unrotated(X);
+        const Eigen::Matrix3d R = rot_z(t.psi);
+        Eigen::Matrix3d       J;
+        J.col(0)         = q.d_du;
+        J.col(1)         = q.d_dv;
+        J.col(2)         = -Vec3::UnitZ().cross(R * Q);
+        const auto lu    = J.partialPivLu();
+        auto       d_psi = [&](const Vec3 &dr) {
+          const Vec3 dQ =
+              assembly.global_to_gear_unrotated_vector(assembly.pinion_vector_to_global(dr, phi));
+          return s * lu.solve(R * dQ).z();
+        };
+        return Eigen::Vector2d(free_u ? d_psi(p.d_du) : 0.0, free_v ? d_psi(p.d_dv) : 0.0);
+      };
+      for (int it = 0; it < 8; ++it)
+        {
+          const Eigen::Vector2d g0 = gradient(best);
+          const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
+          Eigen::Matrix2d       H = Eigen::Matrix2d::Zero();
+          if (free_u)
+            H.col(0) = (gradient(sample(best.u1 + eu, best.v1)) - g0) / eu;
+          if (free_v)
+            H.col(1) = (gradient(sample(best.u1, best.v1 + ev)) - g0) / ev;
+          const Eigen::Vector2d step = -H.completeOrthogonalDecomposition().solve(g0);
+          const Sample          next = sample(best.u1 + step.x(), best.v1 + step.y());
+          if (!(next.value >= best.value - 1e-14))
+            break;
+          const bool done = step.norm() < 1e-13;
+          best            = next;
+          if (done)
+            break;
+        }
+    }
+
+  c.found       = true;
+  c.touch_angle = best.psi;
+  c.u1 = best.u1, c.v1 = best.v1, c.u2 = best.u2, c.v2 = best.v2;
+  c.edge = at_edge(c.u1, d.u_min, d.u_max) || at_edge(c.v1, d.v_min, d.v_max) ||
+           at_edge(c.u2, dg.u_min, dg.u_max) || at_edge(c.v2, dg.v_min, dg.v_max);
+  const FlankPoint p = flank.evaluate(c.u1, c.v1);
+  const FlankPoint g = gear->flank(c.gear_tooth, options.side).evaluate(c.u2, c.v2);
+  c.position         = assembly.pinion_to_global(p.position, phi);
+  c.normal_pinion    = assembly.pinion_vector_to_global(p.normal, phi);
+  c.normal_gear      = assembly.gear_vector_to_global(g.normal, c.touch_angle);
+  c.lambda_pinion =
+      (c.position - assembly.pinion_to_global(Vec3::Zero(), phi)).cross(c.normal_pinion);
+  c.lambda_gear =
+      (c.position - assembly.gear_to_global(Vec3::Zero(), c.touch_angle)).cross(c.normal_gear);
+  return c;
+}
+
+TcaPosition
+UnloadedTca::at(double phi) const
+{
+  TcaPosition pos;
+  pos.pinion_angle = phi;
+  const int    k0  = int(std::lround(phi * pinion->teeth() / (2 * pi)));
+  const double s   = options.side == FlankSide::drive ? 1.0 : -1.0;
+  for (int k = k0 - 3; k <= k0 + 3; ++k)
+    {
+      PairContact c = pair_contact(k, phi);
+      if (!c.found)
+        continue;
+      pos.pairs.push_back(c);
+      // The pair that touches first leads; among pairs touching together (conjugate flanks)
+      // prefer one whose contact lies inside both flanks.
+      const PairContact *lead = pos.leading < 0 ? nullptr : &pos.pairs[pos.leading];
+      if (!lead || s * c.touch_angle > s * lead->touch_angle + 1e-14 ||
+          (s * c.touch_angle > s * lead->touch_angle - 1e-14 && lead->edge && !c.edge))
+        pos.leading = int(pos.pairs.size()) - 1;
+    }
+  if (pos.leading < 0)
+    {
+      std::ostringstream m;
+      m << "unloaded TCA: no tooth pair of " << pinion->data().name << " and " << gear->data().name
+        << " meets at pinion angle " << phi
+        << " rad; expected flanks that mesh (check the centre distance, hands and face widths)";
+      throw InputError(m.str());
+    }
+  pos.gear_angle         = pos.pairs[pos.leading].touch_angle;
+  pos.transmission_error = phi - pos.gear_angle / ratio;
+  const Vec3 axis        = assembly.gear_axis();
+  for (PairContact &c : pos.pairs)
+    {
+      // A gear rotation d psi moves the gear flank along its normal by |(a x r) . n| d psi.
+      const Vec3 r = c.position - assembly.gear_centre();
+      c.separation =
+          s * (pos.gear_angle - c.touch_angle) * std::abs(axis.cross(r).dot(c.normal_gear));
+      if (c.separation < options.contact_tolerance)
+        ++pos.touching;
+    }
+  return pos;
+}
+
+TcaResult
+UnloadedTca::run() const
+{
+  TcaResult result;
+  result.mesh_angle  = 2 * pi / pinion->teeth();
+  const int n        = options.positions_per_mesh * options.mesh_cycles;
+  int       touching = 0;
+  for (int i = 0; i < n; ++i)
+    {
+      result.positions.push_back(
+          at(options.start_angle + result.mesh_angle * i / options.positions_per_mesh));
+      const TcaPosition &p = result.positions.back();
+      touching += p.touching;
+      if (i > 0)
+        {
+          const TcaPosition &q = result.positions[i - 1];
+          if (p.pairs[p.leading].pinion_tooth != q.pairs[q.leading].pinion_tooth)
+            result.transfers.push_back(i);
+        }
+    }
+  result.mean_pairs_in_contact = double(touching) / n;
+  return result;
+}
+} // namespace gearkit

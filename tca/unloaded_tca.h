@@ -1,0 +1,99 @@
+// Unloaded tooth contact analysis of a gear pair from its flank surfaces.
+//
+// For a pinion rotation phi, every pinion flank point X has a "touch angle": the gear rotation
+// psi at which the mating gear flank passes through X (solved by Newton from r_g(u2, v2) =
+// Rz(psi) Q(X)). The gear cannot turn less than the largest touch angle over all points and all
+// tooth pairs in mesh, so that maximum is the gear's position; where it is attained, the surfaces
+// touch (an interior maximum is the classical coincidence of positions and normals, a maximum on
+// the flank boundary an edge contact). The other pairs stand apart by their angular gap.
+// Transmission error (the seed's convention, pinion radians): e = phi - (z2/z1) psi; it is zero for
+// perfect involutes on the zero-backlash centre distance.
+#pragma once
+
+#include "assembly.h"
+#include "involute_gear.h"
+
+#include <memory>
+#include <vector>
+
+namespace gearkit
+{
+struct TcaOptions
+{
+  FlankSide side               = FlankSide::drive; ///< working flanks (drive: pinion drives)
+  int       positions_per_mesh = 50;               ///< pinion positions per mesh cycle
+  int       mesh_cycles        = 1;                ///< mesh cycles to analyse
+  double    start_angle        = 0;                ///< first pinion angle [rad]
+  int       profile_samples    = 17;   ///< initial search grid over each pinion flank ...
+  int       face_samples       = 9;    ///< ... refined by successive zooms around the maximum
+  double    contact_tolerance  = 1e-9; ///< pairs closer than this [m] count as touching
+};
+
+/// One tooth pair at one position.
+struct PairContact
+{
+  int    pinion_tooth = 0, gear_tooth = 0;
+  bool   found       = false; ///< the flanks can meet at all in this position
+  double touch_angle = 0;     ///< gear rotation at which this pair touches [rad]
+  double separation  = 0;     ///< normal gap at the gear's actual rotation [m] (0: touching)
+  bool   edge        = false; ///< the closest point lies on a flank boundary
+  double u1 = 0, v1 = 0, u2 = 0, v2 = 0; ///< flank parameters of the (closest) contact point
+  Vec3   position      = Vec3::Zero();   ///< global contact point [m]
+  Vec3   normal_pinion = Vec3::Zero();   ///< n_p, outward normal of the pinion flank (global)
+  Vec3   normal_gear   = Vec3::Zero();   ///< n_g, outward normal of the gear flank (global)
+  Vec3   lambda_pinion = Vec3::Zero();   ///< lambda_p = r_p x n_p about the pinion centre [m]
+  Vec3   lambda_gear   = Vec3::Zero();   ///< lambda_g = r_g x n_g about the gear centre [m]
+};
+
+struct TcaPosition
+{
+  double                   pinion_angle       = 0;  ///< phi [rad]
+  double                   gear_angle         = 0;  ///< psi [rad]
+  double                   transmission_error = 0;  ///< e_0 = phi - (z2/z1) psi [rad, pinion]
+  int                      leading            = -1; ///< index into pairs of the touching pair
+  int                      touching           = 0;  ///< pairs within the contact tolerance
+  std::vector<PairContact> pairs;
+};
+
+struct TcaResult
+{
+  std::vector<TcaPosition> positions;
+  double                   mesh_angle = 0; ///< pinion rotation of one mesh cycle, 2 pi / z1
+  /// Mean number of touching pairs: the contact ratio for conjugate flanks.
+  double mean_pairs_in_contact = 0;
+  /// Positions where the leading pair changes (index of the first position of the new pair).
+  std::vector<int> transfers;
+};
+
+class UnloadedTca
+{
+public:
+  UnloadedTca(std::shared_ptr<const InvoluteGear> pinion, std::shared_ptr<const InvoluteGear> gear,
+              double centre_distance, const Misalignment &misalignment = {},
+              const TcaOptions &options = {});
+
+  /// The contact at one pinion angle. Throws InputError if no tooth pair can meet (flanks that
+  /// do not mesh at this centre distance, face widths that do not overlap).
+  TcaPosition
+  at(double pinion_angle) const;
+
+  /// options.positions_per_mesh x options.mesh_cycles positions from options.start_angle.
+  TcaResult
+  run() const;
+
+  /// Gear rotation at which gear tooth `gear_tooth`'s flank passes through the global point X,
+  /// near `expected`; false if Newton fails or the point lies off the gear flank.
+  bool
+  touch_angle(int gear_tooth, const Vec3 &X, double expected, double &psi, double &u2,
+              double &v2) const;
+
+private:
+  PairContact
+  pair_contact(int k, double phi) const;
+
+  std::shared_ptr<const InvoluteGear> pinion, gear;
+  Assembly                            assembly;
+  TcaOptions                          options;
+  double                              ratio; ///< z1 / z2
+};
+} // namespace gearkit

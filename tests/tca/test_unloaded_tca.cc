@@ -1,0 +1,238 @@
+// Unloaded TCA of involute pairs against the exact relations of reference-data.md section 6.
+#include "unloaded_tca.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace gearkit;
+
+namespace
+{
+constexpr double deg = pi / 180;
+
+// FZG C-type pair (reference-data.md section 5), optionally helical.
+std::pair<InvoluteGearData, InvoluteGearData>
+c_pair(double helix = 0)
+{
+  InvoluteGearData p;
+  p.name                  = "pinion";
+  p.teeth                 = 16;
+  p.normal_module         = 4.5e-3;
+  p.normal_pressure_angle = 20 * deg;
+  p.profile_shift         = 0.1817;
+  p.face_width            = 14e-3;
+  p.helix_angle           = helix;
+  p.hand                  = Hand::right;
+  InvoluteGearData g      = p;
+  g.name                  = "gear";
+  g.teeth                 = 24;
+  g.profile_shift         = 0.1715;
+  g.hand                  = Hand::left;
+  return {p, g};
+}
+
+struct Pair
+{
+  std::shared_ptr<const InvoluteGear> pinion, gear;
+  double                              a_w;
+};
+
+Pair
+make(const std::pair<InvoluteGearData, InvoluteGearData> &d)
+{
+  auto p = InvoluteGear::create(d.first), g = InvoluteGear::create(d.second);
+  return {p, g, working_centre_distance(*p, *g)};
+}
+
+double
+peak_to_peak(const TcaResult &r)
+{
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const TcaPosition &p : r.positions)
+    lo = std::min(lo, p.transmission_error), hi = std::max(hi, p.transmission_error);
+  return hi - lo;
+}
+} // namespace
+
+TEST(UnloadedTca, PerfectInvolutesHaveZeroTransmissionError)
+{
+  for (double beta : {0.0, 15 * deg})
+    {
+      const Pair s = make(c_pair(beta));
+      TcaOptions o;
+      o.positions_per_mesh = 24;
+      const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
+      for (const TcaPosition &p : r.positions)
+        EXPECT_LT(std::abs(p.transmission_error), 1e-9)
+            << "beta " << beta << " phi " << p.pinion_angle;
+    }
+}
+
+TEST(UnloadedTca, ShiftedCentreDistanceGivesConstantErrorOfHalfTheBacklash)
+{
+  // At a' = a_w + 0.1 mm the involutes stay conjugate (TE constant); the pinion takes up half the
+  // circumferential backlash j on the operating pitch circle: e = j / (2 r'_1) with
+  // j = p' - s_1(r'_1) - s_2(r'_2), cos(alpha') = (r_b1 + r_b2) / a'.
+  const Pair   s  = make(c_pair());
+  const double a  = s.a_w + 0.1e-3;
+  const double ca = (s.pinion->base_radius + s.gear->base_radius) / a;
+  const double r1 = s.pinion->base_radius / ca, r2 = s.gear->base_radius / ca;
+  const double j = 2 * pi * r1 / 16 - s.pinion->tooth_thickness(r1) - s.gear->tooth_thickness(r2);
+  TcaOptions   o;
+  o.positions_per_mesh = 12;
+  const auto r         = UnloadedTca(s.pinion, s.gear, a, {}, o).run();
+  EXPECT_LT(peak_to_peak(r), 1e-9);
+  EXPECT_NEAR(r.positions[0].transmission_error, j / (2 * r1), 1e-9);
+}
+
+TEST(UnloadedTca, ContactRatioOfPerfectSpurPair)
+{
+  // eps_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a_w sin(alpha_w)) / p_bt; counting
+  // touching pairs at N positions per cycle resolves it to 1/N.
+  const Pair   s = make(c_pair());
+  const auto  &p = *s.pinion, &g = *s.gear;
+  const double aw  = working_pressure_angle(p, g);
+  const double eps = (std::sqrt(p.tip_radius * p.tip_radius - p.base_radius * p.base_radius) +
+                      std::sqrt(g.tip_radius * g.tip_radius - g.base_radius * g.base_radius) -
+                      s.a_w * std::sin(aw)) /
+                     p.transverse_base_pitch;
+  TcaOptions o;
+  o.positions_per_mesh = 200;
+  const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
+  EXPECT_NEAR(r.mean_pairs_in_contact, eps, 1.0 / 200);
+  EXPECT_GT(eps, 1.3);
+}
+
+TEST(UnloadedTca, TorqueRatioEqualsToothRatio)
+{
+  // T2 / T1 = (lambda_g . a_g) / (lambda_p . e_z) = z2 / z1 at every contact of perfect involutes.
+  const Pair  s = make(c_pair(12 * deg));
+  UnloadedTca tca(s.pinion, s.gear, s.a_w);
+  for (double phi : {0.0, 0.07, 0.21})
+    {
+      const TcaPosition  p = tca.at(phi);
+      const PairContact &c = p.pairs[p.leading];
+      EXPECT_NEAR(std::abs(c.lambda_gear.z() / c.lambda_pinion.z()), 24.0 / 16, 1e-9);
+      EXPECT_NEAR((c.normal_pinion + c.normal_gear).norm(), 0, 1e-9); // opposite normals
+    }
+}
+
+TEST(UnloadedTca, EccentricToothStepsByEOverBaseRadius)
+{
+  // Pinion tooth 0 moved 4.5 um along its drive normal: while it carries the load the TE drops
+  // by e / r_b1 (the gear runs ahead), elsewhere it is zero.
+  auto d                  = c_pair();
+  d.first.eccentric_teeth = {{0, FlankSide::drive, 4.5e-6}};
+  const Pair  s           = make(d);
+  UnloadedTca tca(s.pinion, s.gear, s.a_w);
+  EXPECT_NEAR(tca.at(0).transmission_error, -4.5e-6 / s.pinion->base_radius, 1e-9);
+  EXPECT_NEAR(tca.at(-3 * 2 * pi / 16).transmission_error, 0, 1e-9); // tooth 0 far from mesh
+}
+
+TEST(UnloadedTca, LeadCrowningAloneLeavesSpurErrorZero)
+{
+  auto d                                     = c_pair();
+  d.first.drive_modifications.lead_crowning  = 10e-6;
+  d.second.drive_modifications.lead_crowning = 5e-6;
+  const Pair s                               = make(d);
+  TcaOptions o;
+  o.positions_per_mesh = 10;
+  const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
+  for (const TcaPosition &p : r.positions)
+    {
+      EXPECT_LT(std::abs(p.transmission_error), 1e-9);
+      EXPECT_NEAR(p.pairs[p.leading].v1, 0, 1e-6); // contact in the middle of the face
+    }
+}
+
+TEST(UnloadedTca, ProfileSlopeGivesTheExpectedRamp)
+{
+  // delta = f_Ha (L - L_mid) / L_alpha on every pinion tooth: while one pair leads, its contact
+  // rolls along the line of action by r_b1 dphi, so to first order dTE/dphi = -f_Ha / L_alpha.
+  // The slope also tilts the normal by f_Ha / L_alpha (~4e-4 here), which moves the contact: the
+  // relative departure from the first-order ramp must be of that order and halve with f_Ha.
+  auto departure = [](double f_Ha) {
+    auto d                                    = c_pair();
+    d.first.drive_modifications.profile_slope = f_Ha;
+    const Pair   s                            = make(d);
+    const double L_alpha =
+        s.pinion->base_radius * (s.pinion->roll_angle_tip - s.pinion->roll_angle_form);
+    UnloadedTca  tca(s.pinion, s.gear, s.a_w);
+    const double h  = 1e-3;
+    const auto   p0 = tca.at(0.0), p1 = tca.at(h);
+    EXPECT_EQ(p0.pairs[p0.leading].pinion_tooth, p1.pairs[p1.leading].pinion_tooth);
+    const double first_order = -f_Ha / L_alpha;
+    return std::pair((p1.transmission_error - p0.transmission_error) / h / first_order - 1,
+                     f_Ha / L_alpha);
+  };
+  const auto [big, tilt] = departure(8e-6);
+  const auto [small, _]  = departure(4e-6);
+  EXPECT_LT(std::abs(big), 3 * tilt);
+  EXPECT_NEAR(big / small, 2, 0.1);
+}
+
+TEST(UnloadedTca, CrossedAxesGiveLinearErrorWithJumps)
+{
+  // A helical pair with a 0.5 mrad crossing misalignment: the contact runs to the face edge and
+  // the TE is piecewise linear in phi, jumping where the next pair takes over.
+  const Pair   s = make(c_pair(15 * deg));
+  Misalignment m;
+  m.crossing_angle = 0.5e-3;
+  TcaOptions o;
+  o.positions_per_mesh = 40;
+  o.mesh_cycles        = 2;
+  const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, m, o).run();
+  EXPECT_GT(peak_to_peak(r), 1e-6);
+  EXPECT_FALSE(r.transfers.empty());
+  // Where the contact sits on a face end (not on a tip or root edge) of one pair, TE is linear.
+  const FlankDomain d1          = s.pinion->flank(0, FlankSide::drive).domain();
+  const FlankDomain d2          = s.gear->flank(0, FlankSide::drive).domain();
+  auto              on_face_end = [&](const TcaPosition &p) {
+    const PairContact &c  = p.pairs[p.leading];
+    auto               in = [](double x, double lo, double hi) {
+      return x > lo + 1e-6 * (hi - lo) && x < hi - 1e-6 * (hi - lo);
+    };
+    return in(c.u1, d1.u_min, d1.u_max) && in(c.u2, d2.u_min, d2.u_max) &&
+           (!in(c.v1, d1.v_min, d1.v_max) || !in(c.v2, d2.v_min, d2.v_max));
+  };
+  int linear_checks = 0;
+  for (std::size_t i = 2; i < r.positions.size(); ++i)
+    {
+      const auto &a = r.positions[i - 2], &b = r.positions[i - 1], &c = r.positions[i];
+      const int   t = a.pairs[a.leading].pinion_tooth;
+      if (b.pairs[b.leading].pinion_tooth != t || c.pairs[c.leading].pinion_tooth != t ||
+          !on_face_end(a) || !on_face_end(b) || !on_face_end(c))
+        continue;
+      // Second against first difference: linear to a few times the misalignment angle (0.5
+      // mrad): the edge contact's TE is linear in phi to first order in the misalignment; the
+      // measured ratio is <= 7e-4.
+      const double second = a.transmission_error - 2 * b.transmission_error + c.transmission_error;
+      EXPECT_LT(std::abs(second), 2e-3 * std::abs(c.transmission_error - a.transmission_error))
+          << i;
+      ++linear_checks;
+    }
+  EXPECT_GT(linear_checks, 20);
+  // and it jumps where the next pair takes over: far off the line through the previous steps
+  for (int i : r.transfers)
+    if (i >= 2)
+      {
+        const double extrapolated =
+            2 * r.positions[i - 1].transmission_error - r.positions[i - 2].transmission_error;
+        EXPECT_GT(std::abs(r.positions[i].transmission_error - extrapolated), 1e-7) << i;
+      }
+}
+
+TEST(UnloadedTca, FlanksThatDoNotMeshAreRefused)
+{
+  const Pair s = make(c_pair());
+  EXPECT_THROW(UnloadedTca(s.pinion, s.gear, s.a_w + 20e-3).at(0), InputError); // apart
+  Misalignment off;
+  off.gear_axial_shift = 20e-3; // faces do not overlap
+  EXPECT_THROW(UnloadedTca(s.pinion, s.gear, s.a_w, off).at(0), InputError);
+  auto same_hand        = c_pair(15 * deg);
+  same_hand.second.hand = Hand::right;
+  EXPECT_THROW(UnloadedTca(InvoluteGear::create(same_hand.first),
+                           InvoluteGear::create(same_hand.second), s.a_w),
+               InputError);
+}

@@ -21,7 +21,7 @@ namespace
 {
 constexpr double mm = 1e-3, um = 1e-6, deg = pi / 180;
 
-const char *output_names = "flanks|measured";
+const char *output_names = "flanks|measured|ste";
 
 // --- declarations ----------------------------------------------------------------------------
 
@@ -152,6 +152,33 @@ declare_measured(ParameterHandler &prm)
 }
 
 void
+declare_tca(ParameterHandler &prm)
+{
+  prm.declare_entry("working flanks", "drive", Patterns::Selection("drive|coast"),
+                    "Which flanks carry the contact: drive (the pinion drives forward) or coast.");
+  prm.declare_entry("positions per mesh cycle", "50", Patterns::Integer(1, 100000),
+                    "Pinion positions per mesh cycle (2 pi / z1).");
+  prm.declare_entry("mesh cycles", "3", Patterns::Integer(1, 100000), "Mesh cycles analysed.");
+  prm.declare_entry("start angle", "0", Patterns::Double(-360, 360),
+                    "[deg] First pinion angle (0: pinion tooth 0 on the line of centres).");
+  prm.declare_entry("centre distance", "0", Patterns::Double(0),
+                    "[mm] Centre distance; 0 = the zero-backlash working centre distance.");
+  prm.declare_entry("centre distance error", "0", Patterns::Double(),
+                    "[um] Added to the centre distance.");
+  prm.declare_entry("crossing angle", "0", Patterns::Double(-100, 100),
+                    "[mrad] Gear axis turned about the line of centres (crossing axes, "
+                    "f_Sigma_beta).");
+  prm.declare_entry("intersecting angle", "0", Patterns::Double(-100, 100),
+                    "[mrad] Gear axis turned in the plane of the axes (intersecting axes, "
+                    "f_Sigma_delta).");
+  prm.declare_entry("pinion axial shift", "0", Patterns::Double(),
+                    "[mm] Pinion moved along its axis.");
+  prm.declare_entry("gear axial shift", "0", Patterns::Double(), "[mm] Gear moved along its axis.");
+  prm.declare_entry("harmonics", "10", Patterns::Integer(1, 1000),
+                    "Mesh orders of the transmission error reported.");
+}
+
+void
 declare_scene(ParameterHandler &prm)
 {
   prm.enter_subsection("Scene");
@@ -192,6 +219,14 @@ declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs)
     {
       prm.enter_subsection(pair);
       declare_measured(prm);
+      prm.leave_subsection();
+    }
+  prm.leave_subsection();
+  prm.enter_subsection("TCA");
+  for (const std::string &pair : pairs)
+    {
+      prm.enter_subsection(pair);
+      declare_tca(prm);
       prm.leave_subsection();
     }
   prm.leave_subsection();
@@ -317,6 +352,24 @@ get_measured(ParameterHandler &prm, const fs::path &scene_dir, const std::string
   m.pitch_error         = prm.get_double("pitch error") * um;
   prm.leave_subsection();
   return m;
+}
+
+TcaScene
+get_tca(ParameterHandler &prm)
+{
+  TcaScene t;
+  t.options.side = prm.get("working flanks") == "drive" ? FlankSide::drive : FlankSide::coast;
+  t.options.positions_per_mesh         = prm.get_integer("positions per mesh cycle");
+  t.options.mesh_cycles                = prm.get_integer("mesh cycles");
+  t.options.start_angle                = prm.get_double("start angle") * deg;
+  t.centre_distance                    = prm.get_double("centre distance") * mm;
+  t.misalignment.centre_distance_error = prm.get_double("centre distance error") * um;
+  t.misalignment.crossing_angle        = prm.get_double("crossing angle") * 1e-3;
+  t.misalignment.intersecting_angle    = prm.get_double("intersecting angle") * 1e-3;
+  t.misalignment.pinion_axial_shift    = prm.get_double("pinion axial shift") * mm;
+  t.misalignment.gear_axial_shift      = prm.get_double("gear axial shift") * mm;
+  t.harmonics                          = prm.get_integer("harmonics");
+  return t;
 }
 
 // Both members must build (InvoluteGear checks every parameter) and mesh with each other.
@@ -451,6 +504,11 @@ read_scene(const std::string &file)
           prm.enter_subsection("Measured flanks");
           prm.enter_subsection(p);
           scene.measured[p] = get_measured(prm, dir, p);
+          prm.leave_subsection();
+          prm.leave_subsection();
+          prm.enter_subsection("TCA");
+          prm.enter_subsection(p);
+          scene.tca[p] = get_tca(prm);
           prm.leave_subsection();
           prm.leave_subsection();
           check_pair(pair);

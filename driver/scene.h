@@ -3,6 +3,7 @@
 #pragma once
 
 #include "involute_gear.h"
+#include "unloaded_tca.h"
 
 #include <map>
 #include <string>
@@ -46,6 +47,15 @@ struct MeasuredScene
   double           pitch_error         = 0;
 };
 
+/// Unloaded tooth contact analysis of a pair.
+struct TcaScene
+{
+  double       centre_distance = 0; ///< [m]; 0 = the zero-backlash working centre distance
+  Misalignment misalignment;
+  TcaOptions   options;
+  int          harmonics = 10; ///< mesh orders reported
+};
+
 struct Scene
 {
   std::string                          file;    ///< the scene file as given
@@ -53,6 +63,7 @@ struct Scene
   std::vector<std::string>             outputs; ///< what the user asked for
   std::vector<PairScene>               pairs;
   std::map<std::string, MeasuredScene> measured; ///< by pair name
+  std::map<std::string, TcaScene>      tca;      ///< by pair name
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
   std::map<std::string, std::string> sections;

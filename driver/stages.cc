@@ -49,6 +49,13 @@ stage_definitions()
          return files;
        },
        run_measured_stage},
+      {"ste",
+       "unloaded tooth contact analysis: static transmission error, contact path, normals",
+       {"flanks"},
+       {"TCA"},
+       1,
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_ste_stage},
   };
   return stages;
 }
@@ -56,8 +63,8 @@ stage_definitions()
 const std::map<std::string, std::string> &
 output_stages()
 {
-  static const std::map<std::string, std::string> map = {{"flanks", "flanks"},
-                                                         {"measured", "measured"}};
+  static const std::map<std::string, std::string> map = {
+      {"flanks", "flanks"}, {"measured", "measured"}, {"ste", "ste"}};
   return map;
 }
 } // namespace gearkit

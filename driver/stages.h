@@ -60,6 +60,8 @@ void
 run_flanks_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 void
 run_measured_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+void
+run_ste_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 
 /// A member's measured flanks as the measured stage stored them (for later stages and exports).
 MeasuredMember

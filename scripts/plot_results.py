@@ -6,6 +6,7 @@ usage: plot_results.py out/<scene>/results.h5
   profiles.png  transverse tooth profiles of every pair, in mesh at the working centre distance
   topography.png  modifications of tooth 0 (drive, coast) of every member, um over the flank
   measured.png    measured minus theoretical flank of the first measured tooth, um
+  ste.png         unloaded static transmission error, harmonics, contact path
 """
 import os
 import sys
@@ -133,6 +134,45 @@ def plot_measured(measured, out_dir):
     save(fig, os.path.join(out_dir, "measured.png"))
 
 
+def plot_ste(ste, flanks, out_dir):
+    """Unloaded static transmission error of every pair over its mesh cycles, its mesh-order
+    harmonics, and the contact path on the pinion flank."""
+    pairs = list(ste)
+    fig, axes = plt.subplots(len(pairs), 3, figsize=(15, 3.8 * len(pairs)), squeeze=False,
+                             gridspec_kw={"width_ratios": [2.2, 1, 1.2]})
+    for row, name in zip(axes, pairs):
+        g = ste[name]
+        z1 = int(flanks[name]["pinion"]["number_of_teeth"][()])
+        cycles = g["pinion_angle"][:] * z1 / (2 * np.pi)
+        te = g["transmission_error"][:] * 1e6
+        row[0].plot(cycles, te, ".-", ms=3, lw=0.8)
+        row[0].set_xlabel("pinion angle [mesh cycles]")
+        row[0].set_ylabel("e_0 [urad, pinion]")
+        row[0].set_title(f"{name}: unloaded STE, peak-to-peak {g['peak_to_peak'][()] * 1e6:.3g} urad")
+        row[0].grid(alpha=0.3)
+        h = g["harmonics"][1:] * 1e6
+        row[1].bar(np.arange(1, len(h) + 1), h)
+        row[1].set_xlabel("mesh order")
+        row[1].set_ylabel("amplitude at pitch point [um]")
+        row[1].set_title("harmonics")
+        lead = g["leading"][:]
+        idx = np.arange(len(lead))
+        rb = flanks[name]["pinion"]["base_radius"][()]
+        L = rb * g["pinion_u"][:][idx, lead] * 1e3
+        v = g["pinion_v"][:][idx, lead] * 1e3
+        sc = row[2].scatter(v, L, c=cycles, s=10, cmap="viridis")
+        fig.colorbar(sc, ax=row[2], label="mesh cycles")
+        half_b = flanks[name]["pinion"]["face_width"][()] * 500
+        row[2].set_xlim(-half_b * 1.05, half_b * 1.05)
+        d = flanks[name]["pinion"]["drive"]["roll_angle"][:]
+        row[2].set_ylim(rb * d[0] * 1e3, rb * d[-1] * 1e3)
+        row[2].set_xlabel("face z [mm]")
+        row[2].set_ylabel("pinion roll length L [mm]")
+        row[2].set_title("contact path on the pinion flank")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "ste.png"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -144,6 +184,8 @@ def main():
             plot_topography(f["flanks"], out_dir)
         if "measured" in f:
             plot_measured(f["measured"], out_dir)
+        if "ste" in f:
+            plot_ste(f["ste"], f["flanks"], out_dir)
 
 
 if __name__ == "__main__":

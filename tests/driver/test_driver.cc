@@ -391,3 +391,30 @@ TEST_F(DriverTest, TopographyFilesBecomeMeasuredFlanks)
   g.read_doubles("points", &shape);
   EXPECT_EQ(shape, (std::vector<hsize_t>{3, 2, 3}));
 }
+
+TEST_F(DriverTest, TcaParametersRerunOnlyTheSteStage)
+{
+  const std::string with_ste =
+      std::regex_replace(small_scene, std::regex("set outputs = flanks"), "set outputs = ste") +
+      "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 4\n    set mesh "
+      "cycles = 1\n  end\nend\n";
+  const std::string file = scene(with_ste);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: ran"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("stage ste: ran"), std::string::npos) << out.str();
+  scene(std::regex_replace(with_ste, std::regex("mesh cycles = 1"), "mesh cycles = 2"));
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage flanks: reused"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("stage ste: ran"), std::string::npos) << out.str();
+  // perfect involutes at the working centre distance: e_0 = 0
+  const H5File f = H5File::open((dir / "out/small/results.h5").string());
+  for (double e : f.root().group("ste/p1").read_doubles("transmission_error"))
+    EXPECT_LT(std::abs(e), 1e-9);
+  // a centre distance at which the gears cannot touch is refused, without results
+  fs::remove_all(dir / "out");
+  scene(std::regex_replace(with_ste, std::regex("set mesh cycles = 1"),
+                           "set mesh cycles = 1\n    set centre distance = 200"));
+  EXPECT_EQ(run({file}), 1);
+  EXPECT_NE(err.str().find("no tooth pair"), std::string::npos) << err.str();
+  EXPECT_FALSE(fs::exists(dir / "out/small/results.h5"));
+}

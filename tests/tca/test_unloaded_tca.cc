@@ -236,3 +236,31 @@ TEST(UnloadedTca, FlanksThatDoNotMeshAreRefused)
                            InvoluteGear::create(same_hand.second), s.a_w),
                InputError);
 }
+
+TEST(UnloadedTca, ProfileCrowningGivesParabolicArcs)
+{
+  // C_alpha on the pinion: the leading pair is the one nearer the middle of the profile, and
+  // e_0 = -delta(L)/r_b1 = C_alpha (2 (L - L_mid) / L_alpha)^2 / r_b1 at its contact roll length
+  // L, to first order (the normal tilts by <= 4 C_alpha / L_alpha ~ 1e-3: tolerance 1 %).
+  auto d                                       = c_pair();
+  d.first.drive_modifications.profile_crowning = 4e-6;
+  const Pair   s                               = make(d);
+  const double rb = s.pinion->base_radius, Lf = rb * s.pinion->roll_angle_form,
+               Lt = rb * s.pinion->roll_angle_tip;
+  TcaOptions o;
+  o.positions_per_mesh = 30;
+  const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
+  double     largest   = 0;
+  for (const TcaPosition &p : r.positions)
+    {
+      const double L        = rb * p.pairs[p.leading].u1;
+      const double x        = 2 * (L - 0.5 * (Lf + Lt)) / (Lt - Lf);
+      const double expected = 4e-6 * x * x / rb;
+      EXPECT_NEAR(p.transmission_error, expected, 0.01 * expected + 1e-12) << p.pinion_angle;
+      largest = std::max(largest, p.transmission_error);
+    }
+  // the transfer lies half a base pitch either side of the middle: the arcs peak near there
+  const double x_transfer = s.pinion->transverse_base_pitch / (Lt - Lf);
+  EXPECT_LT(largest, 1.01 * 4e-6 * x_transfer * x_transfer / rb);
+  EXPECT_GT(largest, 0.8 * 4e-6 * x_transfer * x_transfer / rb);
+}

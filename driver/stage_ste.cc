@@ -1,0 +1,116 @@
+// Stage "ste": unloaded tooth contact analysis of every pair — static transmission error e_0,
+// its mesh-order harmonics, and per position and tooth pair the contact point, normals, moment
+// arms and separations (the tables the FE stiffness and the dynamics read).
+#include "harmonics.h"
+#include "stages.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gearkit
+{
+void
+run_ste_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+{
+  std::size_t total = 0;
+  for (const PairScene &pair : scene.pairs)
+    total += scene.tca.at(pair.name).options.positions_per_mesh *
+             scene.tca.at(pair.name).options.mesh_cycles;
+  Progress progress(log, "ste", total);
+
+  for (const PairScene &pair : scene.pairs)
+    {
+      const TcaScene &t      = scene.tca.at(pair.name);
+      const auto      pinion = InvoluteGear::create(pair.pinion);
+      const auto      gear   = InvoluteGear::create(pair.gear);
+      const double    a =
+          t.centre_distance > 0 ? t.centre_distance : working_centre_distance(*pinion, *gear);
+      const UnloadedTca tca(pinion, gear, a, t.misalignment, t.options);
+
+      TcaResult r;
+      r.mesh_angle = 2 * pi / pinion->teeth();
+      const int n  = t.options.positions_per_mesh * t.options.mesh_cycles;
+      for (int i = 0; i < n; ++i)
+        {
+          r.positions.push_back(
+              tca.at(t.options.start_angle + r.mesh_angle * i / t.options.positions_per_mesh));
+          progress.step();
+        }
+
+      // Per-position tables; pair slots padded to the most pairs met at any position.
+      std::size_t slots = 0;
+      for (const TcaPosition &p : r.positions)
+        slots = std::max(slots, p.pairs.size());
+      std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg;
+      std::vector<int>    touching, leading, ptooth, gtooth, edge;
+      double              te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
+      for (const TcaPosition &p : r.positions)
+        {
+          phi.push_back(p.pinion_angle);
+          psi.push_back(p.gear_angle);
+          te.push_back(p.transmission_error);
+          te_min = std::min(te_min, p.transmission_error);
+          te_max = std::max(te_max, p.transmission_error);
+          touching.push_back(p.touching);
+          leading.push_back(p.leading);
+          pairs_sum += p.touching;
+          for (std::size_t k = 0; k < slots; ++k)
+            {
+              const bool         used = k < p.pairs.size();
+              const PairContact  none;
+              const PairContact &c = used ? p.pairs[k] : none;
+              ptooth.push_back(used ? c.pinion_tooth : -1);
+              gtooth.push_back(used ? c.gear_tooth : -1);
+              edge.push_back(c.edge ? 1 : 0);
+              sep.push_back(c.separation);
+              u1.push_back(c.u1), v1.push_back(c.v1), u2.push_back(c.u2), v2.push_back(c.v2);
+              for (auto [v, dest] : {std::pair{&c.position, &X},
+                                     {&c.normal_pinion, &np},
+                                     {&c.normal_gear, &ng},
+                                     {&c.lambda_pinion, &lp},
+                                     {&c.lambda_gear, &lg}})
+                dest->insert(dest->end(), v->data(), v->data() + 3);
+            }
+        }
+      const hsize_t       N = n, S = slots;
+      const double        r_w1 = a * pinion->teeth() / (pinion->teeth() + gear->teeth());
+      std::vector<double> te_pitch(te.size());
+      std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_w1; });
+
+      const H5Group g = out.group(pair.name);
+      g.write("centre_distance", a, "m", "centre distance of the analysis (with its error added)");
+      g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi (counter-clockwise)");
+      g.write("gear_angle", psi, {N}, "rad", "gear rotation psi in its driven sense");
+      g.write("transmission_error", te, {N}, "rad",
+              "unloaded static transmission error e_0 = phi - (z2/z1) psi, pinion radians (zero "
+              "for perfect involutes at zero backlash)");
+      g.write("transmission_error_pitch", te_pitch, {N}, "m",
+              "e_0 as displacement at the operating pitch point, e_0 r_w1");
+      g.write("peak_to_peak", te_max - te_min, "rad", "peak-to-peak of e_0");
+      const std::vector<double> h =
+          mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
+      g.write("harmonics", h, {h.size()}, "m",
+              "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
+      g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
+      g.write("mean_pairs_in_contact", pairs_sum / n, "1",
+              "mean number of touching pairs (the contact ratio for conjugate flanks)");
+      g.write("leading", leading, {N}, "1", "pair slot that carries the contact");
+      g.write("pinion_tooth", ptooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
+      g.write("gear_tooth", gtooth, {N, S}, "1", "gear tooth of each pair slot (-1: empty)");
+      g.write("edge_contact", edge, {N, S}, "1", "1 where the closest point lies on a flank edge");
+      g.write("separation", sep, {N, S}, "m",
+              "normal gap of each pair at the gear's position (0 for touching pairs)");
+      g.write("pinion_u", u1, {N, S}, "rad", "pinion flank profile parameter (roll angle)");
+      g.write("pinion_v", v1, {N, S}, "m", "pinion flank face parameter (axial position)");
+      g.write("gear_u", u2, {N, S}, "rad", "gear flank profile parameter (roll angle)");
+      g.write("gear_v", v2, {N, S}, "m", "gear flank face parameter (axial position)");
+      g.write("contact_point", X, {N, S, 3}, "m", "contact (closest) point, global frame");
+      g.write("normal_pinion", np, {N, S, 3}, "1", "n_p: pinion flank outward normal, global");
+      g.write("normal_gear", ng, {N, S, 3}, "1", "n_g: gear flank outward normal, global");
+      g.write("lambda_pinion", lp, {N, S, 3}, "m", "lambda_p = r_p x n_p about the pinion centre");
+      g.write("lambda_gear", lg, {N, S, 3}, "m", "lambda_g = r_g x n_g about the gear centre");
+      log << "  " << pair.name << ": e_0 peak-to-peak " << (te_max - te_min) * 1e6
+          << " urad, mean pairs in contact " << pairs_sum / n << "\n";
+    }
+}
+} // namespace gearkit

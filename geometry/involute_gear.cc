@@ -500,8 +500,8 @@ working_pressure_angle(const InvoluteGear &p, const InvoluteGear &g)
   // Newton on inv(a) = rhs from alpha_t; inv is monotonic and convex on (0, pi/2).
   const double at  = p.transverse_pressure_angle;
   const double rhs = inv(at) + 2 * std::tan(p.data().normal_pressure_angle) *
-                                 (p.data().profile_shift + g.data().profile_shift) /
-                                 (p.teeth() + g.teeth());
+                                   (p.data().profile_shift + g.data().profile_shift) /
+                                   (p.teeth() + g.teeth());
   double a = at;
   for (int i = 0; i < 60; ++i)
     {

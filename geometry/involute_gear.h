@@ -89,7 +89,7 @@ public:
   domain() const override;
   /// False inside a chipped region of this tooth.
   bool
-  contains(double u, double v) const;
+  contains(double u, double v) const override;
   /// The nominal (unmodified, undeviated) surface at (u, v).
   FlankPoint
   nominal(double u, double v) const;

@@ -74,6 +74,12 @@ public:
   evaluate(double u, double v) const = 0;
   virtual FlankDomain
   domain() const = 0;
+  /// False where the flank has no material inside its domain (e.g. a chipped region).
+  virtual bool
+  contains(double /*u*/, double /*v*/) const
+  {
+    return true;
+  }
 
   /// d n / d u and d n / d v by second-order central differences of the exact unit normal.
   std::pair<Vec3, Vec3>

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace gearkit
 {
@@ -30,8 +31,8 @@ rot_z(double a)
 }
 } // namespace
 
-UnloadedTca::UnloadedTca(std::shared_ptr<const InvoluteGear> p,
-                         std::shared_ptr<const InvoluteGear> g, double a, const Misalignment &m,
+UnloadedTca::UnloadedTca(std::shared_ptr<const MemberFlanks> p,
+                         std::shared_ptr<const MemberFlanks> g, double a, const Misalignment &m,
                          const TcaOptions &o)
     : pinion(std::move(p))
     , gear(std::move(g))
@@ -39,7 +40,19 @@ UnloadedTca::UnloadedTca(std::shared_ptr<const InvoluteGear> p,
     , options(o)
     , ratio(double(pinion->teeth()) / gear->teeth())
 {
-  const auto &d1 = pinion->data(), &d2 = gear->data();
+  if (options.positions_per_mesh < 1 || options.mesh_cycles < 1 || options.profile_samples < 2 ||
+      options.face_samples < 2)
+    throw InputError("unloaded TCA: positions per mesh, mesh cycles (>= 1) and search samples "
+                     "(>= 2) must be positive");
+}
+
+namespace
+{
+std::shared_ptr<const MemberFlanks>
+checked_pinion(const std::shared_ptr<const InvoluteGear> &p,
+               const std::shared_ptr<const InvoluteGear> &g)
+{
+  const auto &d1 = p->data(), &d2 = g->data();
   if (d1.helix_angle > 0 && d1.hand == d2.hand)
     throw InputError("unloaded TCA: an external helical pair needs opposite hands (" + d1.name +
                      " and " + d2.name + " have the same)");
@@ -48,34 +61,43 @@ UnloadedTca::UnloadedTca(std::shared_ptr<const InvoluteGear> p,
       std::abs(d1.helix_angle - d2.helix_angle) > 1e-12)
     throw InputError("unloaded TCA: " + d1.name + " and " + d2.name +
                      " differ in normal module, pressure angle or helix angle and cannot mesh");
-  if (options.positions_per_mesh < 1 || options.mesh_cycles < 1 || options.profile_samples < 2 ||
-      options.face_samples < 2)
-    throw InputError("unloaded TCA: positions per mesh, mesh cycles (>= 1) and search samples "
-                     "(>= 2) must be positive");
+  return std::make_shared<InvoluteMemberFlanks>(p);
+}
+} // namespace
+
+UnloadedTca::UnloadedTca(std::shared_ptr<const InvoluteGear> p,
+                         std::shared_ptr<const InvoluteGear> g, double a, const Misalignment &m,
+                         const TcaOptions &o)
+    : UnloadedTca(checked_pinion(p, g), std::make_shared<InvoluteMemberFlanks>(g), a, m, o)
+{
 }
 
 bool
 UnloadedTca::touch_angle(int j, const Vec3 &X, double expected, double &psi, double &u2,
                          double &v2) const
 {
-  // Solve r_g(u2, v2) = Rz(psi) Q for (u2, v2, psi) by Newton, from the involute's own answer:
-  // the roll angle of the point's radius, its axial position, and the polar angle difference.
-  const InvoluteFlank flank = gear->flank(j, options.side);
-  const FlankDomain   d     = flank.domain();
-  const Vec3          Q     = assembly.global_to_gear_unrotated(X);
-  const double        rho   = Q.head<2>().norm();
-  if (rho < gear->base_radius)
-    return false;
-  u2            = std::clamp(gear->roll_angle(rho), d.u_min, d.u_max);
-  v2            = Q.z();
-  const Vec3 r0 = flank.evaluate(u2, v2).position;
-  psi           = expected + wrap(std::atan2(r0.y(), r0.x()) - std::atan2(Q.y(), Q.x()) - expected);
-  for (int it = 0; it < 30; ++it)
+  // Solve r_g(u2, v2) = Rz(psi) Q for (u2, v2, psi) by Newton, from the coarse flank sample
+  // nearest in the rotation-invariant (radius, z) and the polar angle difference.
+  const Flank      &flank = gear->flank(j, options.side);
+  const FlankDomain d     = flank.domain();
+  const Vec3        Q     = assembly.global_to_gear_unrotated(X);
+  std::tie(u2, v2)        = gear->guess(j, options.side, Q.head<2>().norm(), Q.z());
+  const Vec3 r0           = flank.evaluate(u2, v2).position;
+  psi = expected + wrap(std::atan2(r0.y(), r0.x()) - std::atan2(Q.y(), Q.x()) - expected);
+  // Converged when the points coincide to 0.1 pm (rounding of metre-size coordinates is
+  // ~1e-17 m); a start that Newton cannot bring there is no touch.
+  bool converged = false;
+  for (int it = 0; it < 40 && !converged; ++it)
     {
       const FlankPoint f  = flank.evaluate(u2, v2);
       const Vec3       RQ = rot_z(psi) * Q;
       const Vec3       F  = f.position - RQ;
-      Eigen::Matrix3d  J;
+      if (F.norm() < 1e-13)
+        {
+          converged = true;
+          break;
+        }
+      Eigen::Matrix3d J;
       J.col(0)        = f.d_du;
       J.col(1)        = f.d_dv;
       J.col(2)        = -Vec3::UnitZ().cross(RQ);
@@ -83,11 +105,11 @@ UnloadedTca::touch_angle(int j, const Vec3 &X, double expected, double &psi, dou
       u2 += step.x();
       v2 += step.y();
       psi += step.z();
-      if (!std::isfinite(psi))
+      if (!std::isfinite(psi + u2 + v2))
         return false;
-      if (step.norm() < 1e-15 * (1 + std::abs(psi)) || F.norm() < 1e-16)
-        break;
     }
+  if (!converged)
+    return false;
   const double tol_u = 1e-12 * (d.u_max - d.u_min), tol_v = 1e-12 * (d.v_max - d.v_min);
   return u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u && v2 >= d.v_min - tol_v &&
          v2 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / gear->teeth() &&
@@ -99,13 +121,15 @@ UnloadedTca::pair_contact(int k, double phi) const
 {
   // Pair k: the k-th pinion tooth to pass the line of centres (tooth -k) and its mate.
   PairContact  c;
-  const bool   drive           = options.side == FlankSide::drive;
-  const double s               = drive ? 1.0 : -1.0;
-  c.pinion_tooth               = mod(-k, pinion->teeth());
-  c.gear_tooth                 = mod(drive ? k - 1 : k, gear->teeth());
-  const InvoluteFlank flank    = pinion->flank(c.pinion_tooth, options.side);
-  const FlankDomain   d        = flank.domain();
-  const double        expected = ratio * phi;
+  const bool   drive = options.side == FlankSide::drive;
+  const double s     = drive ? 1.0 : -1.0;
+  c.pinion_tooth     = mod(-k, pinion->teeth());
+  c.gear_tooth       = mod(drive ? k - 1 : k, gear->teeth());
+  if (!pinion->has(c.pinion_tooth, options.side) || !gear->has(c.gear_tooth, options.side))
+    return c;
+  const Flank      &flank    = pinion->flank(c.pinion_tooth, options.side);
+  const FlankDomain d        = flank.domain();
+  const double      expected = ratio * phi;
 
   // s * touch angle of a pinion flank point; -inf where the gear flank cannot reach it.
   struct Sample
@@ -160,8 +184,9 @@ UnloadedTca::pair_contact(int k, double phi) const
   // there), Newton pins it to rounding. The gradient follows from the implicit function theorem
   // on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ. A pseudo-inverse
   // handles line contact (a singular Hessian along the contact line).
-  const FlankDomain dg      = gear->flank(c.gear_tooth, options.side).domain();
-  auto              at_edge = [](double x, double lo, double hi) {
+  const Flank      &gear_flank = gear->flank(c.gear_tooth, options.side);
+  const FlankDomain dg         = gear_flank.domain();
+  auto              at_edge    = [](double x, double lo, double hi) {
     return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
   };
   const bool free_u = !at_edge(best.u1, d.u_min, d.u_max);
@@ -170,8 +195,7 @@ UnloadedTca::pair_contact(int k, double phi) const
       at_edge(best.u2, dg.u_min, dg.u_max) || at_edge(best.v2, dg.v_min, dg.v_max);
   if ((free_u || free_v) && !gear_edge)
     {
-      const InvoluteFlank gear_flank = gear->flank(c.gear_tooth, options.side);
-      auto                gradient   = [&](const Sample &t) {
+      auto gradient = [&](const Sample &t) {
         const FlankPoint      p = flank.evaluate(t.u1, t.v1);
         const FlankPoint      q = gear_flank.evaluate(t.u2, t.v2);
         const Vec3            X = assembly.pinion_to_global(p.position, phi);
@@ -215,7 +239,7 @@ UnloadedTca::pair_contact(int k, double phi) const
   c.edge = at_edge(c.u1, d.u_min, d.u_max) || at_edge(c.v1, d.v_min, d.v_max) ||
            at_edge(c.u2, dg.u_min, dg.u_max) || at_edge(c.v2, dg.v_min, dg.v_max);
   const FlankPoint p = flank.evaluate(c.u1, c.v1);
-  const FlankPoint g = gear->flank(c.gear_tooth, options.side).evaluate(c.u2, c.v2);
+  const FlankPoint g = gear_flank.evaluate(c.u2, c.v2);
   c.position         = assembly.pinion_to_global(p.position, phi);
   c.normal_pinion    = assembly.pinion_vector_to_global(p.normal, phi);
   c.normal_gear      = assembly.gear_vector_to_global(g.normal, c.touch_angle);
@@ -249,8 +273,7 @@ UnloadedTca::at(double phi) const
   if (pos.leading < 0)
     {
       std::ostringstream m;
-      m << "unloaded TCA: no tooth pair of " << pinion->data().name << " and " << gear->data().name
-        << " meets at pinion angle " << phi
+      m << "unloaded TCA: no tooth pair meets at pinion angle " << phi
         << " rad; expected flanks that mesh (check the centre distance, hands and face widths)";
       throw InputError(m.str());
     }

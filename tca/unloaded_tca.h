@@ -11,7 +11,7 @@
 #pragma once
 
 #include "assembly.h"
-#include "involute_gear.h"
+#include "member_flanks.h"
 
 #include <memory>
 #include <vector>
@@ -68,6 +68,13 @@ struct TcaResult
 class UnloadedTca
 {
 public:
+  /// Any flank surfaces: theoretical, or interpolated from measured points (the fast
+  /// discrete-point mode).
+  UnloadedTca(std::shared_ptr<const MemberFlanks> pinion, std::shared_ptr<const MemberFlanks> gear,
+              double centre_distance, const Misalignment &misalignment = {},
+              const TcaOptions &options = {});
+  /// Involute members; checks that they can mesh (same normal module, pressure and helix angle,
+  /// opposite hands).
   UnloadedTca(std::shared_ptr<const InvoluteGear> pinion, std::shared_ptr<const InvoluteGear> gear,
               double centre_distance, const Misalignment &misalignment = {},
               const TcaOptions &options = {});
@@ -91,7 +98,7 @@ private:
   PairContact
   pair_contact(int k, double phi) const;
 
-  std::shared_ptr<const InvoluteGear> pinion, gear;
+  std::shared_ptr<const MemberFlanks> pinion, gear;
   Assembly                            assembly;
   TcaOptions                          options;
   double                              ratio; ///< z1 / z2

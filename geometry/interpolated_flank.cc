@@ -1,0 +1,61 @@
+#include "interpolated_flank.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace gearkit
+{
+InterpolatedFlank::InterpolatedFlank(const MeasuredFlank &f)
+    : n_profile(f.n_profile)
+    , n_face(f.n_face)
+{
+  if (n_profile < 5 || n_face < 5)
+    throw InputError("interpolating the measured flank of tooth " + std::to_string(f.tooth) + " " +
+                     to_string(f.side) + ": grid " + std::to_string(n_profile) + " x " +
+                     std::to_string(n_face) + " is too small; expected at least 5 x 5 points");
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < n_profile; ++i)
+      {
+        std::vector<double> row(n_face);
+        for (int j = 0; j < n_face; ++j)
+          row[j] = f.points[std::size_t(i) * n_face + j][c];
+        rows[c].emplace_back(row.data(), row.size(), 0.0, 1.0);
+      }
+  // Outward: drive flanks face +theta, coast flanks -theta (types.h).
+  const FlankPoint centre = evaluate(0.5 * (n_profile - 1), 0.5 * (n_face - 1));
+  const Vec3       e_theta(-centre.position.y(), centre.position.x(), 0);
+  if ((f.side == FlankSide::drive ? 1 : -1) * centre.normal.dot(e_theta) < 0)
+    orientation = -1;
+}
+
+FlankDomain
+InterpolatedFlank::domain() const
+{
+  return {0, double(n_profile - 1), 0, double(n_face - 1)};
+}
+
+FlankPoint
+InterpolatedFlank::evaluate(double u, double v) const
+{
+  // Along the face within each profile row (precomputed splines), then across the rows through
+  // those values (and through their face derivatives for d/dv).
+  FlankPoint          p;
+  std::vector<double> value(n_profile), slope(n_profile);
+  for (int c = 0; c < 3; ++c)
+    {
+      for (int i = 0; i < n_profile; ++i)
+        {
+          value[i] = rows[c][i](v);
+          slope[i] = rows[c][i].prime(v);
+        }
+      const Spline across(value.data(), value.size(), 0.0, 1.0);
+      const Spline across_slope(slope.data(), slope.size(), 0.0, 1.0);
+      p.position[c] = across(u);
+      p.d_du[c]     = across.prime(u);
+      p.d_dv[c]     = across_slope(u);
+    }
+  p.normal = orientation * p.d_dv.cross(p.d_du).normalized();
+  return p;
+}
+} // namespace gearkit

@@ -1,0 +1,104 @@
+#include "member_flanks.h"
+
+#include <nanoflann.hpp>
+
+namespace gearkit
+{
+namespace
+{
+constexpr int guess_grid = 9; // coarse samples per parameter direction
+}
+
+/// A flank with its coarse (r, z) sample and KD-tree.
+struct MemberFlanks::Entry
+{
+  std::unique_ptr<Flank> flank;
+  std::vector<double>    rz;     ///< r0, z0, r1, z1, ...
+  std::vector<double>    params; ///< u0, v0, u1, v1, ...
+
+  // nanoflann's dataset interface
+  std::size_t
+  kdtree_get_point_count() const
+  {
+    return rz.size() / 2;
+  }
+  double
+  kdtree_get_pt(std::size_t i, std::size_t d) const
+  {
+    return rz[2 * i + d];
+  }
+  template <class Box>
+  bool
+  kdtree_get_bbox(Box &) const
+  {
+    return false;
+  }
+
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Entry>,
+                                                   Entry, 2, std::size_t>;
+  std::unique_ptr<Tree> tree;
+};
+
+MemberFlanks::~MemberFlanks() = default;
+
+void
+MemberFlanks::add(int tooth, FlankSide side, std::unique_ptr<Flank> flank)
+{
+  auto              e = std::make_unique<Entry>();
+  const FlankDomain d = flank->domain();
+  for (int i = 0; i < guess_grid; ++i)
+    for (int j = 0; j < guess_grid; ++j)
+      {
+        const double u = d.u_min + (d.u_max - d.u_min) * i / (guess_grid - 1);
+        const double v = d.v_min + (d.v_max - d.v_min) * j / (guess_grid - 1);
+        const Vec3   p = flank->evaluate(u, v).position;
+        e->rz.insert(e->rz.end(), {p.head<2>().norm(), p.z()});
+        e->params.insert(e->params.end(), {u, v});
+      }
+  e->flank                   = std::move(flank);
+  e->tree                    = std::make_unique<Entry::Tree>(2, *e);
+  flanks[{tooth, int(side)}] = std::move(e);
+}
+
+bool
+MemberFlanks::has(int tooth, FlankSide side) const
+{
+  return flanks.count({tooth, int(side)}) > 0;
+}
+
+const Flank &
+MemberFlanks::flank(int tooth, FlankSide side) const
+{
+  const auto it = flanks.find({tooth, int(side)});
+  if (it == flanks.end())
+    throw InputError("no " + std::string(to_string(side)) + " flank of tooth " +
+                     std::to_string(tooth) + " (it was not measured)");
+  return *it->second->flank;
+}
+
+std::pair<double, double>
+MemberFlanks::guess(int tooth, FlankSide side, double radius, double z) const
+{
+  const Entry &e = *flanks.at({tooth, int(side)});
+  std::size_t  index;
+  double       distance;
+  const double query[2] = {radius, z};
+  e.tree->knnSearch(query, 1, &index, &distance);
+  return {e.params[2 * index], e.params[2 * index + 1]};
+}
+
+InvoluteMemberFlanks::InvoluteMemberFlanks(std::shared_ptr<const InvoluteGear> g)
+    : gear(std::move(g))
+{
+  for (int k = 0; k < gear->teeth(); ++k)
+    for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+      add(k, side, std::make_unique<InvoluteFlank>(gear->flank(k, side)));
+}
+
+MeasuredMemberFlanks::MeasuredMemberFlanks(const MeasuredMember &m)
+    : z(m.teeth)
+{
+  for (const MeasuredFlank &f : m.flanks)
+    add(f.tooth, f.side, std::make_unique<InterpolatedFlank>(f));
+}
+} // namespace gearkit

@@ -1,0 +1,74 @@
+// What contact analysis needs of a gear member: its tooth count and the flank surfaces of its
+// teeth, whether theoretical (involute) or interpolated from measured points, plus a quick first
+// guess of the flank parameters at a given radius and axial position (nanoflann over a coarse
+// sample of each flank in the rotation-invariant (r, z) coordinates).
+#pragma once
+
+#include "interpolated_flank.h"
+#include "involute_gear.h"
+
+#include <map>
+#include <memory>
+
+namespace gearkit
+{
+class MemberFlanks
+{
+public:
+  virtual ~MemberFlanks();
+  virtual int
+  teeth() const = 0;
+  /// Throws InputError when the member has no such flank (e.g. an unmeasured tooth).
+  const Flank &
+  flank(int tooth, FlankSide side) const;
+  bool
+  has(int tooth, FlankSide side) const;
+  /// Flank parameters (u, v) of the coarse sample nearest in (radius, axial position).
+  std::pair<double, double>
+  guess(int tooth, FlankSide side, double radius, double z) const;
+
+protected:
+  /// Implementations add their flanks in the constructor.
+  void
+  add(int tooth, FlankSide side, std::unique_ptr<Flank> flank);
+
+private:
+  struct Entry;
+  std::map<std::pair<int, int>, std::unique_ptr<Entry>> flanks;
+};
+
+/// Every flank of an involute gear (with its modifications and deviations).
+class InvoluteMemberFlanks : public MemberFlanks
+{
+public:
+  explicit InvoluteMemberFlanks(std::shared_ptr<const InvoluteGear> gear);
+  int
+  teeth() const override
+  {
+    return gear->teeth();
+  }
+  const InvoluteGear &
+  involute() const
+  {
+    return *gear;
+  }
+
+private:
+  std::shared_ptr<const InvoluteGear> gear;
+};
+
+/// The measured flanks of a member, interpolated (InterpolatedFlank).
+class MeasuredMemberFlanks : public MemberFlanks
+{
+public:
+  explicit MeasuredMemberFlanks(const MeasuredMember &member);
+  int
+  teeth() const override
+  {
+    return z;
+  }
+
+private:
+  int z;
+};
+} // namespace gearkit

@@ -2,7 +2,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gearkit
 {
@@ -54,23 +56,34 @@ InterpolatedFlank::domain() const
 FlankPoint
 InterpolatedFlank::evaluate(double u, double v) const
 {
+  // Outside the grid (Newton iterates may step there) the surface continues linearly from its
+  // edge, so the interpolant is C1 everywhere and never read out of range.
+  FlankPoint p;
+  if (!std::isfinite(u) || !std::isfinite(v))
+    {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      p.position = p.normal = p.d_du = p.d_dv = Vec3::Constant(nan);
+      return p;
+    }
+  const double uc = std::clamp(u, 0.0, double(n_profile - 1));
+  const double vc = std::clamp(v, 0.0, double(n_face - 1));
   // Along the face within each profile row (precomputed splines), then across the rows through
   // those values (and through their face derivatives for d/dv).
-  FlankPoint          p;
   std::vector<double> value(n_profile), slope(n_profile);
   for (int c = 0; c < 3; ++c)
     {
       for (int i = 0; i < n_profile; ++i)
         {
-          value[i] = rows[c][i](v);
-          slope[i] = rows[c][i].prime(v);
+          value[i] = rows[c][i](vc);
+          slope[i] = rows[c][i].prime(vc);
         }
       const Spline across       = spline_through(value);
       const Spline across_slope = spline_through(slope);
-      p.position[c]             = across(u);
-      p.d_du[c]                 = across.prime(u);
-      p.d_dv[c]                 = across_slope(u);
+      p.position[c]             = across(uc);
+      p.d_du[c]                 = across.prime(uc);
+      p.d_dv[c]                 = across_slope(uc);
     }
+  p.position += p.d_du * (u - uc) + p.d_dv * (v - vc);
   p.normal = orientation * p.d_dv.cross(p.d_du).normalized();
   return p;
 }

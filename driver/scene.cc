@@ -176,6 +176,12 @@ declare_tca(ParameterHandler &prm)
   prm.declare_entry("gear axial shift", "0", Patterns::Double(), "[mm] Gear moved along its axis.");
   prm.declare_entry("harmonics", "10", Patterns::Integer(1, 1000),
                     "Mesh orders of the transmission error reported.");
+  prm.declare_entry(
+      "measured flanks", "false", Patterns::Bool(),
+      "Also analyse the pair's measured flanks (Measured flanks section): the fast "
+      "discrete-point STE on flanks interpolated from the measured points; results in "
+      "/ste/<pair>/measured. Teeth that were not measured take the measured flank of "
+      "the nearest measured tooth.");
 }
 
 void
@@ -369,6 +375,7 @@ get_tca(ParameterHandler &prm)
   t.misalignment.pinion_axial_shift    = prm.get_double("pinion axial shift") * mm;
   t.misalignment.gear_axial_shift      = prm.get_double("gear axial shift") * mm;
   t.harmonics                          = prm.get_integer("harmonics");
+  t.measured                           = prm.get_bool("measured flanks");
   return t;
 }
 

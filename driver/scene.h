@@ -54,6 +54,8 @@ struct TcaScene
   Misalignment misalignment;
   TcaOptions   options;
   int          harmonics = 10; ///< mesh orders reported
+  /// Also run the fast discrete-point analysis on the pair's measured flanks (/measured).
+  bool measured = false;
 };
 
 struct Scene

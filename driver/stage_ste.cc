@@ -9,13 +9,107 @@
 
 namespace gearkit
 {
+namespace
+{
+/// Runs the analysis over the scene's positions and writes every table to `g`; returns the
+/// peak-to-peak and mean pairs in contact for the log.
+std::pair<double, double>
+analyse(const UnloadedTca &tca, const TcaScene &t, double a, int z1, int z2, const H5Group &g,
+        Progress &progress)
+{
+  TcaResult r;
+  r.mesh_angle = 2 * pi / z1;
+  const int n  = t.options.positions_per_mesh * t.options.mesh_cycles;
+  for (int i = 0; i < n; ++i)
+    {
+      r.positions.push_back(
+          tca.at(t.options.start_angle + r.mesh_angle * i / t.options.positions_per_mesh));
+      progress.step();
+    }
+
+  // Per-position tables; pair slots padded to the most pairs met at any position.
+  std::size_t slots = 0;
+  for (const TcaPosition &p : r.positions)
+    slots = std::max(slots, p.pairs.size());
+  std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg;
+  std::vector<int>    touching, leading, ptooth, gtooth, edge;
+  double              te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
+  for (const TcaPosition &p : r.positions)
+    {
+      phi.push_back(p.pinion_angle);
+      psi.push_back(p.gear_angle);
+      te.push_back(p.transmission_error);
+      te_min = std::min(te_min, p.transmission_error);
+      te_max = std::max(te_max, p.transmission_error);
+      touching.push_back(p.touching);
+      leading.push_back(p.leading);
+      pairs_sum += p.touching;
+      for (std::size_t k = 0; k < slots; ++k)
+        {
+          const bool         used = k < p.pairs.size();
+          const PairContact  none;
+          const PairContact &c = used ? p.pairs[k] : none;
+          ptooth.push_back(used ? c.pinion_tooth : -1);
+          gtooth.push_back(used ? c.gear_tooth : -1);
+          edge.push_back(c.edge ? 1 : 0);
+          sep.push_back(c.separation);
+          u1.push_back(c.u1), v1.push_back(c.v1), u2.push_back(c.u2), v2.push_back(c.v2);
+          for (auto [v, dest] : {std::pair{&c.position, &X},
+                                 {&c.normal_pinion, &np},
+                                 {&c.normal_gear, &ng},
+                                 {&c.lambda_pinion, &lp},
+                                 {&c.lambda_gear, &lg}})
+            dest->insert(dest->end(), v->data(), v->data() + 3);
+        }
+    }
+  const hsize_t       N = n, S = slots;
+  const double        r_w1 = a * z1 / (z1 + z2);
+  std::vector<double> te_pitch(te.size());
+  std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_w1; });
+
+  g.write("centre_distance", a, "m", "centre distance of the analysis (with its error added)");
+  g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi (counter-clockwise)");
+  g.write("gear_angle", psi, {N}, "rad", "gear rotation psi in its driven sense");
+  g.write("transmission_error", te, {N}, "rad",
+          "unloaded static transmission error e_0 = phi - (z2/z1) psi, pinion radians (zero for "
+          "perfect involutes at zero backlash)");
+  g.write("transmission_error_pitch", te_pitch, {N}, "m",
+          "e_0 as displacement at the operating pitch point, e_0 r_w1");
+  g.write("peak_to_peak", te_max - te_min, "rad", "peak-to-peak of e_0");
+  const std::vector<double> h = mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
+  g.write("harmonics", h, {h.size()}, "m",
+          "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
+  g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
+  g.write("mean_pairs_in_contact", pairs_sum / n, "1",
+          "mean number of touching pairs (the contact ratio for conjugate flanks)");
+  g.write("leading", leading, {N}, "1", "pair slot that carries the contact");
+  g.write("pinion_tooth", ptooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
+  g.write("gear_tooth", gtooth, {N, S}, "1", "gear tooth of each pair slot (-1: empty)");
+  g.write("edge_contact", edge, {N, S}, "1", "1 where the closest point lies on a flank edge");
+  g.write("separation", sep, {N, S}, "m",
+          "normal gap of each pair at the gear's position (0 for touching pairs)");
+  g.write("pinion_u", u1, {N, S}, "1", "pinion flank profile parameter");
+  g.write("pinion_v", v1, {N, S}, "1", "pinion flank face parameter");
+  g.write("gear_u", u2, {N, S}, "1", "gear flank profile parameter");
+  g.write("gear_v", v2, {N, S}, "1", "gear flank face parameter");
+  g.write("contact_point", X, {N, S, 3}, "m", "contact (closest) point, global frame");
+  g.write("normal_pinion", np, {N, S, 3}, "1", "n_p: pinion flank outward normal, global");
+  g.write("normal_gear", ng, {N, S, 3}, "1", "n_g: gear flank outward normal, global");
+  g.write("lambda_pinion", lp, {N, S, 3}, "m", "lambda_p = r_p x n_p about the pinion centre");
+  g.write("lambda_gear", lg, {N, S, 3}, "m", "lambda_g = r_g x n_g about the gear centre");
+  return {te_max - te_min, pairs_sum / n};
+}
+} // namespace
+
 void
-run_ste_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, std::ostream &log)
 {
   std::size_t total = 0;
   for (const PairScene &pair : scene.pairs)
-    total += scene.tca.at(pair.name).options.positions_per_mesh *
-             scene.tca.at(pair.name).options.mesh_cycles;
+    {
+      const TcaScene &t = scene.tca.at(pair.name);
+      total += t.options.positions_per_mesh * t.options.mesh_cycles * (t.measured ? 2 : 1);
+    }
   Progress progress(log, "ste", total);
 
   for (const PairScene &pair : scene.pairs)
@@ -25,92 +119,30 @@ run_ste_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ost
       const auto      gear   = InvoluteGear::create(pair.gear);
       const double    a =
           t.centre_distance > 0 ? t.centre_distance : working_centre_distance(*pinion, *gear);
-      const UnloadedTca tca(pinion, gear, a, t.misalignment, t.options);
-
-      TcaResult r;
-      r.mesh_angle = 2 * pi / pinion->teeth();
-      const int n  = t.options.positions_per_mesh * t.options.mesh_cycles;
-      for (int i = 0; i < n; ++i)
-        {
-          r.positions.push_back(
-              tca.at(t.options.start_angle + r.mesh_angle * i / t.options.positions_per_mesh));
-          progress.step();
-        }
-
-      // Per-position tables; pair slots padded to the most pairs met at any position.
-      std::size_t slots = 0;
-      for (const TcaPosition &p : r.positions)
-        slots = std::max(slots, p.pairs.size());
-      std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg;
-      std::vector<int>    touching, leading, ptooth, gtooth, edge;
-      double              te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
-      for (const TcaPosition &p : r.positions)
-        {
-          phi.push_back(p.pinion_angle);
-          psi.push_back(p.gear_angle);
-          te.push_back(p.transmission_error);
-          te_min = std::min(te_min, p.transmission_error);
-          te_max = std::max(te_max, p.transmission_error);
-          touching.push_back(p.touching);
-          leading.push_back(p.leading);
-          pairs_sum += p.touching;
-          for (std::size_t k = 0; k < slots; ++k)
-            {
-              const bool         used = k < p.pairs.size();
-              const PairContact  none;
-              const PairContact &c = used ? p.pairs[k] : none;
-              ptooth.push_back(used ? c.pinion_tooth : -1);
-              gtooth.push_back(used ? c.gear_tooth : -1);
-              edge.push_back(c.edge ? 1 : 0);
-              sep.push_back(c.separation);
-              u1.push_back(c.u1), v1.push_back(c.v1), u2.push_back(c.u2), v2.push_back(c.v2);
-              for (auto [v, dest] : {std::pair{&c.position, &X},
-                                     {&c.normal_pinion, &np},
-                                     {&c.normal_gear, &ng},
-                                     {&c.lambda_pinion, &lp},
-                                     {&c.lambda_gear, &lg}})
-                dest->insert(dest->end(), v->data(), v->data() + 3);
-            }
-        }
-      const hsize_t       N = n, S = slots;
-      const double        r_w1 = a * pinion->teeth() / (pinion->teeth() + gear->teeth());
-      std::vector<double> te_pitch(te.size());
-      std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_w1; });
-
-      const H5Group g = out.group(pair.name);
-      g.write("centre_distance", a, "m", "centre distance of the analysis (with its error added)");
-      g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi (counter-clockwise)");
-      g.write("gear_angle", psi, {N}, "rad", "gear rotation psi in its driven sense");
-      g.write("transmission_error", te, {N}, "rad",
-              "unloaded static transmission error e_0 = phi - (z2/z1) psi, pinion radians (zero "
-              "for perfect involutes at zero backlash)");
-      g.write("transmission_error_pitch", te_pitch, {N}, "m",
-              "e_0 as displacement at the operating pitch point, e_0 r_w1");
-      g.write("peak_to_peak", te_max - te_min, "rad", "peak-to-peak of e_0");
-      const std::vector<double> h =
-          mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
-      g.write("harmonics", h, {h.size()}, "m",
-              "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
-      g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
-      g.write("mean_pairs_in_contact", pairs_sum / n, "1",
-              "mean number of touching pairs (the contact ratio for conjugate flanks)");
-      g.write("leading", leading, {N}, "1", "pair slot that carries the contact");
-      g.write("pinion_tooth", ptooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
-      g.write("gear_tooth", gtooth, {N, S}, "1", "gear tooth of each pair slot (-1: empty)");
-      g.write("edge_contact", edge, {N, S}, "1", "1 where the closest point lies on a flank edge");
-      g.write("separation", sep, {N, S}, "m",
-              "normal gap of each pair at the gear's position (0 for touching pairs)");
-      g.write("pinion_u", u1, {N, S}, "rad", "pinion flank profile parameter (roll angle)");
-      g.write("pinion_v", v1, {N, S}, "m", "pinion flank face parameter (axial position)");
-      g.write("gear_u", u2, {N, S}, "rad", "gear flank profile parameter (roll angle)");
-      g.write("gear_v", v2, {N, S}, "m", "gear flank face parameter (axial position)");
-      g.write("contact_point", X, {N, S, 3}, "m", "contact (closest) point, global frame");
-      g.write("normal_pinion", np, {N, S, 3}, "1", "n_p: pinion flank outward normal, global");
-      g.write("normal_gear", ng, {N, S, 3}, "1", "n_g: gear flank outward normal, global");
-      g.write("lambda_pinion", lp, {N, S, 3}, "m", "lambda_p = r_p x n_p about the pinion centre");
-      g.write("lambda_gear", lg, {N, S, 3}, "m", "lambda_g = r_g x n_g about the gear centre");
-      log << "  " << pair.name << ": e_0 peak-to-peak " << (te_max - te_min) * 1e6
-          << " urad, mean pairs in contact " << pairs_sum / n << "\n";
+      const int     z1 = pinion->teeth(), z2 = gear->teeth();
+      const H5Group g        = out.group(pair.name);
+      const auto [pp, pairs] = analyse(UnloadedTca(pinion, gear, a, t.misalignment, t.options), t,
+                                       a, z1, z2, g, progress);
+      log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
+          << " urad, mean pairs in contact " << pairs << "\n";
+      if (!t.measured)
+        continue;
+      // Fast discrete-point STE on the measured flanks of this pair.
+      const H5Group &measured = *upstream.at("measured");
+      if (!measured.has(pair.name) || !measured.group(pair.name).has("pinion"))
+        throw InputError("TCA/" + pair.name +
+                         ": measured flanks = true needs measured flanks: set "
+                         "Measured flanks/" +
+                         pair.name + "/source");
+      const H5Group m = measured.group(pair.name);
+      const auto    mp =
+          std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("pinion"), "pinion"));
+      const auto mg =
+          std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("gear"), "gear"));
+      const auto [mpp, mpairs] = analyse(UnloadedTca(mp, mg, a, t.misalignment, t.options), t, a,
+                                         z1, z2, g.group("measured"), progress);
+      log << "  " << pair.name << " measured: e_0 peak-to-peak " << mpp * 1e6
+          << " urad, mean pairs in contact " << mpairs << "\n";
     }
 }
 } // namespace gearkit

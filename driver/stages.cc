@@ -51,7 +51,7 @@ stage_definitions()
        run_measured_stage},
       {"ste",
        "unloaded tooth contact analysis: static transmission error, contact path, normals",
-       {"flanks"},
+       {"flanks", "measured"},
        {"TCA"},
        1,
        [](const Scene &) { return std::vector<std::string>{}; },

@@ -1,5 +1,6 @@
 #include "member_flanks.h"
 
+#include <Eigen/Geometry>
 #include <nanoflann.hpp>
 
 namespace gearkit

@@ -145,13 +145,25 @@ def plot_ste(ste, flanks, out_dir):
         z1 = int(flanks[name]["pinion"]["number_of_teeth"][()])
         cycles = g["pinion_angle"][:] * z1 / (2 * np.pi)
         te = g["transmission_error"][:] * 1e6
-        row[0].plot(cycles, te, ".-", ms=3, lw=0.8)
+        row[0].plot(cycles, te, ".-", ms=3, lw=0.8, label="theoretical flanks")
+        measured = g["measured"] if "measured" in g else None
+        if measured is not None:
+            row[0].plot(cycles, measured["transmission_error"][:] * 1e6, ".-", ms=3, lw=0.8,
+                        label="measured flanks (discrete-point)")
+            row[0].legend(fontsize=8)
         row[0].set_xlabel("pinion angle [mesh cycles]")
         row[0].set_ylabel("e_0 [urad, pinion]")
         row[0].set_title(f"{name}: unloaded STE, peak-to-peak {g['peak_to_peak'][()] * 1e6:.3g} urad")
         row[0].grid(alpha=0.3)
         h = g["harmonics"][1:] * 1e6
-        row[1].bar(np.arange(1, len(h) + 1), h)
+        orders = np.arange(1, len(h) + 1)
+        width = 0.4 if measured is not None else 0.8
+        row[1].bar(orders - (width / 2 if measured is not None else 0), h, width,
+                   label="theoretical")
+        if measured is not None:
+            row[1].bar(orders + width / 2, measured["harmonics"][1:] * 1e6, width,
+                       label="measured")
+            row[1].legend(fontsize=8)
         row[1].set_xlabel("mesh order")
         row[1].set_ylabel("amplitude at pitch point [um]")
         row[1].set_title("harmonics")

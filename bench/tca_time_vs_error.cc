@@ -1,0 +1,94 @@
+// Run time against error of the unloaded contact analysis, one mesh cycle at 200 positions of
+// the FZG C-type pair (pinion with profile and lead crowning): classical TCA on the exact flanks
+// (the reference) and the fast discrete-point mode on flanks interpolated from virtual-CMM grids.
+// Prints a table; each time is the median of 5 runs.
+#include "unloaded_tca.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+using namespace gearkit;
+
+namespace
+{
+template <typename F>
+double
+median_seconds(F &&f, int runs = 5)
+{
+  std::vector<double> t;
+  for (int r = 0; r < runs; ++r)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      f();
+      t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+} // namespace
+
+int
+main()
+{
+  InvoluteGearData p;
+  p.name                                 = "pinion";
+  p.teeth                                = 16;
+  p.normal_module                        = 4.5e-3;
+  p.profile_shift                        = 0.1817;
+  p.face_width                           = 14e-3;
+  p.drive_modifications.profile_crowning = 4e-6;
+  p.drive_modifications.lead_crowning    = 5e-6;
+  InvoluteGearData g                     = p;
+  g.name                                 = "gear";
+  g.teeth                                = 24;
+  g.profile_shift                        = 0.1715;
+  g.drive_modifications                  = {};
+  const auto   pinion                    = InvoluteGear::create(p);
+  const auto   gear                      = InvoluteGear::create(g);
+  const double a                         = working_centre_distance(*pinion, *gear);
+  TcaOptions   o;
+  o.positions_per_mesh = 200;
+
+  TcaResult    reference;
+  const auto   classical = [&] { reference = UnloadedTca(pinion, gear, a, {}, o).run(); };
+  const double t_ref     = median_seconds(classical);
+  double       lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const TcaPosition &q : reference.positions)
+    lo = std::min(lo, q.transmission_error), hi = std::max(hi, q.transmission_error);
+  std::printf("one mesh cycle, 200 positions; e_0 peak-to-peak %.4g urad\n", (hi - lo) * 1e6);
+  std::printf("%-34s %10s %14s %12s\n", "method", "time [s]", "max error [rad]", "% of p-p");
+  std::printf("%-34s %10.3f %14s %12s\n", "classical TCA (exact flanks)", t_ref, "reference", "-");
+
+  // The same exact flanks with a coarser search grid: the error the search itself adds.
+  for (auto [nu, nv] : {std::pair{9, 5}, {5, 3}})
+    {
+      TcaOptions c      = o;
+      c.profile_samples = nu, c.face_samples = nv;
+      TcaResult    r;
+      const double t = median_seconds([&] { r = UnloadedTca(pinion, gear, a, {}, c).run(); });
+      double       e = 0;
+      for (std::size_t i = 0; i < r.positions.size(); ++i)
+        e = std::max(e, std::abs(r.positions[i].transmission_error -
+                                 reference.positions[i].transmission_error));
+      char name[64];
+      std::snprintf(name, sizeof name, "classical, search grid %d x %d", nu, nv);
+      std::printf("%-34s %10.3f %14.2e %12.4f\n", name, t, e, 100 * e / (hi - lo));
+    }
+
+  for (auto [np, nf] : {std::pair{9, 29}, {17, 29}, {33, 57}, {65, 113}})
+    {
+      const auto   mp = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*pinion, "p", np, nf));
+      const auto   mg = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*gear, "g", np, nf));
+      TcaResult    r;
+      const double t = median_seconds([&] { r = UnloadedTca(mp, mg, a, {}, o).run(); });
+      double       e = 0;
+      for (std::size_t i = 0; i < r.positions.size(); ++i)
+        e = std::max(e, std::abs(r.positions[i].transmission_error -
+                                 reference.positions[i].transmission_error));
+      char name[64];
+      std::snprintf(name, sizeof name, "fast discrete-point, %d x %d pts", np, nf);
+      std::printf("%-34s %10.3f %14.2e %12.4f\n", name, t, e, 100 * e / (hi - lo));
+    }
+}

@@ -254,7 +254,9 @@ TEST(InvoluteGear, UndercutFilletMeetsInvoluteAboveBaseCircle)
   const Vec2   below = g->fillet_point(0.95);
   const double r     = below.norm();
   if (r > g->base_radius)
-    EXPECT_LT(polar_angle(below), g->tooth_thickness(r) / (2 * r));
+    {
+      EXPECT_LT(polar_angle(below), g->tooth_thickness(r) / (2 * r));
+    }
 }
 
 TEST(InvoluteGear, PointedToothIsRejected)

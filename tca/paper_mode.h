@@ -1,0 +1,41 @@
+// The seed paper's discrete-point STE, implemented literally ("paper mode"), so that its cost and
+// accuracy can be measured against the exact contact analysis:
+//
+// dense point clouds are sampled from the (interpolated) flanks at spacing a x b; for each driver
+// angle the driven member is rotated in steps theta until the minimum distance between the two
+// clouds falls within the contact tolerance E >= sqrt((a/2)^2 + (b/2)^2 + l^2), l = r theta; then
+// STE(i) = (theta_p(i) - theta_p(1)) - (Z_g / Z_p) (theta_g(i) - theta_g(1)).
+// Nearest-point queries use nanoflann KD-trees of the driven flanks' clouds.
+#pragma once
+
+#include "assembly.h"
+#include "member_flanks.h"
+
+#include <vector>
+
+namespace gearkit
+{
+struct PaperModeOptions
+{
+  FlankSide side               = FlankSide::drive;
+  double    spacing            = 20e-6; ///< target point spacing a = b on the flanks [m]
+  double    rotation_step      = 1e-6;  ///< driven-member rotation step theta [rad]
+  int       positions_per_mesh = 50;
+  int       mesh_cycles        = 1;
+  double    start_angle        = 0;
+};
+
+struct PaperModeResult
+{
+  std::vector<double> pinion_angle;       ///< [rad]
+  std::vector<double> gear_angle;         ///< first gear angle within tolerance [rad]
+  std::vector<double> transmission_error; ///< seed's STE, relative to the first position [rad]
+  double              tolerance = 0;      ///< E [m]
+  std::size_t         points    = 0;      ///< points in all clouds built
+  std::size_t         queries   = 0;      ///< nearest-point queries made
+};
+
+PaperModeResult
+paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double centre_distance,
+               const Misalignment &misalignment, const PaperModeOptions &options);
+} // namespace gearkit

@@ -2,6 +2,7 @@
 // the FZG C-type pair (pinion with profile and lead crowning): classical TCA on the exact flanks
 // (the reference) and the fast discrete-point mode on flanks interpolated from virtual-CMM grids.
 // Prints a table; each time is the median of 5 runs.
+#include "../tests/fzg_c_pair.h"
 #include "paper_mode.h"
 #include "unloaded_tca.h"
 
@@ -34,20 +35,10 @@ median_seconds(F &&f, int runs = 5)
 int
 main(int argc, char **argv)
 {
-  const bool       paper = argc > 1 && std::string(argv[1]) == "--paper";
-  InvoluteGearData p;
-  p.name                                 = "pinion";
-  p.teeth                                = 16;
-  p.normal_module                        = 4.5e-3;
-  p.profile_shift                        = 0.1817;
-  p.face_width                           = 14e-3;
+  const bool paper                       = argc > 1 && std::string(argv[1]) == "--paper";
+  auto [p, g]                            = test_data::fzg_c_pair();
   p.drive_modifications.profile_crowning = 4e-6;
   p.drive_modifications.lead_crowning    = 5e-6;
-  InvoluteGearData g                     = p;
-  g.name                                 = "gear";
-  g.teeth                                = 24;
-  g.profile_shift                        = 0.1715;
-  g.drive_modifications                  = {};
   const auto   pinion                    = InvoluteGear::create(p);
   const auto   gear                      = InvoluteGear::create(g);
   const double a                         = working_centre_distance(*pinion, *gear);

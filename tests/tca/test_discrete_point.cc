@@ -1,5 +1,6 @@
 // Fast discrete-point STE: the same contact analysis on flanks interpolated from 9 x 29 measured
 // points (a virtual CMM of the theoretical flanks), against classical TCA on the exact flanks.
+#include "../fzg_c_pair.h"
 #include "unloaded_tca.h"
 
 #include <gtest/gtest.h>
@@ -15,12 +16,7 @@ namespace
 std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
 modified_pair(bool tip_relief)
 {
-  InvoluteGearData p;
-  p.name                                 = "pinion";
-  p.teeth                                = 16;
-  p.normal_module                        = 4.5e-3;
-  p.profile_shift                        = 0.1817;
-  p.face_width                           = 14e-3;
+  auto [p, g]                            = test_data::fzg_c_pair();
   p.drive_modifications.profile_crowning = 4e-6;
   p.drive_modifications.lead_crowning    = 5e-6;
   if (tip_relief)
@@ -28,11 +24,6 @@ modified_pair(bool tip_relief)
       p.drive_modifications.tip_relief        = 10e-6;
       p.drive_modifications.tip_relief_length = 2e-3;
     }
-  InvoluteGearData g    = p;
-  g.name                = "gear";
-  g.teeth               = 24;
-  g.profile_shift       = 0.1715;
-  g.drive_modifications = {};
   return {InvoluteGear::create(p), InvoluteGear::create(g)};
 }
 

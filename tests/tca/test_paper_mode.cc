@@ -1,5 +1,6 @@
 // The seed's literal discrete-point method (paper mode) against classical TCA: its error is set by
 // the contact tolerance E and shrinks with the point spacing.
+#include "../fzg_c_pair.h"
 #include "paper_mode.h"
 #include "unloaded_tca.h"
 
@@ -11,18 +12,8 @@ using namespace gearkit;
 
 TEST(PaperMode, ErrorShrinksWithSpacingAndStaysWithinTolerance)
 {
-  InvoluteGearData p;
-  p.name                                 = "pinion";
-  p.teeth                                = 16;
-  p.normal_module                        = 4.5e-3;
-  p.profile_shift                        = 0.1817;
-  p.face_width                           = 14e-3;
+  auto [p, g]                            = test_data::fzg_c_pair();
   p.drive_modifications.profile_crowning = 4e-6;
-  InvoluteGearData g                     = p;
-  g.name                                 = "gear";
-  g.teeth                                = 24;
-  g.profile_shift                        = 0.1715;
-  g.drive_modifications                  = {};
   const auto   P = InvoluteGear::create(p), G = InvoluteGear::create(g);
   const double a = working_centre_distance(*P, *G);
   TcaOptions   o;

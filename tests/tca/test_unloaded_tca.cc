@@ -1,4 +1,5 @@
 // Unloaded TCA of involute pairs against the exact relations of reference-data.md section 6.
+#include "../fzg_c_pair.h"
 #include "unloaded_tca.h"
 
 #include <gtest/gtest.h>
@@ -11,25 +12,10 @@ namespace
 {
 constexpr double deg = pi / 180;
 
-// FZG C-type pair (reference-data.md section 5), optionally helical.
 std::pair<InvoluteGearData, InvoluteGearData>
 c_pair(double helix = 0)
 {
-  InvoluteGearData p;
-  p.name                  = "pinion";
-  p.teeth                 = 16;
-  p.normal_module         = 4.5e-3;
-  p.normal_pressure_angle = 20 * deg;
-  p.profile_shift         = 0.1817;
-  p.face_width            = 14e-3;
-  p.helix_angle           = helix;
-  p.hand                  = Hand::right;
-  InvoluteGearData g      = p;
-  g.name                  = "gear";
-  g.teeth                 = 24;
-  g.profile_shift         = 0.1715;
-  g.hand                  = Hand::left;
-  return {p, g};
+  return test_data::fzg_c_pair(helix);
 }
 
 struct Pair

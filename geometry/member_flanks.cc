@@ -96,10 +96,63 @@ InvoluteMemberFlanks::InvoluteMemberFlanks(std::shared_ptr<const InvoluteGear> g
       add(k, side, std::make_unique<InvoluteFlank>(gear->flank(k, side)));
 }
 
+namespace
+{
+/// A flank turned rigidly about the member axis: a measured flank standing in for a tooth that
+/// was not measured.
+class RotatedFlank : public Flank
+{
+public:
+  RotatedFlank(std::shared_ptr<const Flank> base, double angle)
+      : base(std::move(base))
+      , rotation(Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix())
+  {
+  }
+  FlankPoint
+  evaluate(double u, double v) const override
+  {
+    FlankPoint p = base->evaluate(u, v);
+    p.position   = rotation * p.position;
+    p.normal     = rotation * p.normal;
+    p.d_du       = rotation * p.d_du;
+    p.d_dv       = rotation * p.d_dv;
+    return p;
+  }
+  FlankDomain
+  domain() const override
+  {
+    return base->domain();
+  }
+
+private:
+  std::shared_ptr<const Flank> base;
+  Eigen::Matrix3d              rotation;
+};
+} // namespace
+
 MeasuredMemberFlanks::MeasuredMemberFlanks(const MeasuredMember &m)
     : z(m.teeth)
 {
+  // Every tooth gets a flank: its own measurement, else the nearest measured tooth's turned
+  // into place (the seed measured one tooth per member).
+  std::map<std::pair<int, int>, std::shared_ptr<const Flank>> measured;
   for (const MeasuredFlank &f : m.flanks)
-    add(f.tooth, f.side, std::make_unique<InterpolatedFlank>(f));
+    measured[{f.tooth, int(f.side)}] = std::make_shared<InterpolatedFlank>(f);
+  for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+    for (int k = 0; k < z; ++k)
+      {
+        int best = -1, best_distance = z + 1;
+        for (const auto &[key, flank] : measured)
+          if (key.second == int(side))
+            {
+              const int d = std::min((k - key.first + z) % z, (key.first - k + z) % z);
+              if (d < best_distance)
+                best = key.first, best_distance = d;
+            }
+        if (best >= 0)
+          add(k, side,
+              std::make_unique<RotatedFlank>(measured.at({best, int(side)}),
+                                             2 * pi * (k - best) / z));
+      }
 }
 } // namespace gearkit

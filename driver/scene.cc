@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <numeric>
 #include <regex>
 #include <sstream>
 
@@ -159,6 +160,9 @@ declare_tca(ParameterHandler &prm)
   prm.declare_entry("positions per mesh cycle", "50", Patterns::Integer(1, 100000),
                     "Pinion positions per mesh cycle (2 pi / z1).");
   prm.declare_entry("mesh cycles", "3", Patterns::Integer(1, 100000), "Mesh cycles analysed.");
+  prm.declare_entry("hunting cycle", "false", Patterns::Bool(),
+                    "Analyse the hunting-tooth cycle, lcm(z1, z2) mesh cycles (replaces mesh "
+                    "cycles), and report the spectrum in pinion shaft orders.");
   prm.declare_entry("start angle", "0", Patterns::Double(-360, 360),
                     "[deg] First pinion angle (0: pinion tooth 0 on the line of centres).");
   prm.declare_entry("centre distance", "0", Patterns::Double(0),
@@ -376,6 +380,7 @@ get_tca(ParameterHandler &prm)
   t.misalignment.gear_axial_shift      = prm.get_double("gear axial shift") * mm;
   t.harmonics                          = prm.get_integer("harmonics");
   t.measured                           = prm.get_bool("measured flanks");
+  t.hunting                            = prm.get_bool("hunting cycle");
   return t;
 }
 
@@ -516,6 +521,9 @@ read_scene(const std::string &file)
           prm.enter_subsection("TCA");
           prm.enter_subsection(p);
           scene.tca[p] = get_tca(prm);
+          if (scene.tca[p].hunting)
+            scene.tca[p].options.mesh_cycles =
+                std::lcm(pair.pinion.teeth, pair.gear.teeth); // mesh cycles in a hunting period
           prm.leave_subsection();
           prm.leave_subsection();
           check_pair(pair);

@@ -56,6 +56,9 @@ struct TcaScene
   int          harmonics = 10; ///< mesh orders reported
   /// Also run the fast discrete-point analysis on the pair's measured flanks (/measured).
   bool measured = false;
+  /// Analyse the whole hunting-tooth cycle (lcm(z1, z2) mesh cycles) and report the spectrum in
+  /// pinion shaft orders (per-tooth errors give shaft orders and mesh sidebands).
+  bool hunting = false;
 };
 
 struct Scene

@@ -79,6 +79,15 @@ analyse(const UnloadedTca &tca, const TcaScene &t, double a, int z1, int z2, con
   const std::vector<double> h = mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
   g.write("harmonics", h, {h.size()}, "m",
           "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
+  if (t.hunting)
+    {
+      // Over the hunting cycle the signal is periodic in pinion revolutions.
+      const std::vector<double> shaft =
+          mesh_order_amplitudes(te_pitch, t.options.mesh_cycles / z1, z1 * t.harmonics);
+      g.write("shaft_order_spectrum", shaft, {shaft.size()}, "m",
+              "amplitudes of e_0 at the pitch point over the hunting cycle, by pinion shaft "
+              "order 0..z1 N (mesh order m is shaft order m z1)");
+    }
   g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
   g.write("mean_pairs_in_contact", pairs_sum / n, "1",
           "mean number of touching pairs (the contact ratio for conjugate flanks)");

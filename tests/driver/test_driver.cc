@@ -418,3 +418,33 @@ TEST_F(DriverTest, TcaParametersRerunOnlyTheSteStage)
   EXPECT_NE(err.str().find("no tooth pair"), std::string::npos) << err.str();
   EXPECT_FALSE(fs::exists(dir / "out/small/results.h5"));
 }
+
+TEST_F(DriverTest, HuntingCycleSpectrumShowsShaftOrdersOfAnEccentricTooth)
+{
+  // z 16/24: the hunting cycle is lcm = 48 mesh cycles, 3 pinion revolutions. A 4.5 um eccentric
+  // pinion tooth repeats once per revolution: shaft orders 1, 2 and sidebands of the mesh order
+  // (16 +- 1) appear; the perfect pair's spectrum is zero.
+  std::string text =
+      std::regex_replace(small_scene, std::regex("set outputs = flanks"), "set outputs = ste");
+  text = std::regex_replace(text, std::regex("number of teeth = 19"), "number of teeth = 16");
+  text = std::regex_replace(text, std::regex("number of teeth = 37"), "number of teeth = 24");
+  text += "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 6\n    set hunting "
+          "cycle = true\n    set harmonics = 2\n  end\nend\n";
+  auto spectrum = [&](const std::string &scene_text) {
+    EXPECT_EQ(run({scene(scene_text)}), 0) << err.str();
+    return H5File::open((dir / "out/small/results.h5").string())
+        .root()
+        .group("ste/p1")
+        .read_doubles("shaft_order_spectrum");
+  };
+  const std::vector<double> perfect = spectrum(text);
+  ASSERT_EQ(perfect.size(), 33u); // orders 0 .. 16 x 2
+  for (double a : perfect) // the touch-angle Newton stops at 1e-13 m: TE noise of that size
+    EXPECT_LT(a, 1e-12);
+  const std::vector<double> eccentric = spectrum(std::regex_replace(
+      text, std::regex("set number of teeth = 16\n"),
+      "set number of teeth = 16\n      subsection Deviations\n        set eccentric tooth = 0\n"
+      "        set eccentric tooth offset = 4.5\n      end\n"));
+  for (int order : {1, 2, 15, 17})
+    EXPECT_GT(eccentric[order], 1e-8) << order; // step 4.5 um: lines of ~0.1-1 um
+}

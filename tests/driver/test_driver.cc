@@ -439,7 +439,7 @@ TEST_F(DriverTest, HuntingCycleSpectrumShowsShaftOrdersOfAnEccentricTooth)
   };
   const std::vector<double> perfect = spectrum(text);
   ASSERT_EQ(perfect.size(), 33u); // orders 0 .. 16 x 2
-  for (double a : perfect) // the touch-angle Newton stops at 1e-13 m: TE noise of that size
+  for (double a : perfect)        // the touch-angle Newton stops at 1e-13 m: TE noise of that size
     EXPECT_LT(a, 1e-12);
   const std::vector<double> eccentric = spectrum(std::regex_replace(
       text, std::regex("set number of teeth = 16\n"),

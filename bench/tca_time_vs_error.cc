@@ -30,6 +30,16 @@ median_seconds(F &&f, int runs = 5)
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
 }
+// Largest |e_0 difference| between two runs over the same positions.
+double
+max_difference(const TcaResult &r, const TcaResult &reference)
+{
+  double e = 0;
+  for (std::size_t i = 0; i < r.positions.size(); ++i)
+    e = std::max(
+        e, std::abs(r.positions[i].transmission_error - reference.positions[i].transmission_error));
+  return e;
+}
 } // namespace
 
 int
@@ -62,11 +72,8 @@ main(int argc, char **argv)
       c.profile_samples = nu, c.face_samples = nv;
       TcaResult    r;
       const double t = median_seconds([&] { r = UnloadedTca(pinion, gear, a, {}, c).run(); });
-      double       e = 0;
-      for (std::size_t i = 0; i < r.positions.size(); ++i)
-        e = std::max(e, std::abs(r.positions[i].transmission_error -
-                                 reference.positions[i].transmission_error));
-      char name[64];
+      const double e = max_difference(r, reference);
+      char         name[64];
       std::snprintf(name, sizeof name, "classical, search grid %d x %d", nu, nv);
       std::printf("%-34s %10.3f %14.2e %12.4f\n", name, t, e, 100 * e / (hi - lo));
     }
@@ -77,11 +84,8 @@ main(int argc, char **argv)
       const auto   mg = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*gear, "g", np, nf));
       TcaResult    r;
       const double t = median_seconds([&] { r = UnloadedTca(mp, mg, a, {}, o).run(); });
-      double       e = 0;
-      for (std::size_t i = 0; i < r.positions.size(); ++i)
-        e = std::max(e, std::abs(r.positions[i].transmission_error -
-                                 reference.positions[i].transmission_error));
-      char name[64];
+      const double e = max_difference(r, reference);
+      char         name[64];
       std::snprintf(name, sizeof name, "fast discrete-point, %d x %d pts", np, nf);
       std::printf("%-34s %10.3f %14.2e %12.4f\n", name, t, e, 100 * e / (hi - lo));
     }

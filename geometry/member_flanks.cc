@@ -1,7 +1,8 @@
 #include "member_flanks.h"
 
+#include "point_cloud.h"
+
 #include <Eigen/Geometry>
-#include <nanoflann.hpp>
 
 namespace gearkit
 {
@@ -14,30 +15,8 @@ constexpr int guess_grid = 9; // coarse samples per parameter direction
 struct MemberFlanks::Entry
 {
   std::unique_ptr<Flank> flank;
-  std::vector<double>    rz;     ///< r0, z0, r1, z1, ...
+  PointCloud<2>          rz;     ///< (r, z) of the samples
   std::vector<double>    params; ///< u0, v0, u1, v1, ...
-
-  // nanoflann's dataset interface
-  std::size_t
-  kdtree_get_point_count() const
-  {
-    return rz.size() / 2;
-  }
-  double
-  kdtree_get_pt(std::size_t i, std::size_t d) const
-  {
-    return rz[2 * i + d];
-  }
-  template <class Box>
-  bool
-  kdtree_get_bbox(Box &) const
-  {
-    return false;
-  }
-
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Entry>,
-                                                   Entry, 2, std::size_t>;
-  std::unique_ptr<Tree> tree;
 };
 
 MemberFlanks::~MemberFlanks() = default;
@@ -53,11 +32,11 @@ MemberFlanks::add(int tooth, FlankSide side, std::unique_ptr<Flank> flank)
         const double u = d.u_min + (d.u_max - d.u_min) * i / (guess_grid - 1);
         const double v = d.v_min + (d.v_max - d.v_min) * j / (guess_grid - 1);
         const Vec3   p = flank->evaluate(u, v).position;
-        e->rz.insert(e->rz.end(), {p.head<2>().norm(), p.z()});
+        e->rz.points.emplace_back(p.head<2>().norm(), p.z());
         e->params.insert(e->params.end(), {u, v});
       }
-  e->flank                   = std::move(flank);
-  e->tree                    = std::make_unique<Entry::Tree>(2, *e);
+  e->flank = std::move(flank);
+  e->rz.build();
   flanks[{tooth, int(side)}] = std::move(e);
 }
 
@@ -80,11 +59,8 @@ MemberFlanks::flank(int tooth, FlankSide side) const
 std::pair<double, double>
 MemberFlanks::guess(int tooth, FlankSide side, double radius, double z) const
 {
-  const Entry &e = *flanks.at({tooth, int(side)});
-  std::size_t  index;
-  double       distance;
-  const double query[2] = {radius, z};
-  e.tree->knnSearch(query, 1, &index, &distance);
+  const Entry &e     = *flanks.at({tooth, int(side)});
+  const auto   index = e.rz.nearest({radius, z}).first;
   return {e.params[2 * index], e.params[2 * index + 1]};
 }
 

@@ -1,7 +1,8 @@
 #include "paper_mode.h"
 
+#include "point_cloud.h"
+
 #include <Eigen/Geometry>
-#include <nanoflann.hpp>
 
 #include <cmath>
 #include <map>
@@ -18,29 +19,7 @@ mod(int a, int n)
 }
 
 /// A flank sampled at (about) the requested spacing: points in the member frame.
-struct Cloud
-{
-  std::vector<Vec3> points;
-  std::size_t
-  kdtree_get_point_count() const
-  {
-    return points.size();
-  }
-  double
-  kdtree_get_pt(std::size_t i, std::size_t d) const
-  {
-    return points[i][d];
-  }
-  template <class Box>
-  bool
-  kdtree_get_bbox(Box &) const
-  {
-    return false;
-  }
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-                                                   Cloud, 3, std::size_t>;
-  std::unique_ptr<Tree> tree;
-};
+using Cloud = PointCloud<3>;
 
 std::unique_ptr<Cloud>
 sample(const Flank &flank, double spacing, bool with_tree, double &a, double &b)
@@ -67,7 +46,7 @@ sample(const Flank &flank, double spacing, bool with_tree, double &a, double &b)
           cloud->points.push_back(flank.evaluate(u, v).position);
       }
   if (with_tree)
-    cloud->tree = std::make_unique<Cloud::Tree>(3, *cloud);
+    cloud->build();
   return cloud;
 }
 } // namespace
@@ -136,11 +115,7 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
         for (const auto &[g, q] : pairs)
           for (const Vec3 &x : q)
             {
-              const Vec3  y = R * x;
-              std::size_t index;
-              double      d2;
-              g->tree->knnSearch(y.data(), 1, &index, &d2);
-              best = std::min(best, d2);
+              best = std::min(best, g->nearest(R * x).second);
               ++result.queries;
             }
         return std::sqrt(best);

@@ -18,8 +18,14 @@ mod(int a, int n)
   return ((a % n) + n) % n;
 }
 
-/// A flank sampled at (about) the requested spacing: points in the member frame.
-using Cloud = PointCloud<3>;
+/// A flank sampled at (about) the requested spacing: points in the member frame, with the flank
+/// parameters of each point (for the normals of the contact tables).
+struct Cloud
+{
+  const Flank       *flank = nullptr;
+  PointCloud<3>      points;
+  std::vector<Vec2>  uv;
+};
 
 std::unique_ptr<Cloud>
 sample(const Flank &flank, double spacing, bool with_tree, double &a, double &b)
@@ -36,18 +42,62 @@ sample(const Flank &flank, double spacing, bool with_tree, double &a, double &b)
   a            = std::max(a, len_u / (nu - 1));
   b            = std::max(b, len_v / (nv - 1));
   auto cloud   = std::make_unique<Cloud>();
-  cloud->points.reserve(std::size_t(nu) * nv);
+  cloud->flank = &flank;
+  cloud->points.points.reserve(std::size_t(nu) * nv);
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j)
       {
         const double u = d.u_min + (d.u_max - d.u_min) * i / (nu - 1);
         const double v = d.v_min + (d.v_max - d.v_min) * j / (nv - 1);
         if (flank.contains(u, v))
-          cloud->points.push_back(flank.evaluate(u, v).position);
+          {
+            cloud->points.points.push_back(flank.evaluate(u, v).position);
+            cloud->uv.emplace_back(u, v);
+          }
       }
   if (with_tree)
-    cloud->build();
+    cloud->points.build();
   return cloud;
+}
+
+bool
+on_edge(const Flank &flank, const Vec2 &uv)
+{
+  const FlankDomain d   = flank.domain();
+  const double      tol = 1e-9;
+  return uv.x() - d.u_min < tol * (d.u_max - d.u_min) || d.u_max - uv.x() < tol * (d.u_max - d.u_min) ||
+         uv.y() - d.v_min < tol * (d.v_max - d.v_min) || d.v_max - uv.y() < tol * (d.v_max - d.v_min);
+}
+
+/// One tooth pair in mesh: the pinion cloud, its points in the gear's unrotated frame, the gear
+/// cloud.
+struct MeshingPair
+{
+  int               pinion_tooth, gear_tooth;
+  const Cloud      *pinion, *gear;
+  std::vector<Vec3> q;
+};
+
+/// Closest points of a pair with the gear turned by psi: squared distance, pinion and gear
+/// point indices.
+struct Closest
+{
+  double      d2 = HUGE_VAL;
+  std::size_t pinion = 0, gear = 0;
+};
+
+Closest
+closest(const MeshingPair &pair, const Eigen::Matrix3d &R, std::size_t &queries)
+{
+  Closest c;
+  for (std::size_t i = 0; i < pair.q.size(); ++i)
+    {
+      const auto [j, d2] = pair.gear->points.nearest(R * pair.q[i]);
+      ++queries;
+      if (d2 < c.d2)
+        c = {d2, i, j};
+    }
+  return c;
 }
 } // namespace
 
@@ -63,8 +113,9 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
   const bool     drive = o.side == FlankSide::drive;
 
   PaperModeResult result;
-  double          a = 0, b = 0;
-  double          r_max = 0; // largest driven-flank radius: the r of l = r theta in the tolerance
+  result.tca.mesh_angle = 2 * pi / z1;
+  double a = 0, b = 0;
+  double r_max = 0; // largest driven-flank radius: the r of l = r theta in the tolerance
   std::map<int, std::unique_ptr<Cloud>> pinion_clouds, gear_clouds;
   auto cloud = [&](std::map<int, std::unique_ptr<Cloud>> &clouds, const MemberFlanks &member,
                    int tooth, bool tree) -> const Cloud * {
@@ -74,33 +125,34 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
     if (!c)
       {
         c = sample(member.flank(tooth, o.side), o.spacing, tree, a, b);
-        result.points += c->points.size();
+        result.points += c->uv.size();
         if (tree)
-          for (const Vec3 &x : c->points)
+          for (const Vec3 &x : c->points.points)
             r_max = std::max(r_max, x.head<2>().norm());
       }
     return c.get();
   };
 
-  double    previous = NAN;
-  const int n        = o.positions_per_mesh * o.mesh_cycles;
+  double       previous = NAN;
+  const double s        = drive ? 1.0 : -1.0;
+  const int    n        = o.positions_per_mesh * o.mesh_cycles;
   for (int i = 0; i < n; ++i)
     {
-      const double phi = o.start_angle + 2 * pi / z1 * i / o.positions_per_mesh;
+      const double phi = o.start_angle + result.tca.mesh_angle * i / o.positions_per_mesh;
       const int    k0  = int(std::lround(phi * z1 / (2 * pi)));
-      // Pinion points of the pairs in mesh, in the gear's unrotated frame (Q), with their gear.
-      std::vector<std::pair<const Cloud *, std::vector<Vec3>>> pairs;
+      std::vector<MeshingPair> pairs;
       for (int k = k0 - 2; k <= k0 + 2; ++k)
         {
-          const Cloud *p = cloud(pinion_clouds, pinion, mod(-k, z1), false);
-          const Cloud *g = cloud(gear_clouds, gear, mod(drive ? k - 1 : k, z2), true);
+          const int    tp = mod(-k, z1), tg = mod(drive ? k - 1 : k, z2);
+          const Cloud *p = cloud(pinion_clouds, pinion, tp, false);
+          const Cloud *g = cloud(gear_clouds, gear, tg, true);
           if (!p || !g)
             continue;
-          std::vector<Vec3> q;
-          q.reserve(p->points.size());
-          for (const Vec3 &x : p->points)
-            q.push_back(assembly.global_to_gear_unrotated(assembly.pinion_to_global(x, phi)));
-          pairs.emplace_back(g, std::move(q));
+          MeshingPair pair{tp, tg, p, g, {}};
+          pair.q.reserve(p->uv.size());
+          for (const Vec3 &x : p->points.points)
+            pair.q.push_back(assembly.global_to_gear_unrotated(assembly.pinion_to_global(x, phi)));
+          pairs.push_back(std::move(pair));
         }
       if (pairs.empty())
         throw InputError("paper mode: no measured tooth pair in mesh at pinion angle " +
@@ -112,10 +164,10 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
       auto min_distance = [&](double psi) {
         const Eigen::Matrix3d R    = Eigen::AngleAxisd(psi, Vec3::UnitZ()).toRotationMatrix();
         double                best = HUGE_VAL;
-        for (const auto &[g, q] : pairs)
-          for (const Vec3 &x : q)
+        for (const MeshingPair &pair : pairs)
+          for (const Vec3 &x : pair.q)
             {
-              best = std::min(best, g->nearest(R * x).second);
+              best = std::min(best, pair.gear->points.nearest(R * x).second);
               ++result.queries;
             }
         return std::sqrt(best);
@@ -124,9 +176,8 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
       // first step is found here by bisection over the step count (the distance falls
       // monotonically as the members approach), after bracketing from the previous solution:
       // log2 of the steps instead of all of them, with the identical result.
-      const double s     = drive ? 1.0 : -1.0;
-      double       apart = std::isnan(previous) ? ratio * phi
-                                                : previous + ratio * 2 * pi / z1 / o.positions_per_mesh;
+      double apart = std::isnan(previous) ? ratio * phi
+                                          : previous + ratio * result.tca.mesh_angle / o.positions_per_mesh;
       for (double step = o.rotation_step; min_distance(apart) <= E; step *= 2)
         apart += s * step;
       double touching = apart;
@@ -140,12 +191,46 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
         }
       const double psi = apart - s * hi * o.rotation_step;
       previous         = psi;
-      result.pinion_angle.push_back(phi);
-      result.gear_angle.push_back(psi);
+
+      // The tables at the position found: closest points of every pair.
+      TcaPosition pos;
+      pos.pinion_angle       = phi;
+      pos.gear_angle         = psi;
+      pos.transmission_error = phi - psi / ratio;
+      const Eigen::Matrix3d R    = Eigen::AngleAxisd(psi, Vec3::UnitZ()).toRotationMatrix();
+      const Vec3            axis = assembly.gear_axis();
+      for (const MeshingPair &pair : pairs)
+        {
+          const Closest cl = closest(pair, R, result.queries);
+          PairContact   c;
+          c.pinion_tooth       = pair.pinion_tooth;
+          c.gear_tooth         = pair.gear_tooth;
+          c.found              = true;
+          const Vec2 &uv1      = pair.pinion->uv[cl.pinion];
+          const Vec2 &uv2      = pair.gear->uv[cl.gear];
+          c.u1 = uv1.x(), c.v1 = uv1.y(), c.u2 = uv2.x(), c.v2 = uv2.y();
+          c.edge       = on_edge(*pair.pinion->flank, uv1) || on_edge(*pair.gear->flank, uv2);
+          c.separation = std::sqrt(cl.d2);
+          set_contact_geometry(c, assembly, *pair.pinion->flank, *pair.gear->flank, phi, psi);
+          // The gear rotation that would close this pair's gap (as in classical TCA).
+          const double arm =
+              std::abs(axis.cross(c.position - assembly.gear_centre()).dot(c.normal_gear));
+          c.touch_angle = psi - s * c.separation / arm;
+          if (c.separation <= E)
+            ++pos.touching;
+          if (pos.leading < 0 || c.separation < pos.pairs[pos.leading].separation)
+            pos.leading = int(pos.pairs.size());
+          pos.pairs.push_back(c);
+        }
+      result.tca.positions.push_back(std::move(pos));
+      if (o.on_position)
+        o.on_position();
     }
-  for (int i = 0; i < n; ++i)
-    result.transmission_error.push_back((result.pinion_angle[i] - result.pinion_angle[0]) -
-                                        (result.gear_angle[i] - result.gear_angle[0]) / ratio);
+  summarise(result.tca);
+  const TcaPosition &first = result.tca.positions.front();
+  for (const TcaPosition &p : result.tca.positions)
+    result.seed_ste.push_back((p.pinion_angle - first.pinion_angle) -
+                              (p.gear_angle - first.gear_angle) / ratio);
   return result;
 }
 } // namespace gearkit

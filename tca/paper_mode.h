@@ -8,9 +8,9 @@
 // Nearest-point queries use nanoflann KD-trees of the driven flanks' clouds.
 #pragma once
 
-#include "assembly.h"
-#include "member_flanks.h"
+#include "unloaded_tca.h"
 
+#include <functional>
 #include <vector>
 
 namespace gearkit
@@ -23,16 +23,20 @@ struct PaperModeOptions
   int       positions_per_mesh = 50;
   int       mesh_cycles        = 1;
   double    start_angle        = 0;
+  std::function<void()> on_position; ///< called after each position (progress)
 };
 
 struct PaperModeResult
 {
-  std::vector<double> pinion_angle;       ///< [rad]
-  std::vector<double> gear_angle;         ///< first gear angle within tolerance [rad]
-  std::vector<double> transmission_error; ///< seed's STE, relative to the first position [rad]
-  double              tolerance = 0;      ///< E [m]
-  std::size_t         points    = 0;      ///< points in all clouds built
-  std::size_t         queries   = 0;      ///< nearest-point queries made
+  /// The same tables as classical TCA: per position e_0 = phi - (z2/z1) psi (absolute, with psi
+  /// the first gear angle within E, so it carries the method's early-contact bias) and per pair
+  /// the closest points of the clouds (contact point on the pinion cloud, parameters, normals and
+  /// moment arms of the flanks there; separation = cloud distance, touching if within E).
+  TcaResult           tca;
+  std::vector<double> seed_ste;  ///< the seed's STE, relative to the first position [rad]
+  double              tolerance = 0; ///< E [m]
+  std::size_t         points    = 0; ///< points in all clouds built
+  std::size_t         queries   = 0; ///< nearest-point queries made
 };
 
 PaperModeResult

@@ -238,15 +238,7 @@ UnloadedTca::pair_contact(int k, double phi) const
   c.u1 = best.u1, c.v1 = best.v1, c.u2 = best.u2, c.v2 = best.v2;
   c.edge = at_edge(c.u1, d.u_min, d.u_max) || at_edge(c.v1, d.v_min, d.v_max) ||
            at_edge(c.u2, dg.u_min, dg.u_max) || at_edge(c.v2, dg.v_min, dg.v_max);
-  const FlankPoint p = flank.evaluate(c.u1, c.v1);
-  const FlankPoint g = gear_flank.evaluate(c.u2, c.v2);
-  c.position         = assembly.pinion_to_global(p.position, phi);
-  c.normal_pinion    = assembly.pinion_vector_to_global(p.normal, phi);
-  c.normal_gear      = assembly.gear_vector_to_global(g.normal, c.touch_angle);
-  c.lambda_pinion =
-      (c.position - assembly.pinion_to_global(Vec3::Zero(), phi)).cross(c.normal_pinion);
-  c.lambda_gear =
-      (c.position - assembly.gear_to_global(Vec3::Zero(), c.touch_angle)).cross(c.normal_gear);
+  set_contact_geometry(c, assembly, flank, gear_flank, phi, c.touch_angle);
   return c;
 }
 
@@ -296,23 +288,46 @@ TcaResult
 UnloadedTca::run() const
 {
   TcaResult result;
-  result.mesh_angle  = 2 * pi / pinion->teeth();
-  const int n        = options.positions_per_mesh * options.mesh_cycles;
-  int       touching = 0;
+  result.mesh_angle = 2 * pi / pinion->teeth();
+  const int n       = options.positions_per_mesh * options.mesh_cycles;
   for (int i = 0; i < n; ++i)
+    result.positions.push_back(
+        at(options.start_angle + result.mesh_angle * i / options.positions_per_mesh));
+  summarise(result);
+  return result;
+}
+
+void
+set_contact_geometry(PairContact &c, const Assembly &assembly, const Flank &pinion_flank,
+                     const Flank &gear_flank, double phi, double psi)
+{
+  const FlankPoint p = pinion_flank.evaluate(c.u1, c.v1);
+  const FlankPoint g = gear_flank.evaluate(c.u2, c.v2);
+  c.position         = assembly.pinion_to_global(p.position, phi);
+  c.normal_pinion    = assembly.pinion_vector_to_global(p.normal, phi);
+  c.normal_gear      = assembly.gear_vector_to_global(g.normal, psi);
+  c.lambda_pinion =
+      (c.position - assembly.pinion_to_global(Vec3::Zero(), phi)).cross(c.normal_pinion);
+  c.lambda_gear = (c.position - assembly.gear_to_global(Vec3::Zero(), psi)).cross(c.normal_gear);
+}
+
+void
+summarise(TcaResult &result)
+{
+  int touching = 0;
+  result.transfers.clear();
+  for (std::size_t i = 0; i < result.positions.size(); ++i)
     {
-      result.positions.push_back(
-          at(options.start_angle + result.mesh_angle * i / options.positions_per_mesh));
-      const TcaPosition &p = result.positions.back();
+      const TcaPosition &p = result.positions[i];
       touching += p.touching;
       if (i > 0)
         {
           const TcaPosition &q = result.positions[i - 1];
           if (p.pairs[p.leading].pinion_tooth != q.pairs[q.leading].pinion_tooth)
-            result.transfers.push_back(i);
+            result.transfers.push_back(int(i));
         }
     }
-  result.mean_pairs_in_contact = double(touching) / n;
-  return result;
+  result.mean_pairs_in_contact =
+      result.positions.empty() ? 0 : double(touching) / result.positions.size();
 }
 } // namespace gearkit

@@ -65,6 +65,16 @@ struct TcaResult
   std::vector<int> transfers;
 };
 
+/// Fills c.position, the normals and the moment arms from the flank parameters c.u1, c.v1,
+/// c.u2, c.v2 (contact point taken on the pinion flank) at pinion angle phi and gear angle psi.
+void
+set_contact_geometry(PairContact &c, const Assembly &assembly, const Flank &pinion_flank,
+                     const Flank &gear_flank, double phi, double psi);
+
+/// Fills result.mean_pairs_in_contact and result.transfers from result.positions.
+void
+summarise(TcaResult &result);
+
 class UnloadedTca
 {
 public:

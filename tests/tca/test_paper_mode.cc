@@ -30,8 +30,8 @@ TEST(PaperMode, ErrorShrinksWithSpacingAndStaysWithinTolerance)
     const PaperModeResult r = paper_mode_ste(*mp, *mg, a, {}, po);
     tolerance               = r.tolerance;
     double w                = 0;
-    for (std::size_t i = 0; i < r.pinion_angle.size(); ++i)
-      w = std::max(w, std::abs(r.transmission_error[i] - (exact.positions[i].transmission_error -
+    for (std::size_t i = 0; i < r.seed_ste.size(); ++i)
+      w = std::max(w, std::abs(r.seed_ste[i] - (exact.positions[i].transmission_error -
                                                           exact.positions[0].transmission_error)));
     return w;
   };
@@ -45,4 +45,59 @@ TEST(PaperMode, ErrorShrinksWithSpacingAndStaysWithinTolerance)
   EXPECT_LT(coarse, 2 * E_coarse / G->base_radius * 24 / 16);
   // ... and halving the spacing reduces it.
   EXPECT_LT(fine, coarse);
+}
+
+TEST(PaperMode, GivesTheContactTablesOfClassicalTca)
+{
+  // Same tables as classical TCA, at the method's resolution: the cloud points closest to each
+  // other lie up to about a spacing apart along the flanks, so their normals are off by up to
+  // ~ 2E / rho (rho: involute radius of curvature there); moment arms about the axes (r_b for
+  // involutes) and separations (within 2E) agree.
+  auto [p, g]                            = test_data::fzg_c_pair();
+  p.drive_modifications.profile_crowning = 4e-6;
+  const auto   P = InvoluteGear::create(p), G = InvoluteGear::create(g);
+  const double a = working_centre_distance(*P, *G);
+  TcaOptions   o;
+  o.positions_per_mesh  = 5;
+  const TcaResult exact = UnloadedTca(P, G, a, {}, o).run();
+  const auto      mp    = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*P, "pinion", 9, 29));
+  const auto      mg    = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*G, "gear", 9, 29));
+  PaperModeOptions po;
+  po.spacing              = 200e-6;
+  po.positions_per_mesh   = 5;
+  int calls               = 0;
+  po.on_position          = [&] { ++calls; };
+  const PaperModeResult r = paper_mode_ste(*mp, *mg, a, {}, po);
+  ASSERT_EQ(r.tca.positions.size(), exact.positions.size());
+  EXPECT_EQ(calls, 5);
+  const double E = r.tolerance;
+  for (std::size_t i = 0; i < exact.positions.size(); ++i)
+    {
+      const TcaPosition &x = exact.positions[i], &q = r.tca.positions[i];
+      EXPECT_NEAR(q.transmission_error, x.transmission_error, 2 * E / G->base_radius * 24 / 16);
+      EXPECT_GE(q.touching, 1);
+      EXPECT_LE(q.pairs[q.leading].separation, E);
+      const PairContact &lx = x.pairs[x.leading];
+      bool               matched = false;
+      for (const PairContact &d : q.pairs)
+        {
+          if (d.pinion_tooth != lx.pinion_tooth)
+            continue;
+          matched = true;
+          // Smallest radius of curvature of the two involutes at the contact.
+          const double rho = std::min(
+              std::sqrt(lx.position.head<2>().squaredNorm() - std::pow(P->base_radius, 2)),
+              std::sqrt((lx.position - Vec3(a, 0, 0)).head<2>().squaredNorm() -
+                        std::pow(G->base_radius, 2)));
+          EXPECT_LT(std::acos(std::min(1.0, d.normal_pinion.dot(lx.normal_pinion))), 2 * E / rho);
+          EXPECT_LT(std::acos(std::min(1.0, d.normal_gear.dot(lx.normal_gear))), 2 * E / rho);
+          EXPECT_NEAR(d.lambda_pinion.z(), lx.lambda_pinion.z(), 1e-3 * P->base_radius) << i;
+          EXPECT_NEAR(d.lambda_gear.z(), lx.lambda_gear.z(), 1e-3 * G->base_radius) << i;
+        }
+      EXPECT_TRUE(matched) << i;
+      for (const PairContact &c : x.pairs)
+        for (const PairContact &d : q.pairs)
+          if (c.pinion_tooth == d.pinion_tooth && c.separation < 1e-3)
+            EXPECT_NEAR(d.separation, c.separation, 2 * E) << i;
+    }
 }

@@ -127,9 +127,9 @@ declare_measured(ParameterHandler &prm)
                     "Pinion CMM or topography file, relative to the scene file.");
   prm.declare_entry("gear file", "", Patterns::Anything(),
                     "Gear CMM or topography file, relative to the scene file.");
-  prm.declare_entry("profile points", "9", Patterns::Integer(2, 10000),
+  prm.declare_entry("profile points", "29", Patterns::Integer(2, 10000),
                     "Grid points along the profile per flank (virtual CMM).");
-  prm.declare_entry("face points", "29", Patterns::Integer(2, 10000),
+  prm.declare_entry("face points", "9", Patterns::Integer(2, 10000),
                     "Grid points along the face per flank (virtual CMM).");
   prm.declare_entry("edge margin", "0", Patterns::Double(0, 0.45),
                     "Fraction of the profile and face ranges left out at each edge.");
@@ -186,6 +186,16 @@ declare_tca(ParameterHandler &prm)
       "discrete-point STE on flanks interpolated from the measured points; results in "
       "/ste/<pair>/measured. Teeth that were not measured take the measured flank of "
       "the nearest measured tooth.");
+  prm.declare_entry("discrete-point method", "fast", Patterns::Selection("fast|paper"),
+                    "Method for the measured flanks: fast (exact contact search on the "
+                    "interpolated measured flanks) or paper (the seed's literal method: point "
+                    "clouds at the paper spacing, the driven member stepped until the clouds are "
+                    "within E = sqrt((a/2)^2 + (b/2)^2 + (r theta)^2); slow, error ~E, see "
+                    "bench/README.md).");
+  prm.declare_entry("paper spacing", "100", Patterns::Double(0.1),
+                    "[um] Paper mode: point spacing a = b of the clouds.");
+  prm.declare_entry("paper rotation step", "1", Patterns::Double(1e-3),
+                    "[urad] Paper mode: driven-member rotation step theta.");
 }
 
 void
@@ -381,6 +391,9 @@ get_tca(ParameterHandler &prm)
   t.harmonics                          = prm.get_integer("harmonics");
   t.measured                           = prm.get_bool("measured flanks");
   t.hunting                            = prm.get_bool("hunting cycle");
+  t.paper_mode                         = prm.get("discrete-point method") == "paper";
+  t.paper.spacing                      = prm.get_double("paper spacing") * um;
+  t.paper.rotation_step                = prm.get_double("paper rotation step") * 1e-6;
   return t;
 }
 
@@ -521,9 +534,14 @@ read_scene(const std::string &file)
           prm.enter_subsection("TCA");
           prm.enter_subsection(p);
           scene.tca[p] = get_tca(prm);
-          if (scene.tca[p].hunting)
-            scene.tca[p].options.mesh_cycles =
+          TcaScene &t = scene.tca[p];
+          if (t.hunting)
+            t.options.mesh_cycles =
                 std::lcm(pair.pinion.teeth, pair.gear.teeth); // mesh cycles in a hunting period
+          t.paper.side               = t.options.side;
+          t.paper.positions_per_mesh = t.options.positions_per_mesh;
+          t.paper.mesh_cycles        = t.options.mesh_cycles;
+          t.paper.start_angle        = t.options.start_angle;
           prm.leave_subsection();
           prm.leave_subsection();
           check_pair(pair);

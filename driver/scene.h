@@ -3,6 +3,7 @@
 #pragma once
 
 #include "involute_gear.h"
+#include "paper_mode.h"
 #include "unloaded_tca.h"
 
 #include <map>
@@ -56,6 +57,10 @@ struct TcaScene
   int          harmonics = 10; ///< mesh orders reported
   /// Also run the fast discrete-point analysis on the pair's measured flanks (/measured).
   bool measured = false;
+  /// Method for the measured flanks: the fast discrete-point analysis (false) or the seed's
+  /// literal point-cloud method (paper mode, true) with the settings in `paper`.
+  bool             paper_mode = false;
+  PaperModeOptions paper;
   /// Analyse the whole hunting-tooth cycle (lcm(z1, z2) mesh cycles) and report the spectrum in
   /// pinion shaft orders (per-tooth errors give shaft orders and mesh sidebands).
   bool hunting = false;

@@ -11,11 +11,9 @@ namespace gearkit
 {
 namespace
 {
-/// Runs the analysis over the scene's positions and writes every table to `g`; returns the
-/// peak-to-peak and mean pairs in contact for the log.
-std::pair<double, double>
-analyse(const UnloadedTca &tca, const TcaScene &t, double a, int z1, int z2, const H5Group &g,
-        Progress &progress)
+/// Classical (or fast discrete-point) TCA over the scene's positions.
+TcaResult
+analyse(const UnloadedTca &tca, const TcaScene &t, int z1, Progress &progress)
 {
   TcaResult r;
   r.mesh_angle = 2 * pi / z1;
@@ -26,6 +24,16 @@ analyse(const UnloadedTca &tca, const TcaScene &t, double a, int z1, int z2, con
           tca.at(t.options.start_angle + r.mesh_angle * i / t.options.positions_per_mesh));
       progress.step();
     }
+  summarise(r);
+  return r;
+}
+
+/// Writes every table of `r` to `g`; returns the peak-to-peak and mean pairs in contact for the
+/// log.
+std::pair<double, double>
+write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, const H5Group &g)
+{
+  const int n = int(r.positions.size());
 
   // Per-position tables; pair slots padded to the most pairs met at any position.
   std::size_t slots = 0;
@@ -130,8 +138,10 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
           t.centre_distance > 0 ? t.centre_distance : working_centre_distance(*pinion, *gear);
       const int     z1 = pinion->teeth(), z2 = gear->teeth();
       const H5Group g        = out.group(pair.name);
-      const auto [pp, pairs] = analyse(UnloadedTca(pinion, gear, a, t.misalignment, t.options), t,
-                                       a, z1, z2, g, progress);
+      g.attribute("method", "classical TCA on the theoretical flanks");
+      const auto [pp, pairs] = write_tables(
+          analyse(UnloadedTca(pinion, gear, a, t.misalignment, t.options), t, z1, progress), t, a,
+          z1, z2, g);
       log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
           << " urad, mean pairs in contact " << pairs << "\n";
       if (!t.measured)
@@ -148,10 +158,32 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
           std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("pinion"), "pinion"));
       const auto mg =
           std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("gear"), "gear"));
-      const auto [mpp, mpairs] = analyse(UnloadedTca(mp, mg, a, t.misalignment, t.options), t, a,
-                                         z1, z2, g.group("measured"), progress);
-      log << "  " << pair.name << " measured: e_0 peak-to-peak " << mpp * 1e6
-          << " urad, mean pairs in contact " << mpairs << "\n";
+      const H5Group gm = g.group("measured");
+      TcaResult     r;
+      if (t.paper_mode)
+        {
+          PaperModeOptions po = t.paper;
+          po.on_position      = [&] { progress.step(); };
+          const PaperModeResult paper = paper_mode_ste(*mp, *mg, a, t.misalignment, po);
+          r                           = paper.tca;
+          gm.attribute("method", "paper mode (the seed's point-cloud method) on the measured "
+                                    "flanks");
+          gm.write("paper_tolerance", paper.tolerance, "m",
+                   "contact tolerance E = sqrt((a/2)^2 + (b/2)^2 + (r theta)^2)");
+          gm.write("paper_points", double(paper.points), "1", "points in all clouds");
+          gm.write("seed_ste", paper.seed_ste, {paper.seed_ste.size()}, "rad",
+                   "the seed's STE, relative to the first position");
+        }
+      else
+        {
+          r = analyse(UnloadedTca(mp, mg, a, t.misalignment, t.options), t, z1, progress);
+          gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
+                                    "interpolated from the measured points");
+        }
+      const auto [mpp, mpairs] = write_tables(r, t, a, z1, z2, gm);
+      log << "  " << pair.name << " measured (" << (t.paper_mode ? "paper mode" : "fast")
+          << "): e_0 peak-to-peak " << mpp * 1e6 << " urad, mean pairs in contact " << mpairs
+          << "\n";
     }
 }
 } // namespace gearkit

@@ -44,10 +44,11 @@ virtual_cmm(const std::string &member, int teeth,
             const std::vector<int> &teeth_to_measure = {}, bool both_sides = true);
 
 /// The same for the flanks of an involute gear, sampled with sample_flank on n_profile x n_face
-/// points (default 9 x 29 = 261, the seed paper's count), `margin` of each parameter range left
-/// out at every edge.
+/// points (default 29 x 9 = 261, the seed paper's count laid out as cylindrical gears are
+/// measured: dense along the profile, where the transmission error lives, 9 lead lines),
+/// `margin` of each parameter range left out at every edge.
 MeasuredMember
-virtual_cmm(const InvoluteGear &gear, const std::string &member, int n_profile = 9, int n_face = 29,
+virtual_cmm(const InvoluteGear &gear, const std::string &member, int n_profile = 29, int n_face = 9,
             double margin = 0, const std::vector<int> &teeth_to_measure = {},
             bool both_sides = true);
 

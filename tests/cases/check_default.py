@@ -32,7 +32,7 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
         flanks = [n for n in g if n.startswith("tooth_")]
         assert len(flanks) == 2 * z, (member, len(flanks))
         dev = np.array([g[n]["deviation"][:] for n in flanks])
-        assert dev.shape[1:] == (9, 29)
+        assert dev.shape[1:] == (29, 9), dev.shape  # 29 profile x 9 face points
         # Per flank, the pitch error is a near-constant offset; what is left has the spread of
         # noise (1 um sd), roughness (0.3 um sd), waviness (0.5 um amplitude) and form error
         # (2 um peak, four random shapes): about 1.3 um.

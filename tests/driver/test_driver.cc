@@ -448,3 +448,57 @@ TEST_F(DriverTest, HuntingCycleSpectrumShowsShaftOrdersOfAnEccentricTooth)
   for (int order : {1, 2, 15, 17})
     EXPECT_GT(eccentric[order], 1e-8) << order; // step 4.5 um: lines of ~0.1-1 um
 }
+
+TEST_F(DriverTest, PaperModeIsSelectableAndWritesTheSameTables)
+{
+  // The measured flanks (a perfect virtual CMM) analysed by the seed's point-cloud method: the
+  // same tables as the classical analysis, e_0 within the method's bound 2 E / r_b2 (z2/z1) of
+  // the classical (exact: zero), the seed's relative STE and E stored beside them.
+  std::string text =
+      std::regex_replace(small_scene, std::regex("set outputs = flanks"), "set outputs = ste");
+  text += R"(
+subsection Measured flanks
+  subsection p1
+    set source = virtual cmm
+  end
+end
+subsection TCA
+  subsection p1
+    set positions per mesh cycle = 3
+    set mesh cycles              = 1
+    set measured flanks          = true
+    set discrete-point method    = paper
+    set paper spacing            = 300
+  end
+end
+)";
+  ASSERT_EQ(run({scene(text)}), 0) << err.str();
+  EXPECT_NE(out.str().find("measured (paper mode)"), std::string::npos) << out.str();
+  const H5File  f = H5File::open((dir / "out/small/results.h5").string());
+  const H5Group g = f.root().group("ste/p1");
+  const H5Group m = g.group("measured");
+  EXPECT_NE(m.read_attribute("method").find("paper mode"), std::string::npos);
+  const double              E       = m.read_double("paper_tolerance");
+  const std::vector<double> e_paper = m.read_doubles("transmission_error");
+  const std::vector<double> seed    = m.read_doubles("seed_ste");
+  std::vector<hsize_t>      shape, shape_classical;
+  m.read_doubles("normal_pinion", &shape);
+  g.read_doubles("normal_pinion", &shape_classical);
+  EXPECT_EQ(shape[0], shape_classical[0]);
+  EXPECT_EQ(shape[2], 3u);
+  ASSERT_EQ(e_paper.size(), 3u);
+  EXPECT_GT(E, 0.6 * 300e-6); // about spacing / sqrt(2); the grid rounds the spacing down
+  EXPECT_LT(E, 0.75 * 300e-6);
+  const double r_b2 = 37 * 2e-3 * std::cos(20 * pi / 180) / 2;
+  for (std::size_t i = 0; i < 3; ++i)
+    {
+      EXPECT_LT(std::abs(e_paper[i]), 2 * E / r_b2 * 37 / 19) << i;
+      EXPECT_NEAR(seed[i], e_paper[i] - e_paper[0], 1e-15);
+    }
+  // the fast mode on the same flanks is exact to the interpolation error
+  ASSERT_EQ(run({scene(std::regex_replace(text, std::regex("= paper"), "= fast"))}), 0)
+      << err.str();
+  const H5File fast = H5File::open((dir / "out/small/results.h5").string());
+  for (double e : fast.root().group("ste/p1/measured").read_doubles("transmission_error"))
+    EXPECT_LT(std::abs(e), 1e-8);
+}

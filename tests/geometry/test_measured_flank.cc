@@ -128,10 +128,11 @@ case_name(const ::testing::TestParamInfo<MalformedCmm> &info)
 TEST(VirtualCmm, DefaultGridPointsLieOnTheFlank)
 {
   const auto g = test_gear();
-  // the default is all teeth, both sides, 9 x 29 points, no margin
+  // the default is all teeth, both sides, 29 profile x 9 face points, no margin
   const MeasuredMember all = virtual_cmm(*g, "gear");
   ASSERT_EQ(all.flanks.size(), 46u);
-  EXPECT_EQ(all.flanks[4 * 2].points, virtual_cmm(*g, "gear", 9, 29, 0, {4}).flanks[0].points);
+  EXPECT_EQ(all.flanks[4 * 2].points, virtual_cmm(*g, "gear", 29, 9, 0, {4}).flanks[0].points);
+  EXPECT_EQ(all.flanks[0].n_profile, 29);
   for (double margin : {0.0, 0.05})
     {
       const MeasuredMember m = virtual_cmm(*g, "gear", 9, 29, margin, {4, 11});
@@ -782,7 +783,7 @@ TEST(Synthesiser, PitchDeviationsHaveTheRequestedSpread)
 
 TEST(Synthesiser, FormWavinessAndRoughnessHaveTheirDocumentedSize)
 {
-  const MeasuredMember theory = virtual_cmm(*test_gear(), "pinion");
+  const MeasuredMember theory = virtual_cmm(*test_gear(), "pinion", 9, 29);
   auto mixed_difference       = [](const std::vector<double> &d, std::size_t flank, int i, int j) {
     const std::size_t k = flank * 261 + i * 29 + j;
     return d[k + 30] - d[k + 29] - d[k + 1] + d[k];

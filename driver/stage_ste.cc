@@ -89,12 +89,21 @@ write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, co
           "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
   if (t.hunting)
     {
-      // Over the hunting cycle the signal is periodic in pinion revolutions.
-      const std::vector<double> shaft =
-          mesh_order_amplitudes(te_pitch, t.options.mesh_cycles / z1, z1 * t.harmonics);
-      g.write("shaft_order_spectrum", shaft, {shaft.size()}, "m",
-              "amplitudes of e_0 at the pitch point over the hunting cycle, by pinion shaft "
-              "order 0..z1 N (mesh order m is shaft order m z1)");
+      // The signal repeats after the hunting cycle: its fundamental is 1 / revolutions pinion
+      // orders, so gear-tooth errors (gear order 1 = pinion order z1 / z2) land on lines too.
+      const int                 revolutions = t.options.mesh_cycles / z1;
+      const std::vector<double> amplitude =
+          mesh_order_amplitudes(te_pitch, 1, revolutions * z1 * t.harmonics);
+      std::vector<double> order(amplitude.size());
+      for (std::size_t k = 0; k < order.size(); ++k)
+        order[k] = double(k) / revolutions;
+      g.write("shaft_order", order, {order.size()}, "1",
+              "pinion shaft orders of shaft_order_spectrum, k / (pinion revolutions in the "
+              "hunting cycle): mesh order m is pinion order m z1, gear order n is pinion "
+              "order n z1 / z2");
+      g.write("shaft_order_spectrum", amplitude, {amplitude.size()}, "m",
+              "amplitudes of e_0 at the pitch point over the hunting cycle at the pinion shaft "
+              "orders in shaft_order (0 .. z1 x harmonics)");
     }
   g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
   g.write("mean_pairs_in_contact", pairs_sum / n, "1",

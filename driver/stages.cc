@@ -53,7 +53,7 @@ stage_definitions()
        "unloaded tooth contact analysis: static transmission error, contact path, normals",
        {"flanks", "measured"},
        {"TCA"},
-       2,
+       3,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_ste_stage},
   };

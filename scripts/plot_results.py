@@ -7,6 +7,7 @@ usage: plot_results.py out/<scene>/results.h5
   topography.png  modifications of tooth 0 (drive, coast) of every member, um over the flank
   measured.png    measured minus theoretical flank of the first measured tooth, um
   ste.png         unloaded static transmission error, harmonics, contact path
+  hunting.png     STE over the hunting-tooth cycle and its spectrum in pinion shaft orders
 """
 import os
 import sys
@@ -185,6 +186,52 @@ def plot_ste(ste, flanks, out_dir):
     save(fig, os.path.join(out_dir, "ste.png"))
 
 
+def plot_hunting(ste, flanks, out_dir):
+    """Pairs analysed over the hunting-tooth cycle: e_0 over pinion revolutions and its spectrum
+    in pinion shaft orders (mesh orders at multiples of z1, per-tooth errors between them)."""
+    pairs = [n for n in ste if "shaft_order_spectrum" in ste[n]]
+    if not pairs:
+        return
+    fig, axes = plt.subplots(len(pairs), 2, figsize=(15, 4 * len(pairs)), squeeze=False,
+                             gridspec_kw={"width_ratios": [1.3, 1]})
+    for row, name in zip(axes, pairs):
+        g = ste[name]
+        z1 = int(flanks[name]["pinion"]["number_of_teeth"][()])
+        revolutions = g["pinion_angle"][:] / (2 * np.pi)
+        sets = [("theoretical flanks", g)]
+        if "measured" in g and "shaft_order_spectrum" in g["measured"]:
+            sets.append(("measured flanks", g["measured"]))
+        for i, (label, h) in enumerate(sets):
+            colour = f"C{i}"
+            row[0].plot(revolutions, h["transmission_error_pitch"][:] * 1e6, lw=0.6, color=colour,
+                        label=label)
+            # the first two mesh orders, where the sidebands of per-tooth errors are readable
+            shown = h["shaft_order"][:] <= 2 * z1 + 0.5
+            spectrum = h["shaft_order_spectrum"][:][shown][1:] * 1e6
+            orders = h["shaft_order"][:][shown][1:] + (0.08 * i - 0.04 if len(sets) > 1 else 0)
+            markers, stems, _ = row[1].stem(orders, spectrum, label=label, linefmt=colour + "-",
+                                            markerfmt=colour + ("o" if i == 0 else "s"),
+                                            basefmt=" ")
+            plt.setp(markers, markersize=3 if i == 0 else 2.5)
+            plt.setp(stems, linewidth=0.8, alpha=0.8)
+        row[0].set_xlabel("pinion revolutions")
+        row[0].set_ylabel("e_0 at pitch point [um]")
+        row[0].set_title(f"{name}: unloaded STE over the hunting cycle")
+        row[0].legend(fontsize=8)
+        row[0].grid(alpha=0.3)
+        for m in (z1, 2 * z1):
+            row[1].axvline(m, color="grey", ls="--", lw=0.6)
+        row[1].set_yscale("log")
+        row[1].set_ylim(bottom=1e-4)
+        z2 = int(flanks[name]["gear"]["number_of_teeth"][()])
+        row[1].set_xlabel(f"pinion shaft order (dashed: mesh orders; gear order 1 = {z1}/{z2})")
+        row[1].set_ylabel("amplitude at pitch point [um]")
+        row[1].set_title("spectrum over the hunting cycle")
+        row[1].legend(fontsize=8)
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "hunting.png"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -198,6 +245,7 @@ def main():
             plot_measured(f["measured"], out_dir)
         if "ste" in f:
             plot_ste(f["ste"], f["flanks"], out_dir)
+            plot_hunting(f["ste"], f["flanks"], out_dir)
 
 
 if __name__ == "__main__":

@@ -432,21 +432,35 @@ TEST_F(DriverTest, HuntingCycleSpectrumShowsShaftOrdersOfAnEccentricTooth)
           "cycle = true\n    set harmonics = 2\n  end\nend\n";
   auto spectrum = [&](const std::string &scene_text) {
     EXPECT_EQ(run({scene(scene_text)}), 0) << err.str();
-    return H5File::open((dir / "out/small/results.h5").string())
-        .root()
-        .group("ste/p1")
-        .read_doubles("shaft_order_spectrum");
+    const H5Group g = H5File::open((dir / "out/small/results.h5").string()).root().group("ste/p1");
+    const std::vector<double> order = g.read_doubles("shaft_order");
+    EXPECT_DOUBLE_EQ(order[3], 1.0); // 3 pinion revolutions: lines every 1/3 order
+    EXPECT_DOUBLE_EQ(order.back(), 32.0);
+    return g.read_doubles("shaft_order_spectrum");
   };
   const std::vector<double> perfect = spectrum(text);
-  ASSERT_EQ(perfect.size(), 33u); // orders 0 .. 16 x 2
+  ASSERT_EQ(perfect.size(), 97u); // orders 0, 1/3, .. 16 x 2
   for (double a : perfect)        // the touch-angle Newton stops at 1e-13 m: TE noise of that size
     EXPECT_LT(a, 1e-12);
   const std::vector<double> eccentric = spectrum(std::regex_replace(
       text, std::regex("set number of teeth = 16\n"),
       "set number of teeth = 16\n      subsection Deviations\n        set eccentric tooth = 0\n"
       "        set eccentric tooth offset = 4.5\n      end\n"));
+  // A pinion tooth repeats every pinion revolution: integer pinion orders 1, 2 and the sidebands
+  // 15, 17 of the mesh order (step 4.5 um: lines of ~0.1-1 um), nothing between them.
   for (int order : {1, 2, 15, 17})
-    EXPECT_GT(eccentric[order], 1e-8) << order; // step 4.5 um: lines of ~0.1-1 um
+    EXPECT_GT(eccentric[3 * order], 1e-8) << order;
+  for (std::size_t k = 0; k < eccentric.size(); ++k)
+    if (k % 3 != 0)
+      EXPECT_LT(eccentric[k], 1e-12) << k;
+  // The same on a gear tooth repeats every gear revolution, pinion order 16/24 = 2/3.
+  const std::vector<double> gear_tooth = spectrum(std::regex_replace(
+      text, std::regex("set number of teeth = 24\n"),
+      "set number of teeth = 24\n      subsection Deviations\n        set eccentric tooth = 0\n"
+      "        set eccentric tooth offset = 4.5\n      end\n"));
+  EXPECT_GT(gear_tooth[2], 1e-8);
+  EXPECT_LT(gear_tooth[1], 1e-12);
+  EXPECT_LT(gear_tooth[3], 1e-12);
 }
 
 TEST_F(DriverTest, PaperModeIsSelectableAndWritesTheSameTables)

@@ -250,3 +250,39 @@ TEST(UnloadedTca, ProfileCrowningGivesParabolicArcs)
   EXPECT_LT(largest, 1.01 * 4e-6 * x_transfer * x_transfer / rb);
   EXPECT_GT(largest, 0.8 * 4e-6 * x_transfer * x_transfer / rb);
 }
+
+TEST(UnloadedTca, CoastFlanksCloseTheBacklashFromTheOtherSide)
+{
+  // On the coast flanks the same exact relations hold with the signs turned: zero TE at zero
+  // backlash; at a' = a_w + 0.1 mm the drive and coast errors lie the whole backlash j / r'_1
+  // apart, symmetrically; a 4.5 um proud coast flank holds the gear back by e / r_b1.
+  const Pair s = make(c_pair(10 * deg));
+  TcaOptions o;
+  o.positions_per_mesh = 12;
+  o.side               = FlankSide::coast;
+  for (const TcaPosition &p : UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run().positions)
+    EXPECT_LT(std::abs(p.transmission_error), 1e-9) << p.pinion_angle;
+
+  const double a  = s.a_w + 0.1e-3;
+  const double ca = (s.pinion->base_radius + s.gear->base_radius) / a;
+  const double r1 = s.pinion->base_radius / ca, r2 = s.gear->base_radius / ca;
+  const double j  = 2 * pi * r1 / 16 - s.pinion->tooth_thickness(r1) - s.gear->tooth_thickness(r2);
+  const TcaResult coast = UnloadedTca(s.pinion, s.gear, a, {}, o).run();
+  o.side                = FlankSide::drive;
+  const TcaResult drive = UnloadedTca(s.pinion, s.gear, a, {}, o).run();
+  EXPECT_LT(peak_to_peak(coast), 1e-9);
+  EXPECT_NEAR(drive.positions[0].transmission_error - coast.positions[0].transmission_error,
+              j / r1, 1e-9);
+  EXPECT_NEAR(coast.positions[0].transmission_error, -j / (2 * r1), 1e-9);
+
+  auto d                  = c_pair();
+  d.first.eccentric_teeth = {{0, FlankSide::coast, 4.5e-6}};
+  const Pair e            = make(d);
+  TcaOptions oc;
+  oc.side = FlankSide::coast;
+  UnloadedTca tca(e.pinion, e.gear, e.a_w, {}, oc);
+  EXPECT_NEAR(tca.at(0).transmission_error, 4.5e-6 / e.pinion->base_radius, 1e-9);
+  EXPECT_NEAR(tca.at(-3 * 2 * pi / 16).transmission_error, 0, 1e-9);
+  // the drive side does not see it
+  EXPECT_NEAR(UnloadedTca(e.pinion, e.gear, e.a_w).at(0).transmission_error, 0, 1e-9);
+}

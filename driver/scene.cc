@@ -196,6 +196,9 @@ declare_tca(ParameterHandler &prm)
                     "[um] Paper mode: point spacing a = b of the clouds.");
   prm.declare_entry("paper rotation step", "1", Patterns::Double(1e-3),
                     "[urad] Paper mode: driven-member rotation step theta.");
+  prm.declare_entry("paper tolerance", "0", Patterns::Double(0),
+                    "[um] Paper mode: contact tolerance E; 0 = the smallest admissible, "
+                    "sqrt((a/2)^2 + (b/2)^2 + (r theta)^2); a smaller value is refused.");
 }
 
 void
@@ -394,6 +397,7 @@ get_tca(ParameterHandler &prm)
   t.paper_mode                         = prm.get("discrete-point method") == "paper";
   t.paper.spacing                      = prm.get_double("paper spacing") * um;
   t.paper.rotation_step                = prm.get_double("paper rotation step") * 1e-6;
+  t.paper.tolerance                    = prm.get_double("paper tolerance") * um;
   return t;
 }
 

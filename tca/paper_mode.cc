@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <sstream>
 
 namespace gearkit
 {
@@ -157,8 +158,18 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
       if (pairs.empty())
         throw InputError("paper mode: no measured tooth pair in mesh at pinion angle " +
                          std::to_string(phi));
-      const double l   = r_max * o.rotation_step;
-      result.tolerance = std::sqrt(a * a / 4 + b * b / 4 + l * l);
+      const double l        = r_max * o.rotation_step;
+      const double smallest = std::sqrt(a * a / 4 + b * b / 4 + l * l);
+      if (o.tolerance > 0 && o.tolerance < smallest)
+        {
+          std::ostringstream m;
+          m << "paper mode: tolerance E = " << o.tolerance * 1e6 << " um is below sqrt((a/2)^2 + "
+            << "(b/2)^2 + (r theta)^2) = " << smallest * 1e6 << " um (a = " << a * 1e6
+            << " um, b = " << b * 1e6 << " um, r theta = " << l * 1e6
+            << " um); expected E >= that, or 0 for it";
+          throw InputError(m.str());
+        }
+      result.tolerance = std::max(o.tolerance, smallest);
       const double E   = result.tolerance;
 
       auto min_distance = [&](double psi) {

@@ -20,6 +20,9 @@ struct PaperModeOptions
   FlankSide side               = FlankSide::drive;
   double    spacing            = 20e-6; ///< target point spacing a = b on the flanks [m]
   double    rotation_step      = 1e-6;  ///< driven-member rotation step theta [rad]
+  /// Contact tolerance E [m]; 0 = the smallest admissible, sqrt((a/2)^2 + (b/2)^2 + l^2). A
+  /// smaller E is refused (clouds could pass through each other between points).
+  double tolerance = 0;
   int       positions_per_mesh = 50;
   int       mesh_cycles        = 1;
   double    start_angle        = 0;

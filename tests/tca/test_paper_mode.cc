@@ -101,3 +101,35 @@ TEST(PaperMode, GivesTheContactTablesOfClassicalTca)
             EXPECT_NEAR(d.separation, c.separation, 2 * E) << i;
     }
 }
+
+TEST(PaperMode, ToleranceBelowTheGridBoundIsRefused)
+{
+  // E must cover half the point spacing in both directions and the arc of one rotation step;
+  // a larger E is used as given (contact declared earlier: the error grows with it).
+  auto [p, g]    = test_data::fzg_c_pair();
+  const auto   P = InvoluteGear::create(p), G = InvoluteGear::create(g);
+  const double a = working_centre_distance(*P, *G);
+  const auto   mp = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*P, "pinion"));
+  const auto   mg = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*G, "gear"));
+  PaperModeOptions po;
+  po.spacing            = 300e-6;
+  po.positions_per_mesh = 2;
+  po.mesh_cycles        = 1;
+  po.tolerance          = 100e-6;
+  try
+    {
+      paper_mode_ste(*mp, *mg, a, {}, po);
+      FAIL() << "E = 100 um below the bound for 300 um spacing was accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("tolerance E = 100 um"), std::string::npos) << e.what();
+    }
+  po.tolerance             = 0;
+  const PaperModeResult r0 = paper_mode_ste(*mp, *mg, a, {}, po);
+  po.tolerance             = 2 * r0.tolerance;
+  const PaperModeResult r2 = paper_mode_ste(*mp, *mg, a, {}, po);
+  EXPECT_DOUBLE_EQ(r2.tolerance, 2 * r0.tolerance);
+  // a larger E declares contact earlier: the gear is found further ahead (e_0 lower)
+  EXPECT_LT(r2.tca.positions[0].transmission_error, r0.tca.positions[0].transmission_error);
+}

@@ -19,6 +19,7 @@ struct MemberFlanks::Entry
   std::vector<double>    params; ///< u0, v0, u1, v1, ...
 };
 
+MemberFlanks::MemberFlanks()  = default;
 MemberFlanks::~MemberFlanks() = default;
 
 void

@@ -15,6 +15,7 @@ namespace gearkit
 class MemberFlanks
 {
 public:
+  MemberFlanks(); // out of line, where Entry is complete
   virtual ~MemberFlanks();
   virtual int
   teeth() const = 0;

@@ -13,15 +13,35 @@ rot_z(double a)
 }
 } // namespace
 
-Assembly::Assembly(double a, int z2, const Misalignment &m)
-    : centre(a + m.centre_distance_error, 0, 0)
+Assembly::Assembly(const Vec3 &c, const Eigen::Matrix3d &frame, double ph, const Misalignment &m)
+    : centre(c + Vec3(m.centre_distance_error, m.offset, 0))
     , orientation((Eigen::AngleAxisd(m.intersecting_angle, Vec3::UnitY()) *
                    Eigen::AngleAxisd(m.crossing_angle, Vec3::UnitX()))
-                      .toRotationMatrix())
-    , phase(pi + pi / z2)
+                      .toRotationMatrix() *
+                  frame)
+    , phase(ph)
     , pinion_shift(m.pinion_axial_shift)
     , gear_shift(m.gear_axial_shift)
 {
+}
+
+Assembly::Assembly(double a, int z2, const Misalignment &m)
+    : Assembly(Vec3(a, 0, 0), Eigen::Matrix3d::Identity(), pi + pi / z2, m)
+{
+}
+
+Assembly
+Assembly::bevel(double shaft_angle, double gamma_1, int z2, const Misalignment &m)
+{
+  // Gear frame: z along the gear axis, x from the axis toward the common pitch element.
+  const Vec3      element(std::sin(gamma_1), 0, std::cos(gamma_1));
+  const Vec3      axis(std::sin(shaft_angle), 0, std::cos(shaft_angle));
+  const Vec3      x = (element - element.dot(axis) * axis).normalized();
+  Eigen::Matrix3d frame;
+  frame.col(0) = x;
+  frame.col(1) = axis.cross(x);
+  frame.col(2) = axis;
+  return Assembly(Vec3::Zero(), frame, pi / z2, m);
 }
 
 Vec3

@@ -10,9 +10,14 @@
 
 namespace gearkit
 {
-/// Assembly errors of a parallel-axis pair (SI: m, rad).
+/// Assembly errors (SI: m, rad). For parallel axes the names say it; for bevel pairs (axes
+/// intersecting at the apex, the origin) the intersecting angle is the shaft angle error
+/// Delta gamma, the axial shifts are Delta A1 and Delta A2 and `offset` is the hypoid offset
+/// Delta E.
 struct Misalignment
 {
+  /// Gear axis moved along the common perpendicular of the axes (global y) [m].
+  double offset = 0;
   double centre_distance_error = 0; ///< added to the nominal centre distance [m]
   /// Gear axis turned about the line of centres (x): crossing axes, the deviation of parallelism
   /// out of the plane of the axes (f_Sigma_beta).
@@ -29,7 +34,14 @@ struct Misalignment
 class Assembly
 {
 public:
+  /// Parallel axes at the given centre distance: the gear axis through (a, 0, 0).
   Assembly(double centre_distance, int gear_teeth, const Misalignment &m = {});
+  /// Intersecting axes (bevel pair): both apexes at the origin, the gear axis at the shaft angle
+  /// to the pinion's in the x-z plane; the pitch cones touch along the element at the pinion's
+  /// pitch angle on the +x side, where pinion tooth 0 and a gear tooth space face each other.
+  static Assembly
+  bevel(double shaft_angle, double pinion_pitch_angle, int gear_teeth,
+        const Misalignment &m = {});
 
   /// Global position of a pinion-frame point at pinion rotation phi.
   Vec3
@@ -62,9 +74,11 @@ public:
   }
 
 private:
+  Assembly(const Vec3 &centre, const Eigen::Matrix3d &frame, double phase, const Misalignment &m);
+
   Vec3            centre;
-  Eigen::Matrix3d orientation; ///< M: misalignment rotation
-  double          phase;       ///< pi + pi / z2
+  Eigen::Matrix3d orientation; ///< misalignment rotation times the gear's nominal frame
+  double          phase;       ///< turns a gear tooth space to the mesh
   double          pinion_shift;
   double          gear_shift;
 };

@@ -34,9 +34,16 @@ rot_z(double a)
 UnloadedTca::UnloadedTca(std::shared_ptr<const MemberFlanks> p,
                          std::shared_ptr<const MemberFlanks> g, double a, const Misalignment &m,
                          const TcaOptions &o)
+    : UnloadedTca(p, g, Assembly(a, g->teeth(), m), o)
+{
+}
+
+UnloadedTca::UnloadedTca(std::shared_ptr<const MemberFlanks> p,
+                         std::shared_ptr<const MemberFlanks> g, const Assembly &a,
+                         const TcaOptions &o)
     : pinion(std::move(p))
     , gear(std::move(g))
-    , assembly(a, gear->teeth(), m)
+    , assembly(a)
     , options(o)
     , ratio(double(pinion->teeth()) / gear->teeth())
 {

@@ -83,6 +83,9 @@ public:
   UnloadedTca(std::shared_ptr<const MemberFlanks> pinion, std::shared_ptr<const MemberFlanks> gear,
               double centre_distance, const Misalignment &misalignment = {},
               const TcaOptions &options = {});
+  /// Any flank surfaces in any assembly (e.g. Assembly::bevel for a spiral bevel pair).
+  UnloadedTca(std::shared_ptr<const MemberFlanks> pinion, std::shared_ptr<const MemberFlanks> gear,
+              const Assembly &assembly, const TcaOptions &options = {});
   /// Involute members; checks that they can mesh (same normal module, pressure and helix angle,
   /// opposite hands).
   UnloadedTca(std::shared_ptr<const InvoluteGear> pinion, std::shared_ptr<const InvoluteGear> gear,

@@ -1,0 +1,155 @@
+#include "bevel_gear.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace gearkit
+{
+namespace
+{
+void
+require(bool ok, const std::string &parameter, double value, const std::string &allowed)
+{
+  if (ok)
+    return;
+  std::ostringstream m;
+  m << "spiral bevel pair: " << parameter << " = " << value << "; expected " << allowed;
+  throw InputError(m.str());
+}
+} // namespace
+
+BevelPairGeometry
+bevel_geometry(const BevelPairDesign &d)
+{
+  require(d.pinion_teeth >= 3, "pinion teeth", d.pinion_teeth, ">= 3");
+  require(d.gear_teeth >= 3, "gear teeth", d.gear_teeth, ">= 3");
+  require(d.shaft_angle > 0 && d.shaft_angle < pi, "shaft angle [deg]", d.shaft_angle * 180 / pi,
+          "in (0, 180)");
+  require(d.module > 0, "module [mm]", d.module * 1e3, "> 0");
+  require(d.mean_spiral_angle >= 0 && d.mean_spiral_angle < 60 * pi / 180,
+          "mean spiral angle [deg]", d.mean_spiral_angle * 180 / pi, "in [0, 60)");
+  require(d.pressure_angle > 0 && d.pressure_angle < 45 * pi / 180, "pressure angle [deg]",
+          d.pressure_angle * 180 / pi, "in (0, 45)");
+  require(d.cutter_radius > 0, "cutter radius [mm]", d.cutter_radius * 1e3, "> 0");
+  require(d.pinion_addendum > 0 && d.pinion_addendum < 2, "pinion addendum factor",
+          d.pinion_addendum, "in (0, 2)");
+  require(d.clearance >= 0 && d.clearance < 1, "clearance factor", d.clearance, "in [0, 1)");
+  require(d.pinion_thickness > 0 && d.pinion_thickness < 1, "pinion thickness factor",
+          d.pinion_thickness, "in (0, 1)");
+
+  BevelPairGeometry g;
+  const double      ratio = double(d.gear_teeth) / d.pinion_teeth;
+  g.pitch_angle_pinion    = std::atan2(std::sin(d.shaft_angle), ratio + std::cos(d.shaft_angle));
+  g.pitch_angle_gear      = d.shaft_angle - g.pitch_angle_pinion;
+  const double s1         = std::sin(g.pitch_angle_pinion);
+  const double cb         = std::cos(d.mean_spiral_angle);
+  if (d.module_kind == BevelModule::outer_transverse)
+    {
+      g.outer_transverse_module = d.module;
+      g.outer_cone_distance     = d.module * d.pinion_teeth / (2 * s1);
+      g.mean_cone_distance      = g.outer_cone_distance - d.face_width / 2;
+      g.mean_normal_module      = d.module * g.mean_cone_distance / g.outer_cone_distance * cb;
+    }
+  else
+    {
+      g.mean_normal_module      = d.module;
+      g.mean_cone_distance      = d.module / cb * d.pinion_teeth / (2 * s1);
+      g.outer_cone_distance     = g.mean_cone_distance + d.face_width / 2;
+      g.outer_transverse_module = d.module / cb * g.outer_cone_distance / g.mean_cone_distance;
+    }
+  require(d.face_width > 0 && d.face_width < g.outer_cone_distance, "face width [mm]",
+          d.face_width * 1e3, "in (0, outer cone distance = " +
+                                  std::to_string(g.outer_cone_distance * 1e3) + " mm)");
+  const double m  = g.mean_normal_module;
+  const double c  = d.clearance * m;
+  g.pinion        = {d.pinion_teeth, g.pitch_angle_pinion, g.mean_cone_distance, d.face_width,
+                     d.pinion_addendum * m, (2 - d.pinion_addendum) * m + c};
+  g.gear          = {d.gear_teeth, g.pitch_angle_gear, g.mean_cone_distance, d.face_width,
+                     (2 - d.pinion_addendum) * m, d.pinion_addendum * m + c};
+  return g;
+}
+
+NominalSettings
+nominal_settings(const BevelPairDesign &d)
+{
+  const BevelPairGeometry g  = bevel_geometry(d);
+  const double            Am = g.mean_cone_distance, rc = d.cutter_radius;
+  const double            sb = std::sin(d.mean_spiral_angle), cb = std::cos(d.mean_spiral_angle);
+  NominalSettings         n;
+  n.radial_setting       = std::sqrt(Am * Am + rc * rc - 2 * Am * rc * sb);
+  n.cradle_angle         = std::atan2(rc * cb, Am - rc * sb);
+  n.ratio_of_roll_pinion = 1 / std::sin(g.pitch_angle_pinion);
+  n.ratio_of_roll_gear   = 1 / std::sin(g.pitch_angle_gear);
+  return n;
+}
+
+std::pair<BevelMemberCut, BevelMemberCut>
+conjugate_cuts(const BevelPairDesign &d)
+{
+  const BevelPairGeometry g = bevel_geometry(d);
+  const NominalSettings   n = nominal_settings(d);
+  // The generating gear's tooth traces are circles about the cutter centre; a positive cradle
+  // angle puts the centre at +y_m, so the traces (and the pinion's teeth) turn about +a with
+  // growing cone distance: right hand. The gear sees the generating gear from the other side of
+  // the pitch plane (its machine frame is the pinion's turned by pi about x_m): the centre at
+  // -y_m, the opposite hand, and each blade cone is the other blade kind.
+  const double q    = d.pinion_hand == Hand::right ? n.cradle_angle : -n.cradle_angle;
+  const double slot = (1 - d.pinion_thickness) * pi * g.mean_normal_module; // pinion, normal
+
+  BevelMemberCut pinion, gear;
+  pinion.blank = g.pinion;
+  gear.blank   = g.gear;
+  MachineSettings mp;
+  mp.radial_setting = n.radial_setting;
+  mp.cradle_angle   = q;
+  mp.root_angle     = g.pitch_angle_pinion;
+  mp.ratio_of_roll  = n.ratio_of_roll_pinion;
+  MachineSettings mg = mp;
+  mg.cradle_angle    = -q;
+  mg.root_angle      = g.pitch_angle_gear;
+  mg.ratio_of_roll   = n.ratio_of_roll_gear;
+  pinion.outside_machine = pinion.inside_machine = mp;
+  gear.outside_machine = gear.inside_machine = mg;
+
+  const double a           = d.pressure_angle;
+  pinion.outside_blade     = {d.cutter_radius + slot / 2, a, +1};
+  pinion.inside_blade      = {d.cutter_radius - slot / 2, a, -1};
+  gear.inside_blade        = {d.cutter_radius + slot / 2, a, -1};
+  gear.outside_blade       = {d.cutter_radius - slot / 2, a, +1};
+  return {pinion, gear};
+}
+
+BevelMemberFlanks::BevelMemberFlanks(const BevelMemberCut &cut)
+    : z(cut.blank.teeth)
+{
+  const GeneratedFlank outside(cut.blank, cut.outside_blade, cut.outside_machine);
+  const GeneratedFlank inside(cut.blank, cut.inside_blade, cut.inside_machine);
+  // At the mean point of the pitch cone: which flank faces +theta, and the polar angles.
+  auto polar = [](const GeneratedFlank &f, double &facing) {
+    const FlankPoint p = f.evaluate(0, 0);
+    const Vec3       e_theta(-p.position.y(), p.position.x(), 0);
+    facing = p.normal.dot(e_theta.normalized());
+    return std::atan2(p.position.y(), p.position.x());
+  };
+  double       facing_out, facing_in;
+  const double theta_out = polar(outside, facing_out);
+  const double theta_in  = polar(inside, facing_in);
+  if (!(facing_out * facing_in < 0))
+    throw InputError("spiral bevel member: the outside and inside blades cut flanks facing the "
+                     "same way; expected one flank of each side of the tooth");
+  outside_is_drive            = facing_out > 0;
+  const double theta_d        = outside_is_drive ? theta_out : theta_in;
+  const double theta_c        = outside_is_drive ? theta_in : theta_out;
+  const double pitch          = 2 * pi / z;
+  const double thickness      = theta_d - theta_c - pitch * std::floor((theta_d - theta_c) / pitch);
+  const GeneratedFlank &fd    = outside_is_drive ? outside : inside;
+  const GeneratedFlank &fc    = outside_is_drive ? inside : outside;
+  drive = std::make_unique<GeneratedFlank>(fd.rotated(thickness / 2 - theta_d));
+  coast = std::make_unique<GeneratedFlank>(fc.rotated(-thickness / 2 - theta_c));
+  for (int k = 0; k < z; ++k)
+    {
+      add(k, FlankSide::drive, std::make_unique<GeneratedFlank>(drive->rotated(k * pitch)));
+      add(k, FlankSide::coast, std::make_unique<GeneratedFlank>(coast->rotated(k * pitch)));
+    }
+}
+} // namespace gearkit

@@ -1,0 +1,153 @@
+// Spiral bevel blanks, nominal machine settings (reference-data.md section 7) and face-milled
+// flanks generated on the cradle: the equation of meshing, envelope tangency, formate flanks on
+// the cutter cone, hand of spiral.
+#include "bevel_gear.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace gearkit;
+
+namespace
+{
+constexpr double deg = pi / 180;
+}
+
+TEST(BevelGear, NominalSettingsWorkedExample)
+{
+  // reference-data.md section 7: N 12/36, m_et 6 mm, F 25.4 mm, beta_m 35 deg, r_c 76.2 mm.
+  BevelPairDesign d; // the defaults are this example
+  const BevelPairGeometry g = bevel_geometry(d);
+  EXPECT_NEAR(g.pitch_angle_pinion / deg, 18.4349, 5e-5);
+  EXPECT_NEAR(g.pitch_angle_gear / deg, 71.5651, 5e-5);
+  EXPECT_NEAR(g.outer_cone_distance * 1e3, 113.842, 5e-4);
+  EXPECT_NEAR(g.mean_cone_distance * 1e3, 101.142, 5e-4);
+  const NominalSettings n = nominal_settings(d);
+  EXPECT_NEAR(n.radial_setting * 1e3, 84.823, 5e-4);
+  EXPECT_NEAR(n.cradle_angle / deg, 47.381, 5e-4);
+  EXPECT_NEAR(n.ratio_of_roll_pinion, 3.16228, 5e-6);
+  EXPECT_NEAR(n.ratio_of_roll_gear, 1.05409, 5e-6);
+}
+
+TEST(BevelGear, SeedPairPitchAngles)
+{
+  // reference-data.md section 1 (derived): 55/47 teeth at 90 deg.
+  BevelPairDesign d;
+  d.pinion_teeth = 55, d.gear_teeth = 47, d.module = 3e-3, d.face_width = 19e-3;
+  const BevelPairGeometry g = bevel_geometry(d);
+  EXPECT_NEAR(g.pitch_angle_pinion / deg, 49.4846, 5e-5);
+  EXPECT_NEAR(g.pitch_angle_gear / deg, 40.5154, 5e-5);
+  d.face_width = 200e-3;
+  EXPECT_THROW(bevel_geometry(d), InputError);
+}
+
+TEST(GeneratedFlank, PointsSolveTheEquationOfMeshingAndTouchTheBlade)
+{
+  const auto [pinion, gear] = conjugate_cuts(BevelPairDesign{});
+  for (const BevelMemberCut &cut : {pinion, gear})
+    for (bool outside : {true, false})
+      {
+        const GeneratedFlank f(cut.blank, outside ? cut.outside_blade : cut.inside_blade,
+                               outside ? cut.outside_machine : cut.inside_machine);
+        const FlankDomain    d = f.domain();
+        for (int i = 0; i < 9; ++i)
+          for (int j = 0; j < 29; ++j)
+            {
+              const double u = d.u_min + (d.u_max - d.u_min) * i / 8;
+              const double v = d.v_min + (d.v_max - d.v_min) * j / 28;
+              const auto   g = f.generation(u, v);
+              EXPECT_LT(std::abs(g.meshing_residual), 1e-13);
+              const FlankPoint p = f.evaluate(u, v);
+              // the rotational projection of the point is the requested (A, h)
+              const Vec2 target = cut.blank.axial_plane(cut.blank.mean_cone_distance + v, u);
+              EXPECT_NEAR(p.position.z(), target.x(), 1e-13);
+              EXPECT_NEAR(p.position.head<2>().norm(), target.y(), 1e-13);
+              // envelope: the surface's own tangent plane is the blade's (its normal)
+              EXPECT_NEAR(std::abs(p.d_du.cross(p.d_dv).normalized().dot(p.normal)), 1, 1e-12);
+              EXPECT_NEAR(p.normal.norm(), 1, 1e-14);
+            }
+      }
+}
+
+TEST(GeneratedFlank, DerivativesMatchFiniteDifferences)
+{
+  const auto [pinion, gear] = conjugate_cuts(BevelPairDesign{});
+  const GeneratedFlank f(pinion.blank, pinion.outside_blade, pinion.outside_machine);
+  const double         h = 1e-6;
+  for (auto [u, v] : {std::pair{0.0, 0.0}, {2e-3, -8e-3}, {-1.5e-3, 10e-3}}) // inside the domain
+    {
+      const FlankPoint p   = f.evaluate(u, v);
+      const Vec3       fdu = (f.evaluate(u + h, v).position - f.evaluate(u - h, v).position) / (2 * h);
+      const Vec3       fdv = (f.evaluate(u, v + h).position - f.evaluate(u, v - h).position) / (2 * h);
+      EXPECT_LT((p.d_du - fdu).norm(), 1e-8 * p.d_du.norm()) << u << " " << v;
+      EXPECT_LT((p.d_dv - fdv).norm(), 1e-8 * p.d_dv.norm()) << u << " " << v;
+    }
+}
+
+TEST(GeneratedFlank, FormateFlankIsTheCutterCone)
+{
+  // Without roll the flank is the blade's cone, placed on the blank: back in the machine frame
+  // every point lies at the blade's radius from the cutter axis for its height.
+  const auto [pinion, gear] = conjugate_cuts(BevelPairDesign{});
+  MachineSettings m         = gear.outside_machine;
+  m.generated               = false;
+  const Blade          b    = gear.outside_blade;
+  const GeneratedFlank f(gear.blank, b, m);
+  const double         gm = m.root_angle;
+  Eigen::Matrix3d      to_blank;
+  to_blank.row(0) = Vec3(std::sin(gm), 0, -std::cos(gm));
+  to_blank.row(1) = Vec3(0, 1, 0);
+  to_blank.row(2) = Vec3(std::cos(gm), 0, std::sin(gm));
+  const Vec3        centre(m.radial_setting * std::cos(m.cradle_angle),
+                           m.radial_setting * std::sin(m.cradle_angle), 0);
+  const FlankDomain d = f.domain();
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= 4; ++j)
+      {
+        const double u  = d.u_min + (d.u_max - d.u_min) * i / 4;
+        const double v  = d.v_min + (d.v_max - d.v_min) * j / 4;
+        const Vec3   x  = to_blank.transpose() * f.evaluate(u, v).position; // apex at origin
+        const double r  = (x - centre).head<2>().norm();
+        const double rc = b.pitch_radius - b.slope * x.z() * std::tan(b.angle);
+        EXPECT_NEAR(r, rc, 1e-12) << u << " " << v;
+        EXPECT_EQ(f.generation(u, v).psi_c, 0.0);
+      }
+}
+
+TEST(BevelMemberFlanks, HandOfSpiralAndToothPlacement)
+{
+  // Right hand: looking at the face of the gear (along +z from the apex side) the teeth turn
+  // clockwise from toe to heel, i.e. the polar angle about +z grows along the face.
+  for (Hand hand : {Hand::right, Hand::left})
+    {
+      BevelPairDesign d;
+      d.pinion_hand             = hand;
+      const auto [pc, gc]       = conjugate_cuts(d);
+      const BevelMemberFlanks p(pc), g(gc);
+      auto turn = [](const BevelMemberFlanks &m) {
+        const GeneratedFlank &f = m.tooth_flank(FlankSide::drive);
+        const Vec3 toe = f.evaluate(0, -0.01).position, heel = f.evaluate(0, 0.01).position;
+        return std::atan2(heel.y(), heel.x()) - std::atan2(toe.y(), toe.x());
+      };
+      EXPECT_GT(hand == Hand::right ? turn(p) : -turn(p), 0.05);
+      EXPECT_GT(hand == Hand::right ? -turn(g) : turn(g), 0.02); // the gear has the other hand
+      // tooth 0 centred on +x at the mean point; drive faces +theta
+      for (const BevelMemberFlanks *m : {&p, &g})
+        {
+          const Vec3 pd = m->tooth_flank(FlankSide::drive).evaluate(0, 0).position;
+          const Vec3 pc = m->tooth_flank(FlankSide::coast).evaluate(0, 0).position;
+          EXPECT_NEAR(std::atan2(pd.y(), pd.x()), -std::atan2(pc.y(), pc.x()), 1e-12);
+          EXPECT_GT(std::atan2(pd.y(), pd.x()), 0);
+          const FlankPoint n = m->flank(3, FlankSide::drive).evaluate(0, 0);
+          EXPECT_GT(n.normal.dot(Vec3(-n.position.y(), n.position.x(), 0)), 0);
+        }
+      // tooth thicknesses at the mean point (arc on the pitch cone, normal section) add up to
+      // the normal pitch: pinion 0.5 of it by default
+      const double Rm    = pc.blank.mean_cone_distance * std::sin(pc.blank.pitch_angle);
+      const Vec3   pd    = p.tooth_flank(FlankSide::drive).evaluate(0, 0).position;
+      const double arc_p = 2 * std::atan2(pd.y(), pd.x()) * Rm;
+      const double m_mn  = bevel_geometry(d).mean_normal_module;
+      EXPECT_NEAR(arc_p * std::cos(d.mean_spiral_angle), 0.5 * pi * m_mn, 1e-3 * m_mn);
+    }
+}

@@ -43,7 +43,7 @@ check_against_brute_force(std::size_t n_points, double cluster, unsigned seed)
   cloud.build();
   for (int q = 0; q < 2000; ++q)
     {
-      const Point query = q % 2 ? random_point() : Point(cloud.points[q] + 1e-3 * random_point());
+      const Point query = q % 2 ? random_point() : Point(cloud.points[q % n_points] + 1e-3 * random_point());
       std::size_t best = 0;
       double      d2   = HUGE_VAL;
       for (std::size_t i = 0; i < cloud.points.size(); ++i)

@@ -4,6 +4,7 @@
 // Prints a table; each time is the median of 5 runs.
 #include "../tests/fzg_c_pair.h"
 #include "paper_mode.h"
+#include "timing.h"
 #include "unloaded_tca.h"
 
 #include <algorithm>
@@ -13,23 +14,10 @@
 #include <string>
 
 using namespace gearkit;
+using bench::median_seconds;
 
 namespace
 {
-template <typename F>
-double
-median_seconds(F &&f, int runs = 5)
-{
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r)
-    {
-      const auto start = std::chrono::steady_clock::now();
-      f();
-      t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 // Largest |e_0 difference| between two runs over the same positions.
 double
 max_difference(const TcaResult &r, const TcaResult &reference)

@@ -106,9 +106,15 @@ PaperModeResult
 paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double a_w,
                const Misalignment &m, const PaperModeOptions &o)
 {
+  return paper_mode_ste(pinion, gear, Assembly(a_w, gear.teeth(), m), o);
+}
+
+PaperModeResult
+paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, const Assembly &assembly,
+               const PaperModeOptions &o)
+{
   if (o.spacing <= 0 || o.rotation_step <= 0 || o.positions_per_mesh < 1 || o.mesh_cycles < 1)
     throw InputError("paper mode: spacing, rotation step, positions and cycles must be > 0");
-  const Assembly assembly(a_w, gear.teeth(), m);
   const int      z1 = pinion.teeth(), z2 = gear.teeth();
   const double   ratio = double(z1) / z2;
   const bool     drive = o.side == FlankSide::drive;

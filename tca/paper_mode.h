@@ -45,4 +45,8 @@ struct PaperModeResult
 PaperModeResult
 paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, double centre_distance,
                const Misalignment &misalignment, const PaperModeOptions &options);
+/// The same in any assembly (e.g. Assembly::bevel).
+PaperModeResult
+paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, const Assembly &assembly,
+               const PaperModeOptions &options);
 } // namespace gearkit

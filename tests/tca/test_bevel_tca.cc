@@ -172,3 +172,94 @@ TEST(BevelDiscretePoint, SeedPairFrom261PointFlanksWithinOnePercent)
                 2 * r.tolerance / arm / z_ratio)
         << i;
 }
+
+namespace
+{
+struct Bearing
+{
+  double peak_to_peak = 0, mean_error = 0, mean_face = 0; // [rad], [rad], mean v of the contact [m]
+  int    edges        = 0;
+};
+
+Bearing
+bearing(const BevelPairDesign &d, const PinionMismatch &m, const Misalignment &mis)
+{
+  const BevelPairFlanks f = bevel_pair_flanks(d, m, mis);
+  TcaOptions            o;
+  o.positions_per_mesh = 12;
+  const TcaResult r    = UnloadedTca(f.pinion, f.gear, f.assembly, o).run();
+  Bearing         b;
+  double          lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const TcaPosition &p : r.positions)
+    {
+      lo = std::min(lo, p.transmission_error), hi = std::max(hi, p.transmission_error);
+      b.mean_error += p.transmission_error / r.positions.size();
+      b.mean_face += p.pairs[p.leading].v1 / r.positions.size();
+      b.edges += p.pairs[p.leading].edge;
+    }
+  b.peak_to_peak = hi - lo;
+  return b;
+}
+} // namespace
+
+TEST(BevelTca, MisalignmentsShiftTheBearingAndThePredesignedParabolaAbsorbsThem)
+{
+  // Litvin's argument for the parabolic TE: misalignments add a linear function and a shift,
+  // which the parabola absorbs (the peak-to-peak stays near the design instead of jumping), while
+  // the bearing moves along the face (toward toe or heel, opposite ways for opposite signs) and
+  // the backlash changes (mean e_0).
+  const Bearing aligned = bearing(seed_design(), seed_mismatch(), {});
+  EXPECT_EQ(aligned.edges, 0);
+  std::vector<std::pair<const char *, Misalignment>> cases(4);
+  cases[0].first = "offset dE", cases[0].second.offset = 50e-6;
+  cases[1].first = "pinion axial dA1", cases[1].second.pinion_axial_shift = 50e-6;
+  cases[2].first = "gear axial dA2", cases[2].second.gear_axial_shift = 50e-6;
+  cases[3].first = "shaft angle dgamma", cases[3].second.intersecting_angle = 0.3e-3;
+  for (const auto &[name, plus] : cases)
+    {
+      Misalignment minus;
+      minus.offset             = -plus.offset;
+      minus.pinion_axial_shift = -plus.pinion_axial_shift;
+      minus.gear_axial_shift   = -plus.gear_axial_shift;
+      minus.intersecting_angle = -plus.intersecting_angle;
+      const Bearing p = bearing(seed_design(), seed_mismatch(), plus);
+      const Bearing m = bearing(seed_design(), seed_mismatch(), minus);
+      for (const Bearing *b : {&p, &m})
+        {
+          EXPECT_GT(b->peak_to_peak, 0.8 * aligned.peak_to_peak) << name;
+          EXPECT_LT(b->peak_to_peak, 1.3 * aligned.peak_to_peak) << name;
+        }
+      EXPECT_LT((p.mean_face - aligned.mean_face) * (m.mean_face - aligned.mean_face), 0) << name;
+      EXPECT_GT(std::abs(p.mean_face - m.mean_face), 0.4e-3) << name;
+      EXPECT_LT((p.mean_error - aligned.mean_error) * (m.mean_error - aligned.mean_error), 0)
+          << name;
+    }
+}
+
+TEST(BevelTca, StressSpiralAnglesToothCountsAndLargeMisalignments)
+{
+  // Conjugate flanks stay conjugate from straight-ish (0 deg, a zerol-like cut) to 45 deg spiral
+  // and down to 6 pinion teeth (the undercut root region is left out of the working flank);
+  // misalignments that push the contact off the flank give edge contact, reported, and ones that
+  // part the flanks a clear error rather than a wrong table.
+  for (double beta : {0.0, 45.0})
+    {
+      BevelPairDesign d   = seed_design();
+      d.mean_spiral_angle = beta * pi / 180;
+      EXPECT_LT(bearing(d, {}, {}).peak_to_peak, 1e-11) << beta;
+    }
+  for (int z1 : {6, 9})
+    {
+      BevelPairDesign d = seed_design();
+      d.pinion_teeth = z1, d.gear_teeth = 3 * z1, d.module = 6e-3;
+      d.face_width = 0.25 * bevel_geometry(d).outer_cone_distance;
+      EXPECT_LT(bearing(d, {}, {}).peak_to_peak, 1e-10) << z1;
+    }
+  Misalignment far;
+  far.offset = 0.5e-3;
+  const Bearing b = bearing(seed_design(), seed_mismatch(), far);
+  EXPECT_EQ(b.edges, 12);
+  Misalignment apart;
+  apart.intersecting_angle = 0.05;
+  EXPECT_THROW(bearing(seed_design(), seed_mismatch(), apart), InputError);
+}

@@ -180,6 +180,8 @@ declare_tca(ParameterHandler &prm)
   prm.declare_entry("gear axial shift", "0", Patterns::Double(), "[mm] Gear moved along its axis.");
   prm.declare_entry("harmonics", "10", Patterns::Integer(1, 1000),
                     "Mesh orders of the transmission error reported.");
+  prm.declare_entry("elastic approach", "6.32", Patterns::Double(0.001),
+                    "[um] Elastic approach of the contact ellipses (Litvin's usual 6.32 um).");
   prm.declare_entry(
       "measured flanks", "false", Patterns::Bool(),
       "Also analyse the pair's measured flanks (Measured flanks section): the fast "
@@ -392,6 +394,7 @@ get_tca(ParameterHandler &prm)
   t.misalignment.pinion_axial_shift    = prm.get_double("pinion axial shift") * mm;
   t.misalignment.gear_axial_shift      = prm.get_double("gear axial shift") * mm;
   t.harmonics                          = prm.get_integer("harmonics");
+  t.elastic_approach                   = prm.get_double("elastic approach") * um;
   t.measured                           = prm.get_bool("measured flanks");
   t.hunting                            = prm.get_bool("hunting cycle");
   t.paper_mode                         = prm.get("discrete-point method") == "paper";

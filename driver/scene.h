@@ -55,6 +55,7 @@ struct TcaScene
   Misalignment misalignment;
   TcaOptions   options;
   int          harmonics = 10; ///< mesh orders reported
+  double       elastic_approach = 6.32e-6; ///< for the contact ellipses [m]
   /// Also run the fast discrete-point analysis on the pair's measured flanks (/measured).
   bool measured = false;
   /// Method for the measured flanks: the fast discrete-point analysis (false) or the seed's

@@ -39,7 +39,8 @@ write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, co
   std::size_t slots = 0;
   for (const TcaPosition &p : r.positions)
     slots = std::max(slots, p.pairs.size());
-  std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg;
+  std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg, kmin, kmax, major,
+      axes;
   std::vector<int>    touching, leading, ptooth, gtooth, edge;
   double              te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
   for (const TcaPosition &p : r.positions)
@@ -62,11 +63,15 @@ write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, co
           edge.push_back(c.edge ? 1 : 0);
           sep.push_back(c.separation);
           u1.push_back(c.u1), v1.push_back(c.v1), u2.push_back(c.u2), v2.push_back(c.v2);
+          kmin.push_back(c.curvature_min), kmax.push_back(c.curvature_max);
+          const auto [a, b] = used ? contact_ellipse(c, t.elastic_approach) : std::pair{0.0, 0.0};
+          axes.insert(axes.end(), {a, b});
           for (auto [v, dest] : {std::pair{&c.position, &X},
                                  {&c.normal_pinion, &np},
                                  {&c.normal_gear, &ng},
                                  {&c.lambda_pinion, &lp},
-                                 {&c.lambda_gear, &lg}})
+                                 {&c.lambda_gear, &lg},
+                                 {&c.major_direction, &major}})
             dest->insert(dest->end(), v->data(), v->data() + 3);
         }
     }
@@ -123,6 +128,17 @@ write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, co
   g.write("normal_gear", ng, {N, S, 3}, "1", "n_g: gear flank outward normal, global");
   g.write("lambda_pinion", lp, {N, S, 3}, "m", "lambda_p = r_p x n_p about the pinion centre");
   g.write("lambda_gear", lg, {N, S, 3}, "m", "lambda_g = r_g x n_g about the gear centre");
+  g.write("relative_curvature_min", kmin, {N, S}, "1/m",
+          "smaller principal relative curvature of the flanks at the contact (0: line contact)");
+  g.write("relative_curvature_max", kmax, {N, S}, "1/m",
+          "larger principal relative curvature of the flanks at the contact");
+  g.write("contact_ellipse_direction", major, {N, S, 3}, "1",
+          "direction of the contact ellipse's major axis (smaller relative curvature), global");
+  g.write("contact_ellipse_axes", axes, {N, S, 2}, "m",
+          "semi-axes (major, minor) of the contact ellipse at the elastic approach "
+          "elastic_approach, sqrt(2 delta / k); 1 m where the contact is a line");
+  g.write("elastic_approach", t.elastic_approach, "m",
+          "elastic approach delta of the contact ellipses");
   return {te_max - te_min, pairs_sum / n};
 }
 } // namespace

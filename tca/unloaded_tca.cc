@@ -1,10 +1,12 @@
 #include "unloaded_tca.h"
 
 #include <Eigen/LU>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <tuple>
 
@@ -246,6 +248,7 @@ UnloadedTca::pair_contact(int k, double phi) const
   c.edge = at_edge(c.u1, d.u_min, d.u_max) || at_edge(c.v1, d.v_min, d.v_max) ||
            at_edge(c.u2, dg.u_min, dg.u_max) || at_edge(c.v2, dg.v_min, dg.v_max);
   set_contact_geometry(c, assembly, flank, gear_flank, phi, c.touch_angle);
+  set_relative_curvature(c, assembly, flank, gear_flank, phi, c.touch_angle);
   return c;
 }
 
@@ -316,6 +319,53 @@ set_contact_geometry(PairContact &c, const Assembly &assembly, const Flank &pini
   c.lambda_pinion =
       (c.position - assembly.pinion_to_global(Vec3::Zero(), phi)).cross(c.normal_pinion);
   c.lambda_gear = (c.position - assembly.gear_to_global(Vec3::Zero(), psi)).cross(c.normal_gear);
+}
+
+namespace
+{
+/// Shape operator S (3 x 3, on the tangent plane) of a flank at (u, v) in global coordinates:
+/// the normal curvature along a unit tangent t is t . S t (negative where the surface bends away
+/// from its outward normal).
+Eigen::Matrix3d
+shape_operator(const Flank &f, double u, double v, const std::function<Vec3(const Vec3 &)> &turn)
+{
+  const FlankPoint                      p      = f.evaluate(u, v);
+  const auto [n_u, n_v]                        = f.normal_derivatives(u, v);
+  Eigen::Matrix<double, 3, 2>           W, N;
+  W.col(0) = turn(p.d_du), W.col(1) = turn(p.d_dv);
+  N.col(0) = turn(n_u), N.col(1) = turn(n_v);
+  return -N * (W.transpose() * W).inverse() * W.transpose();
+}
+} // namespace
+
+void
+set_relative_curvature(PairContact &c, const Assembly &assembly, const Flank &pinion_flank,
+                       const Flank &gear_flank, double phi, double psi)
+{
+  const Eigen::Matrix3d Sp = shape_operator(pinion_flank, c.u1, c.v1, [&](const Vec3 &x) {
+    return assembly.pinion_vector_to_global(x, phi);
+  });
+  const Eigen::Matrix3d Sg = shape_operator(gear_flank, c.u2, c.v2, [&](const Vec3 &x) {
+    return assembly.gear_vector_to_global(x, psi);
+  });
+  // Gap along n_p between the surfaces: -(L_p + L_g)/2, L the normal-curvature forms.
+  const Vec3 n  = c.normal_pinion;
+  const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  Eigen::Matrix<double, 3, 2> E;
+  E.col(0) = e1, E.col(1) = e2;
+  Eigen::Matrix2d B = -E.transpose() * (Sp + Sg) * E;
+  B                 = 0.5 * (B + B.transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(B);
+  c.curvature_min   = eig.eigenvalues()[0];
+  c.curvature_max   = eig.eigenvalues()[1];
+  c.major_direction = E * eig.eigenvectors().col(0);
+}
+
+std::pair<double, double>
+contact_ellipse(const PairContact &c, double approach)
+{
+  auto axis = [&](double k) { return k > 2 * approach ? std::sqrt(2 * approach / k) : 1.0; };
+  return {axis(c.curvature_min), axis(c.curvature_max)};
 }
 
 void

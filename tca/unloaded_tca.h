@@ -43,7 +43,17 @@ struct PairContact
   Vec3   normal_gear   = Vec3::Zero();   ///< n_g, outward normal of the gear flank (global)
   Vec3   lambda_pinion = Vec3::Zero();   ///< lambda_p = r_p x n_p about the pinion centre [m]
   Vec3   lambda_gear   = Vec3::Zero();   ///< lambda_g = r_g x n_g about the gear centre [m]
+  /// Principal relative curvatures of the pair at the contact point [1/m]: the gap between the
+  /// flanks grows as (k_min x^2 + k_max y^2) / 2 in the common tangent plane (k_min ~ 0: line
+  /// contact), and the direction of k_min (the contact ellipse's major axis), global.
+  double curvature_min = 0, curvature_max = 0;
+  Vec3   major_direction = Vec3::Zero();
 };
+
+/// Semi-axes (major, minor) [m] of the instantaneous contact ellipse at elastic approach
+/// `approach` [m]: sqrt(2 approach / k); a vanishing curvature (line contact) gives 1 m.
+std::pair<double, double>
+contact_ellipse(const PairContact &contact, double approach);
 
 struct TcaPosition
 {
@@ -70,6 +80,12 @@ struct TcaResult
 void
 set_contact_geometry(PairContact &c, const Assembly &assembly, const Flank &pinion_flank,
                      const Flank &gear_flank, double phi, double psi);
+
+/// Fills c.curvature_min, c.curvature_max and c.major_direction from both flanks' second
+/// fundamental forms (normal derivatives by central differences) at c's parameters.
+void
+set_relative_curvature(PairContact &c, const Assembly &assembly, const Flank &pinion_flank,
+                       const Flank &gear_flank, double phi, double psi);
 
 /// Fills result.mean_pairs_in_contact and result.transfers from result.positions.
 void

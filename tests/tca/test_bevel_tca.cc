@@ -263,3 +263,34 @@ TEST(BevelTca, StressSpiralAnglesToothCountsAndLargeMisalignments)
   apart.intersecting_angle = 0.05;
   EXPECT_THROW(bearing(seed_design(), seed_mismatch(), apart), InputError);
 }
+
+TEST(BevelTca, ContactEllipse)
+{
+  // Line contact in the crown-gear test (the relative curvature vanishes along the line); the
+  // cutter-radius mismatch gives a finite ellipse at Litvin's usual approach of 6.32 um, its
+  // major axis along the face, shorter than the face width.
+  TcaOptions o;
+  o.positions_per_mesh     = 3;
+  const BevelPairFlanks cf = bevel_pair_flanks(seed_design());
+  for (const TcaPosition &p : UnloadedTca(cf.pinion, cf.gear, cf.assembly, o).run().positions)
+    {
+      const PairContact &c = p.pairs[p.leading];
+      EXPECT_LT(std::abs(c.curvature_min), 1e-6 * c.curvature_max);
+    }
+  const BevelPairFlanks mf = bevel_pair_flanks(seed_design(), seed_mismatch());
+  for (const TcaPosition &p : UnloadedTca(mf.pinion, mf.gear, mf.assembly, o).run().positions)
+    {
+      const PairContact &c = p.pairs[p.leading];
+      const auto [a, b]    = contact_ellipse(c, 6.32e-6);
+      EXPECT_GT(a, 2e-3);
+      EXPECT_LT(a, 19e-3 / 2);
+      EXPECT_GT(a, 5 * b);
+      // along the face: mostly along the pitch element direction of the pinion (r, z) plane
+      const Vec3 radial = Vec3(c.position.x(), c.position.y(), 0).normalized();
+      const Vec3 element =
+          (radial * std::sin(bevel_geometry(seed_design()).pitch_angle_pinion) +
+           Vec3::UnitZ() * std::cos(bevel_geometry(seed_design()).pitch_angle_pinion))
+              .normalized();
+      EXPECT_GT(std::abs(c.major_direction.dot(element)), 0.5);
+    }
+}

@@ -286,3 +286,32 @@ TEST(UnloadedTca, CoastFlanksCloseTheBacklashFromTheOtherSide)
   // the drive side does not see it
   EXPECT_NEAR(UnloadedTca(e.pinion, e.gear, e.a_w).at(0).transmission_error, 0, 1e-9);
 }
+
+TEST(UnloadedTca, RelativeCurvaturesOfACrownedSpurPair)
+{
+  // Spur pair, pinion with 5 um lead crowning: at the contact in the face middle the relative
+  // curvature is 1/rho_1 + 1/rho_2 across (involute radii of curvature = roll lengths) and
+  // 8 C_beta / b^2 along the face; the contact ellipse at approach delta has the semi-axes
+  // sqrt(2 delta / k).
+  auto d                                  = c_pair();
+  d.first.drive_modifications.lead_crowning = 5e-6;
+  const Pair  s                           = make(d);
+  UnloadedTca tca(s.pinion, s.gear, s.a_w);
+  for (double phi : {0.0, 0.05, -0.1})
+    {
+      const TcaPosition  p = tca.at(phi);
+      const PairContact &c = p.pairs[p.leading];
+      ASSERT_NEAR(c.v1, 0, 1e-9);
+      const double rho1 = std::sqrt(c.position.head<2>().squaredNorm() -
+                                    std::pow(s.pinion->base_radius, 2));
+      const double rho2 = std::sqrt((c.position - Vec3(s.a_w, 0, 0)).head<2>().squaredNorm() -
+                                    std::pow(s.gear->base_radius, 2));
+      const double lead = 8 * 5e-6 / std::pow(14e-3, 2);
+      EXPECT_NEAR(c.curvature_min, lead, 1e-6 * lead) << phi;
+      EXPECT_NEAR(c.curvature_max, 1 / rho1 + 1 / rho2, 1e-7 * (1 / rho1 + 1 / rho2)) << phi;
+      EXPECT_NEAR(std::abs(c.major_direction.z()), 1, 1e-9);
+      const auto [a, b] = contact_ellipse(c, 6.32e-6);
+      EXPECT_NEAR(a, std::sqrt(2 * 6.32e-6 / lead), 1e-9);
+      EXPECT_NEAR(b, std::sqrt(2 * 6.32e-6 / (1 / rho1 + 1 / rho2)), 1e-9);
+    }
+}

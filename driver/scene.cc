@@ -153,6 +153,46 @@ declare_measured(ParameterHandler &prm)
 }
 
 void
+declare_bevel(ParameterHandler &prm)
+{
+  prm.declare_entry("pinion teeth", "12", Patterns::Integer(3, 10000), "Pinion teeth z1.");
+  prm.declare_entry("gear teeth", "36", Patterns::Integer(3, 10000), "Gear teeth z2.");
+  prm.declare_entry("shaft angle", "90", Patterns::Double(1, 179), "[deg] Shaft angle Sigma.");
+  prm.declare_entry("module", "6", Patterns::Double(0), "[mm] Module (see module type).");
+  prm.declare_entry("module type", "outer transverse",
+                    Patterns::Selection("outer transverse|mean normal"),
+                    "outer transverse: m_et at the heel; mean normal: m_mn at the mean point.");
+  prm.declare_entry("face width", "25.4", Patterns::Double(0), "[mm] Face width F.");
+  prm.declare_entry("mean spiral angle", "35", Patterns::Double(0, 60),
+                    "[deg] Mean spiral angle beta_m.");
+  prm.declare_entry("pressure angle", "20", Patterns::Double(0, 45),
+                    "[deg] Normal pressure angle of both sides (blade angle).");
+  prm.declare_entry("pinion hand", "left", Patterns::Selection("right|left"),
+                    "Hand of spiral of the pinion; the gear has the other.");
+  prm.declare_entry("cutter radius", "76.2", Patterns::Double(0),
+                    "[mm] Mean radius r_c of the head cutter.");
+  prm.declare_entry("pinion addendum factor", "1", Patterns::Double(0, 2),
+                    "Pinion addendum / m_mn (uniform depth: working depth 2 m_mn).");
+  prm.declare_entry("clearance factor", "0.25", Patterns::Double(0, 1), "Clearance / m_mn.");
+  prm.declare_entry("pinion thickness factor", "0.5", Patterns::Double(0, 1),
+                    "Pinion tooth thickness / normal pitch at the mean point.");
+  prm.declare_entry("pinion cutter radius change", "0", Patterns::Double(),
+                    "[mm] Mismatch: pinion blade radii against the gear's, the blades kept "
+                    "through the mean point (localises the bearing along the face).");
+  prm.declare_entry("pinion blade curvature", "0", Patterns::Double(),
+                    "[1/m] Mismatch: parabolic blade curvature of the pinion blades (profile "
+                    "crowning).");
+  prm.declare_entry("pinion modified roll 2C", "0", Patterns::Double(),
+                    "Modified roll 2C of the pinion (used when transmission error amplitude "
+                    "is 0).");
+  prm.declare_entry("pinion modified roll 6D", "0", Patterns::Double(),
+                    "Modified roll 6D of the pinion.");
+  prm.declare_entry("transmission error amplitude", "0", Patterns::Double(0),
+                    "[urad] Predesigned parabolic transmission error (peak-to-peak over a mesh "
+                    "cycle) the pinion's modified roll 2C is synthesised for; 0 = none.");
+}
+
+void
 declare_tca(ParameterHandler &prm)
 {
   prm.declare_entry("working flanks", "drive", Patterns::Selection("drive|coast"),
@@ -175,6 +215,9 @@ declare_tca(ParameterHandler &prm)
   prm.declare_entry("intersecting angle", "0", Patterns::Double(-100, 100),
                     "[mrad] Gear axis turned in the plane of the axes (intersecting axes, "
                     "f_Sigma_delta).");
+  prm.declare_entry("offset", "0", Patterns::Double(),
+                    "[um] Gear axis moved along the common perpendicular of the axes (the "
+                    "hypoid offset Delta E of a bevel pair).");
   prm.declare_entry("pinion axial shift", "0", Patterns::Double(),
                     "[mm] Pinion moved along its axis.");
   prm.declare_entry("gear axial shift", "0", Patterns::Double(), "[mm] Gear moved along its axis.");
@@ -230,11 +273,17 @@ declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs)
                         "Profile points per flank in the stored flank grids (/flanks).");
       prm.declare_entry("grid face points", "29", Patterns::Integer(2, 10000),
                         "Face points per flank in the stored flank grids (/flanks).");
+      prm.declare_entry("type", "involute", Patterns::Selection("involute|spiral bevel"),
+                        "involute: spur or helical pair (subsections Pinion, Gear); spiral "
+                        "bevel: face-milled spiral bevel pair (subsection Spiral bevel).");
       prm.enter_subsection("Pinion");
       declare_member(prm, "20");
       prm.leave_subsection();
       prm.enter_subsection("Gear");
       declare_member(prm, "40");
+      prm.leave_subsection();
+      prm.enter_subsection("Spiral bevel");
+      declare_bevel(prm);
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -393,6 +442,7 @@ get_tca(ParameterHandler &prm)
   t.misalignment.intersecting_angle    = prm.get_double("intersecting angle") * 1e-3;
   t.misalignment.pinion_axial_shift    = prm.get_double("pinion axial shift") * mm;
   t.misalignment.gear_axial_shift      = prm.get_double("gear axial shift") * mm;
+  t.misalignment.offset                = prm.get_double("offset") * um;
   t.harmonics                          = prm.get_integer("harmonics");
   t.elastic_approach                   = prm.get_double("elastic approach") * um;
   t.measured                           = prm.get_bool("measured flanks");
@@ -404,10 +454,48 @@ get_tca(ParameterHandler &prm)
   return t;
 }
 
+PairScene
+get_bevel(ParameterHandler &prm, PairScene pair)
+{
+  BevelPairDesign &d = pair.bevel;
+  d.pinion_teeth     = prm.get_integer("pinion teeth");
+  d.gear_teeth       = prm.get_integer("gear teeth");
+  d.shaft_angle      = prm.get_double("shaft angle") * deg;
+  d.module           = prm.get_double("module") * mm;
+  d.module_kind      = prm.get("module type") == "mean normal" ? BevelModule::mean_normal
+                                                               : BevelModule::outer_transverse;
+  d.face_width       = prm.get_double("face width") * mm;
+  d.mean_spiral_angle = prm.get_double("mean spiral angle") * deg;
+  d.pressure_angle    = prm.get_double("pressure angle") * deg;
+  d.pinion_hand       = prm.get("pinion hand") == "right" ? Hand::right : Hand::left;
+  d.cutter_radius     = prm.get_double("cutter radius") * mm;
+  d.pinion_addendum   = prm.get_double("pinion addendum factor");
+  d.clearance         = prm.get_double("clearance factor");
+  d.pinion_thickness  = prm.get_double("pinion thickness factor");
+  pair.mismatch.cutter_radius    = prm.get_double("pinion cutter radius change") * mm;
+  pair.mismatch.blade_curvature  = prm.get_double("pinion blade curvature");
+  pair.mismatch.modified_roll_2c = prm.get_double("pinion modified roll 2C");
+  pair.mismatch.modified_roll_6d = prm.get_double("pinion modified roll 6D");
+  pair.transmission_error_amplitude = prm.get_double("transmission error amplitude") * 1e-6;
+  return pair;
+}
+
 // Both members must build (InvoluteGear checks every parameter) and mesh with each other.
 void
 check_pair(const PairScene &p)
 {
+  if (p.type == PairType::spiral_bevel)
+    {
+      try
+        {
+          bevel_geometry(p.bevel);
+        }
+      catch (const InputError &e)
+        {
+          throw InputError("Flanks/" + p.name + "/Spiral bevel: " + e.what());
+        }
+      return;
+    }
   InvoluteGear::create(p.pinion);
   InvoluteGear::create(p.gear);
   const InvoluteGearData &a = p.pinion, &b = p.gear;
@@ -525,11 +613,16 @@ read_scene(const std::string &file)
           prm.enter_subsection(p);
           pair.grid_profile_points = prm.get_integer("grid profile points");
           pair.grid_face_points    = prm.get_integer("grid face points");
+          pair.type = prm.get("type") == "spiral bevel" ? PairType::spiral_bevel
+                                                        : PairType::involute;
           prm.enter_subsection("Pinion");
           pair.pinion = get_member(prm, "Flanks/" + p + "/Pinion");
           prm.leave_subsection();
           prm.enter_subsection("Gear");
           pair.gear = get_member(prm, "Flanks/" + p + "/Gear");
+          prm.leave_subsection();
+          prm.enter_subsection("Spiral bevel");
+          pair = get_bevel(prm, pair);
           prm.leave_subsection();
           prm.leave_subsection();
           prm.leave_subsection();
@@ -543,8 +636,8 @@ read_scene(const std::string &file)
           scene.tca[p] = get_tca(prm);
           TcaScene &t = scene.tca[p];
           if (t.hunting)
-            t.options.mesh_cycles =
-                std::lcm(pair.pinion.teeth, pair.gear.teeth); // mesh cycles in a hunting period
+            t.options.mesh_cycles = std::lcm(pair_teeth(pair).first,
+                                             pair_teeth(pair).second); // a hunting period
           t.paper.side               = t.options.side;
           t.paper.positions_per_mesh = t.options.positions_per_mesh;
           t.paper.mesh_cycles        = t.options.mesh_cycles;

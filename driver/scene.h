@@ -2,6 +2,7 @@
 // plain data for the stage libraries (which never see a ParameterHandler).
 #pragma once
 
+#include "bevel_gear.h"
 #include "involute_gear.h"
 #include "paper_mode.h"
 #include "unloaded_tca.h"
@@ -12,15 +13,35 @@
 
 namespace gearkit
 {
+enum class PairType
+{
+  involute,    ///< spur or helical, parallel axes (pinion, gear)
+  spiral_bevel ///< face-milled spiral bevel (bevel, mismatch)
+};
+
 /// A gear pair as the flank stage needs it: pinion (driver) and gear (driven).
 struct PairScene
 {
   std::string      name;
+  PairType         type                = PairType::involute;
   int              grid_profile_points = 9; ///< stored flank grids
   int              grid_face_points    = 29;
   InvoluteGearData pinion;
   InvoluteGearData gear;
+  BevelPairDesign  bevel;
+  PinionMismatch   mismatch;
+  /// Spiral bevel: predesigned transmission error amplitude [rad] the modified roll is
+  /// synthesised for (flanks stage); 0 = use mismatch.modified_roll_2c as given.
+  double transmission_error_amplitude = 0;
 };
+
+/// Tooth counts (z1, z2) of a pair of either type.
+inline std::pair<int, int>
+pair_teeth(const PairScene &p)
+{
+  return p.type == PairType::spiral_bevel ? std::pair{p.bevel.pinion_teeth, p.bevel.gear_teeth}
+                                          : std::pair{p.pinion.teeth, p.gear.teeth};
+}
 
 /// Where the "measured" flanks of a pair come from.
 enum class MeasuredSource
@@ -52,7 +73,7 @@ struct MeasuredScene
 struct TcaScene
 {
   double       centre_distance = 0; ///< [m]; 0 = the zero-backlash working centre distance
-  Misalignment misalignment;
+  Misalignment misalignment; ///< (for spiral bevel pairs: offset, axial shifts, shaft angle)
   TcaOptions   options;
   int          harmonics = 10; ///< mesh orders reported
   double       elastic_approach = 6.32e-6; ///< for the contact ellipses [m]

@@ -1,5 +1,6 @@
 // Stage "flanks": the nominal geometry of every member, its transverse outline, flank grids of
 // every tooth and side (with modifications and deviations), and mass properties.
+#include "bevel_synthesis.h"
 #include "stages.h"
 
 #include <cmath>
@@ -101,6 +102,119 @@ write_member(const InvoluteGear &g, int n_u, int n_v, const H5Group &out, std::o
     }
 }
 
+/// Flank grids [tooth][profile][face] of every tooth and side of a member, with the grid axes.
+void
+write_grids(const MemberFlanks &m, int n_u, int n_v, const H5Group &out, const char *u_name,
+            const char *u_unit, const char *u_text, const char *v_name, const char *v_text,
+            Progress &progress)
+{
+  for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+    {
+      const H5Group       s = out.group(to_string(side));
+      std::vector<double> points, normals, u, v;
+      for (int k = 0; k < m.teeth(); ++k)
+        {
+          const FlankGrid grid = sample_flank(m.flank(k, side), n_u, n_v);
+          for (std::size_t i = 0; i < grid.positions.size(); ++i)
+            {
+              points.insert(points.end(), grid.positions[i].data(), grid.positions[i].data() + 3);
+              normals.insert(normals.end(), grid.normals[i].data(), grid.normals[i].data() + 3);
+            }
+          u = grid.u, v = grid.v;
+          progress.step();
+        }
+      const std::vector<hsize_t> shape = {hsize_t(m.teeth()), hsize_t(n_u), hsize_t(n_v), 3};
+      s.write("points", points, shape, "m",
+              "flank points [tooth][profile][face][xyz] in the member frame");
+      s.write("normals", normals, shape, "1", "unit outward normals [tooth][profile][face][xyz]");
+      s.write(u_name, u, {u.size()}, u_unit, u_text);
+      s.write(v_name, v, {v.size()}, "m", v_text);
+    }
+}
+
+void
+write_machine(const Blade &b, const MachineSettings &m, const H5Group &g)
+{
+  g.write("blade_pitch_radius", b.pitch_radius, "m", "blade radius at the pitch plane");
+  g.write("blade_angle", b.angle, "rad", "blade angle to the cutter axis");
+  g.write("blade_slope", double(b.slope), "1", "+1 outside blade, -1 inside blade");
+  g.write("blade_curvature", b.curvature, "1/m", "parabolic blade curvature");
+  g.write("radial_setting", m.radial_setting, "m", "S_r");
+  g.write("cradle_angle", m.cradle_angle, "rad", "q");
+  g.write("machine_root_angle", m.root_angle, "rad", "gamma_m");
+  g.write("sliding_base", m.sliding_base, "m", "Delta X_B");
+  g.write("machine_centre_to_back", m.machine_centre_to_back, "m", "Delta X_D");
+  g.write("blank_offset", m.blank_offset, "m", "E_m");
+  g.write("ratio_of_roll", m.ratio_of_roll, "1", "R_a");
+  g.write("modified_roll_2c", m.modified_roll_2c, "1", "2C");
+  g.write("modified_roll_6d", m.modified_roll_6d, "1", "6D");
+}
+
+void
+write_bevel_pair(const PairScene &pair, const H5Group &pg, std::ostream &log, Progress &progress)
+{
+  const BevelPairDesign  &d = pair.bevel;
+  const BevelPairGeometry g = bevel_geometry(d);
+  const NominalSettings   n = nominal_settings(d);
+  PinionMismatch          m = pair.mismatch;
+  if (pair.transmission_error_amplitude > 0)
+    {
+      m = synthesise_modified_roll(d, m, pair.transmission_error_amplitude);
+      log << "  " << pair.name << ": modified roll 2C = " << m.modified_roll_2c
+          << " for a transmission error of " << pair.transmission_error_amplitude * 1e6
+          << " urad\n";
+    }
+  pg.attribute("type", "spiral bevel");
+  pg.write("pinion_modified_roll_2c", m.modified_roll_2c, "1",
+           "the pinion's modified roll 2C (synthesised when a transmission error amplitude is "
+           "given)");
+  pg.write("pitch_angle_pinion", g.pitch_angle_pinion, "rad", "gamma_1");
+  pg.write("pitch_angle_gear", g.pitch_angle_gear, "rad", "gamma_2");
+  pg.write("shaft_angle", d.shaft_angle, "rad", "Sigma");
+  pg.write("outer_cone_distance", g.outer_cone_distance, "m", "A_0");
+  pg.write("mean_cone_distance", g.mean_cone_distance, "m", "A_m");
+  pg.write("outer_transverse_module", g.outer_transverse_module, "m", "m_et");
+  pg.write("mean_normal_module", g.mean_normal_module, "m", "m_mn");
+  pg.write("mean_spiral_angle", d.mean_spiral_angle, "rad", "beta_m");
+  pg.write("nominal_radial_setting", n.radial_setting, "m",
+           "S_r = sqrt(A_m^2 + r_c^2 - 2 A_m r_c sin beta_m)");
+  pg.write("nominal_cradle_angle", n.cradle_angle, "rad",
+           "q = atan(r_c cos beta_m / (A_m - r_c sin beta_m))");
+  const auto [pc, gc] = mismatched_cuts(d, m);
+  for (const auto &[name, cut] : {std::pair{"pinion", pc}, {"gear", gc}})
+    {
+      const H5Group           mg = pg.group(name);
+      const BevelMemberFlanks flanks(cut);
+      mg.write("number_of_teeth", std::vector<int>{cut.blank.teeth}, {}, "1", "number of teeth");
+      mg.write("pitch_angle", cut.blank.pitch_angle, "rad", "pitch cone angle");
+      mg.write("face_width", cut.blank.face_width, "m", "face width F");
+      mg.write("addendum", cut.blank.addendum, "m", "mean addendum");
+      mg.write("dedendum", cut.blank.dedendum, "m", "mean dedendum");
+      mg.write("mean_pitch_radius", cut.blank.mean_cone_distance * std::sin(cut.blank.pitch_angle),
+               "m", "R_m = A_m sin gamma");
+      mg.attribute("drive_flank", flanks.concave_drives() ? "concave" : "convex");
+      for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+        {
+          const bool outside = (side == FlankSide::drive) == flanks.concave_drives();
+          const H5Group sg   = mg.group(to_string(side));
+          write_machine(outside ? cut.outside_blade : cut.inside_blade,
+                        outside ? cut.outside_machine : cut.inside_machine, sg.group("machine"));
+          const GeneratedFlank &f = flanks.tooth_flank(side);
+          sg.write("form_height", f.domain().u_min, "m",
+                   "lowest h of the working flank (blade tip or undercut limit)");
+          sg.write("undercut", std::vector<int>{f.undercut_found() ? 1 : 0}, {}, "1",
+                   "1 if the envelope's edge of regression limits the flank (undercut)");
+          if (f.undercut_found())
+            log << "  warning: " << pair.name << " " << name << " " << to_string(side)
+                << " flank is undercut; the working flank starts at h = "
+                << f.domain().u_min * 1e3 << " mm\n";
+        }
+      write_grids(flanks, pair.grid_profile_points, pair.grid_face_points, mg, "h", "m",
+                  "profile coordinate of the grid rows: height above the pitch cone",
+                  "face", "face coordinate of the grid columns: cone distance minus A_m",
+                  progress);
+    }
+}
 } // namespace
 
 void
@@ -108,11 +222,17 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
 {
   std::size_t total = 0;
   for (const PairScene &pair : scene.pairs)
-    total += 2 * (pair.pinion.teeth + pair.gear.teeth);
+    total += 2 * (pair_teeth(pair).first + pair_teeth(pair).second);
   Progress progress(log, "flanks", total);
   for (const PairScene &pair : scene.pairs)
     {
-      const H5Group pg     = out.group(pair.name);
+      const H5Group pg = out.group(pair.name);
+      if (pair.type == PairType::spiral_bevel)
+        {
+          write_bevel_pair(pair, pg, log, progress);
+          continue;
+        }
+      pg.attribute("type", "involute");
       const auto    pinion = InvoluteGear::create(pair.pinion);
       const auto    gear   = InvoluteGear::create(pair.gear);
       write_member(*pinion, pair.grid_profile_points, pair.grid_face_points, pg.group("pinion"),

@@ -2,6 +2,7 @@
 // theoretical flanks (virtual CMM), synthesised with realistic errors, or read from CMM or
 // topography files — with their deviation from the theoretical flank where it is known.
 #include "measured_flank.h"
+#include "pair_members.h"
 #include "stages.h"
 
 #include <algorithm>
@@ -84,7 +85,8 @@ deviation_from(const MeasuredMember &measured, const MeasuredMember &theory)
 } // namespace
 
 void
-run_measured_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &out,
+                   std::ostream &log)
 {
   for (const PairScene &pair : scene.pairs)
     {
@@ -93,22 +95,26 @@ run_measured_stage(const Scene &scene, const Upstream &, const H5Group &out, std
       pg.attribute("source", source_name(m.source));
       if (m.source == MeasuredSource::none)
         continue;
+      const PairMembers theory_members =
+          theoretical_members(pair, TcaScene{}, upstream.at("flanks")->group(pair.name));
       struct Member
       {
         const char             *name;
         const InvoluteGearData &data;
+        const MemberFlanks     &flanks;
         const std::string      &file;
         const std::vector<int> &teeth;
       };
-      for (const Member &member : {Member{"pinion", pair.pinion, m.pinion_file, m.pinion_teeth},
-                                   Member{"gear", pair.gear, m.gear_file, m.gear_teeth}})
+      for (const Member &member :
+           {Member{"pinion", pair.pinion, *theory_members.pinion, m.pinion_file, m.pinion_teeth},
+            Member{"gear", pair.gear, *theory_members.gear, m.gear_file, m.gear_teeth}})
         {
-          const auto gear = InvoluteGear::create(member.data);
+          const int z = member.flanks.teeth();
           for (int k : member.teeth)
-            if (k < 0 || k >= gear->teeth())
+            if (k < 0 || k >= z)
               throw InputError("Measured flanks/" + pair.name + "/" + member.name +
                                " teeth: tooth " + std::to_string(k) + " is not in [0, " +
-                               std::to_string(gear->teeth() - 1) + "]");
+                               std::to_string(z - 1) + "]");
           MeasuredMember                   measured;
           std::vector<std::vector<double>> deviation;
           switch (m.source)
@@ -117,8 +123,8 @@ run_measured_stage(const Scene &scene, const Upstream &, const H5Group &out, std
             case MeasuredSource::synthesised:
               {
                 const MeasuredMember theory =
-                    virtual_cmm(*gear, member.name, m.profile_points, m.face_points, m.edge_margin,
-                                member.teeth);
+                    virtual_cmm(member.flanks, member.name, m.profile_points, m.face_points,
+                                m.edge_margin, member.teeth);
                 measured = theory; // a perfect virtual CMM
                 if (m.source == MeasuredSource::synthesised)
                   measured = synthesise_measured(theory, {m.seed + (member.name[0] == 'g' ? 1 : 0),
@@ -130,15 +136,19 @@ run_measured_stage(const Scene &scene, const Upstream &, const H5Group &out, std
               }
             case MeasuredSource::cmm_files:
               measured = read_cmm_file(member.file);
-              if (measured.teeth != gear->teeth())
+              if (measured.teeth != z)
                 throw InputError(member.file + ": teeth = " + std::to_string(measured.teeth) +
                                  ", but Flanks/" + pair.name + "/" + member.name + " has " +
-                                 std::to_string(gear->teeth()) + " teeth");
+                                 std::to_string(z) + " teeth");
               break;
             case MeasuredSource::topography_files:
               {
+                if (pair.type != PairType::involute)
+                  throw InputError("Measured flanks/" + pair.name +
+                                   "/source = topography files: topography grids are defined "
+                                   "on involute flanks; for a spiral bevel pair use cmm files");
                 const TopographyMember t = read_topography_file(member.file);
-                measured                 = topography_to_points(*gear, t);
+                measured = topography_to_points(*InvoluteGear::create(member.data), t);
                 for (const FlankTopography &f : t.flanks)
                   deviation.push_back(f.deviations);
                 break;

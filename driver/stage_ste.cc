@@ -2,6 +2,7 @@
 // its mesh-order harmonics, and per position and tooth pair the contact point, normals, moment
 // arms and separations (the tables the FE stiffness and the dynamics read).
 #include "harmonics.h"
+#include "pair_members.h"
 #include "stages.h"
 
 #include <algorithm>
@@ -31,7 +32,8 @@ analyse(const UnloadedTca &tca, const TcaScene &t, int z1, Progress &progress)
 /// Writes every table of `r` to `g`; returns the peak-to-peak and mean pairs in contact for the
 /// log.
 std::pair<double, double>
-write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, const H5Group &g)
+write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, int z1,
+             const H5Group &g)
 {
   const int n = int(r.positions.size());
 
@@ -76,18 +78,23 @@ write_tables(const TcaResult &r, const TcaScene &t, double a, int z1, int z2, co
         }
     }
   const hsize_t       N = n, S = slots;
-  const double        r_w1 = a * z1 / (z1 + z2);
+  const double        r_p = members.pitch_radius;
   std::vector<double> te_pitch(te.size());
-  std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_w1; });
+  std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_p; });
 
-  g.write("centre_distance", a, "m", "centre distance of the analysis (with its error added)");
+  if (members.centre_distance > 0)
+    g.write("centre_distance", members.centre_distance, "m",
+            "centre distance of the analysis (with its error added)");
+  g.write("pitch_radius", r_p, "m",
+          "pinion radius of transmission_error_pitch: operating pitch radius (parallel axes) or "
+          "mean pitch radius (bevel)");
   g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi (counter-clockwise)");
   g.write("gear_angle", psi, {N}, "rad", "gear rotation psi in its driven sense");
   g.write("transmission_error", te, {N}, "rad",
           "unloaded static transmission error e_0 = phi - (z2/z1) psi, pinion radians (zero for "
           "perfect involutes at zero backlash)");
   g.write("transmission_error_pitch", te_pitch, {N}, "m",
-          "e_0 as displacement at the operating pitch point, e_0 r_w1");
+          "e_0 as displacement at the pitch point, e_0 times pitch_radius");
   g.write("peak_to_peak", te_max - te_min, "rad", "peak-to-peak of e_0");
   const std::vector<double> h = mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
   g.write("harmonics", h, {h.size()}, "m",
@@ -156,17 +163,15 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
 
   for (const PairScene &pair : scene.pairs)
     {
-      const TcaScene &t      = scene.tca.at(pair.name);
-      const auto      pinion = InvoluteGear::create(pair.pinion);
-      const auto      gear   = InvoluteGear::create(pair.gear);
-      const double    a =
-          t.centre_distance > 0 ? t.centre_distance : working_centre_distance(*pinion, *gear);
-      const int     z1 = pinion->teeth(), z2 = gear->teeth();
-      const H5Group g        = out.group(pair.name);
+      const TcaScene   &t       = scene.tca.at(pair.name);
+      const PairMembers members = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
+      const int         z1 = members.pinion->teeth();
+      const H5Group     g  = out.group(pair.name);
       g.attribute("method", "classical TCA on the theoretical flanks");
       const auto [pp, pairs] = write_tables(
-          analyse(UnloadedTca(pinion, gear, a, t.misalignment, t.options), t, z1, progress), t, a,
-          z1, z2, g);
+          analyse(UnloadedTca(members.pinion, members.gear, members.assembly, t.options), t, z1,
+                  progress),
+          t, members, z1, g);
       log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
           << " urad, mean pairs in contact " << pairs << "\n";
       if (!t.measured)
@@ -189,7 +194,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
         {
           PaperModeOptions po = t.paper;
           po.on_position      = [&] { progress.step(); };
-          const PaperModeResult paper = paper_mode_ste(*mp, *mg, a, t.misalignment, po);
+          const PaperModeResult paper = paper_mode_ste(*mp, *mg, members.assembly, po);
           r                           = paper.tca;
           gm.attribute("method", "paper mode (the seed's point-cloud method) on the measured "
                                     "flanks");
@@ -201,11 +206,11 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
         }
       else
         {
-          r = analyse(UnloadedTca(mp, mg, a, t.misalignment, t.options), t, z1, progress);
+          r = analyse(UnloadedTca(mp, mg, members.assembly, t.options), t, z1, progress);
           gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
                                     "interpolated from the measured points");
         }
-      const auto [mpp, mpairs] = write_tables(r, t, a, z1, z2, gm);
+      const auto [mpp, mpairs] = write_tables(r, t, members, z1, gm);
       log << "  " << pair.name << " measured (" << (t.paper_mode ? "paper mode" : "fast")
           << "): e_0 peak-to-peak " << mpp * 1e6 << " urad, mean pairs in contact " << mpairs
           << "\n";

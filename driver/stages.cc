@@ -32,14 +32,14 @@ stage_definitions()
        "involute flank geometry, profiles, flank grids and mass properties",
        {},
        {"Flanks"},
-       1,
+       2,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_flanks_stage},
       {"measured",
        "measured flank point sets (virtual CMM, synthesised, or read from files)",
        {"flanks"},
        {"Measured flanks"},
-       2,
+       3,
        [](const Scene &scene) {
          std::vector<std::string> files;
          for (const auto &[pair, m] : scene.measured)
@@ -53,7 +53,7 @@ stage_definitions()
        "unloaded tooth contact analysis: static transmission error, contact path, normals",
        {"flanks", "measured"},
        {"TCA"},
-       3,
+       4,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_ste_stage},
   };

@@ -1,5 +1,7 @@
 #include "measured_flank.h"
 
+#include "member_flanks.h"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -447,16 +449,8 @@ MeasuredMember
 virtual_cmm(const InvoluteGear &gear, const std::string &member, int n_profile, int n_face,
             double margin, const std::vector<int> &teeth_to_measure, bool both_sides)
 {
-  if (n_profile < 1 || n_face < 1 || !(margin >= 0 && margin < 0.5))
-    throw InputError("virtual CMM of " + member + ": grid " + std::to_string(n_profile) + " x " +
-                     std::to_string(n_face) + ", margin " + std::to_string(margin) +
-                     "; expected at least 1 x 1 points and a margin in [0, 0.5)");
-  return virtual_cmm(
-      member, gear.teeth(),
-      [&](int k, FlankSide side) {
-        return sample_flank(gear.flank(k, side), n_profile, n_face, margin);
-      },
-      teeth_to_measure, both_sides);
+  return virtual_cmm(InvoluteMemberFlanks(gear.shared_from_this()), member, n_profile, n_face,
+                     margin, teeth_to_measure, both_sides);
 }
 
 // --- CMM point files ---------------------------------------------------------------------------

@@ -107,6 +107,22 @@ private:
 };
 } // namespace
 
+MeasuredMember
+virtual_cmm(const MemberFlanks &member, const std::string &name, int n_profile, int n_face,
+            double margin, const std::vector<int> &teeth, bool both_sides)
+{
+  if (n_profile < 1 || n_face < 1 || !(margin >= 0 && margin < 0.5))
+    throw InputError("virtual CMM of " + name + ": grid " + std::to_string(n_profile) + " x " +
+                     std::to_string(n_face) + ", margin " + std::to_string(margin) +
+                     "; expected at least 1 x 1 points and a margin in [0, 0.5)");
+  return virtual_cmm(
+      name, member.teeth(),
+      [&](int k, FlankSide side) {
+        return sample_flank(member.flank(k, side), n_profile, n_face, margin);
+      },
+      teeth, both_sides);
+}
+
 MeasuredMemberFlanks::MeasuredMemberFlanks(const MeasuredMember &m)
     : z(m.teeth)
 {

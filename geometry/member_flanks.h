@@ -58,6 +58,13 @@ private:
   std::shared_ptr<const InvoluteGear> gear;
 };
 
+/// A perfect CMM of any member's flanks: n_profile x n_face points per flank (sample_flank),
+/// `margin` of each parameter range left out at the edges; see virtual_cmm in measured_flank.h.
+MeasuredMember
+virtual_cmm(const MemberFlanks &member, const std::string &name, int n_profile, int n_face,
+            double margin = 0, const std::vector<int> &teeth_to_measure = {},
+            bool both_sides = true);
+
 /// The measured flanks of a member, interpolated (InterpolatedFlank).
 class MeasuredMemberFlanks : public MemberFlanks
 {

@@ -1,0 +1,31 @@
+// A scene's pair as flank surfaces and an assembly, for the stages after "flanks": involute
+// members from their data, spiral bevel members generated from the design with the pinion's
+// modified roll as the flanks stage synthesised it (/flanks/<pair>/pinion_modified_roll_2c).
+#pragma once
+
+#include "h5_file.h"
+#include "scene.h"
+
+#include <memory>
+
+namespace gearkit
+{
+struct PairMembers
+{
+  std::shared_ptr<const MemberFlanks> pinion, gear;
+  Assembly                            assembly;
+  double centre_distance = 0; ///< parallel axes: of the analysis; bevel pairs: 0
+  /// Pinion radius at which the transmission error is expressed as a displacement: the
+  /// operating pitch radius (involute) or the mean pitch radius (spiral bevel) [m].
+  double pitch_radius = 0;
+};
+
+/// The pinion mismatch with the modified roll the flanks stage synthesised (spiral bevel).
+PinionMismatch
+synthesised_mismatch(const PairScene &pair, const H5Group &flanks);
+
+/// The theoretical members of `pair` assembled as `tca` says; `flanks` is the pair's group of
+/// the flanks stage.
+PairMembers
+theoretical_members(const PairScene &pair, const TcaScene &tca, const H5Group &flanks);
+} // namespace gearkit

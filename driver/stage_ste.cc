@@ -5,6 +5,8 @@
 #include "pair_members.h"
 #include "stages.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -32,8 +34,8 @@ analyse(const UnloadedTca &tca, const TcaScene &t, int z1, Progress &progress)
 /// Writes every table of `r` to `g`; returns the peak-to-peak and mean pairs in contact for the
 /// log.
 std::pair<double, double>
-write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, int z1,
-             const H5Group &g)
+write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members,
+             const MemberFlanks &gear, int z1, const H5Group &g)
 {
   const int n = int(r.positions.size());
 
@@ -42,7 +44,7 @@ write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, 
   for (const TcaPosition &p : r.positions)
     slots = std::max(slots, p.pairs.size());
   std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg, kmin, kmax, major,
-      axes;
+      axes, ellipse_gear;
   std::vector<int>    touching, leading, ptooth, gtooth, edge;
   double              te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
   for (const TcaPosition &p : r.positions)
@@ -68,6 +70,19 @@ write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, 
           kmin.push_back(c.curvature_min), kmax.push_back(c.curvature_max);
           const auto [a, b] = used ? contact_ellipse(c, t.elastic_approach) : std::pair{0.0, 0.0};
           axes.insert(axes.end(), {a, b});
+          // contact point and ellipse semi-axis vectors in the gear's own frame (contact
+          // pattern on the gear flank)
+          const Eigen::Matrix3d turn = Eigen::AngleAxisd(p.gear_angle, Vec3::UnitZ()).matrix();
+          const Vec3            minor = c.normal_pinion.cross(c.major_direction);
+          const auto to_gear = [&](const Vec3 &v) {
+            return Vec3(turn * members.assembly.global_to_gear_unrotated_vector(v));
+          };
+          const Vec3 Xg = used ? Vec3(turn * members.assembly.global_to_gear_unrotated(c.position))
+                               : Vec3::Zero();
+          const Vec3 A  = used ? to_gear(a * c.major_direction) : Vec3::Zero();
+          const Vec3 B  = used ? to_gear(b * minor) : Vec3::Zero();
+          for (const Vec3 *v : {&Xg, &A, &B})
+            ellipse_gear.insert(ellipse_gear.end(), v->data(), v->data() + 3);
           for (auto [v, dest] : {std::pair{&c.position, &X},
                                  {&c.normal_pinion, &np},
                                  {&c.normal_gear, &ng},
@@ -144,6 +159,9 @@ write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, 
   g.write("contact_ellipse_axes", axes, {N, S, 2}, "m",
           "semi-axes (major, minor) of the contact ellipse at the elastic approach "
           "elastic_approach, sqrt(2 delta / k); 1 m where the contact is a line");
+  g.write("contact_in_gear_frame", ellipse_gear, {N, S, 3, 3}, "m",
+          "contact point and the contact ellipse's major and minor semi-axis vectors in the gear "
+          "member's own frame (axis z), for the contact pattern on the gear flank");
   g.write("elastic_approach", t.elastic_approach, "m",
           "elastic approach delta of the contact ellipses");
   return {te_max - te_min, pairs_sum / n};
@@ -171,7 +189,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       const auto [pp, pairs] = write_tables(
           analyse(UnloadedTca(members.pinion, members.gear, members.assembly, t.options), t, z1,
                   progress),
-          t, members, z1, g);
+          t, members, *members.gear, z1, g);
       log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
           << " urad, mean pairs in contact " << pairs << "\n";
       if (!t.measured)
@@ -210,7 +228,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
           gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
                                     "interpolated from the measured points");
         }
-      const auto [mpp, mpairs] = write_tables(r, t, members, z1, gm);
+      const auto [mpp, mpairs] = write_tables(r, t, members, *mg, z1, gm);
       log << "  " << pair.name << " measured (" << (t.paper_mode ? "paper mode" : "fast")
           << "): e_0 peak-to-peak " << mpp * 1e6 << " urad, mean pairs in contact " << mpairs
           << "\n";

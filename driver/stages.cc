@@ -29,7 +29,7 @@ stage_definitions()
 {
   static const std::vector<StageDefinition> stages = {
       {"flanks",
-       "involute flank geometry, profiles, flank grids and mass properties",
+       "flank geometry (involute or spiral bevel), flank grids, mass properties",
        {},
        {"Flanks"},
        2,
@@ -53,7 +53,7 @@ stage_definitions()
        "unloaded tooth contact analysis: static transmission error, contact path, normals",
        {"flanks", "measured"},
        {"TCA"},
-       4,
+       5,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_ste_stage},
   };

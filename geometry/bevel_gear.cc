@@ -127,17 +127,21 @@ mismatched_cuts(const BevelPairDesign &d, const PinionMismatch &m)
   for (auto [blade, machine] : {std::pair{&pinion.outside_blade, &pinion.outside_machine},
                                 {&pinion.inside_blade, &pinion.inside_machine}})
     {
-      // The cutter centre moves along the line from the mean generating point P = (A_m, 0) to
-      // the centre, so the blade's pitch circle keeps passing where it did on that line.
-      const Vec2 C(machine->radial_setting * std::cos(machine->cradle_angle),
-                   machine->radial_setting * std::sin(machine->cradle_angle));
+      // The outside blade (concave flank) grows by the change, the inside blade (convex flank)
+      // shrinks by it: both pinion flanks then curve less lengthwise than the gear flanks they
+      // meet need, which localises the bearing. The cutter centre moves along the line from the
+      // mean generating point P = (A_m, 0) to the centre, so the blade's pitch circle keeps
+      // passing where it did on that line.
+      const double change = blade->slope * m.cutter_radius;
+      const Vec2   C(machine->radial_setting * std::cos(machine->cradle_angle),
+                     machine->radial_setting * std::sin(machine->cradle_angle));
       const Vec2 towards_centre = (C - Vec2(Am, 0)).normalized();
-      const Vec2 moved          = C + m.cutter_radius * towards_centre;
+      const Vec2 moved          = C + change * towards_centre;
       machine->radial_setting   = moved.norm();
       machine->cradle_angle     = std::atan2(moved.y(), moved.x());
       machine->modified_roll_2c = m.modified_roll_2c;
       machine->modified_roll_6d = m.modified_roll_6d;
-      blade->pitch_radius += m.cutter_radius;
+      blade->pitch_radius += change;
       blade->curvature     = m.blade_curvature;
       blade->parabola_apex = 0;
     }

@@ -79,8 +79,10 @@ conjugate_cuts(const BevelPairDesign &design);
 /// blade through the mean point of the flank, so the mean contact point stays where it is.
 struct PinionMismatch
 {
-  /// Change of each pinion blade's radius [m]: positive makes the concave flank's lengthwise
-  /// curvature weaker and the convex flank's stronger than the gear's (bearing length).
+  /// Change of the pinion blade radii [m]: the outside blade (concave flank) by +this, the
+  /// inside blade (convex flank) by -this; positive localises the bearing on both sides (the
+  /// pinion's concave flank curves less lengthwise than the gear's convex one it meets, its
+  /// convex flank more than the gear's concave one).
   double cutter_radius = 0;
   /// Parabolic blade curvature of both pinion blades [1/m], apex at the pitch plane (profile
   /// crowning: bearing width and edge relief).

@@ -8,6 +8,8 @@ usage: plot_results.py out/<scene>/results.h5
   measured.png    measured minus theoretical flank of the first measured tooth, um
   ste.png         unloaded static transmission error, harmonics, contact path
   hunting.png     STE over the hunting-tooth cycle and its spectrum in pinion shaft orders
+  contact_pattern.png  contact ellipses on the gear flank over the analysed positions
+  ste_harmonics.md     mesh-order harmonics at the pitch point, theoretical and measured
 """
 import os
 import sys
@@ -34,8 +36,38 @@ def rotate(xy, angle):
     return xy @ np.array([[c, s], [-s, c]])
 
 
+def is_bevel(pair_group):
+    return pair_group.attrs.get("type", "involute") == "spiral bevel"
+
+
+def flank_coordinates(flanks, name, member, u, v):
+    """Flank parameters as lengths in mm: (face, profile). Involute: z and roll length r_b u;
+    spiral bevel: A - A_m and the height h above the pitch cone."""
+    m = flanks[name][member]
+    if is_bevel(flanks[name]):
+        return v * 1e3, u * 1e3
+    return v * 1e3, m["base_radius"][()] * u * 1e3
+
+
+def gear_flank_coordinates(flanks, name, points):
+    """(face, profile) in mm of points given in the gear's own frame: spiral bevel: cone
+    distance - A_m and height above the pitch cone (rotational projection); involute: z and
+    roll length."""
+    gear = flanks[name]["gear"]
+    axial, radius = points[..., 2], np.hypot(points[..., 0], points[..., 1])
+    if is_bevel(flanks[name]):
+        gamma = gear["pitch_angle"][()]
+        A = axial * np.cos(gamma) + radius * np.sin(gamma)
+        h = -axial * np.sin(gamma) + radius * np.cos(gamma)
+        return (A - flanks[name]["mean_cone_distance"][()]) * 1e3, h * 1e3
+    rb = gear["base_radius"][()]
+    return axial * 1e3, np.sqrt(np.maximum(radius**2 - rb**2, 0)) * 1e3
+
+
 def plot_profiles(flanks, out_dir):
-    pairs = list(flanks)
+    pairs = [n for n in flanks if not is_bevel(flanks[n])]
+    if not pairs:
+        return
     fig, axes = plt.subplots(len(pairs), 2, figsize=(12, 5.2 * len(pairs)), squeeze=False)
     for row, name in zip(axes, pairs):
         pair = flanks[name]
@@ -81,7 +113,10 @@ def plot_profiles(flanks, out_dir):
 def plot_topography(flanks, out_dir):
     """Flank topography of tooth 0, drive and coast, of every member: the modifications and
     deviations along the normal in um over roll length (profile) and face width."""
-    members = [(pn, mn, flanks[pn][mn]) for pn in flanks for mn in ("pinion", "gear")]
+    members = [(pn, mn, flanks[pn][mn]) for pn in flanks for mn in ("pinion", "gear")
+               if not is_bevel(flanks[pn])]
+    if not members:
+        return
     fig, axes = plt.subplots(2, len(members), figsize=(4.2 * len(members), 7.5), squeeze=False)
     for col, (pn, mn, m) in enumerate(members):
         rb = m["base_radius"][()]
@@ -170,20 +205,104 @@ def plot_ste(ste, flanks, out_dir):
         row[1].set_title("harmonics")
         lead = g["leading"][:]
         idx = np.arange(len(lead))
-        rb = flanks[name]["pinion"]["base_radius"][()]
-        L = rb * g["pinion_u"][:][idx, lead] * 1e3
-        v = g["pinion_v"][:][idx, lead] * 1e3
-        sc = row[2].scatter(v, L, c=cycles, s=10, cmap="viridis")
+        face, profile = flank_coordinates(flanks, name, "pinion", g["pinion_u"][:][idx, lead],
+                                          g["pinion_v"][:][idx, lead])
+        sc = row[2].scatter(face, profile, c=cycles, s=10, cmap="viridis")
         fig.colorbar(sc, ax=row[2], label="mesh cycles")
         half_b = flanks[name]["pinion"]["face_width"][()] * 500
         row[2].set_xlim(-half_b * 1.05, half_b * 1.05)
-        d = flanks[name]["pinion"]["drive"]["roll_angle"][:]
-        row[2].set_ylim(rb * d[0] * 1e3, rb * d[-1] * 1e3)
-        row[2].set_xlabel("face z [mm]")
-        row[2].set_ylabel("pinion roll length L [mm]")
-        row[2].set_title("contact path on the pinion flank")
+        if is_bevel(flanks[name]):
+            p = flanks[name]["pinion"]
+            row[2].set_ylim(p["drive"]["form_height"][()] * 1e3, p["addendum"][()] * 1e3)
+            row[2].set_xlabel("face: cone distance - A_m [mm] (toe to heel)")
+            row[2].set_ylabel("height above the pitch cone [mm]")
+        else:
+            rb = flanks[name]["pinion"]["base_radius"][()]
+            d = flanks[name]["pinion"]["drive"]["roll_angle"][:]
+            row[2].set_ylim(rb * d[0] * 1e3, rb * d[-1] * 1e3)
+            row[2].set_xlabel("face z [mm]")
+            row[2].set_ylabel("pinion roll length L [mm]")
+        row[2].set_title("contact path on the pinion flank (theory)")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "ste.png"))
+
+
+def plot_contact_pattern(ste, flanks, out_dir):
+    """Contact pattern on the gear flank: the instantaneous contact ellipses (at the scene's
+    elastic approach) of every touching pair over the analysed positions, theoretical and
+    measured flanks side by side."""
+    pairs = list(ste)
+    sets = [(n, label, g) for n in pairs
+            for label, g in (("theoretical", ste[n]), ("measured", ste[n].get("measured")))
+            if g is not None]
+    fig, axes = plt.subplots(1, len(sets), figsize=(6.5 * len(sets), 4.8), squeeze=False)
+    t = np.linspace(0, 2 * np.pi, 60)
+    clip_items = []
+    for ax, (name, label, g) in zip(axes[0], sets):
+        gear = flanks[name]["gear"]
+        sep = g["separation"][:]
+        tol = g["paper_tolerance"][()] if "paper_tolerance" in g else 1e-9
+        touching = (g["pinion_tooth"][:] >= 0) & (sep <= tol)  # slots in use, in contact
+        geo = g["contact_in_gear_frame"][:]
+        half_b = gear["face_width"][()] * 500
+        for i, k in zip(*np.nonzero(touching)):
+            X, A, B = geo[i, k]
+            pts = X + np.outer(np.cos(t), A) + np.outer(np.sin(t), B)
+            face, profile = gear_flank_coordinates(flanks, name, pts)
+            patch = ax.fill(face, profile, color="tab:green", alpha=0.08, lw=0)[0]
+            line = ax.plot(face, profile, color="tab:green", lw=0.3, alpha=0.5)[0]
+            clip_items.extend([patch, line])
+        face, profile = gear_flank_coordinates(flanks, name, geo[touching][:, 0])
+        ax.plot(face, profile, "k.", ms=2, label="contact points")
+        if is_bevel(flanks[name]):
+            lo, hi = gear["drive"]["form_height"][()] * 1e3, gear["addendum"][()] * 1e3
+            ax.set_ylabel("height above the pitch cone [mm] (root to tip)")
+            ax.set_xlabel("face: cone distance - A_m [mm] (toe to heel)")
+        else:
+            rb = gear["base_radius"][()]
+            d = gear["drive"]["roll_angle"][:]
+            lo, hi = rb * d[0] * 1e3, rb * d[-1] * 1e3
+            ax.set_ylabel("gear roll length L [mm]")
+            ax.set_xlabel("face z [mm]")
+        outline = plt.Rectangle((-half_b, lo), 2 * half_b, hi - lo, fill=False, color="k",
+                                lw=0.8)
+        ax.add_patch(outline)
+        for item in clip_items:  # the pattern ends at the flank's edges
+            item.set_clip_path(outline)
+        clip_items.clear()
+        ax.set_xlim(-half_b * 1.08, half_b * 1.08)
+        ax.set_ylim(lo - 0.08 * (hi - lo), hi + 0.08 * (hi - lo))
+        delta = g["elastic_approach"][()] * 1e6
+        ax.set_title(f"{name} ({label}): contact pattern on the gear flank, approach {delta:g} um",
+                     fontsize=10)
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "contact_pattern.png"))
+
+
+def write_harmonic_table(ste, out_dir):
+    """The mesh-order harmonics of e_0 as displacement at the pitch point, theoretical and
+    measured, in the seed paper's form (ste_harmonics.md)."""
+    lines = []
+    for name in ste:
+        g = ste[name]
+        m = g.get("measured")
+        lines.append(f"## {name}\n")
+        lines.append(f"pitch radius {g['pitch_radius'][()] * 1e3:.3f} mm; e_0 peak-to-peak "
+                     f"{g['peak_to_peak'][()]:.4g} rad (theoretical)"
+                     + (f", {m['peak_to_peak'][()]:.4g} rad (measured)" if m is not None else "")
+                     + "\n")
+        lines.append("| mesh order | theoretical [m] | measured [m] |")
+        lines.append("|---|---|---|")
+        h = g["harmonics"][:]
+        hm = m["harmonics"][:] if m is not None else None
+        for k in range(1, len(h)):
+            lines.append(f"| {k}x | {h[k]:.3e} | " + (f"{hm[k]:.3e} |" if hm is not None else "- |"))
+        lines.append("")
+    path = os.path.join(out_dir, "ste_harmonics.md")
+    with open(path + ".tmp", "w") as f:
+        f.write("\n".join(lines))
+    os.replace(path + ".tmp", path)
+    print("table:", path)
 
 
 def plot_hunting(ste, flanks, out_dir):
@@ -246,6 +365,8 @@ def main():
         if "ste" in f:
             plot_ste(f["ste"], f["flanks"], out_dir)
             plot_hunting(f["ste"], f["flanks"], out_dir)
+            plot_contact_pattern(f["ste"], f["flanks"], out_dir)
+            write_harmonic_table(f["ste"], out_dir)
 
 
 if __name__ == "__main__":

@@ -134,7 +134,12 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
   // tip (s_tip = h_f / cos alpha) or the envelope's edge of regression (undercut) is reached;
   // below lies the fillet. The working flank's domain starts at the highest such h along the
   // face (sampled at 9 face positions, 2 % of the depth kept as margin).
-  const double s_tip = blank.dedendum / std::cos(blade.angle);
+  // The blade tips lie at the work's dedendum above the pitch plane; with an edge radius r_e
+  // the straight part ends at (h_f - r_e (1 - sin alpha)) / cos alpha along the blade.
+  if (!(blade.edge_radius >= 0 && blade.edge_radius < blank.dedendum))
+    throw InputError("generated bevel flank: the blade edge radius must lie in [0, dedendum)");
+  const double s_tip =
+      (blank.dedendum - blade.edge_radius * (1 - std::sin(blade.angle))) / std::cos(blade.angle);
   const double depth = blank.addendum + blank.dedendum;
   form_height        = -blank.dedendum;
   for (int j = 0; j < 9; ++j)

@@ -54,6 +54,9 @@ struct Blade
   /// pitch plane toward the tip [1/m]; 0: straight.
   double curvature = 0;
   double parabola_apex = 0; ///< s0 [m]
+  /// Edge radius of the blade tip [m]: the rounded tip cuts the root fillet; the working flank
+  /// ends where the blade's straight (or parabolic) part meets the rounding.
+  double edge_radius = 0;
 };
 
 /// Settings of the generating machine for one flank side.

@@ -151,3 +151,29 @@ TEST(BevelMemberFlanks, HandOfSpiralAndToothPlacement)
       EXPECT_NEAR(arc_p * std::cos(d.mean_spiral_angle), 0.5 * pi * m_mn, 1e-3 * m_mn);
     }
 }
+
+TEST(GeneratedFlank, EdgeRadiusShortensTheWorkingFlank)
+{
+  // The rounded blade tip cuts the fillet: the working flank (the domain) ends higher up, where
+  // the straight blade meets the rounding, s = (h_f - r_e (1 - sin a)) / cos a.
+  BevelPairDesign d;
+  d.pinion_teeth = 55, d.gear_teeth = 47, d.module = 3e-3, d.face_width = 19e-3;
+  auto [pinion, gear]      = conjugate_cuts(d);
+  const GeneratedFlank sharp(gear.blank, gear.outside_blade, gear.outside_machine);
+  gear.outside_blade.edge_radius = 0.6e-3;
+  const GeneratedFlank round(gear.blank, gear.outside_blade, gear.outside_machine);
+  EXPECT_GT(round.domain().u_min, sharp.domain().u_min + 0.1e-3);
+  const Blade &b     = gear.outside_blade;
+  const double s_end = (gear.blank.dedendum - b.edge_radius * (1 - std::sin(b.angle))) /
+                       std::cos(b.angle);
+  // at the domain's lower edge (2 % of the depth above the limit) the blade point is just short
+  // of the rounding everywhere along the face
+  for (double v : {-9e-3, 0.0, 9e-3})
+    {
+      const double s = round.generation(round.domain().u_min, v).s;
+      EXPECT_LT(s, s_end) << v;
+      EXPECT_GT(s, s_end - 0.15 * (gear.blank.addendum + gear.blank.dedendum)) << v;
+    }
+  gear.outside_blade.edge_radius = gear.blank.dedendum;
+  EXPECT_THROW(GeneratedFlank(gear.blank, gear.outside_blade, gear.outside_machine), InputError);
+}

@@ -299,3 +299,25 @@ TEST(BevelTca, ContactEllipse)
       EXPECT_GT(std::abs(c.major_direction.dot(element)), 0.5);
     }
 }
+
+TEST(BevelTca, ParabolicBladeNarrowsTheBearing)
+{
+  // Profile crowning from parabolic pinion blades adds relative curvature across the profile:
+  // the contact ellipse's minor axis shrinks; curvature only adds, so the major axis does not
+  // grow (it shrinks too, the ellipse being inclined to the profile direction).
+  PinionMismatch m = seed_mismatch();
+  TcaOptions     o;
+  o.positions_per_mesh = 2;
+  auto axes            = [&](double curvature) {
+    m.blade_curvature  = curvature;
+    const auto      f  = bevel_pair_flanks(seed_design(), m);
+    const TcaPosition p = UnloadedTca(f.pinion, f.gear, f.assembly, o).at(0);
+    return contact_ellipse(p.pairs[p.leading], 6.32e-6);
+  };
+  const auto [a0, b0] = axes(0);
+  const auto [a1, b1] = axes(20);
+  EXPECT_LT(b1, 0.9 * b0);
+  EXPECT_LE(a1, a0 * (1 + 1e-9));
+  EXPECT_GT(a1, 1e-3); // still a localised, elongated bearing
+  EXPECT_GT(a1, 3 * b1);
+}

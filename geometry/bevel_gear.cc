@@ -1,5 +1,7 @@
 #include "bevel_gear.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <sstream>
 
@@ -116,6 +118,38 @@ conjugate_cuts(const BevelPairDesign &d)
   pinion.inside_blade      = {d.cutter_radius - slot / 2, a, -1};
   gear.inside_blade        = {d.cutter_radius + slot / 2, a, -1};
   gear.outside_blade       = {d.cutter_radius - slot / 2, a, +1};
+  return {pinion, gear};
+}
+
+std::pair<BevelMemberCut, BevelMemberCut>
+formate_cuts(const BevelPairDesign &d)
+{
+  auto [pinion, gear] = conjugate_cuts(d);
+  const BevelPairGeometry g = bevel_geometry(d);
+  gear.outside_machine.generated = gear.inside_machine.generated = false;
+
+  // The gear's machine frame seen from the pinion's: T = Ry(90 deg - gamma_2) Rx(pi) takes the
+  // gear axis to -z and the gear's pitch element to the common element; the cutter (fixed in the
+  // gear) then sits at T C' with its axis -T z' (blades toward the pinion).
+  const MachineSettings &mg = gear.outside_machine;
+  const double          beta = pi / 2 - g.pitch_angle_gear;
+  const Eigen::Matrix3d T    = (Eigen::AngleAxisd(beta, Vec3::UnitY()) *
+                             Eigen::AngleAxisd(pi, Vec3::UnitX()))
+                                .toRotationMatrix();
+  const Vec3 C = T * Vec3(mg.radial_setting * std::cos(mg.cradle_angle),
+                          mg.radial_setting * std::sin(mg.cradle_angle), 0);
+  MachineSettings mp;
+  mp.radial_setting = C.head<2>().norm();
+  mp.cradle_angle   = std::atan2(C.y(), C.x());
+  mp.tilt           = beta;
+  mp.swivel         = -mp.cradle_angle; // leaning toward +x
+  mp.sliding_base   = C.z();
+  mp.root_angle     = d.shaft_angle - pi / 2;
+  mp.ratio_of_roll  = double(d.gear_teeth) / d.pinion_teeth;
+  pinion.outside_machine = pinion.inside_machine = mp;
+  // Each pinion blade is the gear's opposite blade cone seen from the other side.
+  pinion.outside_blade = {gear.inside_blade.pitch_radius, gear.inside_blade.angle, +1};
+  pinion.inside_blade  = {gear.outside_blade.pitch_radius, gear.outside_blade.angle, -1};
   return {pinion, gear};
 }
 

@@ -31,6 +31,19 @@ rotate_z(const V3<T> &x, const T &c, const T &s)
 }
 } // namespace
 
+/// Axes of the cutter frame in the cradle frame (columns): z along the cutter axis, x the cradle
+/// x axis made perpendicular to it (identity without tilt).
+Eigen::Matrix3d
+cutter_frame(const MachineSettings &m)
+{
+  const double    d = m.cradle_angle + m.swivel;
+  const Vec3      k(std::sin(m.tilt) * std::cos(d), std::sin(m.tilt) * std::sin(d), std::cos(m.tilt));
+  const Vec3      x = (Vec3::UnitX() - Vec3::UnitX().dot(k) * k).normalized();
+  Eigen::Matrix3d R;
+  R.col(0) = x, R.col(1) = k.cross(x), R.col(2) = k;
+  return R;
+}
+
 // The generation chain, shared by the value and derivative evaluations (T = double or AD).
 template <class T>
 ChainValues<T>
@@ -54,10 +67,13 @@ generation_chain(const Blade &blade, const MachineSettings &m, const Eigen::Matr
   const T len  = sqrt(drho * drho + dz * dz);
   const T n_rho = sigma * dz / len, n_z = -sigma * drho / len; // crown-tooth outward normal
 
-  const T ct = cos(theta), st = sin(theta);
-  const V3<T> r_c(m.radial_setting * std::cos(m.cradle_angle) + rho * ct,
-                  m.radial_setting * std::sin(m.cradle_angle) + rho * st, z);
-  const V3<T> n_c(n_rho * ct, n_rho * st, n_z);
+  const T               ct = cos(theta), st = sin(theta);
+  const Eigen::Matrix3d cutter = cutter_frame(m);
+  const V3<T> r_c = Vec3(m.radial_setting * std::cos(m.cradle_angle),
+                         m.radial_setting * std::sin(m.cradle_angle), 0)
+                        .cast<T>() +
+                    cutter.cast<T>() * V3<T>(rho * ct, rho * st, z);
+  const V3<T> n_c = cutter.cast<T>() * V3<T>(n_rho * ct, n_rho * st, n_z);
   const T     cp = cos(psi), sp = sin(psi);
   const V3<T> r_m = rotate_z<T>(r_c, cp, sp);
   const V3<T> n_m = rotate_z<T>(n_c, cp, sp);
@@ -124,9 +140,18 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
 
   // Mean point of the pitch cone: there the blade at cradle angle 0 passes the mean generating
   // point (A_m, 0, 0).
-  const Vec2 c(machine.radial_setting * std::cos(machine.cradle_angle),
-               machine.radial_setting * std::sin(machine.cradle_angle));
-  Eigen::Vector3d q0(0, std::atan2(-c.y(), blank.mean_cone_distance - c.x()), 0);
+  // First guess at the mean point of the pitch cone (blank frame: polar angle 0, radius
+  // A_m sin gamma, axial A_m cos gamma), in the machine at cradle angle 0: the blade point
+  // nearest to it.
+  const double Am = blank.mean_cone_distance;
+  const Vec3   P  = apex + machine_to_blank.transpose() *
+                          Vec3(Am * std::sin(blank.pitch_angle), 0, Am * std::cos(blank.pitch_angle));
+  const Vec3   Pc = cutter_frame(machine).transpose() *
+                  (P - Vec3(machine.radial_setting * std::cos(machine.cradle_angle),
+                            machine.radial_setting * std::sin(machine.cradle_angle), 0));
+  const double ca = std::cos(blade.angle), sa = std::sin(blade.angle);
+  Eigen::Vector3d q0(ca * Pc.z() - blade.slope * sa * (Pc.head<2>().norm() - blade.pitch_radius),
+                     std::atan2(Pc.y(), Pc.x()), 0);
   int             it;
   q0 = solve(0, 0, q0, it);
 

@@ -7,7 +7,8 @@
 // Machine frame S_m: z_m is the cradle axis pointing at the work; the plane z_m = 0 is the pitch
 // plane of the plane generating gear (the cradle); at cradle angle 0 the mean generating point
 // lies on the +x_m axis at the mean cone distance. The head cutter's axis is parallel to z_m
-// through C = (S_r cos q, S_r sin q, 0): radial setting S_r, cradle angle q. A blade is a line in
+// through C = (S_r cos q, S_r sin q, 0): radial setting S_r, cradle angle q, unless tilted (tilt
+// i, swivel j: the axis leans by i toward the cradle-plane direction q + j). A blade is a line in
 // a plane through the cutter axis, given by its radius at the pitch plane and its angle to the
 // axis; s runs along it from the pitch plane toward the tip (+z_m, into the work; the tips, at
 // the work's dedendum, cut the root). The cradle turns by psi_c about z_m.
@@ -65,6 +66,10 @@ struct MachineSettings
   double radial_setting = 0;         ///< S_r [m]
   double cradle_angle   = 0;         ///< q [rad]; its sign sets the hand
   double root_angle     = 0;         ///< gamma_m, machine root angle [rad]
+  /// Cutter tilt i: the cutter axis leans by i from the cradle axis, toward the direction at
+  /// angle q + j (swivel j) in the cradle plane [rad]; 0: axis parallel to the cradle axis.
+  double tilt   = 0;
+  double swivel = 0;
   double sliding_base   = 0;         ///< Delta X_B [m]
   double machine_centre_to_back = 0; ///< Delta X_D [m]
   double blank_offset   = 0;         ///< E_m [m]

@@ -176,6 +176,9 @@ declare_bevel(ParameterHandler &prm)
   prm.declare_entry("clearance factor", "0.25", Patterns::Double(0, 1), "Clearance / m_mn.");
   prm.declare_entry("pinion thickness factor", "0.5", Patterns::Double(0, 1),
                     "Pinion tooth thickness / normal pitch at the mean point.");
+  prm.declare_entry("blade edge radius factor", "0.2", Patterns::Double(0, 1),
+                    "Edge radius of the blade tips / m_mn: the rounding cuts the root fillet and "
+                    "ends the working flank.");
   prm.declare_entry("pinion cutter radius change", "0", Patterns::Double(),
                     "[mm] Mismatch: pinion blade radii against the gear's, the blades kept "
                     "through the mean point (localises the bearing along the face).");
@@ -472,6 +475,7 @@ get_bevel(ParameterHandler &prm, PairScene pair)
   d.pinion_addendum   = prm.get_double("pinion addendum factor");
   d.clearance         = prm.get_double("clearance factor");
   d.pinion_thickness  = prm.get_double("pinion thickness factor");
+  d.edge_radius       = prm.get_double("blade edge radius factor");
   pair.mismatch.cutter_radius    = prm.get_double("pinion cutter radius change") * mm;
   pair.mismatch.blade_curvature  = prm.get_double("pinion blade curvature");
   pair.mismatch.modified_roll_2c = prm.get_double("pinion modified roll 2C");

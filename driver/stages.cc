@@ -32,7 +32,7 @@ stage_definitions()
        "flank geometry (involute or spiral bevel), flank grids, mass properties",
        {},
        {"Flanks"},
-       2,
+       3,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_flanks_stage},
       {"measured",

@@ -118,6 +118,9 @@ conjugate_cuts(const BevelPairDesign &d)
   pinion.inside_blade      = {d.cutter_radius - slot / 2, a, -1};
   gear.inside_blade        = {d.cutter_radius + slot / 2, a, -1};
   gear.outside_blade       = {d.cutter_radius - slot / 2, a, +1};
+  for (Blade *b : {&pinion.outside_blade, &pinion.inside_blade, &gear.outside_blade,
+                   &gear.inside_blade})
+    b->edge_radius = d.edge_radius * g.mean_normal_module;
   return {pinion, gear};
 }
 
@@ -148,8 +151,10 @@ formate_cuts(const BevelPairDesign &d)
   mp.ratio_of_roll  = double(d.gear_teeth) / d.pinion_teeth;
   pinion.outside_machine = pinion.inside_machine = mp;
   // Each pinion blade is the gear's opposite blade cone seen from the other side.
-  pinion.outside_blade = {gear.inside_blade.pitch_radius, gear.inside_blade.angle, +1};
-  pinion.inside_blade  = {gear.outside_blade.pitch_radius, gear.outside_blade.angle, -1};
+  pinion.outside_blade       = gear.inside_blade;
+  pinion.outside_blade.slope = +1;
+  pinion.inside_blade        = gear.outside_blade;
+  pinion.inside_blade.slope  = -1;
   return {pinion, gear};
 }
 

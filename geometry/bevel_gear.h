@@ -32,6 +32,7 @@ struct BevelPairDesign
   double      pinion_addendum     = 1;    ///< h_a1 / m_mn; the gear's is 2 - this
   double      clearance           = 0.25; ///< c / m_mn
   double      pinion_thickness    = 0.5;  ///< pinion tooth thickness / normal pitch at the mean point
+  double      edge_radius         = 0;    ///< r_e / m_mn: blade tip edge radius (cuts the fillet)
 };
 
 /// Derived blank geometry of the pair.

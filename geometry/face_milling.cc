@@ -44,28 +44,55 @@ cutter_frame(const MachineSettings &m)
   return R;
 }
 
-// The generation chain, shared by the value and derivative evaluations (T = double or AD).
+// Blade meridian at s: radius rho, height z above the pitch plane and the unit normal (n_rho,
+// n_z) into the work. Straight plus a parabolic displacement kappa (s - s0)^2 along the straight
+// blade's normal n0 = (sigma cos a, sin a); beyond s_round (edge radius r_e > 0) the tip rounding:
+// an arc of radius r_e tangent to the blade there, s its arc length, turning the normal toward
+// the cutter axis (the tip plane), reached at s_round + r_e (pi/2 - a_j).
 template <class T>
-ChainValues<T>
-generation_chain(const Blade &blade, const MachineSettings &m, const Eigen::Matrix3d &to_blank,
-                 const Vec3 &apex, double rotation, double mean_cone_distance, const T &s,
-                 const T &theta, const T &psi)
+void
+blade_meridian(const Blade &blade, double s_round, const T &s, T &rho, T &z, T &n_rho, T &n_z)
 {
   using std::cos;
   using std::sin;
   using std::sqrt;
   const double sa = std::sin(blade.angle), ca = std::cos(blade.angle);
   const double sigma = blade.slope;
-  // Blade meridian (radius, height above the pitch plane), straight plus parabolic displacement
-  // kappa (s - s0)^2 along the straight blade's normal n0 = (sigma cos a, sin a) (into the work).
-  const T ds   = s - blade.parabola_apex;
-  const T bulge = blade.curvature * ds * ds, dbulge = 2 * blade.curvature * ds;
-  const T rho  = blade.pitch_radius - sigma * sa * s + sigma * ca * bulge;
-  const T z    = ca * s + sa * bulge;
-  const T drho = -sigma * sa + sigma * ca * dbulge;
-  const T dz   = ca + sa * dbulge;
-  const T len  = sqrt(drho * drho + dz * dz);
-  const T n_rho = sigma * dz / len, n_z = -sigma * drho / len; // crown-tooth outward normal
+  auto profile = [&](const auto &s_, auto &rho_, auto &z_, auto &nr_, auto &nz_) {
+    const auto ds     = s_ - blade.parabola_apex;
+    const auto bulge  = blade.curvature * ds * ds;
+    const auto dbulge = 2 * blade.curvature * ds;
+    rho_              = blade.pitch_radius - sigma * sa * s_ + sigma * ca * bulge;
+    z_                = ca * s_ + sa * bulge;
+    const auto drho   = -sigma * sa + sigma * ca * dbulge;
+    const auto dz     = ca + sa * dbulge;
+    const auto len    = sqrt(drho * drho + dz * dz);
+    nr_ = sigma * dz / len, nz_ = -sigma * drho / len;
+  };
+  if (!(blade.edge_radius > 0 && s > s_round))
+    return profile(s, rho, z, n_rho, n_z);
+  double rj, zj, nrj, nzj;
+  profile(s_round, rj, zj, nrj, nzj);
+  const double r  = blade.edge_radius;
+  const double aj = std::atan2(nzj, sigma * nrj); // n_j = (sigma cos a_j, sin a_j)
+  const T      phi = aj + (s - s_round) / r;
+  n_rho = sigma * cos(phi), n_z = sin(phi);
+  rho   = rj - r * nrj + r * n_rho;
+  z     = zj - r * nzj + r * n_z;
+}
+
+// The generation chain, shared by the value and derivative evaluations (T = double or AD).
+template <class T>
+ChainValues<T>
+generation_chain(const Blade &blade, double s_round, const MachineSettings &m,
+                 const Eigen::Matrix3d &to_blank, const Vec3 &apex, double rotation,
+                 double mean_cone_distance, const T &s, const T &theta, const T &psi)
+{
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  T rho, z, n_rho, n_z;
+  blade_meridian(blade, s_round, s, rho, z, n_rho, n_z);
 
   const T               ct = cos(theta), st = sin(theta);
   const Eigen::Matrix3d cutter = cutter_frame(m);
@@ -138,8 +165,13 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
   apex = machine.blank_offset * Vec3::UnitY() - machine.sliding_base * Vec3::UnitZ() -
          machine.machine_centre_to_back * machine_to_blank.row(2).transpose();
 
-  // Mean point of the pitch cone: there the blade at cradle angle 0 passes the mean generating
-  // point (A_m, 0, 0).
+  // The blade tips lie at the work's dedendum above the pitch plane; with an edge radius r_e
+  // the straight part ends at (h_f - r_e (1 - sin alpha)) / cos alpha along the blade.
+  if (!(blade.edge_radius >= 0 && blade.edge_radius < blank.dedendum))
+    throw InputError("generated bevel flank: the blade edge radius must lie in [0, dedendum)");
+  s_round =
+      (blank.dedendum - blade.edge_radius * (1 - std::sin(blade.angle))) / std::cos(blade.angle);
+
   // First guess at the mean point of the pitch cone (blank frame: polar angle 0, radius
   // A_m sin gamma, axial A_m cos gamma), in the machine at cradle angle 0: the blade point
   // nearest to it.
@@ -159,12 +191,7 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
   // tip (s_tip = h_f / cos alpha) or the envelope's edge of regression (undercut) is reached;
   // below lies the fillet. The working flank's domain starts at the highest such h along the
   // face (sampled at 9 face positions, 2 % of the depth kept as margin).
-  // The blade tips lie at the work's dedendum above the pitch plane; with an edge radius r_e
-  // the straight part ends at (h_f - r_e (1 - sin alpha)) / cos alpha along the blade.
-  if (!(blade.edge_radius >= 0 && blade.edge_radius < blank.dedendum))
-    throw InputError("generated bevel flank: the blade edge radius must lie in [0, dedendum)");
-  const double s_tip =
-      (blank.dedendum - blade.edge_radius * (1 - std::sin(blade.angle))) / std::cos(blade.angle);
+  const double s_tip = s_round;
   const double depth = blank.addendum + blank.dedendum;
   form_height        = -blank.dedendum;
   for (int j = 0; j < 9; ++j)
@@ -270,7 +297,7 @@ GeneratedFlank::newton(double u, double v, Eigen::Vector3d &q, int &iterations) 
   for (iterations = 0; iterations < 40; ++iterations)
     {
       const ChainValues<AD> c = generation_chain<AD>(
-          blade, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance,
+          blade, s_round, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance,
           variable(q[0], 0), variable(q[1], 1), variable(q[2], 2));
       const Eigen::Vector3d F(c.meshing.value(), c.axial.value() - target.x(),
                               c.radius.value() - target.y());
@@ -310,7 +337,7 @@ GeneratedFlank::generation(double u, double v) const
   Generation g;
   const Eigen::Vector3d q = solve(u, v, guesses[best].q, g.iterations);
   g.s = q[0], g.theta = q[1], g.psi_c = q[2];
-  g.meshing_residual = generation_chain<double>(blade, machine, machine_to_blank, apex, rotation,
+  g.meshing_residual = generation_chain<double>(blade, s_round, machine, machine_to_blank, apex, rotation,
                                                 blank.mean_cone_distance, q[0], q[1], q[2])
                            .meshing;
   return g;
@@ -321,7 +348,7 @@ GeneratedFlank::evaluate(double u, double v) const
 {
   const Generation      g = generation(u, v);
   const ChainValues<AD> c =
-      generation_chain<AD>(blade, machine, machine_to_blank, apex, rotation,
+      generation_chain<AD>(blade, s_round, machine, machine_to_blank, apex, rotation,
                            blank.mean_cone_distance, variable(g.s, 0), variable(g.theta, 1),
                            variable(g.psi_c, 2));
   Eigen::Matrix3d J, dr;
@@ -350,7 +377,7 @@ FlankPoint
 GeneratedFlank::blade_point(double s, double theta, double psi_c, double *meshing) const
 {
   const ChainValues<double> c = generation_chain<double>(
-      blade, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance, s, theta, psi_c);
+      blade, s_round, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance, s, theta, psi_c);
   if (meshing)
     *meshing = c.meshing;
   FlankPoint p;
@@ -358,6 +385,60 @@ GeneratedFlank::blade_point(double s, double theta, double psi_c, double *meshin
   p.normal   = c.normal;
   p.d_du = p.d_dv = Vec3::Zero();
   return p;
+}
+
+GeneratedFlank::FilletPoint
+GeneratedFlank::fillet_point(double t, double v) const
+{
+  if (!(blade.edge_radius > 0))
+    throw InputError("generated bevel flank: a root fillet needs a blade edge radius > 0");
+  if (!(t >= 0 && t <= 1 && v >= -blank.face_width / 2 && v <= blank.face_width / 2))
+    throw InputError("generated bevel flank: fillet point outside t in [0, 1], |A - A_m| <= F/2");
+  // Start at the working flank's lower edge and march along the blade: (theta, psi_c) solve the
+  // equation of meshing and the cone distance A = A_m + v at the blade parameter s(t).
+  const Generation g0    = generation(domain().u_min, v);
+  double rj, zj, nrj, nzj; // the rounding turns the normal from the blade's at s_round to the axis
+  blade_meridian<double>(blade, s_round, s_round, rj, zj, nrj, nzj);
+  const double s_end = s_round + blade.edge_radius * (pi / 2 - std::atan2(nzj, blade.slope * nrj));
+  const double     cg = std::cos(blank.pitch_angle), sg = std::sin(blank.pitch_angle);
+  const double     A  = blank.mean_cone_distance + v;
+  Eigen::Vector2d  q(g0.theta, g0.psi_c);
+  const int        steps = std::max(1, int(std::ceil(t * 16)));
+  FilletPoint      out;
+  for (int k = 1; k <= steps; ++k)
+    {
+      out.s          = g0.s + (s_end - g0.s) * t * k / steps;
+      bool converged = false;
+      for (int it = 0; it < 30 && !converged; ++it)
+        {
+          const ChainValues<AD> c = generation_chain<AD>(
+              blade, s_round, machine, machine_to_blank, apex, rotation,
+              blank.mean_cone_distance, AD(out.s, Eigen::Vector3d::Zero()), variable(q[0], 1), variable(q[1], 2));
+          const AD        a = c.axial * cg + c.radius * sg;
+          Eigen::Vector2d F(c.meshing.value(), a.value() - A);
+          Eigen::Matrix2d J;
+          J << c.meshing.derivatives()[1], c.meshing.derivatives()[2], a.derivatives()[1],
+              a.derivatives()[2];
+          const Eigen::Vector2d step = J.partialPivLu().solve(F);
+          q -= step;
+          converged = step.norm() < 1e-14 && F.norm() < 1e-12 * A;
+        }
+      if (!converged)
+        {
+          std::ostringstream msg;
+          msg << "generated bevel flank: the root fillet is not generated at t = " << t
+              << ", A - A_m = " << v * 1e3 << " mm (blade parameter " << out.s * 1e3 << " mm)";
+          throw InputError(msg.str());
+        }
+    }
+  const ChainValues<double> c =
+      generation_chain<double>(blade, s_round, machine, machine_to_blank, apex, rotation,
+                               blank.mean_cone_distance, out.s, q[0], q[1]);
+  out.position         = c.position;
+  out.normal           = c.normal;
+  out.meshing_residual = c.meshing;
+  out.height           = -c.axial * sg + c.radius * cg;
+  return out;
 }
 
 GeneratedFlank

@@ -129,6 +129,20 @@ public:
   FlankPoint
   blade_point(double s, double theta, double psi_c, double *meshing = nullptr) const;
 
+  /// The surface the blade generates below the working flank, down to the root: the rest of the
+  /// straight blade and the tip rounding (edge radius). t = 0 is the flank's lower edge (the
+  /// point (u_min, v)), t = 1 the end of the rounding, on the root cone; v = A - A_m as on the
+  /// flank. Needs an edge radius > 0.
+  struct FilletPoint
+  {
+    Vec3   position, normal;      ///< flank frame; normal out of the material
+    double height           = 0; ///< h of the point's axial-plane projection
+    double s                = 0; ///< blade parameter (arc length beyond the rounding's start)
+    double meshing_residual = 0;
+  };
+  FilletPoint
+  fillet_point(double t, double v) const;
+
   /// True if the envelope's edge of regression, not the blade tip, ends the working flank
   /// toward the root somewhere along the face (the blade undercuts the tooth).
   bool
@@ -170,6 +184,7 @@ private:
   Eigen::Matrix3d      machine_to_blank;  ///< rows x_1, y_1, z_1 in S_m
   Vec3                 apex;              ///< O_1 in S_m
   double               form_height = 0;   ///< lowest h of the working flank (domain u_min)
+  double               s_round     = 0;   ///< blade parameter where the tip rounding starts
   bool                 undercut    = false;
   std::vector<Guess>   guesses;           ///< solved grid for first guesses
   int                  guess_nu = 0, guess_nv = 0;

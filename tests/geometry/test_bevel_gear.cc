@@ -177,3 +177,50 @@ TEST(GeneratedFlank, EdgeRadiusShortensTheWorkingFlank)
   gear.outside_blade.edge_radius = gear.blank.dedendum;
   EXPECT_THROW(GeneratedFlank(gear.blank, gear.outside_blade, gear.outside_machine), InputError);
 }
+
+TEST(GeneratedFlank, RootFilletFromTheEdgeRadius)
+{
+  // The blade below the working flank and its tip rounding generate the fillet: continuous with
+  // the flank at its lower edge (t = 0), on the equation of meshing throughout, going down
+  // monotonically and ending on the root cone (h = -h_f) with the root cone's normal (t = 1).
+  BevelPairDesign d;
+  d.pinion_teeth = 55, d.gear_teeth = 47, d.module = 3e-3, d.face_width = 19e-3;
+  auto [pinion, gear] = conjugate_cuts(d);
+  for (BevelMemberCut *cut : {&pinion, &gear})
+    for (bool outside : {true, false})
+      {
+        Blade &b      = outside ? cut->outside_blade : cut->inside_blade;
+        b.edge_radius = 0.6e-3;
+        const MachineSettings &m = outside ? cut->outside_machine : cut->inside_machine;
+        const GeneratedFlank   f(cut->blank, b, m);
+        const BevelBlank      &k = cut->blank;
+        const double           sg = std::sin(k.pitch_angle), cg = std::cos(k.pitch_angle);
+        for (double v : {-9e-3, 0.0, 9e-3})
+          {
+            const FlankPoint edge = f.evaluate(f.domain().u_min, v);
+            const auto       f0   = f.fillet_point(0, v);
+            EXPECT_LT((f0.position - edge.position).norm(), 1e-10);
+            EXPECT_LT((f0.normal - edge.normal).norm(), 1e-8);
+            double h_prev = HUGE_VAL;
+            for (int i = 0; i <= 10; ++i)
+              {
+                const auto p = f.fillet_point(i / 10.0, v);
+                EXPECT_LT(std::abs(p.meshing_residual), 1e-12) << i << " " << v;
+                EXPECT_LT(p.height, h_prev + 1e-12) << i << " " << v;
+                h_prev = p.height;
+              }
+            const auto f1 = f.fillet_point(1, v);
+            EXPECT_NEAR(f1.height, -k.dedendum, 1e-9) << v;
+            // root-cone normal in the axial plane: (-sin g, cos g) (out of the material)
+            const Vec3 radial = Vec3(f1.position.x(), f1.position.y(), 0).normalized();
+            const Vec3 n_root = -sg * Vec3::UnitZ() + cg * radial;
+            EXPECT_NEAR(f1.normal.dot(n_root), 1, 1e-8) << v;
+            // the cone distance is the one asked for
+            const double A = f1.position.z() * cg + Vec2(f1.position.x(), f1.position.y()).norm() * sg;
+            EXPECT_NEAR(A, k.mean_cone_distance + v, 1e-10);
+          }
+      }
+  BevelMemberCut sharp = conjugate_cuts(d).second;
+  const GeneratedFlank f(sharp.blank, sharp.outside_blade, sharp.outside_machine);
+  EXPECT_THROW(f.fillet_point(0.5, 0), InputError);
+}

@@ -1,0 +1,386 @@
+#include "tooth_segment.h"
+
+#include "mass_properties.h"
+
+#include <gmsh.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace gearkit
+{
+namespace
+{
+Vec2
+polar(double r, double a)
+{
+  return {r * std::cos(a), r * std::sin(a)};
+}
+
+Vec2
+rotate(const Vec2 &p, double a)
+{
+  const double c = std::cos(a), s = std::sin(a);
+  return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
+}
+
+/// gmsh's global state for one model build: initialised quiet, finalised on every exit path.
+struct GmshSession
+{
+  GmshSession()
+  {
+    gmsh::initialize();
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.Verbosity", 1);
+  }
+  ~GmshSession() { gmsh::finalize(); }
+  GmshSession(const GmshSession &) = delete;
+  GmshSession &operator=(const GmshSession &) = delete;
+};
+
+void
+check(bool ok, const std::string &parameter, double value, const std::string &allowed)
+{
+  if (!ok)
+    {
+      std::ostringstream msg;
+      msg << "tooth segment mesh: " << parameter << " = " << value << " is not allowed; expected "
+          << allowed;
+      throw InputError(msg.str());
+    }
+}
+
+/// Builds the section curves in the geo kernel; remembers which group each curve's extrusion
+/// belongs to and which curves attract the fine elements.
+class SectionBuilder
+{
+public:
+  explicit SectionBuilder(double z0)
+      : z0(z0)
+      , centre(gmsh::model::geo::addPoint(0, 0, z0))
+  {}
+
+  int
+  point(const Vec2 &p)
+  {
+    return gmsh::model::geo::addPoint(p.x(), p.y(), z0);
+  }
+  /// Circle arc about the axis from point a to point b (split below 60 deg per piece).
+  void
+  arc(int a, const Vec2 &pa, int b, const Vec2 &pb, int group)
+  {
+    const double a0 = std::atan2(pa.y(), pa.x());
+    double       da = std::atan2(pb.y(), pb.x()) - a0;
+    da              = std::remainder(da, 2 * pi);
+    const int    pieces = int(std::ceil(std::abs(da) / (pi / 3)));
+    const double r      = pa.norm();
+    int          from   = a;
+    for (int k = 1; k <= pieces; ++k)
+      {
+        const int to = k == pieces ? b : point(polar(r, a0 + da * k / pieces));
+        add(gmsh::model::geo::addCircleArc(from, centre, to), group, false);
+        from = to;
+      }
+  }
+  void
+  line(int a, int b, int group)
+  {
+    add(gmsh::model::geo::addLine(a, b), group, false);
+  }
+  /// Spline through the points (first and last given as tags, shared with the neighbours).
+  void
+  spline(int first, const std::vector<Vec2> &inner, int last, int group)
+  {
+    std::vector<int> tags{first};
+    for (const Vec2 &p : inner)
+      tags.push_back(point(p));
+    tags.push_back(last);
+    add(gmsh::model::geo::addSpline(tags), group, true);
+  }
+
+  std::vector<int> curves, groups, fine;
+
+private:
+  void
+  add(int curve, int group, bool is_fine)
+  {
+    curves.push_back(curve);
+    groups.push_back(group);
+    if (is_fine)
+      fine.push_back(curve);
+  }
+  double z0;
+  int    centre;
+};
+
+/// Atomic write of text next to its final name.
+void
+write_text_atomically(const std::string &path, const std::string &text)
+{
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out.flush())
+      {
+        std::remove(tmp.c_str());
+        throw InputError("tooth segment mesh: cannot write " + path);
+      }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    {
+      std::remove(tmp.c_str());
+      throw InputError("tooth segment mesh: cannot write " + path);
+    }
+}
+
+/// The gmsh model, mesh and files (inside a GmshSession; options already checked).
+void
+build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std::string &path,
+                SegmentMeshInfo &info, double flank_size, double far_size, int layers)
+{
+  const InvoluteGearData &d  = gear.data();
+  const int               z  = d.teeth;
+  const double            mn = d.normal_module, b = d.face_width;
+  gmsh::model::add("tooth_segment");
+  // Drive half of tooth 0 from gear.half_tooth_profile: root land [0, n), fillet [n, 2n),
+  // involute [2n, 3n] (form point to tip corner), tip land. The coast half is its mirror in y.
+  const int               n    = o.curve_points;
+  const std::vector<Vec2> half = gear.half_tooth_profile(n);
+  const std::vector<Vec2> fillet(half.begin() + n, half.begin() + 2 * n + 1); // to the form point
+  const std::vector<Vec2> involute(half.begin() + 2 * n, half.begin() + 3 * n + 1);
+  auto mirror = [](std::vector<Vec2> c) {
+    for (Vec2 &p : c)
+      p.y() = -p.y();
+    return c;
+  };
+  auto inner = [](const std::vector<Vec2> &c, double angle, bool reversed) {
+    std::vector<Vec2> out;
+    for (std::size_t i = 1; i + 1 < c.size(); ++i)
+      out.push_back(rotate(c[reversed ? c.size() - 1 - i : i], angle));
+    return out;
+  };
+
+  const double dphi  = gear.helix_sign * std::tan(d.helix_angle) / gear.reference_radius;
+  const double phi0  = -dphi * b / 2; // the section at z = -b/2
+  const double pitch = 2 * pi / z;
+  const int    half_n = (o.teeth - 1) / 2;
+  const double a_start = phi0 + pitch * (o.central_tooth - half_n) - pitch / 2;
+  const double a_end   = a_start + pitch * o.teeth;
+  const double ri = info.rim_inner_radius, rf = gear.root_radius;
+
+  SectionBuilder s(-b / 2);
+  // Counter-clockwise: cut at the start, root arcs and teeth, cut at the end, bore back.
+  const Vec2 bore_start = polar(ri, a_start), root_start = polar(rf, a_start);
+  const Vec2 root_end = polar(rf, a_end), bore_end = polar(ri, a_end);
+  const int  p_bore_start = s.point(bore_start), p_root_start = s.point(root_start);
+  s.line(p_bore_start, p_root_start, boundary::cut_start);
+  int  previous = p_root_start;
+  Vec2 previous_xy = root_start;
+  for (int i = 0; i < o.teeth; ++i)
+    {
+      const int    k = ((o.central_tooth - half_n + i) % z + z) % z;
+      const double a = phi0 + pitch * (o.central_tooth - half_n + i);
+      info.member_teeth.push_back(k);
+      const std::vector<Vec2> coast_fillet = mirror(fillet), coast_involute = mirror(involute);
+      const Vec2 c0 = rotate(coast_fillet.front(), a), c1 = rotate(coast_fillet.back(), a);
+      const Vec2 c2 = rotate(coast_involute.back(), a);
+      const Vec2 d2 = rotate(involute.back(), a), d1 = rotate(fillet.back(), a);
+      const Vec2 d0 = rotate(fillet.front(), a);
+      const int  pc0 = s.point(c0), pc1 = s.point(c1), pc2 = s.point(c2);
+      const int  pd2 = s.point(d2), pd1 = s.point(d1), pd0 = s.point(d0);
+      s.arc(previous, previous_xy, pc0, c0, boundary::free);
+      s.spline(pc0, inner(coast_fillet, a, false), pc1, boundary::free);
+      s.spline(pc1, inner(coast_involute, a, false), pc2, boundary::flank(i, FlankSide::coast));
+      s.arc(pc2, c2, pd2, d2, boundary::free);
+      s.spline(pd2, inner(involute, a, true), pd1, boundary::flank(i, FlankSide::drive));
+      s.spline(pd1, inner(fillet, a, true), pd0, boundary::free);
+      previous = pd0, previous_xy = d0;
+    }
+  const int p_root_end = s.point(root_end), p_bore_end = s.point(bore_end);
+  s.arc(previous, previous_xy, p_root_end, root_end, boundary::free);
+  s.line(p_root_end, p_bore_end, boundary::cut_end);
+  s.arc(p_bore_end, bore_end, p_bore_start, bore_start, boundary::bore);
+
+  const int loop    = gmsh::model::geo::addCurveLoop(s.curves);
+  const int section = gmsh::model::geo::addPlaneSurface({loop});
+  gmsh::model::geo::synchronize();
+
+  // Fine at the flanks and fillets, coarse toward the bore: a distance threshold field.
+  const int distance = gmsh::model::mesh::field::add("Distance");
+  gmsh::model::mesh::field::setNumbers(distance, "CurvesList",
+                                       std::vector<double>(s.fine.begin(), s.fine.end()));
+  gmsh::model::mesh::field::setNumber(distance, "NumPointsPerCurve", 4 * n);
+  const int threshold = gmsh::model::mesh::field::add("Threshold");
+  gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
+  gmsh::model::mesh::field::setNumber(threshold, "SizeMin", 2 * flank_size);
+  gmsh::model::mesh::field::setNumber(threshold, "SizeMax", 2 * far_size);
+  gmsh::model::mesh::field::setNumber(threshold, "DistMin", flank_size);
+  gmsh::model::mesh::field::setNumber(threshold, "DistMax", 2 * mn);
+  gmsh::model::mesh::field::setAsBackgroundMesh(threshold);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6); // frontal-Delaunay (8 crashes with a background field in gmsh 4.8)
+  gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1); // blossom
+  // Every element is split into hexahedra at the end (the prisms the recombination's left-over
+  // triangles extrude into as well): all-hexahedral. The sizes and layers given to gmsh are
+  // halved to compensate.
+  gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);
+  gmsh::model::geo::mesh::setRecombine(2, section);
+
+  // Extrude over the face along the helix.
+  gmsh::vectorpair out;
+  if (dphi == 0)
+    gmsh::model::geo::extrude({{2, section}}, 0, 0, b, out, {(layers + 1) / 2}, {}, true);
+  else
+    gmsh::model::geo::twist({{2, section}}, 0, 0, 0, 0, 0, b, 0, 0, 1, dphi * b, out, {(layers + 1) / 2},
+                            {}, true);
+  gmsh::model::geo::synchronize();
+  const int top = out[0].second, volume = out[1].second;
+
+  std::map<int, std::vector<int>> groups{{boundary::end_front, {section}},
+                                         {boundary::end_back, {top}}};
+  for (std::size_t c = 0; c < s.curves.size(); ++c)
+    groups[s.groups[c]].push_back(out[2 + c].second);
+  auto name = [&](int id) -> std::string {
+    switch (id)
+      {
+        case boundary::bore: return "bore";
+        case boundary::cut_start: return "cut_start";
+        case boundary::cut_end: return "cut_end";
+        case boundary::end_front: return "end_front";
+        case boundary::end_back: return "end_back";
+        case boundary::free: return "free";
+        default:
+          return "tooth" + std::to_string((id - 10) / 2) + ((id - 10) % 2 ? "_coast" : "_drive");
+      }
+  };
+  for (const auto &[id, surfaces] : groups)
+    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, surfaces, id), name(id));
+  gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 1), "body");
+
+  gmsh::model::mesh::generate(3);
+  std::vector<int> types;
+  gmsh::model::mesh::getElementTypes(types, 3);
+  for (int t : types)
+    if (t != 5)
+      throw InputError("tooth segment mesh: gmsh left non-hexahedral elements (type " +
+                       std::to_string(t) +
+                       "); try other element sizes (flank size, far size, curve points)");
+  // Flank nodes onto the exact involute (splines and the subdivision's new nodes are off by up
+  // to a few micrometres; contact gaps are micrometres): at the node's radius and z, the polar
+  // angle of the involute, theta_b - inv(alpha_r) from the tooth's centre line turned by the
+  // helix.
+  const double theta_b = std::atan2(involute.front().y(), involute.front().x()) +
+                         gear.roll_angle_form - std::atan(gear.roll_angle_form);
+  for (int i = 0; i < o.teeth; ++i)
+    for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+      {
+        const double sign = side == FlankSide::drive ? 1 : -1;
+        const double a    = phi0 + pitch * (o.central_tooth - half_n + i);
+        std::vector<std::size_t> flank_nodes;
+        std::vector<double>      xyz;
+        gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes, xyz);
+        for (std::size_t k = 0; k < flank_nodes.size(); ++k)
+          {
+            const double r  = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
+            const double xi = std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
+            const double angle = a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
+            gmsh::model::mesh::setNode(flank_nodes[k], {r * std::cos(angle), r * std::sin(angle), zk}, {});
+          }
+      }
+
+  std::vector<std::size_t> tags, node_tags;
+  gmsh::model::mesh::getElementsByType(5, tags, node_tags);
+  info.hexahedra = tags.size();
+  std::vector<std::size_t> all_nodes;
+  std::vector<double>      coords, parametric;
+  gmsh::model::mesh::getNodes(all_nodes, coords, parametric);
+  info.nodes = all_nodes.size();
+
+  // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b.
+  const double outline_area = polygon_moments(gear.transverse_outline(400)).area;
+  info.analytic_volume = b * double(o.teeth) / z * (outline_area - pi * ri * ri);
+
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.Binary", 0);
+  const std::string tmp = path + ".tmp.msh";
+  gmsh::write(tmp);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    {
+      std::remove(tmp.c_str());
+      throw InputError("tooth segment mesh: cannot write " + path);
+    }
+
+  std::ostringstream json;
+  json.precision(12);
+  json << "{\n  \"gear\": \"" << d.name << "\",\n  \"analytic_volume\": " << info.analytic_volume
+       << ",\n  \"hexahedra\": " << info.hexahedra << ",\n  \"nodes\": " << info.nodes
+       << ",\n  \"rim_inner_radius\": " << ri << ",\n  \"member_teeth\": [";
+  for (std::size_t i = 0; i < info.member_teeth.size(); ++i)
+    json << (i ? ", " : "") << info.member_teeth[i];
+  json << "],\n  \"physical_surfaces\": {";
+  bool first = true;
+  for (const auto &[id, surfaces] : groups)
+    {
+      json << (first ? "" : ",") << "\n    \"" << name(id) << "\": " << id;
+      first = false;
+    }
+  json << "\n  },\n  \"physical_volumes\": {\"body\": 1}\n}\n";
+  write_text_atomically(path + ".json", json.str());
+}
+} // namespace
+
+SegmentMeshInfo
+write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
+                         const std::string &path)
+{
+  const InvoluteGearData &d  = gear.data();
+  const int               z  = d.teeth;
+  const double            mn = d.normal_module, b = d.face_width;
+  check(o.teeth >= 1 && o.teeth % 2 == 1 && o.teeth < z && 2 * pi * o.teeth / z <= pi + 1e-12,
+        "teeth in the segment", o.teeth, "an odd number >= 1 spanning at most half the gear");
+  check(o.central_tooth >= 0 && o.central_tooth < z, "central tooth", o.central_tooth,
+        "a tooth index in [0, z - 1]");
+  check(o.flank_size >= 0 && o.far_size >= 0 && o.face_layers >= 0, "element size / layers",
+        std::min({o.flank_size, o.far_size, double(o.face_layers)}), "values >= 0 (0 = default)");
+  check(o.curve_points >= 4, "curve points", o.curve_points, ">= 4");
+  check(d.chipped_teeth.empty(), "chipped teeth", double(d.chipped_teeth.size()),
+        "none (the mesh is built from the nominal section)");
+
+  SegmentMeshInfo info;
+  info.rim_inner_radius = o.rim_inner_radius > 0     ? o.rim_inner_radius
+                          : d.bore_diameter > 0 ? d.bore_diameter / 2
+                                                : gear.root_radius - 3.5 * mn;
+  check(info.rim_inner_radius > 0 && info.rim_inner_radius < gear.root_radius - 0.5 * mn,
+        "rim inner radius [mm]", info.rim_inner_radius * 1e3,
+        "a radius in (0, root radius - m_n/2 = " +
+            std::to_string((gear.root_radius - 0.5 * mn) * 1e3) + " mm)");
+  const double flank_size = o.flank_size > 0 ? o.flank_size : mn / 5;
+  const double far_size   = std::max(flank_size, o.far_size > 0 ? o.far_size : mn);
+  const int    layers     = o.face_layers > 0 ? o.face_layers
+                                              : std::max(2, int(std::lround(b / (2 * flank_size))));
+
+  GmshSession session;
+  try
+    {
+      build_and_write(gear, o, path, info, flank_size, far_size, layers);
+    }
+  catch (const InputError &)
+    {
+      throw;
+    }
+  catch (...)
+    {
+      std::string error;
+      gmsh::logger::getLastError(error);
+      throw InputError("tooth segment mesh: gmsh failed (" + error + ") for " + path);
+    }
+  return info;
+}
+
+} // namespace gearkit

@@ -1,0 +1,61 @@
+// gmsh models of a multi-tooth segment of an involute (spur or helical) member: the nominal
+// transverse section of a few teeth and the rim down to the bore (or a shaft seat), meshed with
+// quadrilaterals graded toward the flanks and extruded over the face width (twisted along the
+// helix for helical gears) into hexahedra. The frame is the member's (geometry/involute_gear.h):
+// axis z, face from -b/2 to +b/2, tooth k centred at polar angle 2 pi k / z in the section z = 0.
+//
+// Physical groups (the numbers are the boundary ids deal.II reads; names as in the .msh):
+//   volume 1 "body";
+//   surfaces 1 "bore", 2 "cut_start" (the radial cut at the smaller polar angle), 3 "cut_end",
+//   4 "end_front" (z = -b/2), 5 "end_back" (z = +b/2), 6 "free" (tip lands, root lands, fillets),
+//   10 + 2 i "tooth<i>_drive" and 11 + 2 i "tooth<i>_coast" for the i-th tooth of the segment
+//   (i = 0 .. teeth - 1 in counter-clockwise order; member tooth central - (teeth - 1) / 2 + i).
+// A .json sidecar next to the mesh lists the groups, the member teeth and the analytic volume
+// (for scripts/check_mesh.py).
+#pragma once
+
+#include "involute_gear.h"
+
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+namespace boundary
+{
+constexpr int bore = 1, cut_start = 2, cut_end = 3, end_front = 4, end_back = 5, free = 6;
+constexpr int
+flank(int segment_tooth, FlankSide side)
+{
+  return 10 + 2 * segment_tooth + (side == FlankSide::coast ? 1 : 0);
+}
+} // namespace boundary
+
+struct SegmentMeshOptions
+{
+  int    teeth         = 3; ///< teeth in the segment (odd, >= 1, < number of teeth)
+  int    central_tooth = 0; ///< member tooth in the middle of the segment
+  /// Inner radius of the rim [m]: 0 = the bore if the gear has one, else a shaft seat
+  /// 3.5 m_n below the root circle (ISO 6336 rim thickness).
+  double rim_inner_radius = 0;
+  double flank_size       = 0; ///< element size at the flanks and fillets [m]; 0 = m_n / 5
+  double far_size         = 0; ///< element size far from them [m]; 0 = m_n
+  int    face_layers      = 0; ///< elements over the face width; 0 = b / (2 flank_size)
+  int    curve_points     = 40; ///< spline points per fillet and per involute
+};
+
+struct SegmentMeshInfo
+{
+  std::size_t hexahedra = 0, nodes = 0;
+  double      analytic_volume = 0;        ///< nominal segment volume [m^3]
+  double      rim_inner_radius = 0;       ///< the one used [m]
+  std::vector<int> member_teeth;          ///< member tooth of each segment tooth
+};
+
+/// Builds the segment with gmsh and writes it to `path` (.msh 4.1) and `path`.json, each via a
+/// temporary file and a rename. Throws InputError for bad options (name, value, allowed range)
+/// and when gmsh cannot mesh the section with quadrilaterals only.
+SegmentMeshInfo
+write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &options,
+                         const std::string &path);
+} // namespace gearkit

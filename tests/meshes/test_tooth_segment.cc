@@ -1,0 +1,210 @@
+// Tooth-segment meshes: all hexahedra with positive Jacobians at every corner, the volume of the
+// nominal segment, every physical group present, and the flank groups' nodes on the exact
+// involute flank (which also checks the helix twist's sense against the flank surfaces).
+#include "../fzg_c_pair.h"
+#include "../temp_directory_test.h"
+#include "tooth_segment.h"
+
+#include <gmsh.h>
+
+#include <Eigen/Dense>
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+
+using namespace gearkit;
+
+namespace
+{
+struct MeshFile
+{
+  std::map<int, std::vector<std::size_t>> group_nodes; ///< physical surface id -> node tags
+  std::map<std::size_t, Vec3>             nodes;
+  std::vector<std::array<std::size_t, 8>> hexahedra;
+  std::set<int>                           other_element_types;
+};
+
+/// Reads the mesh back through gmsh (a second, independent path from the writer's bookkeeping).
+MeshFile
+read(const std::string &path)
+{
+  MeshFile m;
+  gmsh::initialize();
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::open(path);
+  std::vector<std::size_t> tags;
+  std::vector<double>      xyz, par;
+  gmsh::model::mesh::getNodes(tags, xyz, par);
+  for (std::size_t i = 0; i < tags.size(); ++i)
+    m.nodes[tags[i]] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  std::vector<int>                      types;
+  std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+  gmsh::model::mesh::getElements(types, element_tags, element_nodes, 3);
+  for (std::size_t t = 0; t < types.size(); ++t)
+    {
+      if (types[t] != 5)
+        {
+          m.other_element_types.insert(types[t]);
+          continue;
+        }
+      for (std::size_t e = 0; e < element_tags[t].size(); ++e)
+        {
+          std::array<std::size_t, 8> h;
+          std::copy_n(element_nodes[t].begin() + 8 * e, 8, h.begin());
+          m.hexahedra.push_back(h);
+        }
+    }
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, 2);
+  for (const auto &[dim, id] : groups)
+    {
+      std::vector<double> coords;
+      gmsh::model::mesh::getNodesForPhysicalGroup(dim, id, m.group_nodes[id], coords);
+    }
+  gmsh::finalize();
+  return m;
+}
+
+/// Volume of a trilinear hexahedron (2x2x2 Gauss) and its smallest corner Jacobian determinant
+/// (gmsh node order: bottom 0-3, top 4-7, counter-clockwise).
+std::pair<double, double>
+hex_volume_and_min_jacobian(const std::array<Vec3, 8> &x)
+{
+  static const int s[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                              {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  auto jacobian = [&](double a, double b, double c) {
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < 8; ++k)
+      {
+        const Vec3 g(s[k][0] * (1 + s[k][1] * b) * (1 + s[k][2] * c),
+                     s[k][1] * (1 + s[k][0] * a) * (1 + s[k][2] * c),
+                     s[k][2] * (1 + s[k][0] * a) * (1 + s[k][1] * b));
+        J += x[k] * g.transpose() / 8;
+      }
+    return J.determinant();
+  };
+  const double g = 1 / std::sqrt(3.0);
+  double       volume = 0, min_j = HUGE_VAL;
+  for (int k = 0; k < 8; ++k)
+    {
+      volume += jacobian(s[k][0] * g, s[k][1] * g, s[k][2] * g);
+      min_j = std::min(min_j, jacobian(s[k][0], s[k][1], s[k][2]));
+    }
+  return {volume, min_j};
+}
+
+class ToothSegmentMesh : public test_data::TempDirectoryTest
+{
+};
+} // namespace
+
+TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
+{
+  for (double beta : {0.0, 15 * pi / 180})
+    {
+      const auto gear = InvoluteGear::create(test_data::fzg_c_pair(beta).first);
+      SegmentMeshOptions o;
+      o.teeth         = 3;
+      o.central_tooth = 0;
+      const std::string path = (dir / "segment.msh").string();
+      const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
+      EXPECT_TRUE(std::ifstream(path + ".json").good());
+      EXPECT_EQ(info.member_teeth, (std::vector<int>{15, 0, 1}));
+      const MeshFile m = read(path);
+      EXPECT_TRUE(m.other_element_types.empty());
+      ASSERT_EQ(m.hexahedra.size(), info.hexahedra);
+
+      double volume = 0, min_j = HUGE_VAL;
+      for (const auto &h : m.hexahedra)
+        {
+          std::array<Vec3, 8> x;
+          for (int k = 0; k < 8; ++k)
+            x[k] = m.nodes.at(h[k]);
+          const auto [v, j] = hex_volume_and_min_jacobian(x);
+          volume += v, min_j = std::min(min_j, j);
+        }
+      EXPECT_GT(min_j, 0) << beta;
+      EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
+
+      for (int id : {boundary::bore, boundary::cut_start, boundary::cut_end, boundary::end_front,
+                     boundary::end_back, boundary::free})
+        EXPECT_FALSE(m.group_nodes.count(id) == 0 || m.group_nodes.at(id).empty()) << id;
+      // Flank nodes on the exact involute: at the node's radius and z the flank's polar angle.
+      double worst = 0;
+      for (int i = 0; i < o.teeth; ++i)
+        for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+          {
+            const int id = boundary::flank(i, side);
+            ASSERT_TRUE(m.group_nodes.count(id)) << id;
+            const InvoluteFlank f = gear->flank(info.member_teeth[i], side);
+            for (std::size_t tag : m.group_nodes.at(id))
+              {
+                const Vec3   x  = m.nodes.at(tag);
+                const double r  = std::hypot(x.x(), x.y());
+                const Vec3   p  = f.nominal(gear->roll_angle(std::max(r, gear->base_radius)), x.z()).position;
+                const double da = std::remainder(std::atan2(x.y(), x.x()) - std::atan2(p.y(), p.x()), 2 * pi);
+                worst = std::max(worst, std::abs(da) * r);
+              }
+          }
+      EXPECT_LT(worst, 1e-10) << beta; // snapped onto the exact flank
+    }
+}
+
+TEST_F(ToothSegmentMesh, BadOptionsAreRejected)
+{
+  const auto gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  const std::string path = (dir / "bad.msh").string();
+  SegmentMeshOptions o;
+  o.teeth = 2;
+  EXPECT_THROW(write_tooth_segment_mesh(*gear, o, path), InputError);
+  o.teeth            = 3;
+  o.rim_inner_radius = gear->root_radius;
+  EXPECT_THROW(write_tooth_segment_mesh(*gear, o, path), InputError);
+  EXPECT_FALSE(std::ifstream(path).good());
+}
+
+TEST_F(ToothSegmentMesh, GradedTowardTheFlanks)
+{
+  // Sample meshes for scripts/check_mesh.py (written to $GEARKIT_MESH_CHECK_DIR when set, by the
+  // CTest fixture), and the grading: hexahedra at the flanks much smaller than at the bore.
+  const char       *env = std::getenv("GEARKIT_MESH_CHECK_DIR");
+  const std::string out = env ? env : dir.string();
+  for (double beta : {0.0, 15 * pi / 180})
+    {
+      const auto gear = InvoluteGear::create(test_data::fzg_c_pair(beta).second);
+      SegmentMeshOptions o;
+      o.teeth = 5;
+      const std::string path = out + (beta == 0 ? "/fzg_gear_spur.msh" : "/fzg_gear_helical.msh");
+      const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
+      const MeshFile m = read(path);
+      double flank_volume = 0, bore_volume = 0;
+      int    flank_cells = 0, bore_cells = 0;
+      const std::set<std::size_t> flank_nodes(m.group_nodes.at(boundary::flank(2, FlankSide::drive)).begin(),
+                                              m.group_nodes.at(boundary::flank(2, FlankSide::drive)).end());
+      const std::set<std::size_t> bore_nodes(m.group_nodes.at(boundary::bore).begin(),
+                                             m.group_nodes.at(boundary::bore).end());
+      for (const auto &h : m.hexahedra)
+        {
+          std::array<Vec3, 8> x;
+          bool on_flank = false, on_bore = false;
+          for (int k = 0; k < 8; ++k)
+            {
+              x[k] = m.nodes.at(h[k]);
+              on_flank |= flank_nodes.count(h[k]) > 0;
+              on_bore |= bore_nodes.count(h[k]) > 0;
+            }
+          const double v = hex_volume_and_min_jacobian(x).first;
+          if (on_flank)
+            flank_volume += v, ++flank_cells;
+          if (on_bore)
+            bore_volume += v, ++bore_cells;
+        }
+      ASSERT_GT(flank_cells, 0);
+      ASSERT_GT(bore_cells, 0);
+      // default sizes m/5 at the flanks and m at the bore: section areas 1:25
+      EXPECT_LT(flank_volume / flank_cells, 0.2 * bore_volume / bore_cells) << beta;
+      EXPECT_GT(info.hexahedra, 1000u);
+    }
+}

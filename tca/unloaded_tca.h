@@ -123,6 +123,27 @@ public:
   touch_angle(int gear_tooth, const Vec3 &X, double expected, double &psi, double &u2,
               double &v2) const;
 
+  const MemberFlanks &
+  pinion_flanks() const
+  {
+    return *pinion;
+  }
+  const MemberFlanks &
+  gear_flanks() const
+  {
+    return *gear;
+  }
+  const Assembly &
+  assembly_data() const
+  {
+    return assembly;
+  }
+  const TcaOptions &
+  options_data() const
+  {
+    return options;
+  }
+
 private:
   PairContact
   pair_contact(int k, double phi) const;

@@ -1,0 +1,127 @@
+#include "contact_cells.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <optional>
+
+namespace gearkit
+{
+namespace
+{
+struct Projection
+{
+  double u, v;
+  Vec3   position, normal; ///< global
+};
+
+/// The pinion flank point nearest to a global target (Gauss-Newton from (u, v)); empty if it
+/// lies off the flank's domain or the flank cannot be evaluated there.
+std::optional<Projection>
+project(const Flank &flank, const Assembly &assembly, double phi, const Vec3 &target, double u,
+        double v)
+{
+  const FlankDomain d = flank.domain();
+  try
+    {
+      for (int it = 0; it < 20; ++it)
+        {
+          const FlankPoint p = flank.evaluate(u, v);
+          Eigen::Matrix<double, 3, 2> J;
+          J.col(0)             = assembly.pinion_vector_to_global(p.d_du, phi);
+          J.col(1)             = assembly.pinion_vector_to_global(p.d_dv, phi);
+          const Vec3 r         = target - assembly.pinion_to_global(p.position, phi);
+          const Vec2 step      = (J.transpose() * J).ldlt().solve(J.transpose() * r);
+          u += step.x(), v += step.y();
+          if (std::abs(step.x()) < 1e-13 * (d.u_max - d.u_min) &&
+              std::abs(step.y()) < 1e-13 * (d.v_max - d.v_min))
+            break;
+        }
+      if (!(u >= d.u_min && u <= d.u_max && v >= d.v_min && v <= d.v_max) ||
+          !flank.contains(u, v))
+        return std::nullopt;
+      const FlankPoint p = flank.evaluate(u, v);
+      return Projection{u, v, assembly.pinion_to_global(p.position, phi),
+                        assembly.pinion_vector_to_global(p.normal, phi)};
+    }
+  catch (const InputError &)
+    {
+      return std::nullopt;
+    }
+}
+} // namespace
+
+std::vector<ContactCell>
+contact_cells(const UnloadedTca &tca, const TcaPosition &position, const ContactCellOptions &o)
+{
+  if (!(o.cells_across >= 1 && o.cells_along >= 1 && o.gap_band > 0))
+    throw InputError("contact cells: cells across and along must be >= 1 and the gap band > 0");
+  const TcaOptions &topt     = tca.options_data();
+  const Assembly   &assembly = tca.assembly_data();
+  const double      sign     = topt.side == FlankSide::drive ? 1.0 : -1.0;
+  const double      phi      = position.pinion_angle;
+  std::vector<ContactCell> cells;
+  for (std::size_t k = 0; k < position.pairs.size(); ++k)
+    {
+      const PairContact &c = position.pairs[k];
+      if (!c.found || c.separation > o.gap_band)
+        continue;
+      const Flank &flank = tca.pinion_flanks().flank(c.pinion_tooth, topt.side);
+      const Vec3   n     = c.normal_pinion;
+      Vec3 e_t = c.major_direction - c.major_direction.dot(n) * n;
+      if (e_t.norm() < 1e-9)
+        e_t = assembly.pinion_vector_to_global(flank.evaluate(c.u1, c.v1).d_dv, phi);
+      e_t = (e_t - e_t.dot(n) * n).normalized();
+      const Vec3 e_s = n.cross(e_t);
+
+      // Extent along the line: where the projection leaves the flank (bisection both ways).
+      const FlankDomain d    = flank.domain();
+      const double      span = (flank.evaluate(d.u_max, d.v_max).position -
+                           flank.evaluate(d.u_min, d.v_min).position)
+                              .norm();
+      auto reach = [&](double direction) {
+        double in = 0, out = span;
+        if (project(flank, assembly, phi, c.position + direction * out * e_t, c.u1, c.v1))
+          return out;
+        for (int it = 0; it < 40; ++it)
+          {
+            const double mid = (in + out) / 2;
+            (project(flank, assembly, phi, c.position + direction * mid * e_t, c.u1, c.v1) ? in
+                                                                                           : out) =
+                mid;
+          }
+        return in;
+      };
+      const double t0 = -reach(-1), t1 = reach(+1);
+      const double w  = std::min(std::sqrt(2 * o.gap_band / std::max(c.curvature_max, 1e-9)),
+                                span / 2);
+      const double dt = (t1 - t0) / o.cells_along, ds = 2 * w / o.cells_across;
+      if (!(dt > 0))
+        continue; // the contact sits on a corner of the flank: no extent along the line
+      for (int i = 0; i < o.cells_along; ++i)
+        for (int j = 0; j < o.cells_across; ++j)
+          {
+            ContactCell cell;
+            cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth, cell.gear_tooth = c.gear_tooth;
+            cell.t = t0 + (i + 0.5) * dt, cell.s = -w + (j + 0.5) * ds;
+            cell.dt = dt, cell.ds = ds;
+            const auto p = project(flank, assembly, phi, c.position + cell.s * e_s + cell.t * e_t,
+                                   c.u1, c.v1);
+            if (!p)
+              continue;
+            double psi;
+            if (!tca.touch_angle(c.gear_tooth, p->position, position.gear_angle, psi, cell.u2,
+                                 cell.v2))
+              continue;
+            cell.u1 = p->u, cell.v1 = p->v;
+            cell.position = p->position, cell.normal = p->normal;
+            const Vec3 r  = p->position - assembly.gear_centre();
+            cell.gap      = std::max(0.0, sign * (position.gear_angle - psi) *
+                                         std::abs(assembly.gear_axis().cross(r).dot(p->normal)));
+            cell.lever    = std::abs(Vec3::UnitZ().cross(p->position).dot(p->normal));
+            cells.push_back(cell);
+          }
+    }
+  return cells;
+}
+} // namespace gearkit

@@ -1,0 +1,42 @@
+// The potential contact zone of one mesh position, discretised for the loaded contact: around
+// each tooth pair's unloaded contact point, a grid of rectangular cells in the common tangent
+// plane (t along the contact line = the direction of least relative curvature, s across it),
+// projected onto the pinion flank. Each cell knows its place on both flanks, its unloaded gap
+// (from the TCA's touch angle at that pinion point) and its moment arm about the pinion axis.
+#pragma once
+
+#include "unloaded_tca.h"
+
+#include <vector>
+
+namespace gearkit
+{
+struct ContactCellOptions
+{
+  int    cells_across = 16; ///< cells across the contact line (s)
+  int    cells_along  = 24; ///< cells along it (t), over the flank
+  /// Largest unloaded gap the zone covers [m]: the band across the line reaches where the
+  /// relative curvature opens the gap to this (s = sqrt(2 g / k_max)); choose it above the
+  /// largest elastic approach expected.
+  double gap_band = 10e-6;
+};
+
+struct ContactCell
+{
+  int    pair = 0;                      ///< index into TcaPosition::pairs
+  int    pinion_tooth = 0, gear_tooth = 0;
+  double u1 = 0, v1 = 0, u2 = 0, v2 = 0; ///< flank parameters on pinion and gear
+  Vec3   position = Vec3::Zero();       ///< pinion flank point, global [m]
+  Vec3   normal   = Vec3::Zero();       ///< pinion outward normal, global
+  double gap   = 0;                     ///< unloaded normal gap to the gear flank [m]
+  double lever = 0;                     ///< normal motion per pinion rotation, |(e_z x r) . n| [m]
+  double s = 0, t = 0;                  ///< centre in the pair's tangent plane [m]
+  double ds = 0, dt = 0;                ///< cell size [m]
+};
+
+/// Cells of every pair of `position` that touches or stands within the gap band. Cells off
+/// either flank (or where the gear flank cannot reach the pinion point) are left out.
+std::vector<ContactCell>
+contact_cells(const UnloadedTca &tca, const TcaPosition &position,
+              const ContactCellOptions &options = {});
+} // namespace gearkit

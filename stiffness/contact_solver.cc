@@ -1,0 +1,96 @@
+#include "contact_solver.h"
+
+#include "types.h"
+
+#include <Eigen/Cholesky>
+
+#include <sstream>
+#include <vector>
+
+namespace gearkit
+{
+ContactSolution
+solve_contact(const ContactProblem &p)
+{
+  const Eigen::Index n = p.gap.size();
+  if (n == 0 || p.compliance.rows() != n || p.compliance.cols() != n || p.lever.size() != n)
+    throw InputError("contact solver: compliance, gap and lever sizes differ (or are zero)");
+  if (!(p.load >= 0) || !(p.lever.minCoeff() > 0) || !p.gap.allFinite() ||
+      !p.compliance.allFinite())
+    throw InputError("contact solver: the load must be >= 0, the levers > 0 and all data finite");
+
+  ContactSolution s;
+  s.force = Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd first_touch = p.gap.cwiseQuotient(p.lever);
+  Eigen::Index          first;
+  s.approach = first_touch.minCoeff(&first);
+  if (p.load == 0)
+    return s;
+
+  std::vector<char> active(n, 0);
+  active[first] = 1;
+  const double scale = std::max(p.gap.cwiseAbs().maxCoeff(), 1e-9);
+  for (int it = 0; it < 4 * n + 50; ++it)
+    {
+      std::vector<Eigen::Index> A;
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (active[j])
+          A.push_back(j);
+      const Eigen::Index m = Eigen::Index(A.size());
+      Eigen::MatrixXd    C(m, m);
+      Eigen::VectorXd    lA(m), gA(m);
+      for (Eigen::Index a = 0; a < m; ++a)
+        {
+          lA[a] = p.lever[A[a]], gA[a] = p.gap[A[a]];
+          for (Eigen::Index b = 0; b < m; ++b)
+            C(a, b) = p.compliance(A[a], A[b]);
+        }
+      const Eigen::LLT<Eigen::MatrixXd> llt(C);
+      if (llt.info() != Eigen::Success)
+        throw InputError("contact solver: the compliance matrix is not positive definite");
+      const Eigen::VectorXd x1 = llt.solve(lA), x2 = llt.solve(gA);
+      s.approach               = (p.load + lA.dot(x2)) / lA.dot(x1);
+      const Eigen::VectorXd FA = s.approach * x1 - x2;
+      s.force.setZero();
+      for (Eigen::Index a = 0; a < m; ++a)
+        s.force[A[a]] = FA[a];
+      s.iterations = it;
+      const bool one_at_a_time = it > 2 * n; // cycling: change one cell per iteration
+
+      // Tensile cells leave.
+      Eigen::Index worst = -1;
+      for (Eigen::Index a = 0; a < m; ++a)
+        if (FA[a] < 0 && (worst < 0 || FA[a] < FA[worst]))
+          worst = a;
+      if (worst >= 0)
+        {
+          for (Eigen::Index a = 0; a < m; ++a)
+            if (one_at_a_time ? a == worst : FA[a] < 0)
+              active[A[a]] = 0;
+          continue;
+        }
+      // Penetrating cells join.
+      const Eigen::VectorXd h = s.approach * p.lever - p.gap - p.compliance * s.force;
+      Eigen::Index          deepest = -1;
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (!active[j] && h[j] > 1e-12 * scale && (deepest < 0 || h[j] > h[deepest]))
+          deepest = j;
+      if (deepest < 0)
+        {
+          s.active      = int(m);
+          s.penetration = 0;
+          for (Eigen::Index j = 0; j < n; ++j)
+            if (!active[j])
+              s.penetration = std::max(s.penetration, h[j]);
+          return s;
+        }
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (!active[j] && (one_at_a_time ? j == deepest : h[j] > 1e-12 * scale))
+          active[j] = 1;
+    }
+  std::ostringstream msg;
+  msg << "contact solver: the active set did not settle after " << 4 * n + 50
+      << " iterations (" << n << " cells)";
+  throw InputError(msg.str());
+}
+} // namespace gearkit

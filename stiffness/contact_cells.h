@@ -13,7 +13,7 @@ namespace gearkit
 {
 struct ContactCellOptions
 {
-  int    cells_across = 16; ///< cells across the contact line (s)
+  int    cells_across = 17; ///< cells across the contact line (s); odd: a row on the line
   int    cells_along  = 24; ///< cells along it (t), over the flank
   /// Largest unloaded gap the zone covers [m]: the band across the line reaches where the
   /// relative curvature opens the gap to this (s = sqrt(2 g / k_max)); choose it above the

@@ -1,0 +1,54 @@
+// Loaded tooth contact at one mesh position, fast (compliance) mode: the contact cells of the
+// unloaded TCA, their compliance = structural part of each member (finite elements, without the
+// local half-space part) + the half-space (Boussinesq/Love) part of the pair, and the contact
+// problem with the torque balance. Gives the loaded transmission error e_L, the load per tooth
+// pair, the pressure on the cells and the mesh stiffness K_m = F / (lambda (e_L - e_0)).
+#pragma once
+
+#include "contact_cells.h"
+#include "half_space.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace gearkit
+{
+/// Structural compliance of one member [m/N]: normal approach at the response cell (moving
+/// into the member's material) per unit normal force on the load cell, without the local
+/// half-space part. Cells are identified on the member's flank: the pinion by (pinion_tooth,
+/// u1, v1), the gear by (gear_tooth, u2, v2).
+using StructuralCompliance =
+    std::function<double(const ContactCell &load, const ContactCell &response)>;
+
+struct LoadedContactOptions
+{
+  ContactCellOptions cells;
+  Material           pinion_material, gear_material;
+  bool               half_space = true; ///< add the half-space part between cells of a pair
+};
+
+struct LoadedPosition
+{
+  double pinion_angle = 0;       ///< phi [rad]
+  double e0           = 0;       ///< unloaded TE [rad, pinion]
+  double eL           = 0;       ///< loaded TE [rad, pinion]
+  double torque       = 0;       ///< pinion torque [N m]
+  double normal_force = 0;       ///< F, sum of the cell forces [N]
+  double lever        = 0;       ///< lambda = torque / F [m] (the base radius for spur gears)
+  double mesh_stiffness = 0;     ///< K_m = F / (lambda (e_L - e_0)) [N/m]; 0 at zero load
+  std::vector<double>      pair_force; ///< normal force per entry of TcaPosition::pairs [N]
+  std::vector<ContactCell> cells;
+  Eigen::VectorXd          force;       ///< per cell [N]; pressure = force / (ds dt)
+  int                      active_cells = 0;
+  int                      iterations   = 0;
+};
+
+/// Solves the loaded contact at one position of the unloaded TCA under a pinion torque >= 0.
+/// Throws InputError when no cell lies within the gap band.
+LoadedPosition
+loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
+               const LoadedContactOptions &options, const StructuralCompliance &pinion,
+               const StructuralCompliance &gear);
+} // namespace gearkit

@@ -1,0 +1,137 @@
+// Loaded contact on the cells of a spur pair: the torque balance, the Hertz strip at the pitch
+// point, a structural compliance that adds exactly T (c_p + c_g) / lambda^2 to the loaded TE, load
+// sharing by two pairs, and zero load.
+#include "../fzg_c_pair.h"
+#include "loaded_contact.h"
+
+#include <gtest/gtest.h>
+
+using namespace gearkit;
+
+namespace
+{
+struct SpurPair
+{
+  std::shared_ptr<const InvoluteGear> pinion, gear;
+  double                              a, alpha;
+  std::unique_ptr<UnloadedTca>        tca;
+  SpurPair()
+  {
+    const auto [pd, gd] = test_data::fzg_c_pair();
+    pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+    a      = working_centre_distance(*pinion, *gear);
+    alpha  = working_pressure_angle(*pinion, *gear);
+    tca    = std::make_unique<UnloadedTca>(pinion, gear, a);
+  }
+  /// A position with `pairs` touching pairs, the single one nearest the pitch point.
+  TcaPosition
+  position(int pairs) const
+  {
+    TcaPosition best;
+    double      best_distance = HUGE_VAL;
+    const double rho_pitch    = a * pinion->teeth() / (pinion->teeth() + gear->teeth()) * std::sin(alpha);
+    for (int k = 0; k < 40; ++k)
+      {
+        const TcaPosition p = tca->at(2 * pi / pinion->teeth() * k / 40);
+        if (p.touching != pairs)
+          continue;
+        const Vec3   x   = p.pairs[p.leading].position;
+        const double rho = std::sqrt(x.head<2>().squaredNorm() - std::pow(pinion->base_radius, 2));
+        if (std::abs(rho - rho_pitch) < best_distance)
+          best = p, best_distance = std::abs(rho - rho_pitch);
+      }
+    return best;
+  }
+};
+
+const StructuralCompliance rigid = [](const ContactCell &, const ContactCell &) { return 0.0; };
+} // namespace
+
+TEST(LoadedContact, HertzStripAndTorqueBalanceAtThePitchPoint)
+{
+  const SpurPair    s;
+  const TcaPosition pos = s.position(1);
+  ASSERT_EQ(pos.touching, 1);
+  LoadedContactOptions o;
+  o.pinion_material = o.gear_material = {206e9, 0.3};
+  o.cells.cells_across = 20;
+  const double T = 5912 * s.pinion->base_radius; // F_bt of FZG C14 on the line of action
+  const LoadedPosition r = loaded_contact(*s.tca, pos, T, o, rigid, rigid);
+  EXPECT_NEAR(r.lever, s.pinion->base_radius, 1e-9);
+  EXPECT_NEAR(r.normal_force, 5912, 1e-6);
+  EXPECT_GT(r.eL, r.e0);
+  // Middle strip: Hertzian for its own load per length (see the half-space tests).
+  const PairContact &c   = pos.pairs[pos.leading];
+  const double       rho1 = std::sqrt(c.position.head<2>().squaredNorm() - std::pow(s.pinion->base_radius, 2));
+  const double       R    = 1 / (1 / rho1 + 1 / (s.a * std::sin(s.alpha) - rho1));
+  const double       Es   = contact_modulus(o.pinion_material, o.gear_material);
+  double             q = 0, peak = 0, z_mid = HUGE_VAL; // the strip nearest the middle of the face
+  for (const ContactCell &c : r.cells)
+    if (std::abs(c.position.z()) < std::abs(z_mid))
+      z_mid = c.position.z();
+  for (std::size_t i = 0; i < r.cells.size(); ++i)
+    if (r.cells[i].pair == pos.leading && std::abs(r.cells[i].position.z() - z_mid) < r.cells[i].dt / 4)
+      {
+        q += r.force[i] / r.cells[i].dt;
+        peak = std::max(peak, r.force[i] / (r.cells[i].ds * r.cells[i].dt));
+      }
+  const double a_q = std::sqrt(4 * q * R / (pi * Es));
+  EXPECT_NEAR(peak / (2 * q / (pi * a_q)), 1, 0.03);
+  EXPECT_NEAR(q / (5912 / 14e-3), 1, 0.12); // the square ends take more than the mean
+}
+
+TEST(LoadedContact, StructuralComplianceAddsExactly)
+{
+  // A member compliance c on every pair of cells of the same tooth shifts all cells' approach by
+  // c F: the forces stay, and e_L grows by T (c_p + c_g) / lambda^2.
+  const SpurPair    s;
+  const TcaPosition pos = s.position(1);
+  LoadedContactOptions o;
+  const double T = 200;
+  const double cp = 3e-10, cg = 5e-10;
+  const StructuralCompliance pinion = [&](const ContactCell &a, const ContactCell &b) {
+    return a.pinion_tooth == b.pinion_tooth ? cp : 0.0;
+  };
+  const StructuralCompliance gear = [&](const ContactCell &a, const ContactCell &b) {
+    return a.gear_tooth == b.gear_tooth ? cg : 0.0;
+  };
+  const LoadedPosition hs = loaded_contact(*s.tca, pos, T, o, rigid, rigid);
+  const LoadedPosition st = loaded_contact(*s.tca, pos, T, o, pinion, gear);
+  const double         lb = s.pinion->base_radius;
+  EXPECT_NEAR((st.eL - st.e0) - (hs.eL - hs.e0), T * (cp + cg) / (lb * lb), 1e-9 * T * (cp + cg) / (lb * lb));
+  EXPECT_NEAR((st.force - hs.force).norm(), 0, 1e-9 * hs.force.norm());
+  // and K_m is the series spring: 1/K = 1/K_hs + (c_p + c_g)
+  EXPECT_NEAR(1 / st.mesh_stiffness, 1 / hs.mesh_stiffness + cp + cg, 1e-9 / st.mesh_stiffness);
+}
+
+TEST(LoadedContact, TwoPairsShareTheLoadAndZeroLoadGivesTheUnloadedTE)
+{
+  const SpurPair    s;
+  const TcaPosition pos = s.position(2);
+  ASSERT_EQ(pos.touching, 2);
+  LoadedContactOptions o;
+  const double         T = 300;
+  // Springs on every tooth pair much softer than the contact: the pairs share the load in
+  // inverse proportion to their springs (to within the small half-space differences).
+  for (double ratio : {1.0, 3.0})
+    {
+      const StructuralCompliance spring = [&](const ContactCell &a, const ContactCell &b) {
+        return a.pair == b.pair ? (a.pair == pos.leading ? 1e-6 : ratio * 1e-6) : 0.0;
+      };
+      const LoadedPosition r = loaded_contact(*s.tca, pos, T, o, spring, rigid);
+      ASSERT_EQ(r.pair_force.size(), pos.pairs.size());
+      double other = 0;
+      for (std::size_t k = 0; k < pos.pairs.size(); ++k)
+        if (int(k) != pos.leading)
+          other += r.pair_force[k];
+      EXPECT_NEAR(r.pair_force[pos.leading] / other, ratio, 0.01 * ratio);
+      EXPECT_NEAR(r.normal_force * r.lever, T, 1e-9 * T);
+    }
+  const StructuralCompliance spring = [](const ContactCell &a, const ContactCell &b) {
+    return a.pair == b.pair ? 1e-7 : 0.0;
+  };
+  const LoadedPosition zero = loaded_contact(*s.tca, pos, 0, o, spring, rigid);
+  EXPECT_NEAR(zero.eL, pos.transmission_error, 1e-12);
+  EXPECT_EQ(zero.normal_force, 0);
+  EXPECT_THROW(loaded_contact(*s.tca, pos, -1, o, spring, rigid), InputError);
+}

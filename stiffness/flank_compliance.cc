@@ -1,0 +1,112 @@
+#include "flank_compliance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace gearkit
+{
+FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec &s)
+    : spec(s)
+{
+  if (spec.teeth.empty() || spec.n_u < 2 || spec.n_v < 2 || !(spec.margin >= 0) ||
+      !(spec.margin < 0.5))
+    throw InputError("flank compliance grid: needs at least one tooth, n_u and n_v >= 2 and a "
+                     "margin in [0, 0.5)");
+  for (int tooth : spec.teeth)
+    {
+      const Flank      &f = flanks.flank(tooth, spec.side);
+      const FlankDomain d = f.domain();
+      const double du = d.u_max - d.u_min, dv = d.v_max - d.v_min;
+      u_range.emplace_back(d.u_min + spec.margin * du, d.u_max - spec.margin * du);
+      v_range.emplace_back(d.v_min + spec.margin * dv, d.v_max - spec.margin * dv);
+      for (int i = 0; i < spec.n_u; ++i)
+        for (int j = 0; j < spec.n_v; ++j)
+          {
+            Point p;
+            p.tooth = tooth;
+            p.u = u_range.back().first + (u_range.back().second - u_range.back().first) * i / (spec.n_u - 1);
+            p.v = v_range.back().first + (v_range.back().second - v_range.back().first) * j / (spec.n_v - 1);
+            const FlankPoint q = f.evaluate(p.u, p.v);
+            p.position = q.position, p.normal = q.normal;
+            grid.push_back(p);
+          }
+    }
+}
+
+void
+FlankCompliance::set(const Eigen::MatrixXd &compliance)
+{
+  const Eigen::Index n = Eigen::Index(grid.size());
+  if (compliance.rows() != n || compliance.cols() != n || !compliance.allFinite())
+    throw InputError("flank compliance: the matrix must be finite and " + std::to_string(n) +
+                     " x " + std::to_string(n));
+  S = compliance;
+}
+
+FlankCompliance::Weights
+FlankCompliance::weights(int tooth, double u, double v) const
+{
+  const auto it = std::find(spec.teeth.begin(), spec.teeth.end(), tooth);
+  if (it == spec.teeth.end())
+    throw InputError("flank compliance: tooth " + std::to_string(tooth) +
+                     " carries load but lies outside the finite-element segment's loaded teeth");
+  const int    t  = int(it - spec.teeth.begin());
+  auto frac = [](double x, double lo, double hi, int n, int &i0) {
+    const double f = std::clamp((x - lo) / (hi - lo), 0.0, 1.0) * (n - 1);
+    i0             = std::min(int(f), n - 2);
+    return f - i0;
+  };
+  int          iu, iv;
+  const double fu = frac(u, u_range[t].first, u_range[t].second, spec.n_u, iu);
+  const double fv = frac(v, v_range[t].first, v_range[t].second, spec.n_v, iv);
+  const int    base = t * spec.n_u * spec.n_v;
+  Weights      w;
+  int          k = 0;
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b, ++k)
+      {
+        w.index[k]  = base + (iu + a) * spec.n_v + iv + b;
+        w.weight[k] = (a ? fu : 1 - fu) * (b ? fv : 1 - fv);
+      }
+  return w;
+}
+
+double
+FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, double u_j,
+                            double v_j) const
+{
+  if (S.size() == 0)
+    throw InputError("flank compliance: the table has not been filled");
+  const Weights wi = weights(tooth_i, u_i, v_i), wj = weights(tooth_j, u_j, v_j);
+  double        c  = 0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b)
+      c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a]);
+  return c;
+}
+
+void
+fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
+                           const Material &material)
+{
+  const auto &points = table.points();
+  std::vector<std::pair<Vec3, Vec3>> loads, responses;
+  for (const auto &p : points)
+    {
+      loads.emplace_back(p.position, -p.normal);
+      responses.emplace_back(p.position - depth * p.normal, -p.normal);
+    }
+  Eigen::MatrixXd D = solve(loads, responses);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t j = 0; j < points.size(); ++j)
+      if (points[i].tooth == points[j].tooth)
+        {
+          const Vec3   d = responses[j].first - points[i].position;
+          const double z = -d.dot(points[i].normal); // depth below the load's tangent plane
+          const double r = (d + z * points[i].normal).norm();
+          D(j, i) -= point_load_displacement(r, std::max(z, 0.0), 1.0, material);
+        }
+  table.set(D);
+}
+} // namespace gearkit

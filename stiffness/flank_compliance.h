@@ -1,0 +1,88 @@
+// Structural compliance of one member on grids of flank points, the table the fast mode reads:
+// unit normal loads at every grid point of the flanks that can carry load (a few teeth, one
+// side), the normal displacements at every grid point, without the local half-space part
+// (finite elements give it at a depth below the surface where they are accurate; the
+// Boussinesq solution at that depth is subtracted, the exact half-space part is added per cell
+// pair by the contact solver). Interpolated bilinearly in both points' flank parameters.
+#pragma once
+
+#include "half_space.h"
+#include "member_flanks.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace gearkit
+{
+struct FlankGridSpec
+{
+  std::vector<int> teeth;           ///< member teeth that can carry load
+  FlankSide        side = FlankSide::drive;
+  int              n_u  = 7;        ///< grid points over the profile (u)
+  int              n_v  = 7;        ///< grid points over the face (v)
+  double           margin = 0.02;   ///< grid kept this fraction of each range inside the flank
+};
+
+class FlankCompliance
+{
+public:
+  /// A grid point in the member frame; `normal` points out of the material.
+  struct Point
+  {
+    int    tooth = 0;
+    double u = 0, v = 0;
+    Vec3   position = Vec3::Zero(), normal = Vec3::Zero();
+  };
+
+  FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec &spec);
+
+  /// Points, tooth by tooth, u-major then v.
+  const std::vector<Point> &
+  points() const
+  {
+    return grid;
+  }
+  /// S(j, i): approach of point j into the material per unit normal force on point i [m/N].
+  void
+  set(const Eigen::MatrixXd &compliance);
+  const Eigen::MatrixXd &
+  matrix() const
+  {
+    return S;
+  }
+  /// Interpolated compliance from a load at (tooth_i, u_i, v_i) to (tooth_j, u_j, v_j); throws
+  /// InputError for a tooth outside the grid.
+  double
+  operator()(int tooth_i, double u_i, double v_i, int tooth_j, double u_j, double v_j) const;
+
+private:
+  struct Weights
+  {
+    int    index[4];
+    double weight[4];
+  };
+  Weights
+  weights(int tooth, double u, double v) const;
+
+  FlankGridSpec      spec;
+  std::vector<Point> grid;
+  std::vector<double> us, vs; ///< per tooth: grid parameters (same domain for every tooth)
+  std::vector<std::pair<double, double>> u_range, v_range; ///< per tooth entry
+  Eigen::MatrixXd    S;
+};
+
+/// Solves the member's elasticity problem for unit normal loads at the grid points: `solve`
+/// takes the load points (position, direction of the force = into the material) and the
+/// response points and returns D(j, i), the displacement of response point j along the given
+/// direction per unit load i. Response points lie `depth` below the flank along the normal; the
+/// Boussinesq displacement of a point force at that depth is subtracted for points of the same
+/// tooth. Fills the table.
+using ElasticResponse = std::function<Eigen::MatrixXd(
+    const std::vector<std::pair<Vec3, Vec3>> &loads,
+    const std::vector<std::pair<Vec3, Vec3>> &responses)>;
+void
+fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
+                           const Material &material);
+} // namespace gearkit

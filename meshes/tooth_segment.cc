@@ -1,12 +1,12 @@
 #include "tooth_segment.h"
 
+#include "gmsh_session.h"
 #include "mass_properties.h"
 
 #include <gmsh.h>
 
 #include <cmath>
-#include <cstdio>
-#include <fstream>
+#include <tuple>
 #include <map>
 #include <sstream>
 
@@ -26,20 +26,6 @@ rotate(const Vec2 &p, double a)
   const double c = std::cos(a), s = std::sin(a);
   return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
 }
-
-/// gmsh's global state for one model build: initialised quiet, finalised on every exit path.
-struct GmshSession
-{
-  GmshSession()
-  {
-    gmsh::initialize();
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession &) = delete;
-  GmshSession &operator=(const GmshSession &) = delete;
-};
 
 void
 check(bool ok, const std::string &parameter, double value, const std::string &allowed)
@@ -115,27 +101,6 @@ private:
   double z0;
   int    centre;
 };
-
-/// Atomic write of text next to its final name.
-void
-write_text_atomically(const std::string &path, const std::string &text)
-{
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out.flush())
-      {
-        std::remove(tmp.c_str());
-        throw InputError("tooth segment mesh: cannot write " + path);
-      }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    {
-      std::remove(tmp.c_str());
-      throw InputError("tooth segment mesh: cannot write " + path);
-    }
-}
 
 /// The gmsh model, mesh and files (inside a GmshSession; options already checked).
 void
@@ -264,13 +229,8 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 1), "body");
 
   gmsh::model::mesh::generate(3);
-  std::vector<int> types;
-  gmsh::model::mesh::getElementTypes(types, 3);
-  for (int t : types)
-    if (t != 5)
-      throw InputError("tooth segment mesh: gmsh left non-hexahedral elements (type " +
-                       std::to_string(t) +
-                       "); try other element sizes (flank size, far size, curve points)");
+  std::tie(info.hexahedra, info.nodes) = require_hexahedra("tooth segment mesh");
+
   // Flank nodes onto the exact involute (splines and the subdivision's new nodes are off by up
   // to a few micrometres; contact gaps are micrometres): at the node's radius and z, the polar
   // angle of the involute, theta_b - inv(alpha_r) from the tooth's centre line turned by the
@@ -294,27 +254,11 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
           }
       }
 
-  std::vector<std::size_t> tags, node_tags;
-  gmsh::model::mesh::getElementsByType(5, tags, node_tags);
-  info.hexahedra = tags.size();
-  std::vector<std::size_t> all_nodes;
-  std::vector<double>      coords, parametric;
-  gmsh::model::mesh::getNodes(all_nodes, coords, parametric);
-  info.nodes = all_nodes.size();
-
   // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b.
   const double outline_area = polygon_moments(gear.transverse_outline(400)).area;
   info.analytic_volume = b * double(o.teeth) / z * (outline_area - pi * ri * ri);
 
-  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-  gmsh::option::setNumber("Mesh.Binary", 0);
-  const std::string tmp = path + ".tmp.msh";
-  gmsh::write(tmp);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    {
-      std::remove(tmp.c_str());
-      throw InputError("tooth segment mesh: cannot write " + path);
-    }
+  write_mesh_atomically(path);
 
   std::ostringstream json;
   json.precision(12);
@@ -365,21 +309,8 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
   const int    layers     = o.face_layers > 0 ? o.face_layers
                                               : std::max(2, int(std::lround(b / (2 * flank_size))));
 
-  GmshSession session;
-  try
-    {
-      build_and_write(gear, o, path, info, flank_size, far_size, layers);
-    }
-  catch (const InputError &)
-    {
-      throw;
-    }
-  catch (...)
-    {
-      std::string error;
-      gmsh::logger::getLastError(error);
-      throw InputError("tooth segment mesh: gmsh failed (" + error + ") for " + path);
-    }
+  with_gmsh("tooth segment mesh",
+            [&] { build_and_write(gear, o, path, info, flank_size, far_size, layers); });
   return info;
 }
 

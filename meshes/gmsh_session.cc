@@ -1,0 +1,93 @@
+#include "gmsh_session.h"
+
+#include "types.h"
+
+#include <gmsh.h>
+
+#include <cstdio>
+#include <exception>
+#include <fstream>
+
+namespace gearkit
+{
+GmshSession::GmshSession()
+{
+  gmsh::initialize();
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 1);
+}
+
+GmshSession::~GmshSession()
+{
+  gmsh::finalize();
+}
+
+void
+rethrow_gmsh_error(const std::string &what)
+{
+  try
+    {
+      throw;
+    }
+  catch (const InputError &)
+    {
+      throw;
+    }
+  catch (...)
+    {
+      std::string error;
+      gmsh::logger::getLastError(error);
+      throw InputError(what + ": gmsh failed (" + error + ")");
+    }
+}
+
+std::pair<std::size_t, std::size_t>
+require_hexahedra(const std::string &what)
+{
+  std::vector<int> types;
+  gmsh::model::mesh::getElementTypes(types, 3);
+  for (int t : types)
+    if (t != 5)
+      throw InputError(what + ": gmsh left non-hexahedral elements (type " + std::to_string(t) +
+                       "); try other element sizes");
+  std::vector<std::size_t> tags, node_tags, nodes;
+  gmsh::model::mesh::getElementsByType(5, tags, node_tags);
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(nodes, coords, parametric);
+  return {tags.size(), nodes.size()};
+}
+
+void
+write_mesh_atomically(const std::string &path)
+{
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.Binary", 0);
+  const std::string tmp = path + ".tmp.msh";
+  gmsh::write(tmp);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    {
+      std::remove(tmp.c_str());
+      throw InputError("cannot write the mesh file " + path);
+    }
+}
+
+void
+write_text_atomically(const std::string &path, const std::string &text)
+{
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out.flush())
+      {
+        std::remove(tmp.c_str());
+        throw InputError("cannot write " + path);
+      }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    {
+      std::remove(tmp.c_str());
+      throw InputError("cannot write " + path);
+    }
+}
+} // namespace gearkit

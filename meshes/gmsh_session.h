@@ -1,0 +1,59 @@
+// Shared plumbing of the gmsh models: gmsh's global state for one model build, the all-hexahedra
+// check, and atomic writes of the mesh and its .json sidecar.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace gearkit
+{
+/// gmsh initialised (quiet) for one model build and finalised on every exit path. Errors gmsh
+/// throws inside `run` become InputError naming `what`.
+class GmshSession
+{
+public:
+  GmshSession();
+  ~GmshSession();
+  GmshSession(const GmshSession &) = delete;
+  GmshSession &
+  operator=(const GmshSession &) = delete;
+};
+
+/// Runs f inside a GmshSession; gmsh's own exceptions become InputError("<what>: gmsh failed
+/// (<gmsh's last error>)").
+template <class F>
+void
+with_gmsh(const std::string &what, F &&f);
+
+/// Throws InputError (naming `what`) unless the current model's 3-D mesh is all hexahedra;
+/// returns (hexahedra, nodes).
+std::pair<std::size_t, std::size_t>
+require_hexahedra(const std::string &what);
+
+/// Writes the current model's mesh (.msh 4.1 ASCII) through a temporary file and a rename.
+void
+write_mesh_atomically(const std::string &path);
+
+/// Writes text through a temporary file and a rename.
+void
+write_text_atomically(const std::string &path, const std::string &text);
+
+/// Implementation of with_gmsh (kept out of the template to hide gmsh.h).
+void
+rethrow_gmsh_error(const std::string &what);
+
+template <class F>
+void
+with_gmsh(const std::string &what, F &&f)
+{
+  GmshSession session;
+  try
+    {
+      f();
+    }
+  catch (...)
+    {
+      rethrow_gmsh_error(what);
+    }
+}
+} // namespace gearkit

@@ -24,7 +24,8 @@ struct CylinderSliceOptions
   bool   upper        = true;   ///< body above the contact plane (centre at +R) or below
   double contact_size = 20e-6;  ///< element size at the contact point [m]
   double far_size     = 1e-3;   ///< element size far from it [m]
-  double grading_distance = 1e-3; ///< distance over which the size grows [m]
+  double fine_distance    = 0.5e-3; ///< the contact size holds within this distance [m]
+  double grading_distance = 3e-3;   ///< beyond it the size grows to the far size over this [m]
   double thickness    = 20e-6;  ///< slice thickness [m] (one element layer)
 };
 

@@ -100,8 +100,9 @@ def check(path, png):
         ax.set_aspect('equal')
         ax.set_xlabel('x [mm]')
         ax.set_ylabel('y [mm]')
-        ax.set_title(f'{meta["gear"]}: end face z = -b/2, {len(hexes)} hexahedra '
-                     '(drive flank nodes red, coast blue)')
+        flanks = any('tooth' in name for name in meta['physical_surfaces'])
+        ax.set_title(f'{meta["gear"]}: end face, {len(hexes)} hexahedra'
+                     + (' (drive flank nodes red, coast blue)' if flanks else ''))
         fig.savefig(path[:-4] + '.png', dpi=150, bbox_inches='tight')
         plt.close(fig)
     return failures

@@ -3,6 +3,7 @@
 // involute flank (which also checks the helix twist's sense against the flank surfaces).
 #include "../fzg_c_pair.h"
 #include "../temp_directory_test.h"
+#include "cylinder_slice.h"
 #include "tooth_segment.h"
 
 #include <gmsh.h>
@@ -206,5 +207,44 @@ TEST_F(ToothSegmentMesh, GradedTowardTheFlanks)
       // default sizes m/5 at the flanks and m at the bore: section areas 1:25
       EXPECT_LT(flank_volume / flank_cells, 0.2 * bore_volume / bore_cells) << beta;
       EXPECT_GT(info.hexahedra, 1000u);
+    }
+}
+
+TEST_F(ToothSegmentMesh, CylinderSlicesForHertz)
+{
+  // Both bodies of the Hertz check: all hexahedra, the half-disc volume, graded to the contact.
+  const char       *env = std::getenv("GEARKIT_MESH_CHECK_DIR");
+  const std::string out = env ? env : dir.string();
+  for (bool upper : {true, false})
+    {
+      CylinderSliceOptions o;
+      o.upper = upper;
+      o.radius = upper ? 10e-3 : 15e-3;
+      o.contact_size = 50e-6, o.fine_distance = 0.3e-3;
+      const std::string path = out + (upper ? "/cylinder_upper.msh" : "/cylinder_lower.msh");
+      const CylinderSliceInfo info = write_cylinder_slice_mesh(o, path);
+      const MeshFile m = read(path);
+      ASSERT_EQ(m.hexahedra.size(), info.hexahedra);
+      double volume = 0, min_j = HUGE_VAL, smallest = HUGE_VAL;
+      for (const auto &h : m.hexahedra)
+        {
+          std::array<Vec3, 8> x;
+          for (int k = 0; k < 8; ++k)
+            x[k] = m.nodes.at(h[k]);
+          const auto [v, j] = hex_volume_and_min_jacobian(x);
+          volume += v, min_j = std::min(min_j, j);
+          if (x[0].head<2>().norm() < 3 * o.contact_size)
+            smallest = std::min(smallest, (x[1] - x[0]).norm());
+        }
+      EXPECT_GT(min_j, 0);
+      // chords of the far arcs (size h) lose (h/R)^2 / 6 of the half-disc: 1.7e-3 at h = R / 10
+      EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3);
+      EXPECT_LT(smallest, 1.5 * o.contact_size);
+      // every node of the contact group on the circle
+      for (std::size_t tag : m.group_nodes.at(cylinder_boundary::contact))
+        {
+          const Vec3 x = m.nodes.at(tag);
+          EXPECT_NEAR(std::hypot(x.x(), x.y() - (upper ? 1 : -1) * o.radius), o.radius, 1e-9);
+        }
     }
 }

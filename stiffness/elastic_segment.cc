@@ -1,0 +1,536 @@
+#include "elastic_segment.h"
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <petscksp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace gearkit
+{
+using namespace dealii;
+
+namespace
+{
+void
+petsc_check(PetscErrorCode error, const char *what)
+{
+  if (error != 0)
+    throw InputError(std::string("elastic segment: PETSc failed in ") + what + " (error " +
+                     std::to_string(error) + "); check the solver options given at run time");
+}
+
+Point<3>
+point(const Vec3 &x)
+{
+  return Point<3>(x.x(), x.y(), x.z());
+}
+
+/// von Mises stress from the displacement gradient.
+class VonMises : public DataPostprocessorScalar<3>
+{
+public:
+  VonMises(double lambda, double mu)
+      : DataPostprocessorScalar<3>("von_mises_stress", update_gradients)
+      , lambda(lambda)
+      , mu(mu)
+  {}
+  void
+  evaluate_vector_field(const DataPostprocessorInputs::Vector<3> &in,
+                        std::vector<Vector<double>> &out) const override
+  {
+    for (std::size_t q = 0; q < in.solution_gradients.size(); ++q)
+      {
+        Tensor<2, 3> grad;
+        for (unsigned c = 0; c < 3; ++c)
+          grad[c] = in.solution_gradients[q][c];
+        const SymmetricTensor<2, 3> eps   = symmetrize(grad);
+        const SymmetricTensor<2, 3> sigma = lambda * trace(eps) * unit_symmetric_tensor<3>() + 2 * mu * eps;
+        const SymmetricTensor<2, 3> dev   = deviator(sigma);
+        out[q](0) = std::sqrt(1.5 * (dev * dev));
+      }
+  }
+
+private:
+  double lambda, mu;
+};
+} // namespace
+
+struct ElasticSegment::Impl
+{
+  MPI_Comm                                  comm = MPI_COMM_WORLD;
+  ElasticSegmentOptions                     options;
+  parallel::distributed::Triangulation<3>   tria{MPI_COMM_WORLD};
+  FESystem<3>                               fe;
+  DoFHandler<3>                             dofs;
+  MappingQ1<3>                              mapping;
+  IndexSet                                  owned, relevant;
+  AffineConstraints<double>                 constraints;
+  PETScWrappers::MPI::SparseMatrix          K;
+  KSP                                       ksp = nullptr;
+  double                                    factor_seconds = 0;
+  double                                    lambda = 0, mu = 0;
+
+  /// Boundary quadrature of the faces with a boundary id, cached for fast load assembly.
+  struct FaceData
+  {
+    int                                   boundary;
+    Point<3>                              centre;
+    double                                diameter;
+    std::vector<types::global_dof_index> dof_indices;
+    std::vector<Point<3>>                 q_points;
+    std::vector<double>                   JxW;
+    std::vector<std::array<double, 3>>    shape; ///< [q * dofs_per_cell + i] -> components
+  };
+  std::vector<FaceData> faces;
+
+  explicit Impl(unsigned degree)
+      : fe(FE_Q<3>(degree), 3)
+  {}
+
+  /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
+  void
+  local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell, FEValues<3> &values,
+               FullMatrix<double> &local) const;
+  PETScWrappers::MPI::Vector
+  assemble_loads(const std::vector<PatchLoad> &loads) const;
+  PETScWrappers::MPI::Vector
+  solve(const PETScWrappers::MPI::Vector &rhs) const;
+  /// Per probe: the owning rank's functional (dof indices, coefficients); empty elsewhere.
+  std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
+  probe_functionals(const std::vector<Probe> &probes) const;
+  Eigen::VectorXd
+  evaluate(const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
+           const PETScWrappers::MPI::Vector &u) const;
+};
+
+ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOptions &o)
+{
+  if (!(o.degree == 1 || o.degree == 2))
+    throw InputError("elastic segment: degree = " + std::to_string(o.degree) +
+                     " is not allowed; expected 1 or 2");
+  if (!(o.material.youngs_modulus > 0 && o.material.poisson_ratio > -1 &&
+        o.material.poisson_ratio < 0.5))
+    throw InputError("elastic segment: the material needs E > 0 and Poisson's ratio in (-1, 0.5)");
+  if (!std::ifstream(file).good())
+    throw InputError("elastic segment: cannot read the mesh file " + file);
+  impl          = std::make_unique<Impl>(o.degree);
+  Impl &m       = *impl;
+  m.options     = o;
+  const double E = o.material.youngs_modulus, nu = o.material.poisson_ratio;
+  m.lambda      = E * nu / ((1 + nu) * (1 - 2 * nu));
+  m.mu          = E / (2 * (1 + nu));
+
+  Triangulation<3> coarse;
+  {
+    GridIn<3> in;
+    in.attach_triangulation(coarse);
+    try
+      {
+        in.read_msh(file);
+      }
+    catch (const std::exception &e)
+      {
+        throw InputError("elastic segment: " + file +
+                         " is not a hexahedral gmsh mesh deal.II can read (" + e.what() + ")");
+      }
+  }
+  if (coarse.n_active_cells() == 0 || !coarse.all_reference_cells_are_hyper_cube())
+    throw InputError("elastic segment: " + file +
+                     " must contain hexahedra only (gmsh: recombine and extrude, or subdivide)");
+  m.tria.copy_triangulation(coarse);
+  m.tria.refine_global(o.refinements);
+
+  std::set<types::boundary_id> present;
+  for (const auto &face : m.tria.active_face_iterators())
+    if (face->at_boundary())
+      present.insert(face->boundary_id());
+  present = Utilities::MPI::compute_set_union(present, m.comm);
+  auto require = [&](int id) {
+    if (!present.count(types::boundary_id(id)))
+      throw InputError("elastic segment: boundary id " + std::to_string(id) + " is not in " +
+                       file);
+  };
+  if (o.clamped.empty() && o.rollers.empty())
+    throw InputError("elastic segment: the body is not held (no clamped or roller boundary)");
+
+  m.dofs.reinit(m.tria);
+  m.dofs.distribute_dofs(m.fe);
+  m.owned = m.dofs.locally_owned_dofs();
+  DoFTools::extract_locally_relevant_dofs(m.dofs, m.relevant);
+  m.constraints.reinit(m.relevant);
+  DoFTools::make_hanging_node_constraints(m.dofs, m.constraints);
+  for (int id : o.clamped)
+    {
+      require(id);
+      VectorTools::interpolate_boundary_values(m.mapping, m.dofs, types::boundary_id(id),
+                                               Functions::ZeroFunction<3>(3), m.constraints);
+    }
+  for (const auto &[id, component] : o.rollers)
+    {
+      require(id);
+      if (component < 0 || component > 2)
+        throw InputError("elastic segment: roller component must be 0, 1 or 2");
+      ComponentMask mask(3, false);
+      mask.set(component, true);
+      VectorTools::interpolate_boundary_values(m.mapping, m.dofs, types::boundary_id(id),
+                                               Functions::ZeroFunction<3>(3), m.constraints,
+                                               mask);
+    }
+  m.constraints.close();
+
+  DynamicSparsityPattern dsp(m.relevant);
+  DoFTools::make_sparsity_pattern(m.dofs, dsp, m.constraints, false);
+  SparsityTools::distribute_sparsity_pattern(dsp, m.owned, m.comm, m.relevant);
+  m.K.reinit(m.owned, m.owned, dsp, m.comm);
+
+  // Assembly: sigma = lambda tr(eps) I + 2 mu eps.
+  {
+    const QGauss<3> quadrature(o.degree + 1);
+    FEValues<3>     values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
+    FullMatrix<double>                   local(m.fe.n_dofs_per_cell(), m.fe.n_dofs_per_cell());
+    std::vector<types::global_dof_index> indices(m.fe.n_dofs_per_cell());
+    for (const auto &cell : m.dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          m.local_matrix(cell, values, local);
+          cell->get_dof_indices(indices);
+          m.constraints.distribute_local_to_global(local, indices, m.K);
+        }
+  }
+  m.K.compress(VectorOperation::add);
+
+  // Boundary quadrature cache for the loads.
+  const unsigned n = m.fe.n_dofs_per_cell();
+  const QGauss<2> face_quadrature(o.degree + 2);
+  FEFaceValues<3> face_values(m.mapping, m.fe, face_quadrature,
+                              update_values | update_quadrature_points | update_JxW_values);
+  for (const auto &cell : m.dofs.active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (unsigned f = 0; f < GeometryInfo<3>::faces_per_cell; ++f)
+        if (cell->face(f)->at_boundary())
+          {
+            face_values.reinit(cell, f);
+            Impl::FaceData d;
+            d.boundary = int(cell->face(f)->boundary_id());
+            d.centre   = cell->face(f)->center();
+            d.diameter = cell->face(f)->diameter();
+            d.dof_indices.resize(n);
+            cell->get_dof_indices(d.dof_indices);
+            for (unsigned q = 0; q < face_quadrature.size(); ++q)
+              {
+                d.q_points.push_back(face_values.quadrature_point(q));
+                d.JxW.push_back(face_values.JxW(q));
+                for (unsigned i = 0; i < n; ++i)
+                  {
+                    std::array<double, 3> s{0, 0, 0};
+                    s[m.fe.system_to_component_index(i).first] = face_values.shape_value(i, q);
+                    d.shape.push_back(s);
+                  }
+              }
+            m.faces.push_back(std::move(d));
+          }
+
+  // The factorisation (or whatever the run-time options ask for), kept for every solve.
+  Timer timer;
+  petsc_check(KSPCreate(m.comm, &m.ksp), "KSPCreate");
+  petsc_check(KSPSetOperators(m.ksp, m.K, m.K), "KSPSetOperators");
+  petsc_check(KSPSetType(m.ksp, KSPPREONLY), "KSPSetType");
+  PC pc;
+  petsc_check(KSPGetPC(m.ksp, &pc), "KSPGetPC");
+  petsc_check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+  petsc_check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  petsc_check(KSPSetOptionsPrefix(m.ksp, "gearkit_"), "KSPSetOptionsPrefix");
+  petsc_check(KSPSetTolerances(m.ksp, 1e-12, 1e-50, PETSC_DEFAULT, 10000), "KSPSetTolerances");
+  petsc_check(KSPSetFromOptions(m.ksp), "KSPSetFromOptions");
+  petsc_check(KSPSetUp(m.ksp), "KSPSetUp (factorisation: is the body held?)");
+  m.factor_seconds = timer.wall_time();
+}
+
+void
+ElasticSegment::Impl::local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell,
+                                   FEValues<3> &values, FullMatrix<double> &local) const
+{
+  values.reinit(cell);
+  local = 0;
+  const unsigned                   n = fe.n_dofs_per_cell();
+  const FEValuesExtractors::Vector u(0);
+  std::vector<SymmetricTensor<2, 3>> eps(n);
+  for (unsigned q = 0; q < values.n_quadrature_points; ++q)
+    {
+      for (unsigned i = 0; i < n; ++i)
+        eps[i] = values[u].symmetric_gradient(i, q);
+      for (unsigned i = 0; i < n; ++i)
+        for (unsigned j = 0; j <= i; ++j)
+          local(i, j) +=
+              (lambda * trace(eps[i]) * trace(eps[j]) + 2 * mu * (eps[i] * eps[j])) * values.JxW(q);
+    }
+  for (unsigned i = 0; i < n; ++i)
+    for (unsigned j = i + 1; j < n; ++j)
+      local(i, j) = local(j, i);
+}
+
+ElasticSegment::~ElasticSegment()
+{
+  if (impl && impl->ksp)
+    KSPDestroy(&impl->ksp);
+}
+
+std::size_t
+ElasticSegment::cells() const
+{
+  return impl->tria.n_global_active_cells();
+}
+
+std::size_t
+ElasticSegment::dofs() const
+{
+  return impl->dofs.n_dofs();
+}
+
+double
+ElasticSegment::factorisation_seconds() const
+{
+  return impl->factor_seconds;
+}
+
+PETScWrappers::MPI::Vector
+ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
+{
+  PETScWrappers::MPI::Vector f(owned, comm);
+  const unsigned             n = fe.n_dofs_per_cell();
+  Vector<double>             local(n);
+  for (const PatchLoad &load : loads)
+    {
+      if (!(load.radius > 0) || load.boundaries.empty() || !load.force.allFinite())
+        throw InputError("elastic segment: a patch load needs a radius > 0, boundary ids and a "
+                         "finite force");
+      const Point<3> x0 = point(load.point);
+      auto           in_patch = [&](const FaceData &d) {
+        return load.boundaries.count(d.boundary) &&
+               d.centre.distance(x0) <= load.radius + d.diameter;
+      };
+      double area = 0;
+      for (const FaceData &d : faces)
+        if (in_patch(d))
+          for (std::size_t q = 0; q < d.q_points.size(); ++q)
+            if (d.q_points[q].distance(x0) <= load.radius)
+              area += d.JxW[q];
+      area = Utilities::MPI::sum(area, comm);
+      if (!(area > 0))
+        {
+          std::ostringstream msg;
+          msg << "elastic segment: the patch load at (" << load.point.transpose() * 1e3
+              << ") mm with radius " << load.radius * 1e3
+              << " mm covers no quadrature point of its boundary; make it larger than the "
+                 "elements there";
+          throw InputError(msg.str());
+        }
+      const Vec3 traction = load.force / area;
+      for (const FaceData &d : faces)
+        if (in_patch(d))
+          {
+            local = 0;
+            for (std::size_t q = 0; q < d.q_points.size(); ++q)
+              if (d.q_points[q].distance(x0) <= load.radius)
+                for (unsigned i = 0; i < n; ++i)
+                  {
+                    const auto &s = d.shape[q * n + i];
+                    local(i) += (s[0] * traction.x() + s[1] * traction.y() + s[2] * traction.z()) *
+                                d.JxW[q];
+                  }
+            constraints.distribute_local_to_global(local, d.dof_indices, f);
+          }
+    }
+  f.compress(VectorOperation::add);
+  return f;
+}
+
+PETScWrappers::MPI::Vector
+ElasticSegment::Impl::solve(const PETScWrappers::MPI::Vector &rhs) const
+{
+  PETScWrappers::MPI::Vector x(owned, comm);
+  petsc_check(KSPSolve(ksp, rhs, x), "KSPSolve");
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(ksp, &reason);
+  if (reason < 0)
+    throw InputError("elastic segment: the linear solver did not converge (PETSc reason " +
+                     std::to_string(int(reason)) + ")");
+  AffineConstraints<double> &c = const_cast<AffineConstraints<double> &>(constraints);
+  c.distribute(x);
+  PETScWrappers::MPI::Vector ghosted(owned, relevant, comm);
+  ghosted = x;
+  return ghosted;
+}
+
+std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
+ElasticSegment::Impl::probe_functionals(const std::vector<Probe> &probes) const
+{
+  const unsigned rank = Utilities::MPI::this_mpi_process(comm);
+  std::vector<unsigned> claim(probes.size(), std::numeric_limits<unsigned>::max());
+  std::vector<std::pair<typename DoFHandler<3>::active_cell_iterator, Point<3>>> found(
+      probes.size());
+  for (std::size_t j = 0; j < probes.size(); ++j)
+    {
+      try
+        {
+          const auto r = GridTools::find_active_cell_around_point(mapping, dofs,
+                                                                  point(probes[j].point));
+          if (r.first.state() == IteratorState::valid && r.first->is_locally_owned())
+            found[j] = r, claim[j] = rank;
+        }
+      catch (const std::exception &)
+        {
+          // not in this rank's part of the mesh
+        }
+    }
+  Utilities::MPI::min(claim, comm, claim);
+  std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> out(
+      probes.size());
+  const unsigned n = fe.n_dofs_per_cell();
+  for (std::size_t j = 0; j < probes.size(); ++j)
+    {
+      if (claim[j] == std::numeric_limits<unsigned>::max())
+        {
+          std::ostringstream msg;
+          msg << "elastic segment: the probe point (" << probes[j].point.transpose() * 1e3
+              << ") mm lies outside the mesh";
+          throw InputError(msg.str());
+        }
+      if (claim[j] != rank)
+        continue;
+      const auto &[cell, ref] = found[j];
+      out[j].first.resize(n);
+      cell->get_dof_indices(out[j].first);
+      for (unsigned i = 0; i < n; ++i)
+        {
+          const unsigned c = fe.system_to_component_index(i).first;
+          out[j].second.push_back(fe.shape_value(i, ref) * probes[j].direction[c]);
+        }
+    }
+  return out;
+}
+
+Eigen::VectorXd
+ElasticSegment::Impl::evaluate(
+    const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
+    const PETScWrappers::MPI::Vector &u) const
+{
+  std::vector<double> values(f.size(), 0.0);
+  for (std::size_t j = 0; j < f.size(); ++j)
+    for (std::size_t i = 0; i < f[j].first.size(); ++i)
+      values[j] += f[j].second[i] * u(f[j].first[i]);
+  Utilities::MPI::sum(values, comm, values);
+  return Eigen::Map<Eigen::VectorXd>(values.data(), Eigen::Index(values.size()));
+}
+
+Eigen::MatrixXd
+ElasticSegment::response(const std::vector<PatchLoad> &loads,
+                         const std::vector<Probe> &probes) const
+{
+  const auto      functionals = impl->probe_functionals(probes);
+  Eigen::MatrixXd D(probes.size(), loads.size());
+  for (std::size_t i = 0; i < loads.size(); ++i)
+    D.col(Eigen::Index(i)) = impl->evaluate(functionals, impl->solve(impl->assemble_loads({loads[i]})));
+  return D;
+}
+
+Eigen::VectorXd
+ElasticSegment::response(const std::vector<PatchLoad> &loads, const std::vector<Probe> &probes,
+                         Vec3 *reaction) const
+{
+  const Impl                      &m = *impl;
+  const PETScWrappers::MPI::Vector f = m.assemble_loads(loads);
+  const PETScWrappers::MPI::Vector u = m.solve(f);
+  if (reaction)
+    {
+      // Reactions: the internal forces K u of the unconstrained element matrices, summed over
+      // the held degrees of freedom by component (no load acts there).
+      const QGauss<3> quadrature(m.options.degree + 1);
+      FEValues<3>     values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
+      const unsigned  n = m.fe.n_dofs_per_cell();
+      FullMatrix<double>                   local(n, n);
+      Vector<double>                       ul(n), rl(n);
+      std::vector<types::global_dof_index> indices(n);
+      std::map<types::global_dof_index, std::pair<unsigned, double>> held; // dof -> (component, force)
+      for (const auto &cell : m.dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(indices);
+            bool any = false;
+            for (auto i : indices)
+              any |= m.constraints.is_constrained(i);
+            if (!any)
+              continue;
+            m.local_matrix(cell, values, local);
+            for (unsigned i = 0; i < n; ++i)
+              ul(i) = u(indices[i]);
+            local.vmult(rl, ul);
+            for (unsigned i = 0; i < n; ++i)
+              if (m.constraints.is_constrained(indices[i]))
+                {
+                  auto &h = held[indices[i]];
+                  h.first = m.fe.system_to_component_index(i).first;
+                  h.second += rl(i);
+                }
+          }
+      // each rank sums its own cells' parts; the ranks' sums add up
+      std::array<double, 3> sum{0, 0, 0};
+      for (const auto &[dof, h] : held)
+        sum[h.first] += h.second;
+      Utilities::MPI::sum(ArrayView<const double>(sum.data(), 3), m.comm,
+                          ArrayView<double>(sum.data(), 3));
+      *reaction = Vec3(sum[0], sum[1], sum[2]);
+    }
+  return m.evaluate(m.probe_functionals(probes), u);
+}
+
+void
+ElasticSegment::write_vtu(const std::vector<PatchLoad> &loads, const std::string &path) const
+{
+  const Impl                      &m = *impl;
+  const PETScWrappers::MPI::Vector u = m.solve(m.assemble_loads(loads));
+  DataOut<3>                       out;
+  out.attach_dof_handler(m.dofs);
+  std::vector<DataComponentInterpretation::DataComponentInterpretation> kind(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+  out.add_data_vector(u, std::vector<std::string>(3, "displacement"),
+                      DataOut<3>::type_dof_data, kind);
+  const VonMises von_mises(m.lambda, m.mu);
+  out.add_data_vector(u, von_mises);
+  out.build_patches(m.mapping, m.options.degree);
+  const std::string tmp = path + ".tmp";
+  out.write_vtu_in_parallel(tmp, m.comm);
+  MPI_Barrier(m.comm);
+  if (Utilities::MPI::this_mpi_process(m.comm) == 0 && std::rename(tmp.c_str(), path.c_str()) != 0)
+    {
+      std::remove(tmp.c_str());
+      throw InputError("elastic segment: cannot write " + path);
+    }
+}
+} // namespace gearkit

@@ -1,0 +1,85 @@
+// Linear elasticity of one meshed body (a tooth segment, a cylinder slice, a test block) with
+// deal.II on a distributed triangulation and PETSc: the stiffness matrix assembled once,
+// factorised once (MUMPS Cholesky) and reused for many load cases; concentrated loads applied
+// as uniform tractions over small surface patches; displacements read at arbitrary points
+// through precomputed evaluation functionals. MPI-parallel (the owning rank evaluates a point).
+//
+// Run-time solver options the PETSc way, prefix "gearkit_": e.g. PETSC_OPTIONS=
+// "-gearkit_pc_factor_mat_solver_type superlu_dist" or "-gearkit_ksp_type cg -gearkit_pc_type
+// gamg" replaces the direct factorisation by an iterative solve.
+#pragma once
+
+#include "half_space.h"
+#include "types.h"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+struct ElasticSegmentOptions
+{
+  unsigned      degree = 1;          ///< FE_Q degree (1 or 2)
+  unsigned      refinements = 0;     ///< global refinements of the gmsh mesh
+  Material      material;
+  std::set<int> clamped;             ///< boundary ids held fixed (all components)
+  /// (boundary id, component): one displacement component held (rollers, symmetry, plane strain)
+  std::vector<std::pair<int, int>> rollers;
+};
+
+/// A force F (vector) spread uniformly over the part of the boundary (ids `boundaries`) within
+/// `radius` of `point`; the total applied equals F exactly.
+struct PatchLoad
+{
+  Vec3          point = Vec3::Zero();
+  Vec3          force = Vec3::Zero();
+  double        radius = 0;
+  std::set<int> boundaries;
+};
+
+/// A displacement component to read: the displacement at `point` projected on `direction`.
+struct Probe
+{
+  Vec3 point = Vec3::Zero(), direction = Vec3::Zero();
+};
+
+class ElasticSegment
+{
+public:
+  /// Reads the gmsh mesh (hexahedra; physical surface tags become boundary ids), assembles and
+  /// factorises. Throws InputError for a missing or non-hexahedral file, a bad material, degree
+  /// or an unknown boundary id, and a body that is not held (singular stiffness).
+  ElasticSegment(const std::string &mesh_file, const ElasticSegmentOptions &options);
+  ~ElasticSegment();
+
+  /// D(j, i): probe j's displacement under load i alone [m per load as given].
+  Eigen::MatrixXd
+  response(const std::vector<PatchLoad> &loads, const std::vector<Probe> &probes) const;
+
+  /// The same for one load set applied together; the sum of the reaction forces at the held
+  /// boundaries equals minus the sum of the loads.
+  Eigen::VectorXd
+  response(const std::vector<PatchLoad> &loads_together, const std::vector<Probe> &probes,
+           Vec3 *reaction) const;
+
+  /// Displacement and von Mises stress of a load set applied together, as VTU (one file per
+  /// process with a .pvtu record when parallel), written via temporary names.
+  void
+  write_vtu(const std::vector<PatchLoad> &loads_together, const std::string &path) const;
+
+  std::size_t
+  cells() const;
+  std::size_t
+  dofs() const;
+  double
+  factorisation_seconds() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+} // namespace gearkit

@@ -91,10 +91,11 @@ fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve,
                            const Material &material)
 {
   const auto &points = table.points();
-  std::vector<std::pair<Vec3, Vec3>> loads, responses;
+  std::vector<FlankLoad>             loads;
+  std::vector<std::pair<Vec3, Vec3>> responses;
   for (const auto &p : points)
     {
-      loads.emplace_back(p.position, -p.normal);
+      loads.push_back({p.tooth, p.position, -p.normal});
       responses.emplace_back(p.position - depth * p.normal, -p.normal);
     }
   Eigen::MatrixXd D = solve(loads, responses);

@@ -73,15 +73,21 @@ private:
   Eigen::MatrixXd    S;
 };
 
-/// Solves the member's elasticity problem for unit normal loads at the grid points: `solve`
-/// takes the load points (position, direction of the force = into the material) and the
-/// response points and returns D(j, i), the displacement of response point j along the given
-/// direction per unit load i. Response points lie `depth` below the flank along the normal; the
-/// Boussinesq displacement of a point force at that depth is subtracted for points of the same
-/// tooth. Fills the table.
+/// A unit normal load on a grid point of a tooth: the force points into the material.
+struct FlankLoad
+{
+  int  tooth = 0;
+  Vec3 point = Vec3::Zero(), direction = Vec3::Zero();
+};
+
+/// The member's elastic response: D(j, i), the displacement of response point j along its
+/// direction per unit load i (finite elements, e.g. ElasticSegment on the tooth segment).
 using ElasticResponse = std::function<Eigen::MatrixXd(
-    const std::vector<std::pair<Vec3, Vec3>> &loads,
-    const std::vector<std::pair<Vec3, Vec3>> &responses)>;
+    const std::vector<FlankLoad> &loads, const std::vector<std::pair<Vec3, Vec3>> &responses)>;
+
+/// Fills the table from unit normal loads at the grid points, read `depth` below the flank
+/// along the normal; the Boussinesq displacement of a point force at that depth is subtracted
+/// for points of the same tooth.
 void
 fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
                            const Material &material);

@@ -43,14 +43,14 @@ TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
   const Material steel{210e9, 0.3};
   const double   depth = 1e-3;
   // a "member" whose response is the Boussinesq field of each load in its own tangent plane
-  const ElasticResponse half_space = [&](const std::vector<std::pair<Vec3, Vec3>> &loads,
+  const ElasticResponse half_space = [&](const std::vector<FlankLoad> &loads,
                                          const std::vector<std::pair<Vec3, Vec3>> &responses) {
     Eigen::MatrixXd D(responses.size(), loads.size());
     for (std::size_t i = 0; i < loads.size(); ++i)
       for (std::size_t j = 0; j < responses.size(); ++j)
         {
-          const Vec3   n = -loads[i].second; // outward
-          const Vec3   d = responses[j].first - loads[i].first;
+          const Vec3   n = -loads[i].direction; // outward
+          const Vec3   d = responses[j].first - loads[i].point;
           const double z = -d.dot(n);
           D(j, i) = point_load_displacement((d + z * n).norm(), std::max(z, 0.0), 1.0, steel);
         }

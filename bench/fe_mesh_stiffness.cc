@@ -1,0 +1,101 @@
+// Fast (compliance) mode over one mesh cycle of the FZG C spur pair: FE compliance of both
+// members (tooth segments, Q2), then the contact at every position. Prints sizes, times, the
+// loaded TE and K_m, for a mesh-density study.
+// usage: bench_fe_mesh_stiffness [flank size / m_n = 0.2] [positions = 20] [torque = 200 N m]
+//                                [depth in elements = 3] [cells across = 17] [cells along = 24]
+#include "../tests/fzg_c_pair.h"
+#include "loaded_contact.h"
+#include "member_compliance.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+using namespace gearkit;
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const double size_factor = argc > 1 ? std::atof(argv[1]) : 0.2;
+  const int    positions   = argc > 2 ? std::atoi(argv[2]) : 20;
+  const double torque      = argc > 3 ? std::atof(argv[3]) : 200;
+  const double depth       = argc > 4 ? std::atof(argv[4]) : 3;
+  const int    across      = argc > 5 ? std::atoi(argv[5]) : 17;
+  const int    along       = argc > 6 ? std::atoi(argv[6]) : 24;
+  try
+    {
+      auto [pd, gd]      = test_data::fzg_c_pair();
+      pd.bore_diameter   = 0;
+      const auto pinion  = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+      const auto pf      = std::make_shared<InvoluteMemberFlanks>(pinion);
+      const auto gf      = std::make_shared<InvoluteMemberFlanks>(gear);
+      const double a     = working_centre_distance(*pinion, *gear);
+      const UnloadedTca tca(pf, gf, a);
+      const std::string dir = "/tmp/gearkit-bench-fe";
+      std::filesystem::create_directories(dir);
+      const Material steel{206e9, 0.3};
+      auto           t0 = std::chrono::steady_clock::now();
+      auto member = [&](const InvoluteGear &g, const MemberFlanks &f, int central, std::vector<int> teeth) {
+        MemberComplianceOptions o;
+        o.mesh.teeth         = 3;
+        o.mesh.central_tooth = central;
+        o.mesh.flank_size    = size_factor * g.data().normal_module;
+        o.material           = steel;
+        o.loaded_teeth       = teeth;
+        o.depth_elements     = depth;
+        o.work_directory     = dir;
+        MemberComplianceInfo info;
+        FlankCompliance      c = involute_member_compliance(g, f, o, &info);
+        std::printf("%s: %zu hexahedra, %zu dofs, depth %.2f mm, mesh %.1f s, setup %.1f s, "
+                    "%zu loads %.1f s\n",
+                    g.data().name.c_str(), info.hexahedra, info.dofs, info.depth * 1e3,
+                    info.mesh_seconds, info.setup_seconds, c.points().size(), info.solve_seconds);
+        return c;
+      };
+      const FlankCompliance cp = member(*pinion, *pf, 0, {15, 0, 1});
+      const FlankCompliance cg = member(*gear, *gf, 23, {22, 23, 0});
+      const double t_fe = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
+        return cp(i.pinion_tooth, i.u1, i.v1, j.pinion_tooth, j.u1, j.v1);
+      };
+      const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
+        return cg(i.gear_tooth, i.u2, i.v2, j.gear_tooth, j.u2, j.v2);
+      };
+      LoadedContactOptions lo;
+      lo.pinion_material = lo.gear_material = steel;
+      lo.cells.cells_across = across, lo.cells.cells_along = along;
+      t0 = std::chrono::steady_clock::now();
+      double k_sum = 0, k_min = HUGE_VAL, k_max = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
+      for (int i = 0; i < positions; ++i)
+        {
+          const double         phi = 2 * pi / pd.teeth * i / positions;
+          const LoadedPosition r   = loaded_contact(tca, tca.at(phi), torque, lo, sp, sg);
+          k_sum += r.mesh_stiffness, k_min = std::min(k_min, r.mesh_stiffness);
+          k_max = std::max(k_max, r.mesh_stiffness);
+          de_min = std::min(de_min, r.eL - r.e0), de_max = std::max(de_max, r.eL - r.e0);
+          std::printf("  phi %.4f  e_L-e_0 %.3f urad  K_m %.4g N/m  pairs", phi, (r.eL - r.e0) * 1e6,
+                      r.mesh_stiffness);
+          for (double f : r.pair_force)
+            if (f > 0)
+              std::printf(" %.0f", f);
+          std::printf(" N\n");
+        }
+      const double t_contact = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      dealii::Utilities::System::MemoryStats mem;
+      dealii::Utilities::System::get_memory_stats(mem);
+      std::printf("flank size %.3f m_n: K_m mean %.4g min %.4g max %.4g N/m; e_L - e_0 %.3f..%.3f urad; "
+                  "FE %.1f s, contact %.1f s (%d positions), peak RSS %.0f MB\n",
+                  size_factor, k_sum / positions, k_min, k_max, de_min * 1e6, de_max * 1e6, t_fe,
+                  t_contact, positions, mem.VmHWM / 1024.0);
+    }
+  catch (const InputError &e)
+    {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 1;
+    }
+}

@@ -61,10 +61,10 @@ main(int argc, char **argv)
       const FlankCompliance cg = member(*gear, *gf, 23, {22, 23, 0});
       const double t_fe = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.u1, i.v1, j.pinion_tooth, j.u1, j.v1);
+        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
       };
       const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
-        return cg(i.gear_tooth, i.u2, i.v2, j.gear_tooth, j.u2, j.v2);
+        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
       };
       LoadedContactOptions lo;
       lo.pinion_material = lo.gear_material = steel;

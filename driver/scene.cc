@@ -22,7 +22,7 @@ namespace
 {
 constexpr double mm = 1e-3, um = 1e-6, deg = pi / 180;
 
-const char *output_names = "flanks|measured|ste";
+const char *output_names = "flanks|measured|ste|stiffness";
 
 // --- declarations ----------------------------------------------------------------------------
 
@@ -250,6 +250,51 @@ declare_tca(ParameterHandler &prm)
 }
 
 void
+declare_fe(ParameterHandler &prm)
+{
+  prm.declare_entry("segment teeth", "3", Patterns::Integer(3, 9),
+                    "Teeth in each member's finite-element segment (odd; the middle one and its "
+                    "neighbours carry load over the mesh cycle).");
+  prm.declare_entry("flank element size", "0.25", Patterns::Double(0.02, 2),
+                    "Element size at the flanks and fillets / m_n.");
+  prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
+                    "Element size toward the bore / m_n.");
+  prm.declare_entry("degree", "2", Patterns::Integer(1, 2), "Finite-element degree (FE_Q).");
+  prm.declare_entry("response depth", "3", Patterns::Double(1, 20),
+                    "Depth below the flank, in flank element sizes, where the finite elements "
+                    "are read (they resolve the Boussinesq field there); the half-space part "
+                    "above it is analytic.");
+  prm.declare_entry("profile grid points", "9", Patterns::Integer(2, 100),
+                    "Unit-load points over the profile of each loaded flank.");
+  prm.declare_entry("face grid points", "7", Patterns::Integer(2, 100),
+                    "Unit-load points over the face of each loaded flank.");
+  prm.declare_entry("Young's modulus", "206", Patterns::Double(1),
+                    "[GPa] Young's modulus of both members.");
+  prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(-0.99, 0.499),
+                    "Poisson's ratio of both members.");
+}
+
+void
+declare_loaded(ParameterHandler &prm)
+{
+  prm.declare_entry("torques", "100", Patterns::List(Patterns::Double(0), 1),
+                    "[N m] Pinion torques (one loaded analysis per torque; the compliances are "
+                    "computed once).");
+  prm.declare_entry("positions per mesh cycle", "20", Patterns::Integer(1, 10000),
+                    "Pinion positions over one mesh cycle.");
+  prm.declare_entry("cells across", "17", Patterns::Integer(1, 201),
+                    "Contact cells across each contact line (odd: a row on the line).");
+  prm.declare_entry("cells along", "24", Patterns::Integer(1, 1000),
+                    "Contact cells along each contact line.");
+  prm.declare_entry("gap band", "10", Patterns::Double(0.01),
+                    "[um] The contact zone reaches where the unloaded gap opens to this; above "
+                    "the largest elastic approach.");
+  prm.declare_entry("measured flanks", "false", Patterns::Bool(),
+                    "Also the loaded contact of the measured flanks (Measured flanks section), "
+                    "with the theoretical pair's compliances.");
+}
+
+void
 declare_scene(ParameterHandler &prm)
 {
   prm.enter_subsection("Scene");
@@ -304,6 +349,22 @@ declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs)
     {
       prm.enter_subsection(pair);
       declare_tca(prm);
+      prm.leave_subsection();
+    }
+  prm.leave_subsection();
+  prm.enter_subsection("Finite elements");
+  for (const std::string &pair : pairs)
+    {
+      prm.enter_subsection(pair);
+      declare_fe(prm);
+      prm.leave_subsection();
+    }
+  prm.leave_subsection();
+  prm.enter_subsection("Loaded contact");
+  for (const std::string &pair : pairs)
+    {
+      prm.enter_subsection(pair);
+      declare_loaded(prm);
       prm.leave_subsection();
     }
   prm.leave_subsection();
@@ -646,6 +707,35 @@ read_scene(const std::string &file)
           t.paper.positions_per_mesh = t.options.positions_per_mesh;
           t.paper.mesh_cycles        = t.options.mesh_cycles;
           t.paper.start_angle        = t.options.start_angle;
+          prm.leave_subsection();
+          prm.leave_subsection();
+          prm.enter_subsection("Finite elements");
+          prm.enter_subsection(p);
+          FeScene &fe      = scene.fe[p];
+          fe.segment_teeth = prm.get_integer("segment teeth");
+          if (fe.segment_teeth % 2 == 0)
+            throw InputError("Finite elements/" + p + "/segment teeth = " +
+                             std::to_string(fe.segment_teeth) + " is not allowed; expected an odd number");
+          fe.flank_size = prm.get_double("flank element size");
+          fe.far_size   = prm.get_double("far element size");
+          fe.degree     = unsigned(prm.get_integer("degree"));
+          fe.depth      = prm.get_double("response depth");
+          fe.n_u        = prm.get_integer("profile grid points");
+          fe.n_v        = prm.get_integer("face grid points");
+          fe.material   = {prm.get_double("Young's modulus") * 1e9, prm.get_double("Poisson's ratio")};
+          prm.leave_subsection();
+          prm.leave_subsection();
+          prm.enter_subsection("Loaded contact");
+          prm.enter_subsection(p);
+          LoadedScene &lc = scene.loaded[p];
+          lc.torques.clear();
+          for (const std::string &t : split_list(prm.get("torques")))
+            lc.torques.push_back(std::stod(t));
+          lc.positions          = prm.get_integer("positions per mesh cycle");
+          lc.cells.cells_across = prm.get_integer("cells across");
+          lc.cells.cells_along  = prm.get_integer("cells along");
+          lc.cells.gap_band     = prm.get_double("gap band") * 1e-6;
+          lc.measured           = prm.get_bool("measured flanks");
           prm.leave_subsection();
           prm.leave_subsection();
           check_pair(pair);

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "bevel_gear.h"
+#include "contact_cells.h"
+#include "half_space.h"
 #include "involute_gear.h"
 #include "paper_mode.h"
 #include "unloaded_tca.h"
@@ -88,6 +90,27 @@ struct TcaScene
   bool hunting = false;
 };
 
+/// Finite-element compliance of a pair's members (stage "compliance").
+struct FeScene
+{
+  int      segment_teeth = 3;    ///< teeth per member segment
+  double   flank_size    = 0.25; ///< element size at the flanks / m_n
+  double   far_size      = 1.0;  ///< element size toward the bore / m_n
+  unsigned degree        = 2;
+  double   depth         = 3;    ///< response depth in flank element sizes
+  int      n_u = 9, n_v = 7;     ///< load grid per flank
+  Material material;             ///< both members
+};
+
+/// Loaded contact over the mesh cycle (stage "stiffness").
+struct LoadedScene
+{
+  std::vector<double> torques{100}; ///< pinion torques [N m]
+  int                 positions = 20;
+  ContactCellOptions  cells;
+  bool                measured = false; ///< also the measured flanks, compliances reused
+};
+
 struct Scene
 {
   std::string                          file;    ///< the scene file as given
@@ -96,6 +119,8 @@ struct Scene
   std::vector<PairScene>               pairs;
   std::map<std::string, MeasuredScene> measured; ///< by pair name
   std::map<std::string, TcaScene>      tca;      ///< by pair name
+  std::map<std::string, FeScene>       fe;       ///< by pair name
+  std::map<std::string, LoadedScene>   loaded;   ///< by pair name
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
   std::map<std::string, std::string> sections;

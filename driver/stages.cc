@@ -56,6 +56,20 @@ stage_definitions()
        5,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_ste_stage},
+      {"compliance",
+       "finite-element compliance of both members (gmsh tooth segments, deal.II + PETSc)",
+       {},
+       {"Flanks", "TCA", "Finite elements"},
+       1,
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_compliance_stage},
+      {"stiffness",
+       "loaded contact over the mesh cycle: loaded TE, mesh stiffness, load sharing, pressure",
+       {"flanks", "measured", "compliance"},
+       {"TCA", "Loaded contact"},
+       1,
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_stiffness_stage},
   };
   return stages;
 }
@@ -64,7 +78,7 @@ const std::map<std::string, std::string> &
 output_stages()
 {
   static const std::map<std::string, std::string> map = {
-      {"flanks", "flanks"}, {"measured", "measured"}, {"ste", "ste"}};
+      {"flanks", "flanks"}, {"measured", "measured"}, {"ste", "ste"}, {"stiffness", "stiffness"}};
   return map;
 }
 } // namespace gearkit

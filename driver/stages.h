@@ -55,7 +55,11 @@ stage_definitions();
 const std::map<std::string, std::string> &
 output_stages();
 
-// The stages (one source file each).
+// The stages (one source file each; compliance and stiffness share stage_stiffness.cc).
+void
+run_compliance_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+void
+run_stiffness_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 void
 run_flanks_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 void

@@ -114,6 +114,8 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
                                  cell.v2))
               continue;
             cell.u1 = p->u, cell.v1 = p->v;
+            cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;
+            cell.table_u2 = cell.u2, cell.table_v2 = cell.v2;
             cell.position = p->position, cell.normal = p->normal;
             const Vec3 r  = p->position - assembly.gear_centre();
             cell.gap      = std::max(0.0, sign * (position.gear_angle - psi) *

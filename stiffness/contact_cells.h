@@ -30,6 +30,9 @@ struct ContactCell
   Vec3   normal   = Vec3::Zero();       ///< pinion outward normal, global
   double gap   = 0;                     ///< unloaded normal gap to the gear flank [m]
   double lever = 0;                     ///< normal motion per pinion rotation, |(e_z x r) . n| [m]
+  /// Flank parameters of the cell in the structural compliance tables (the theoretical
+  /// flanks'): the same as u1, v1, u2, v2 unless the flanks are measured ones.
+  double table_u1 = 0, table_v1 = 0, table_u2 = 0, table_v2 = 0;
   double s = 0, t = 0;                  ///< centre in the pair's tangent plane [m]
   double ds = 0, dt = 0;                ///< cell size [m]
 };

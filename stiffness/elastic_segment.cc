@@ -327,26 +327,36 @@ ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
   Vector<double>             local(n);
   for (const PatchLoad &load : loads)
     {
-      if (!(load.radius > 0) || load.boundaries.empty() || !load.force.allFinite())
-        throw InputError("elastic segment: a patch load needs a radius > 0, boundary ids and a "
-                         "finite force");
+      const bool box = load.half_size.maxCoeff() > 0;
+      if (!(box ? load.half_size.minCoeff() > 0 : load.radius > 0) || load.boundaries.empty() ||
+          !load.force.allFinite())
+        throw InputError("elastic segment: a patch load needs a radius (or box half sizes) > 0, "
+                         "boundary ids and a finite force");
       const Point<3> x0 = point(load.point);
-      auto           in_patch = [&](const FaceData &d) {
-        return load.boundaries.count(d.boundary) &&
-               d.centre.distance(x0) <= load.radius + d.diameter;
+      const double   reach = box ? load.half_size.norm() : load.radius;
+      auto in_patch = [&](const FaceData &d) {
+        return load.boundaries.count(d.boundary) && d.centre.distance(x0) <= reach + d.diameter;
+      };
+      auto inside = [&](const Point<3> &q) {
+        if (!box)
+          return q.distance(x0) <= load.radius;
+        for (unsigned k = 0; k < 3; ++k)
+          if (std::abs(q[k] - x0[k]) > load.half_size[k])
+            return false;
+        return true;
       };
       double area = 0;
       for (const FaceData &d : faces)
         if (in_patch(d))
           for (std::size_t q = 0; q < d.q_points.size(); ++q)
-            if (d.q_points[q].distance(x0) <= load.radius)
+            if (inside(d.q_points[q]))
               area += d.JxW[q];
       area = Utilities::MPI::sum(area, comm);
       if (!(area > 0))
         {
           std::ostringstream msg;
           msg << "elastic segment: the patch load at (" << load.point.transpose() * 1e3
-              << ") mm with radius " << load.radius * 1e3
+              << ") mm of size " << reach * 1e3
               << " mm covers no quadrature point of its boundary; make it larger than the "
                  "elements there";
           throw InputError(msg.str());
@@ -357,7 +367,7 @@ ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
           {
             local = 0;
             for (std::size_t q = 0; q < d.q_points.size(); ++q)
-              if (d.q_points[q].distance(x0) <= load.radius)
+              if (inside(d.q_points[q]))
                 for (unsigned i = 0; i < n; ++i)
                   {
                     const auto &s = d.shape[q * n + i];

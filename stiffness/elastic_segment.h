@@ -32,13 +32,15 @@ struct ElasticSegmentOptions
 };
 
 /// A force F (vector) spread uniformly over the part of the boundary (ids `boundaries`) within
-/// `radius` of `point`; the total applied equals F exactly.
+/// `radius` of `point` (or, with a non-zero `half_size`, within the axis-aligned box of those
+/// half sizes about `point`); the total applied equals F exactly.
 struct PatchLoad
 {
   Vec3          point = Vec3::Zero();
   Vec3          force = Vec3::Zero();
   double        radius = 0;
   std::set<int> boundaries;
+  Vec3          half_size = Vec3::Zero();
 };
 
 /// A displacement component to read: the displacement at `point` projected on `direction`.

@@ -28,6 +28,9 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
       throw InputError(msg.str());
     }
 
+  if (o.table_parameters)
+    for (ContactCell &c : out.cells)
+      o.table_parameters(c);
   const Eigen::Index n = Eigen::Index(out.cells.size());
   ContactProblem     p;
   p.compliance.resize(n, n);

@@ -18,7 +18,7 @@ namespace gearkit
 /// Structural compliance of one member [m/N]: normal approach at the response cell (moving
 /// into the member's material) per unit normal force on the load cell, without the local
 /// half-space part. Cells are identified on the member's flank: the pinion by (pinion_tooth,
-/// u1, v1), the gear by (gear_tooth, u2, v2).
+/// table_u1, table_v1), the gear by (gear_tooth, table_u2, table_v2).
 using StructuralCompliance =
     std::function<double(const ContactCell &load, const ContactCell &response)>;
 
@@ -27,6 +27,9 @@ struct LoadedContactOptions
   ContactCellOptions cells;
   Material           pinion_material, gear_material;
   bool               half_space = true; ///< add the half-space part between cells of a pair
+  /// Sets a cell's table_* parameters when the flanks are not those of the compliance tables
+  /// (measured flanks: the theoretical flank's parameters at the cell's position).
+  std::function<void(ContactCell &)> table_parameters;
 };
 
 struct LoadedPosition

@@ -3,6 +3,7 @@
 #include "elastic_segment.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 
@@ -29,8 +30,9 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
   if (!(o.depth_elements > 0 && o.patch_elements > 0))
     throw InputError("member compliance: depth and patch radius (in element sizes) must be > 0");
   auto t0 = std::chrono::steady_clock::now();
-  const std::string mesh_file =
-      (std::filesystem::path(o.work_directory) / (gear.data().name + "_segment.msh")).string();
+  std::string name = gear.data().name + "_segment";
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+  const std::string mesh_file = (std::filesystem::path(o.work_directory) / (name + ".msh")).string();
   const SegmentMeshInfo segment = write_tooth_segment_mesh(gear, o.mesh, mesh_file);
   out.hexahedra    = segment.hexahedra;
   out.mesh_seconds = seconds_since(t0);

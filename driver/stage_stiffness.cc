@@ -1,0 +1,277 @@
+// Stages "compliance" and "stiffness": the finite-element compliance tables of both members
+// (gmsh tooth segments, deal.II + PETSc; computed once, reused for every torque and for the
+// measured flanks), then the loaded contact over the mesh cycle for every torque: loaded TE
+// e_L, mesh stiffness K_m, load per tooth pair and the contact pressure on the cells.
+#include "iso6336.h"
+#include "loaded_contact.h"
+#include "measured_flank.h"
+#include "member_compliance.h"
+#include "pair_members.h"
+#include "stages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace gearkit
+{
+namespace
+{
+/// The member teeth each segment is built around and loaded on: the pairs that carry load over
+/// the mesh cycle from pinion angle 0 are k = -1, 0, 1 (pinion tooth -k, gear tooth k - 1 on
+/// drive flanks, k on coast flanks), so the segments centre on pinion tooth 0 and its mate.
+int
+central_gear_tooth(int z2, FlankSide side)
+{
+  return side == FlankSide::drive ? z2 - 1 : 0;
+}
+
+FlankGridSpec
+grid_spec(const SegmentMeshInfo &segment, const FeScene &fe, FlankSide side)
+{
+  FlankGridSpec s;
+  s.teeth = segment.member_teeth;
+  s.side  = side;
+  s.n_u = fe.n_u, s.n_v = fe.n_v;
+  return s;
+}
+
+MemberComplianceOptions
+member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side, int central,
+               const std::string &dir)
+{
+  MemberComplianceOptions o;
+  o.mesh.teeth         = fe.segment_teeth;
+  o.mesh.central_tooth = central;
+  o.mesh.flank_size    = fe.flank_size * g.data().normal_module;
+  o.mesh.far_size      = fe.far_size * g.data().normal_module;
+  o.degree             = fe.degree;
+  o.material           = fe.material;
+  o.side               = side;
+  o.n_u = fe.n_u, o.n_v = fe.n_v;
+  o.depth_elements     = fe.depth;
+  o.work_directory     = dir;
+  return o;
+}
+
+void
+require_involute(const PairScene &pair)
+{
+  if (pair.type != PairType::involute)
+    throw InputError("Finite elements/" + pair.name +
+                     ": the finite-element stiffness handles spur and helical pairs; spiral "
+                     "bevel segments are not meshed yet (ask only for ste for this pair)");
+}
+} // namespace
+
+void
+run_compliance_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+{
+  for (const PairScene &pair : scene.pairs)
+    {
+      require_involute(pair);
+      const FeScene   &fe   = scene.fe.at(pair.name);
+      const FlankSide  side = scene.tca.at(pair.name).options.side;
+      const H5Group    g    = out.group(pair.name);
+      const std::string dir =
+          (std::filesystem::temp_directory_path() / ("gearkit-fe-" + pair.name)).string();
+      std::filesystem::create_directories(dir);
+      for (const bool is_pinion : {true, false})
+        {
+          const auto gear = InvoluteGear::create(is_pinion ? pair.pinion : pair.gear);
+          const InvoluteMemberFlanks flanks(gear);
+          const int central = is_pinion ? 0 : central_gear_tooth(gear->teeth(), side);
+          MemberComplianceInfo info;
+          const FlankCompliance table = involute_member_compliance(
+              *gear, flanks, member_options(*gear, fe, side, central, dir), &info);
+          const H5Group m = g.group(is_pinion ? "pinion" : "gear");
+          std::vector<int> teeth;
+          for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
+            teeth.push_back(table.points()[k].tooth);
+          const hsize_t n = table.points().size();
+          std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
+          m.write("compliance", S, {n, n}, "m/N",
+                  "structural compliance S(i, j) (column-major: load j, response i) on the load "
+                  "grid, half-space part below the response depth removed");
+          m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
+          m.write("central_tooth", double(central), "1", "tooth in the middle of the segment");
+          m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
+          m.write("dofs", double(info.dofs), "1", "degrees of freedom");
+          m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
+          m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
+                  "mesh, assembly, factorisation and unit-load solves");
+          log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << ": "
+              << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n
+              << " unit loads, " << info.mesh_seconds + info.setup_seconds + info.solve_seconds
+              << " s\n";
+        }
+    }
+}
+
+void
+run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group &out,
+                    std::ostream &log)
+{
+  for (const PairScene &pair : scene.pairs)
+    {
+      require_involute(pair);
+      const FeScene     &fe  = scene.fe.at(pair.name);
+      const LoadedScene &lc  = scene.loaded.at(pair.name);
+      const TcaScene    &tca = scene.tca.at(pair.name);
+      const FlankSide    side = tca.options.side;
+      const PairMembers  members =
+          theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
+      const auto pinion = InvoluteGear::create(pair.pinion), gear = InvoluteGear::create(pair.gear);
+      const H5Group cg = upstream.at("compliance")->group(pair.name);
+
+      // The compliance tables as the compliance stage computed them.
+      auto table = [&](const InvoluteGear &g, const char *member) {
+        const H5Group m = cg.group(member);
+        FlankGridSpec spec;
+        spec.teeth = m.read_ints("teeth");
+        spec.side  = side;
+        spec.n_u = fe.n_u, spec.n_v = fe.n_v;
+        FlankCompliance t(InvoluteMemberFlanks(InvoluteGear::create(g.data())), spec);
+        std::vector<hsize_t>      shape;
+        const std::vector<double> S = m.read_doubles("compliance", &shape);
+        t.set(Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[0]),
+                                                Eigen::Index(shape[1])));
+        return t;
+      };
+      const FlankCompliance cp = table(*pinion, "pinion"), cgr = table(*gear, "gear");
+      const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
+        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+      };
+      const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
+        return cgr(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+      };
+
+      auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
+                         const char *label) {
+        const int    n = lc.positions, m = int(lc.torques.size());
+        const double mesh_angle = 2 * pi / pinion->teeth();
+        std::vector<TcaPosition> positions;
+        double                   touching = 0;
+        for (int i = 0; i < n; ++i)
+          {
+            positions.push_back(t.at(tca.options.start_angle + mesh_angle * i / n));
+            touching += positions.back().touching;
+          }
+        std::size_t slots = 0;
+        for (const TcaPosition &p : positions)
+          slots = std::max(slots, p.pairs.size());
+        std::vector<double> phi, e0, eL, K, F, lever, pair_force, peak, cells_out;
+        std::size_t         max_cells = 0;
+        std::vector<std::vector<LoadedPosition>> results(m);
+        Progress progress(log, "stiffness", std::size_t(n * m));
+        for (int k = 0; k < m; ++k)
+          for (int i = 0; i < n; ++i)
+            {
+              results[k].push_back(loaded_contact(t, positions[i], lc.torques[k], lo, sp, sg));
+              max_cells = std::max(max_cells, results[k].back().cells.size());
+              progress.step();
+            }
+        for (int i = 0; i < n; ++i)
+          phi.push_back(positions[i].pinion_angle), e0.push_back(positions[i].transmission_error);
+        for (int k = 0; k < m; ++k)
+          {
+            double k_mean = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
+            for (int i = 0; i < n; ++i)
+              {
+                const LoadedPosition &r = results[k][i];
+                eL.push_back(r.eL), K.push_back(r.mesh_stiffness), F.push_back(r.normal_force);
+                lever.push_back(r.lever);
+                for (std::size_t s = 0; s < slots; ++s)
+                  pair_force.push_back(s < r.pair_force.size() ? r.pair_force[s] : 0.0);
+                double p_max = 0;
+                for (std::size_t c = 0; c < max_cells; ++c)
+                  {
+                    const bool used = c < r.cells.size();
+                    const ContactCell none;
+                    const ContactCell &cell = used ? r.cells[c] : none;
+                    const double p = used ? r.force[Eigen::Index(c)] / (cell.ds * cell.dt) : 0.0;
+                    p_max = std::max(p_max, p);
+                    // the contact pattern on the pinion flank: tooth, u, v, pressure
+                    cells_out.insert(cells_out.end(),
+                                     {used ? double(cell.pinion_tooth) : -1.0, cell.u1, cell.v1, p});
+                  }
+                peak.push_back(p_max);
+                k_mean += r.mesh_stiffness / n;
+                de_min = std::min(de_min, r.eL - r.e0), de_max = std::max(de_max, r.eL - r.e0);
+              }
+            log << "  " << pair.name << label << ", " << lc.torques[k] << " N m: K_m mean "
+                << k_mean << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6
+                << " urad\n";
+          }
+        const hsize_t N = n, M = m, S = slots, C = max_cells;
+        g.write("torque", lc.torques, {M}, "N m", "pinion torques");
+        g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi");
+        g.write("transmission_error_unloaded", e0, {N}, "rad", "e_0 (pinion radians)");
+        g.write("transmission_error_loaded", eL, {M, N}, "rad",
+                "e_L per torque and position (pinion radians, gear held)");
+        g.write("mesh_stiffness", K, {M, N}, "N/m", "K_m = F / (lambda (e_L - e_0))");
+        g.write("normal_force", F, {M, N}, "N", "total normal force F");
+        g.write("lever", lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
+        g.write("pair_force", pair_force, {M, N, S}, "N",
+                "normal force per pair slot of the unloaded TCA at the same position");
+        g.write("peak_pressure", peak, {M, N}, "Pa", "largest cell pressure");
+        g.write("contact_cells", cells_out, {M, N, C, 4}, "mixed",
+                "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
+        g.write("mean_pairs_in_contact", touching / n, "1", "unloaded contact ratio");
+        return touching / n;
+      };
+
+      LoadedContactOptions lo;
+      lo.cells           = lc.cells;
+      lo.pinion_material = lo.gear_material = fe.material;
+      const H5Group g    = out.group(pair.name);
+      g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
+      const double eps = analyse(
+          UnloadedTca(members.pinion, members.gear, members.assembly, tca.options), lo, g, "");
+
+      // ISO 6336-1 method B beside it (the standard's yardstick).
+      IsoStiffnessInput iso;
+      iso.z1 = pinion->teeth(), iso.z2 = gear->teeth();
+      iso.x1 = pair.pinion.profile_shift, iso.x2 = pair.gear.profile_shift;
+      iso.helix_angle      = pair.pinion.helix_angle;
+      iso.base_helix_angle = pinion->base_helix_angle;
+      iso.pressure_angle   = pair.pinion.normal_pressure_angle;
+      iso.dedendum_factor  = pair.pinion.dedendum_factor;
+      iso.transverse_contact_ratio = eps;
+      const IsoMeshStiffness s = iso6336_mesh_stiffness(iso);
+      const double           b = std::min(pair.pinion.face_width, pair.gear.face_width);
+      g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",
+              "ISO 6336-1 method B single stiffness c' times the face width");
+      g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b, "N/m",
+              "ISO 6336-1 method B mesh stiffness c_gamma_alpha times the face width");
+      g.write("iso_c_th", s.c_th * 1e9 * b, "N/m",
+              "ISO 6336-1 theoretical single stiffness c'_th times the face width");
+
+      if (!lc.measured)
+        continue;
+      const H5Group &measured = *upstream.at("measured");
+      if (!measured.has(pair.name) || !measured.group(pair.name).has("pinion"))
+        throw InputError("Loaded contact/" + pair.name +
+                         ": measured flanks = true needs measured flanks: set Measured flanks/" +
+                         pair.name + "/source");
+      const H5Group mg = measured.group(pair.name);
+      const auto    mp = std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
+      const auto    mgr = std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
+      // Compliances reused: each cell looks up the theoretical flank at its own position
+      // (involute flank parameters: roll angle from the radius, and z).
+      lo.table_parameters = [&](ContactCell &c) {
+        auto params = [](const InvoluteGear &g, const Vec3 &x, double &u, double &v) {
+          u = g.roll_angle(std::max(std::hypot(x.x(), x.y()), g.base_radius));
+          v = x.z();
+        };
+        params(*pinion, mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position, c.table_u1,
+               c.table_v1);
+        params(*gear, mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position, c.table_u2,
+               c.table_v2);
+      };
+      const H5Group gm = g.group("measured");
+      gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");
+      analyse(UnloadedTca(mp, mgr, members.assembly, tca.options), lo, gm, " measured");
+    }
+}
+} // namespace gearkit

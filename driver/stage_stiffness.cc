@@ -160,6 +160,10 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         std::size_t slots = 0;
         for (const TcaPosition &p : positions)
           slots = std::max(slots, p.pairs.size());
+        std::vector<int> slot_tooth;
+        for (const TcaPosition &p : positions)
+          for (std::size_t s = 0; s < slots; ++s)
+            slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
         std::vector<double> phi, e0, eL, K, F, lever, pair_force, peak, cells_out;
         std::size_t         max_cells = 0;
         std::vector<std::vector<LoadedPosition>> results(m);
@@ -214,6 +218,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         g.write("lever", lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
         g.write("pair_force", pair_force, {M, N, S}, "N",
                 "normal force per pair slot of the unloaded TCA at the same position");
+        g.write("pinion_tooth", slot_tooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
         g.write("peak_pressure", peak, {M, N}, "Pa", "largest cell pressure");
         g.write("contact_cells", cells_out, {M, N, C, 4}, "mixed",
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");

@@ -10,6 +10,8 @@ usage: plot_results.py out/<scene>/results.h5
   hunting.png     STE over the hunting-tooth cycle and its spectrum in pinion shaft orders
   contact_pattern.png  contact ellipses on the gear flank over the analysed positions
   ste_harmonics.md     mesh-order harmonics at the pitch point, theoretical and measured
+  stiffness.png   loaded against unloaded TE, mesh stiffness over the mesh cycle (with ISO
+                  6336), load sharing and the contact pressure on the pinion flank
 """
 import os
 import sys
@@ -351,6 +353,72 @@ def plot_hunting(ste, flanks, out_dir):
     save(fig, os.path.join(out_dir, "hunting.png"))
 
 
+def plot_stiffness(st, flanks, out_dir):
+    """Loaded TE, K_m, load sharing and pressure map of every pair (one row per pair)."""
+    pairs = list(st.keys())
+    if not pairs:
+        return
+    fig, axes = plt.subplots(len(pairs), 4, figsize=(20, 4.6 * len(pairs)), squeeze=False)
+    for row, name in zip(axes, pairs):
+        g = st[name]
+        phi = g["pinion_angle"][()]
+        pin = flanks[name]["pinion"]
+        z1 = pin["number_of_teeth"][()] if "number_of_teeth" in pin else pin["teeth"][()] if "teeth" in pin else None
+        x = phi / (2 * np.pi / z1) if z1 else phi
+        torques = g["torque"][()]
+        colours = plt.cm.viridis(np.linspace(0, 0.85, len(torques)))
+        variants = [(g, "-", "theory")] + ([(g["measured"], "--", "measured")] if "measured" in g else [])
+        ax = row[0]
+        for grp, style, label in variants:
+            e0 = grp["transmission_error_unloaded"][()] * 1e6
+            ax.plot(x, e0, style, color="grey", label=f"e_0 {label}")
+            for k, t in enumerate(torques):
+                ax.plot(x, grp["transmission_error_loaded"][k] * 1e6, style, color=colours[k],
+                        label=f"e_L {label}, {t:g} N m")
+        ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
+        ax.set_ylabel("transmission error [urad, pinion]")
+        ax.set_title(f"{name}: unloaded and loaded TE")
+        ax.legend(fontsize=7)
+        ax = row[1]
+        for grp, style, label in variants:
+            for k, t in enumerate(torques):
+                ax.plot(x, grp["mesh_stiffness"][k] * 1e-6, style, color=colours[k],
+                        label=f"{label}, {t:g} N m")
+        for key, ls in (("iso_c_prime", ":"), ("iso_c_gamma_alpha", "-.")):
+            ax.axhline(g[key][()] * 1e-6, color="k", ls=ls, lw=1,
+                       label=key.replace("iso_", "ISO 6336 ").replace("_", " ") + " x b")
+        ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
+        ax.set_ylabel("K_m [N/um]")
+        ax.set_title("mesh stiffness K_m = F / (lambda (e_L - e_0))")
+        ax.legend(fontsize=7)
+        ax = row[2]
+        k = len(torques) - 1
+        share = g["pair_force"][k] / np.maximum(g["normal_force"][k][:, None], 1e-30)
+        teeth = g["pinion_tooth"][()]
+        for tooth in sorted(set(teeth[teeth >= 0].tolist())):
+            y = np.where(teeth == tooth, share, 0).sum(axis=1)
+            if y.max() > 0:
+                ax.plot(x, y, "o-", ms=3, label=f"pinion tooth {tooth}")
+        ax.set_ylim(-0.05, 1.05)
+        ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
+        ax.set_ylabel("share of the normal force")
+        ax.set_title(f"load sharing at {torques[k]:g} N m")
+        ax.legend(fontsize=7)
+        ax = row[3]
+        cells = g["contact_cells"][k]  # (positions, cells, 4): tooth, u, v, pressure
+        used = (cells[..., 0] >= 0) & (cells[..., 3] > 0)
+        order = np.argsort(cells[..., 3][used])  # the highest pressures drawn last
+        face, profile = flank_coordinates(flanks, name, "pinion", cells[..., 1][used][order],
+                                          cells[..., 2][used][order])
+        sc = ax.scatter(face, profile, c=cells[..., 3][used][order] * 1e-6, s=4, cmap="inferno")
+        fig.colorbar(sc, ax=ax, label="pressure [MPa]")
+        ax.set_xlabel("face position [mm]")
+        ax.set_ylabel("roll length [mm]")
+        ax.set_title(f"contact pressure on the pinion flank, {torques[k]:g} N m, all positions")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "stiffness.png"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -367,6 +435,8 @@ def main():
             plot_hunting(f["ste"], f["flanks"], out_dir)
             plot_contact_pattern(f["ste"], f["flanks"], out_dir)
             write_harmonic_table(f["ste"], out_dir)
+        if "stiffness" in f:
+            plot_stiffness(f["stiffness"], f["flanks"], out_dir)
 
 
 if __name__ == "__main__":

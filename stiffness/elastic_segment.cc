@@ -13,6 +13,7 @@
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -89,6 +90,7 @@ struct ElasticSegment::Impl
   FESystem<3>                               fe;
   DoFHandler<3>                             dofs;
   MappingQ1<3>                              mapping;
+  std::unique_ptr<GridTools::Cache<3>>      cache_ptr; ///< cell search (R-tree) for probes
   IndexSet                                  owned, relevant;
   AffineConstraints<double>                 constraints;
   PETScWrappers::MPI::SparseMatrix          K;
@@ -165,6 +167,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
                      " must contain hexahedra only (gmsh: recombine and extrude, or subdivide)");
   m.tria.copy_triangulation(coarse);
   m.tria.refine_global(o.refinements);
+  m.cache_ptr = std::make_unique<GridTools::Cache<3>>(m.tria, m.mapping);
 
   std::set<types::boundary_id> present;
   for (const auto &face : m.tria.active_face_iterators())
@@ -402,6 +405,7 @@ std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>
 ElasticSegment::Impl::probe_functionals(const std::vector<Probe> &probes) const
 {
   const unsigned rank = Utilities::MPI::this_mpi_process(comm);
+  const GridTools::Cache<3> &cache = *cache_ptr;
   std::vector<unsigned> claim(probes.size(), std::numeric_limits<unsigned>::max());
   std::vector<std::pair<typename DoFHandler<3>::active_cell_iterator, Point<3>>> found(
       probes.size());
@@ -409,10 +413,12 @@ ElasticSegment::Impl::probe_functionals(const std::vector<Probe> &probes) const
     {
       try
         {
-          const auto r = GridTools::find_active_cell_around_point(mapping, dofs,
-                                                                  point(probes[j].point));
+          const auto r = GridTools::find_active_cell_around_point(cache, point(probes[j].point));
           if (r.first.state() == IteratorState::valid && r.first->is_locally_owned())
-            found[j] = r, claim[j] = rank;
+            {
+              found[j] = {typename DoFHandler<3>::active_cell_iterator(*r.first, &dofs), r.second};
+              claim[j] = rank;
+            }
         }
       catch (const std::exception &)
         {

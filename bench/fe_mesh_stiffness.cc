@@ -3,6 +3,8 @@
 // loaded TE and K_m, for a mesh-density study.
 // usage: bench_fe_mesh_stiffness [flank size / m_n = 0.2] [positions = 20] [torque = 200 N m]
 //                                [depth in elements = 3] [cells across = 17] [cells along = 24]
+//                                [pair: fzg | pe62] [segment teeth at least = 3] [cuts: held|free]
+// pe62: the 62/62 spur pair of reference-data.md section 4 (m 2 mm, b 20 mm, alpha 20 deg).
 #include "../tests/fzg_c_pair.h"
 #include "loaded_contact.h"
 #include "member_compliance.h"
@@ -27,10 +29,21 @@ main(int argc, char **argv)
   const double depth       = argc > 4 ? std::atof(argv[4]) : 3;
   const int    across      = argc > 5 ? std::atoi(argv[5]) : 17;
   const int    along       = argc > 6 ? std::atoi(argv[6]) : 24;
+  const std::string pair   = argc > 7 ? argv[7] : "fzg";
+  const int    min_teeth   = argc > 8 ? std::atoi(argv[8]) : 3;
+  const bool   hold_cuts   = argc > 9 ? std::string(argv[9]) != "free" : true;
   try
     {
       auto [pd, gd]      = test_data::fzg_c_pair();
-      pd.bore_diameter   = 0;
+      if (pair == "pe62")
+        {
+          for (InvoluteGearData *d : {&pd, &gd})
+            {
+              d->teeth = 62, d->normal_module = 2e-3, d->face_width = 20e-3;
+              d->profile_shift = 0;
+            }
+          gd.hand = Hand::left;
+        }
       const auto pinion  = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
       const auto pf      = std::make_shared<InvoluteMemberFlanks>(pinion);
       const auto gf      = std::make_shared<InvoluteMemberFlanks>(gear);
@@ -40,13 +53,17 @@ main(int argc, char **argv)
       std::filesystem::create_directories(dir);
       const Material steel{206e9, 0.3};
       auto           t0 = std::chrono::steady_clock::now();
-      auto member = [&](const InvoluteGear &g, const MemberFlanks &f, int central, std::vector<int> teeth) {
+      std::vector<TcaPosition> at;
+      for (int i = 0; i < positions; ++i)
+        at.push_back(tca.at(2 * pi / pd.teeth * i / positions));
+      const auto segments = loaded_segments(at, pd.teeth, gd.teeth, 20e-6);
+      auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s) {
         MemberComplianceOptions o;
-        o.mesh.teeth         = 3;
-        o.mesh.central_tooth = central;
+        o.mesh.teeth         = std::max(min_teeth, s.teeth);
+        o.hold_cuts          = hold_cuts;
+        o.mesh.central_tooth = s.central;
         o.mesh.flank_size    = size_factor * g.data().normal_module;
         o.material           = steel;
-        o.loaded_teeth       = teeth;
         o.depth_elements     = depth;
         o.work_directory     = dir;
         MemberComplianceInfo info;
@@ -57,8 +74,8 @@ main(int argc, char **argv)
                     info.mesh_seconds, info.setup_seconds, c.points().size(), info.solve_seconds);
         return c;
       };
-      const FlankCompliance cp = member(*pinion, *pf, 0, {15, 0, 1});
-      const FlankCompliance cg = member(*gear, *gf, 23, {22, 23, 0});
+      const FlankCompliance cp = member(*pinion, *pf, segments.first);
+      const FlankCompliance cg = member(*gear, *gf, segments.second);
       const double t_fe = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
         return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
@@ -69,12 +86,13 @@ main(int argc, char **argv)
       LoadedContactOptions lo;
       lo.pinion_material = lo.gear_material = steel;
       lo.cells.cells_across = across, lo.cells.cells_along = along;
+      lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
       t0 = std::chrono::steady_clock::now();
       double k_sum = 0, k_min = HUGE_VAL, k_max = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
       for (int i = 0; i < positions; ++i)
         {
           const double         phi = 2 * pi / pd.teeth * i / positions;
-          const LoadedPosition r   = loaded_contact(tca, tca.at(phi), torque, lo, sp, sg);
+          const LoadedPosition r   = loaded_contact(tca, at[i], torque, lo, sp, sg);
           k_sum += r.mesh_stiffness, k_min = std::min(k_min, r.mesh_stiffness);
           k_max = std::max(k_max, r.mesh_stiffness);
           de_min = std::min(de_min, r.eL - r.e0), de_max = std::max(de_max, r.eL - r.e0);

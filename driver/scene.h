@@ -93,7 +93,8 @@ struct TcaScene
 /// Finite-element compliance of a pair's members (stage "compliance").
 struct FeScene
 {
-  int      segment_teeth = 3;    ///< teeth per member segment
+  int      segment_teeth = 7;    ///< teeth per member segment
+  bool     hold_cuts     = true; ///< radial cuts held (else free)
   double   flank_size    = 0.25; ///< element size at the flanks / m_n
   double   far_size      = 1.0;  ///< element size toward the bore / m_n
   unsigned degree        = 2;

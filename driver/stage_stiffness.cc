@@ -17,32 +17,18 @@ namespace gearkit
 {
 namespace
 {
-/// The member teeth each segment is built around and loaded on: the pairs that carry load over
-/// the mesh cycle from pinion angle 0 are k = -1, 0, 1 (pinion tooth -k, gear tooth k - 1 on
-/// drive flanks, k on coast flanks), so the segments centre on pinion tooth 0 and its mate.
-int
-central_gear_tooth(int z2, FlankSide side)
-{
-  return side == FlankSide::drive ? z2 - 1 : 0;
-}
-
-FlankGridSpec
-grid_spec(const SegmentMeshInfo &segment, const FeScene &fe, FlankSide side)
-{
-  FlankGridSpec s;
-  s.teeth = segment.member_teeth;
-  s.side  = side;
-  s.n_u = fe.n_u, s.n_v = fe.n_v;
-  return s;
-}
+/// Pairs within this gap somewhere in the mesh cycle get their teeth into the segments (the
+/// loaded contact's gap band is 10 um by default; tip reliefs of that size engage under load).
+constexpr double segment_gap_band = 20e-6;
 
 MemberComplianceOptions
-member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side, int central,
-               const std::string &dir)
+member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side,
+               const SegmentChoice &segment, const std::string &dir)
 {
   MemberComplianceOptions o;
-  o.mesh.teeth         = fe.segment_teeth;
-  o.mesh.central_tooth = central;
+  o.mesh.teeth         = std::max(fe.segment_teeth, segment.teeth);
+  o.mesh.central_tooth = segment.central;
+  o.hold_cuts          = fe.hold_cuts;
   o.mesh.flank_size    = fe.flank_size * g.data().normal_module;
   o.mesh.far_size      = fe.far_size * g.data().normal_module;
   o.degree             = fe.degree;
@@ -65,13 +51,26 @@ require_involute(const PairScene &pair)
 } // namespace
 
 void
-run_compliance_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group &out,
+                     std::ostream &log)
 {
   for (const PairScene &pair : scene.pairs)
     {
       require_involute(pair);
       const FeScene   &fe   = scene.fe.at(pair.name);
-      const FlankSide  side = scene.tca.at(pair.name).options.side;
+      const TcaScene  &tca  = scene.tca.at(pair.name);
+      const FlankSide  side = tca.options.side;
+      // The teeth that can carry load over a mesh cycle decide the segments.
+      const PairMembers members =
+          theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
+      const UnloadedTca        t(members.pinion, members.gear, members.assembly, tca.options);
+      std::vector<TcaPosition> positions;
+      const int                z1 = members.pinion->teeth();
+      for (int i = 0; i < tca.options.positions_per_mesh; ++i)
+        positions.push_back(
+            t.at(tca.options.start_angle + 2 * pi / z1 * i / tca.options.positions_per_mesh));
+      const auto segments =
+          loaded_segments(positions, z1, members.gear->teeth(), segment_gap_band);
       const H5Group    g    = out.group(pair.name);
       const std::string dir =
           (std::filesystem::temp_directory_path() / ("gearkit-fe-" + pair.name)).string();
@@ -80,10 +79,10 @@ run_compliance_stage(const Scene &scene, const Upstream &, const H5Group &out, s
         {
           const auto gear = InvoluteGear::create(is_pinion ? pair.pinion : pair.gear);
           const InvoluteMemberFlanks flanks(gear);
-          const int central = is_pinion ? 0 : central_gear_tooth(gear->teeth(), side);
+          const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
           MemberComplianceInfo info;
           const FlankCompliance table = involute_member_compliance(
-              *gear, flanks, member_options(*gear, fe, side, central, dir), &info);
+              *gear, flanks, member_options(*gear, fe, side, segment, dir), &info);
           const H5Group m = g.group(is_pinion ? "pinion" : "gear");
           std::vector<int> teeth;
           for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
@@ -94,7 +93,7 @@ run_compliance_stage(const Scene &scene, const Upstream &, const H5Group &out, s
                   "structural compliance S(i, j) (column-major: load j, response i) on the load "
                   "grid, half-space part below the response depth removed");
           m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
-          m.write("central_tooth", double(central), "1", "tooth in the middle of the segment");
+          m.write("central_tooth", double(segment.central), "1", "tooth in the middle of the segment");
           m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
           m.write("dofs", double(info.dofs), "1", "degrees of freedom");
           m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
@@ -229,6 +228,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       LoadedContactOptions lo;
       lo.cells           = lc.cells;
       lo.pinion_material = lo.gear_material = fe.material;
+      lo.covered = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
       const H5Group g    = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
       const double eps = analyse(

@@ -58,7 +58,7 @@ stage_definitions()
        run_ste_stage},
       {"compliance",
        "finite-element compliance of both members (gmsh tooth segments, deal.II + PETSc)",
-       {},
+       {"flanks"},
        {"Flanks", "TCA", "Finite elements"},
        1,
        [](const Scene &) { return std::vector<std::string>{}; },

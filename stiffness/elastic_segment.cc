@@ -394,8 +394,7 @@ ElasticSegment::Impl::solve(const PETScWrappers::MPI::Vector &rhs) const
   if (reason < 0)
     throw InputError("elastic segment: the linear solver did not converge (PETSc reason " +
                      std::to_string(int(reason)) + ")");
-  AffineConstraints<double> &c = const_cast<AffineConstraints<double> &>(constraints);
-  c.distribute(x);
+  constraints.distribute(x);
   PETScWrappers::MPI::Vector ghosted(owned, relevant, comm);
   ghosted = x;
   return ghosted;
@@ -469,10 +468,46 @@ Eigen::MatrixXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads,
                          const std::vector<Probe> &probes) const
 {
-  const auto      functionals = impl->probe_functionals(probes);
+  const Impl &m           = *impl;
+  const auto  functionals = m.probe_functionals(probes);
   Eigen::MatrixXd D(probes.size(), loads.size());
-  for (std::size_t i = 0; i < loads.size(); ++i)
-    D.col(Eigen::Index(i)) = impl->evaluate(functionals, impl->solve(impl->assemble_loads({loads[i]})));
+  // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
+  // factorisation does a block solve; an iterative run-time choice solves column by column).
+  const PetscInt block = 64, local = PetscInt(m.owned.n_elements());
+  for (std::size_t first = 0; first < loads.size(); first += block)
+    {
+      const PetscInt cols = PetscInt(std::min<std::size_t>(block, loads.size() - first));
+      Mat            B, X;
+      petsc_check(MatCreateDense(m.comm, local, PETSC_DECIDE, PetscInt(m.dofs.n_dofs()), cols,
+                                 nullptr, &B),
+                  "MatCreateDense");
+      for (PetscInt c = 0; c < cols; ++c)
+        {
+          const PETScWrappers::MPI::Vector f = m.assemble_loads({loads[first + c]});
+          Vec                              column;
+          petsc_check(MatDenseGetColumnVecWrite(B, c, &column), "MatDenseGetColumnVecWrite");
+          petsc_check(VecCopy(f, column), "VecCopy");
+          petsc_check(MatDenseRestoreColumnVecWrite(B, c, &column), "MatDenseRestoreColumnVecWrite");
+        }
+      petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+      petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+      petsc_check(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X), "MatDuplicate");
+      petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
+      for (PetscInt c = 0; c < cols; ++c)
+        {
+          PETScWrappers::MPI::Vector x(m.owned, m.comm);
+          Vec                        column;
+          petsc_check(MatDenseGetColumnVecRead(X, c, &column), "MatDenseGetColumnVecRead");
+          petsc_check(VecCopy(column, x), "VecCopy");
+          petsc_check(MatDenseRestoreColumnVecRead(X, c, &column), "MatDenseRestoreColumnVecRead");
+          m.constraints.distribute(x);
+          PETScWrappers::MPI::Vector ghosted(m.owned, m.relevant, m.comm);
+          ghosted = x;
+          D.col(Eigen::Index(first + c)) = m.evaluate(functionals, ghosted);
+        }
+      MatDestroy(&B);
+      MatDestroy(&X);
+    }
   return D;
 }
 

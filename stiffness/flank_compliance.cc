@@ -44,6 +44,12 @@ FlankCompliance::set(const Eigen::MatrixXd &compliance)
   S = compliance;
 }
 
+bool
+FlankCompliance::covers(int tooth) const
+{
+  return std::find(spec.teeth.begin(), spec.teeth.end(), tooth) != spec.teeth.end();
+}
+
 FlankCompliance::Weights
 FlankCompliance::weights(int tooth, double u, double v) const
 {

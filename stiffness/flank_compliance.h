@@ -47,6 +47,9 @@ public:
   /// S(j, i): approach of point j into the material per unit normal force on point i [m/N].
   void
   set(const Eigen::MatrixXd &compliance);
+  /// True if the tooth has a load grid.
+  bool
+  covers(int tooth) const;
   const Eigen::MatrixXd &
   matrix() const
   {

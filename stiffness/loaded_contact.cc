@@ -2,6 +2,7 @@
 
 #include "contact_solver.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace gearkit
@@ -19,6 +20,21 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
   out.e0           = position.transmission_error;
   out.torque       = torque;
   out.cells        = contact_cells(tca, position, o.cells);
+  if (o.covered)
+    {
+      for (const PairContact &c : position.pairs)
+        if (c.found && c.separation <= tca.options_data().contact_tolerance &&
+            !o.covered(c.pinion_tooth, c.gear_tooth))
+          throw InputError("loaded contact: pinion tooth " + std::to_string(c.pinion_tooth) +
+                           " and gear tooth " + std::to_string(c.gear_tooth) +
+                           " touch but the finite-element segments do not cover them; use more "
+                           "segment teeth");
+      out.cells.erase(std::remove_if(out.cells.begin(), out.cells.end(),
+                                     [&](const ContactCell &c) {
+                                       return !o.covered(c.pinion_tooth, c.gear_tooth);
+                                     }),
+                      out.cells.end());
+    }
   if (out.cells.empty())
     {
       std::ostringstream msg;

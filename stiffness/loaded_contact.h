@@ -30,6 +30,9 @@ struct LoadedContactOptions
   /// Sets a cell's table_* parameters when the flanks are not those of the compliance tables
   /// (measured flanks: the theoretical flank's parameters at the cell's position).
   std::function<void(ContactCell &)> table_parameters;
+  /// Whether the compliance tables cover a tooth pair (pinion tooth, gear tooth); pairs they do
+  /// not cover are left out while they stand apart, and refused when they touch.
+  std::function<bool(int, int)> covered;
 };
 
 struct LoadedPosition

@@ -18,6 +18,34 @@ seconds_since(std::chrono::steady_clock::time_point t0)
 }
 } // namespace
 
+std::pair<SegmentChoice, SegmentChoice>
+loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, double gap_band)
+{
+  auto choose = [&](bool pinion, int z) {
+    int  first = -1, lo = 0, hi = 0;
+    for (const TcaPosition &p : positions)
+      for (const PairContact &c : p.pairs)
+        if (c.found && c.separation <= gap_band)
+          {
+            const int t = pinion ? c.pinion_tooth : c.gear_tooth;
+            if (first < 0)
+              first = t;
+            const int d = ((t - first) % z + z + z / 2) % z - z / 2; // signed offset
+            lo = std::min(lo, d), hi = std::max(hi, d);
+          }
+    if (first < 0)
+      throw InputError("member compliance: no tooth pair comes within the gap band at the "
+                       "positions analysed");
+    SegmentChoice s;
+    s.central = ((first + (lo + hi) / 2) % z + z) % z;
+    s.teeth   = hi - lo + 1;
+    if (s.teeth % 2 == 0)
+      ++s.teeth; // segments are odd: one tooth more on one side
+    return s;
+  };
+  return {choose(true, z1), choose(false, z2)};
+}
+
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &o, MemberComplianceInfo *info)
@@ -55,7 +83,9 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
   ElasticSegmentOptions eo;
   eo.degree   = o.degree;
   eo.material = o.material;
-  eo.clamped  = {boundary::bore, boundary::cut_start, boundary::cut_end};
+  eo.clamped  = {boundary::bore};
+  if (o.hold_cuts)
+    eo.clamped.insert({boundary::cut_start, boundary::cut_end});
   const ElasticSegment body(mesh_file, eo);
   out.dofs          = body.dofs();
   out.setup_seconds = seconds_since(t0);

@@ -7,6 +7,7 @@
 
 #include "flank_compliance.h"
 #include "tooth_segment.h"
+#include "unloaded_tca.h"
 
 #include <string>
 
@@ -22,6 +23,7 @@ struct MemberComplianceOptions
   int                n_u = 9, n_v = 7; ///< grid over profile and face
   double             depth_elements = 3; ///< response depth in flank element sizes
   double             patch_elements = 1; ///< patch load radius in flank element sizes
+  bool               hold_cuts = true;   ///< radial cut faces held (else free; the bore always)
   std::string        work_directory;  ///< where the segment mesh is written
 };
 
@@ -31,6 +33,18 @@ struct MemberComplianceInfo
   double      depth = 0, patch_radius = 0;  ///< [m]
   double      mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
 };
+
+/// The segment a member needs: the teeth of the pairs that stand within `gap_band` of contact
+/// at any of the positions (they can carry load), contiguous around the wheel, as the middle
+/// tooth and the count (odd).
+struct SegmentChoice
+{
+  int central = 0, teeth = 1;
+};
+/// For the pinion (first) and the gear (second) of the pair at the given TCA positions.
+std::pair<SegmentChoice, SegmentChoice>
+loaded_segments(const std::vector<TcaPosition> &positions, int pinion_teeth, int gear_teeth,
+                double gap_band);
 
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,

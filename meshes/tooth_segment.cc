@@ -185,7 +185,26 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   gmsh::model::mesh::field::setNumber(threshold, "SizeMax", 2 * far_size);
   gmsh::model::mesh::field::setNumber(threshold, "DistMin", flank_size);
   gmsh::model::mesh::field::setNumber(threshold, "DistMax", 2 * mn);
-  gmsh::model::mesh::field::setAsBackgroundMesh(threshold);
+  std::vector<double> fields{double(threshold)};
+  for (const Vec2 &c : o.refine_points)
+    {
+      std::ostringstream distance_to;
+      distance_to.precision(17);
+      distance_to << "Sqrt((x - (" << c.x() << "))^2 + (y - (" << c.y() << "))^2)";
+      const int d = gmsh::model::mesh::field::add("MathEval");
+      gmsh::model::mesh::field::setString(d, "F", distance_to.str());
+      const int t = gmsh::model::mesh::field::add("Threshold");
+      gmsh::model::mesh::field::setNumber(t, "InField", d);
+      gmsh::model::mesh::field::setNumber(t, "SizeMin", 2 * o.refine_size);
+      gmsh::model::mesh::field::setNumber(t, "SizeMax", 2 * flank_size);
+      gmsh::model::mesh::field::setNumber(t, "DistMin", o.refine_radius);
+      gmsh::model::mesh::field::setNumber(t, "DistMax",
+                                          o.refine_radius + 4 * (flank_size - o.refine_size));
+      fields.push_back(t);
+    }
+  const int background = gmsh::model::mesh::field::add("Min");
+  gmsh::model::mesh::field::setNumbers(background, "FieldsList", fields);
+  gmsh::model::mesh::field::setAsBackgroundMesh(background);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
@@ -293,6 +312,15 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
   check(o.flank_size >= 0 && o.far_size >= 0 && o.face_layers >= 0, "element size / layers",
         std::min({o.flank_size, o.far_size, double(o.face_layers)}), "values >= 0 (0 = default)");
   check(o.curve_points >= 4, "curve points", o.curve_points, ">= 4");
+  if (!o.refine_points.empty())
+    {
+      check(d.helix_angle == 0, "refinement points (helix angle)", d.helix_angle,
+            "a spur gear (local refinement follows straight contact lines)");
+      const double h = o.flank_size > 0 ? o.flank_size : mn / 5;
+      check(o.refine_size > 0 && o.refine_size < h && o.refine_radius > 0,
+            "refinement size / radius", o.refine_size,
+            "0 < size < the flank size, and a radius > 0");
+    }
   check(d.chipped_teeth.empty(), "chipped teeth", double(d.chipped_teeth.size()),
         "none (the mesh is built from the nominal section)");
 

@@ -42,6 +42,11 @@ struct SegmentMeshOptions
   double far_size         = 0; ///< element size far from them [m]; 0 = m_n
   int    face_layers      = 0; ///< elements over the face width; 0 = b / (2 flank_size)
   int    curve_points     = 40; ///< spline points per fillet and per involute
+  /// Local refinement (spur segments: the contact lines of one mesh position run along z):
+  /// element size `refine_size` within `refine_radius` of these transverse-section points,
+  /// growing by at most 1/4 of the distance beyond it up to the flank size.
+  std::vector<Vec2> refine_points;
+  double            refine_size = 0, refine_radius = 0;
 };
 
 struct SegmentMeshInfo

@@ -108,8 +108,14 @@ struct ElasticSegment::Impl
     std::vector<Point<3>>                 q_points;
     std::vector<double>                   JxW;
     std::vector<std::array<double, 3>>    shape; ///< [q * dofs_per_cell + i] -> components
+    typename DoFHandler<3>::active_cell_iterator cell;
+    unsigned                              face_no = 0;
+    std::array<Point<3>, 4>               vertices;
   };
   std::vector<FaceData> faces;
+  /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
+  /// then do not jump with where its edge falls between the Gauss points).
+  std::unique_ptr<FEFaceValues<3>> fine_face_values;
 
   explicit Impl(unsigned degree)
       : fe(FE_Q<3>(degree), 3)
@@ -126,9 +132,17 @@ struct ElasticSegment::Impl
   /// Per probe: the owning rank's functional (dof indices, coefficients); empty elsewhere.
   std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
   probe_functionals(const std::vector<Probe> &probes) const;
+  /// Per load: its load vector's owned entries (the work it does on a displacement field).
+  std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
+  load_functionals(const std::vector<PatchLoad> &loads) const;
   Eigen::VectorXd
   evaluate(const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
            const PETScWrappers::MPI::Vector &u) const;
+  /// D(j, i): functional j of the displacement under load i alone.
+  Eigen::MatrixXd
+  responses(const std::vector<PatchLoad> &loads,
+            const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
+              &functionals) const;
 };
 
 ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOptions &o)
@@ -245,6 +259,10 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
             d.diameter = cell->face(f)->diameter();
             d.dof_indices.resize(n);
             cell->get_dof_indices(d.dof_indices);
+            d.cell    = cell;
+            d.face_no = f;
+            for (unsigned v = 0; v < 4; ++v)
+              d.vertices[v] = cell->face(f)->vertex(v);
             for (unsigned q = 0; q < face_quadrature.size(); ++q)
               {
                 d.q_points.push_back(face_values.quadrature_point(q));
@@ -258,6 +276,9 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
               }
             m.faces.push_back(std::move(d));
           }
+  m.fine_face_values = std::make_unique<FEFaceValues<3>>(
+      m.mapping, m.fe, QIterated<2>(QGauss<1>(o.degree + 1), 8),
+      update_values | update_quadrature_points | update_JxW_values);
 
   // The factorisation (or whatever the run-time options ask for), kept for every solve.
   Timer timer;
@@ -343,17 +364,47 @@ ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
       auto inside = [&](const Point<3> &q) {
         if (!box)
           return q.distance(x0) <= load.radius;
-        for (unsigned k = 0; k < 3; ++k)
-          if (std::abs(q[k] - x0[k]) > load.half_size[k])
-            return false;
-        return true;
+        const Vec3 local = load.axes * Vec3(q[0] - x0[0], q[1] - x0[1], q[2] - x0[2]);
+        return (local.cwiseAbs().array() <= load.half_size.array()).all();
+      };
+      // Integrates the traction t over the part of face d inside the patch into `local`
+      // (when given); returns that part's area.
+      auto integrate = [&](const FaceData &d, const Vec3 &t, Vector<double> *local) {
+        bool whole = true;
+        for (const Point<3> &v : d.vertices)
+          whole = whole && inside(v);
+        double a = 0;
+        if (whole)
+          for (std::size_t q = 0; q < d.q_points.size(); ++q)
+            {
+              a += d.JxW[q];
+              if (local)
+                for (unsigned i = 0; i < n; ++i)
+                  {
+                    const auto &s = d.shape[q * n + i];
+                    (*local)(i) += (s[0] * t.x() + s[1] * t.y() + s[2] * t.z()) * d.JxW[q];
+                  }
+            }
+        else
+          {
+            FEFaceValues<3> &v = *fine_face_values;
+            v.reinit(d.cell, d.face_no);
+            for (unsigned q = 0; q < v.n_quadrature_points; ++q)
+              if (inside(v.quadrature_point(q)))
+                {
+                  a += v.JxW(q);
+                  if (local)
+                    for (unsigned i = 0; i < n; ++i)
+                      (*local)(i) += v.shape_value(i, q) *
+                                     t[fe.system_to_component_index(i).first] * v.JxW(q);
+                }
+          }
+        return a;
       };
       double area = 0;
       for (const FaceData &d : faces)
         if (in_patch(d))
-          for (std::size_t q = 0; q < d.q_points.size(); ++q)
-            if (inside(d.q_points[q]))
-              area += d.JxW[q];
+          area += integrate(d, Vec3::Zero(), nullptr);
       area = Utilities::MPI::sum(area, comm);
       if (!(area > 0))
         {
@@ -369,14 +420,7 @@ ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
         if (in_patch(d))
           {
             local = 0;
-            for (std::size_t q = 0; q < d.q_points.size(); ++q)
-              if (inside(d.q_points[q]))
-                for (unsigned i = 0; i < n; ++i)
-                  {
-                    const auto &s = d.shape[q * n + i];
-                    local(i) += (s[0] * traction.x() + s[1] * traction.y() + s[2] * traction.z()) *
-                                d.JxW[q];
-                  }
+            integrate(d, traction, &local);
             constraints.distribute_local_to_global(local, d.dof_indices, f);
           }
     }
@@ -464,13 +508,43 @@ ElasticSegment::Impl::evaluate(
   return Eigen::Map<Eigen::VectorXd>(values.data(), Eigen::Index(values.size()));
 }
 
+std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
+ElasticSegment::Impl::load_functionals(const std::vector<PatchLoad> &loads) const
+{
+  std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> out(
+      loads.size());
+  for (std::size_t j = 0; j < loads.size(); ++j)
+    {
+      const PETScWrappers::MPI::Vector f = assemble_loads({loads[j]});
+      for (const types::global_dof_index i : owned)
+        if (const double v = f(i); v != 0)
+          out[j].first.push_back(i), out[j].second.push_back(v);
+    }
+  return out;
+}
+
 Eigen::MatrixXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads,
                          const std::vector<Probe> &probes) const
 {
-  const Impl &m           = *impl;
-  const auto  functionals = m.probe_functionals(probes);
-  Eigen::MatrixXd D(probes.size(), loads.size());
+  return impl->responses(loads, impl->probe_functionals(probes));
+}
+
+Eigen::MatrixXd
+ElasticSegment::patch_response(const std::vector<PatchLoad> &loads,
+                               const std::vector<PatchLoad> &measures) const
+{
+  return impl->responses(loads, impl->load_functionals(measures));
+}
+
+Eigen::MatrixXd
+ElasticSegment::Impl::responses(
+    const std::vector<PatchLoad> &loads,
+    const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
+      &functionals) const
+{
+  const Impl &m = *this;
+  Eigen::MatrixXd D(functionals.size(), loads.size());
   // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
   // factorisation does a block solve; an iterative run-time choice solves column by column).
   const PetscInt block = 64, local = PetscInt(m.owned.n_elements());

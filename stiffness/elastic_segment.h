@@ -32,15 +32,16 @@ struct ElasticSegmentOptions
 };
 
 /// A force F (vector) spread uniformly over the part of the boundary (ids `boundaries`) within
-/// `radius` of `point` (or, with a non-zero `half_size`, within the axis-aligned box of those
-/// half sizes about `point`); the total applied equals F exactly.
+/// `radius` of `point` (or, with a non-zero `half_size`, within the box of those half sizes
+/// about `point` along the rows of `axes`, orthonormal); the total applied equals F exactly.
 struct PatchLoad
 {
-  Vec3          point = Vec3::Zero();
-  Vec3          force = Vec3::Zero();
-  double        radius = 0;
-  std::set<int> boundaries;
-  Vec3          half_size = Vec3::Zero();
+  Vec3            point = Vec3::Zero();
+  Vec3            force = Vec3::Zero();
+  double          radius = 0;
+  std::set<int>   boundaries;
+  Vec3            half_size = Vec3::Zero();
+  Eigen::Matrix3d axes      = Eigen::Matrix3d::Identity();
 };
 
 /// A displacement component to read: the displacement at `point` projected on `direction`.
@@ -61,6 +62,13 @@ public:
   /// D(j, i): probe j's displacement under load i alone [m per load as given].
   Eigen::MatrixXd
   response(const std::vector<PatchLoad> &loads, const std::vector<Probe> &probes) const;
+
+  /// D(j, i): the work of measure j (a patch load, its force a unit vector) on the displacement
+  /// under load i alone, i.e. the displacement along measure j's force averaged over its patch.
+  /// With the loads as their own measures: the symmetric compliance of the patches (the
+  /// Galerkin counterpart of point probes, smooth where patches cut elements).
+  Eigen::MatrixXd
+  patch_response(const std::vector<PatchLoad> &loads, const std::vector<PatchLoad> &measures) const;
 
   /// The same for one load set applied together; the sum of the reaction forces at the held
   /// boundaries equals minus the sum of the loads.

@@ -7,19 +7,10 @@
 
 namespace gearkit
 {
-LoadedPosition
-loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
-               const LoadedContactOptions &o, const StructuralCompliance &pinion,
-               const StructuralCompliance &gear)
+std::vector<ContactCell>
+loaded_cells(const UnloadedTca &tca, const TcaPosition &position, const LoadedContactOptions &o)
 {
-  if (!(torque >= 0) || !std::isfinite(torque))
-    throw InputError("loaded contact: the pinion torque must be finite and >= 0 (got " +
-                     std::to_string(torque) + " N m)");
-  LoadedPosition out;
-  out.pinion_angle = position.pinion_angle;
-  out.e0           = position.transmission_error;
-  out.torque       = torque;
-  out.cells        = contact_cells(tca, position, o.cells);
+  std::vector<ContactCell> cells = contact_cells(tca, position, o.cells);
   if (o.covered)
     {
       for (const PairContact &c : position.pairs)
@@ -29,13 +20,13 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
                            " and gear tooth " + std::to_string(c.gear_tooth) +
                            " touch but the finite-element segments do not cover them; use more "
                            "segment teeth");
-      out.cells.erase(std::remove_if(out.cells.begin(), out.cells.end(),
-                                     [&](const ContactCell &c) {
-                                       return !o.covered(c.pinion_tooth, c.gear_tooth);
-                                     }),
-                      out.cells.end());
+      cells.erase(std::remove_if(cells.begin(), cells.end(),
+                                 [&](const ContactCell &c) {
+                                   return !o.covered(c.pinion_tooth, c.gear_tooth);
+                                 }),
+                  cells.end());
     }
-  if (out.cells.empty())
+  if (cells.empty())
     {
       std::ostringstream msg;
       msg << "loaded contact: no contact cell within the gap band ("
@@ -43,33 +34,57 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
           << " rad";
       throw InputError(msg.str());
     }
-
   if (o.table_parameters)
-    for (ContactCell &c : out.cells)
+    for (ContactCell &c : cells)
       o.table_parameters(c);
-  const Eigen::Index n = Eigen::Index(out.cells.size());
-  ContactProblem     p;
-  p.compliance.resize(n, n);
-  p.gap.resize(n);
-  p.lever.resize(n);
-  p.load            = torque;
+  return cells;
+}
+
+LoadedPosition
+loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
+               const LoadedContactOptions &o, const StructuralCompliance &pinion,
+               const StructuralCompliance &gear)
+{
+  std::vector<ContactCell> cells = loaded_cells(tca, position, o);
+  const Eigen::Index       n     = Eigen::Index(cells.size());
+  Eigen::MatrixXd          C(n, n);
   const double Estar = contact_modulus(o.pinion_material, o.gear_material);
   for (Eigen::Index i = 0; i < n; ++i)
-    {
-      const ContactCell &ci = out.cells[i];
-      p.gap[i]              = ci.gap;
-      p.lever[i]            = ci.lever;
-      for (Eigen::Index j = 0; j < n; ++j)
-        {
-          const ContactCell &cj = out.cells[j];
-          double             c  = pinion(ci, cj) + gear(ci, cj);
-          if (o.half_space && ci.pair == cj.pair)
-            c += rectangle_displacement(cj.s - ci.s, cj.t - ci.t, ci.ds / 2, ci.dt / 2, 1.0, Estar);
-          p.compliance(j, i) = c;
-        }
-    }
+    for (Eigen::Index j = 0; j < n; ++j)
+      {
+        const ContactCell &ci = cells[i], &cj = cells[j];
+        double             c  = pinion(ci, cj) + gear(ci, cj);
+        if (o.half_space && ci.pair == cj.pair)
+          c += rectangle_displacement(cj.s - ci.s, cj.t - ci.t, ci.ds / 2, ci.dt / 2, 1.0, Estar);
+        C(j, i) = c;
+      }
+  return solve_loaded_contact(tca, position, torque, std::move(cells), C);
+}
+
+LoadedPosition
+solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                     std::vector<ContactCell> cells, const Eigen::MatrixXd &compliance)
+{
+  if (!(torque >= 0) || !std::isfinite(torque))
+    throw InputError("loaded contact: the pinion torque must be finite and >= 0 (got " +
+                     std::to_string(torque) + " N m)");
+  const Eigen::Index n = Eigen::Index(cells.size());
+  if (n == 0 || compliance.rows() != n || compliance.cols() != n || !compliance.allFinite())
+    throw InputError("loaded contact: the compliance must be a finite square matrix, one row "
+                     "per contact cell");
+  LoadedPosition out;
+  out.pinion_angle = position.pinion_angle;
+  out.e0           = position.transmission_error;
+  out.torque       = torque;
+  out.cells        = std::move(cells);
+  ContactProblem p;
+  p.gap.resize(n);
+  p.lever.resize(n);
+  p.load = torque;
+  for (Eigen::Index i = 0; i < n; ++i)
+    p.gap[i] = out.cells[i].gap, p.lever[i] = out.cells[i].lever;
   // Maxwell-Betti: the exact compliance is symmetric; interpolation is not quite.
-  p.compliance = (p.compliance + p.compliance.transpose()).eval() / 2;
+  p.compliance = (compliance + compliance.transpose()) / 2;
 
   if (torque == 0)
     {

@@ -57,4 +57,17 @@ LoadedPosition
 loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
                const LoadedContactOptions &options, const StructuralCompliance &pinion,
                const StructuralCompliance &gear);
+
+/// The cells loaded_contact solves on at a position: those of the covered pairs, with their
+/// table parameters set. Throws InputError when none lies within the gap band and when an
+/// uncovered pair touches.
+std::vector<ContactCell>
+loaded_cells(const UnloadedTca &tca, const TcaPosition &position,
+             const LoadedContactOptions &options);
+
+/// The contact problem on given cells with their whole compliance (both members and the local
+/// part): compliance(j, i) is the approach at cell j per unit normal force on cell i [m/N].
+LoadedPosition
+solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                     std::vector<ContactCell> cells, const Eigen::MatrixXd &compliance);
 } // namespace gearkit

@@ -35,39 +35,39 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const int    positions = argc > 1 ? std::atoi(argv[1]) : 20;
-  const double torque    = argc > 2 ? std::atof(argv[2]) : 200;
-  const double per_cell  = argc > 3 ? std::atof(argv[3]) : 1;
-  const int    layers    = argc > 4 ? std::atoi(argv[4]) : 1;
-  const int    across    = argc > 5 ? std::atoi(argv[5]) : 17;
-  const int    along     = argc > 6 ? std::atoi(argv[6]) : 14;
-  const double fast_size = argc > 7 ? std::atof(argv[7]) : 0.2;
-  const int    teeth     = argc > 8 ? std::atoi(argv[8]) : 3;
-  const int    first     = argc > 9 ? std::atoi(argv[9]) : 0;
-  const int    last      = argc > 10 ? std::atoi(argv[10]) : positions - 1;
-  const int    n_u       = argc > 11 ? std::atoi(argv[11]) : 9;
-  const int    n_v       = argc > 12 ? std::atoi(argv[12]) : 7;
-  const double ref_size  = argc > 13 ? std::atof(argv[13]) : 0.2;
-  const bool   reference = argc > 14 ? std::atoi(argv[14]) != 0 : true;
+  const int                                positions = argc > 1 ? std::atoi(argv[1]) : 20;
+  const double                             torque    = argc > 2 ? std::atof(argv[2]) : 200;
+  const double                             per_cell  = argc > 3 ? std::atof(argv[3]) : 1;
+  const int                                layers    = argc > 4 ? std::atoi(argv[4]) : 1;
+  const int                                across    = argc > 5 ? std::atoi(argv[5]) : 17;
+  const int                                along     = argc > 6 ? std::atoi(argv[6]) : 14;
+  const double                             fast_size = argc > 7 ? std::atof(argv[7]) : 0.2;
+  const int                                teeth     = argc > 8 ? std::atoi(argv[8]) : 3;
+  const int                                first     = argc > 9 ? std::atoi(argv[9]) : 0;
+  const int                                last = argc > 10 ? std::atoi(argv[10]) : positions - 1;
+  const int                                n_u  = argc > 11 ? std::atoi(argv[11]) : 9;
+  const int                                n_v  = argc > 12 ? std::atoi(argv[12]) : 7;
+  const double                             ref_size  = argc > 13 ? std::atof(argv[13]) : 0.2;
+  const bool                               reference = argc > 14 ? std::atoi(argv[14]) != 0 : true;
   try
     {
-      const auto [pd, gd] = test_data::fzg_c_pair();
-      const auto pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-      const auto pf = std::make_shared<InvoluteMemberFlanks>(pinion);
-      const auto gf = std::make_shared<InvoluteMemberFlanks>(gear);
+      const auto [pd, gd]      = test_data::fzg_c_pair();
+      const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+      const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
+      const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
       const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
       const std::string dir = "/tmp/gearkit-bench-reference";
       std::filesystem::create_directories(dir);
-      const Material steel{206e9, 0.3};
+      const Material           steel{206e9, 0.3};
       std::vector<TcaPosition> at;
       for (int i = 0; i < positions; ++i)
         at.push_back(tca.at(2 * pi / pd.teeth * i / positions));
-      auto segments = loaded_segments(at, pd.teeth, gd.teeth, 20e-6);
+      auto segments         = loaded_segments(at, pd.teeth, gd.teeth, 20e-6);
       segments.first.teeth  = std::max(segments.first.teeth, teeth);
       segments.second.teeth = std::max(segments.second.teeth, teeth);
 
       // Fast mode on these segments.
-      auto t0 = std::chrono::steady_clock::now();
+      auto t0     = std::chrono::steady_clock::now();
       auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s) {
         MemberComplianceOptions o;
         o.mesh.teeth = s.teeth, o.mesh.central_tooth = s.central;
@@ -76,13 +76,13 @@ main(int argc, char **argv)
         o.n_u = n_u, o.n_v = n_v;
         return involute_member_compliance(g, f, o);
       };
-      const FlankCompliance cp = member(*pinion, *pf, segments.first);
-      const FlankCompliance cg = member(*gear, *gf, segments.second);
-      const double t_fast_fe = seconds_since(t0);
-      LoadedContactOptions lo;
+      const FlankCompliance cp        = member(*pinion, *pf, segments.first);
+      const FlankCompliance cg        = member(*gear, *gf, segments.second);
+      const double          t_fast_fe = seconds_since(t0);
+      LoadedContactOptions  lo;
       lo.pinion_material = lo.gear_material = steel;
       lo.cells.cells_across = across, lo.cells.cells_along = along;
-      lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
+      lo.covered                    = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
       const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
         return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
       };
@@ -91,21 +91,21 @@ main(int argc, char **argv)
       };
 
       ReferenceContactOptions ro;
-      ro.cells = lo;
+      ro.cells          = lo;
       ro.pinion_segment = segments.first, ro.gear_segment = segments.second;
       ro.elements_per_cell = per_cell, ro.layers_per_cell = layers;
       ro.work_directory = dir;
-      ro.flank_size = ref_size * pd.normal_module;
+      ro.flank_size     = ref_size * pd.normal_module;
 
-      double t_fast_contact = 0, t_reference = 0, worst_e = 0, worst_k = 0;
-      double k_fast = 0, k_ref = 0;
-      int    worst_e_at = -1, worst_k_at = -1;
+      double      t_fast_contact = 0, t_reference = 0, worst_e = 0, worst_k = 0;
+      double      k_fast = 0, k_ref = 0;
+      int         worst_e_at = -1, worst_k_at = -1;
       std::size_t dofs_max = 0;
       std::printf("position  phi[rad]  eL-e0 fast/ref [urad]  K_m fast/ref [N/um]  diff e, K [%%]  "
                   "pairs ref [N]  dofs  time ref [s]\n");
       for (int i = first; i <= last; ++i)
         {
-          t0 = std::chrono::steady_clock::now();
+          t0                     = std::chrono::steady_clock::now();
           const LoadedPosition f = loaded_contact(tca, at[i], torque, lo, sp, sg);
           t_fast_contact += seconds_since(t0);
           if (!reference)
@@ -121,7 +121,7 @@ main(int argc, char **argv)
               reference_contact(*pinion, *gear, tca, at[i], {torque}, ro, &info).front();
           const double t = seconds_since(t0);
           t_reference += t;
-          dofs_max = std::max(dofs_max, info.dofs);
+          dofs_max        = std::max(dofs_max, info.dofs);
           const double de = (f.eL - f.e0) / (r.eL - r.e0) - 1;
           const double dk = f.mesh_stiffness / r.mesh_stiffness - 1;
           if (std::abs(de) > std::abs(worst_e))
@@ -139,7 +139,7 @@ main(int argc, char **argv)
                       info.solve_seconds);
           std::fflush(stdout);
         }
-      const int n = last - first + 1;
+      const int                              n = last - first + 1;
       dealii::Utilities::System::MemoryStats mem;
       dealii::Utilities::System::get_memory_stats(mem);
       std::printf("K_m mean fast %.2f ref %.2f N/um; worst e_L-e_0 difference %+.2f %% at %d, "

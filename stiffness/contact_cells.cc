@@ -93,8 +93,8 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
         return in;
       };
       const double t0 = -reach(-1), t1 = reach(+1);
-      const double w  = std::min(std::sqrt(2 * o.gap_band / std::max(c.curvature_max, 1e-9)),
-                                span / 2);
+      const double w_band = std::sqrt(2 * o.gap_band / std::max(c.curvature_max, 1e-9));
+      const double w      = std::min(w_band, span / 2);
       const double dt = (t1 - t0) / o.cells_along, ds = 2 * w / o.cells_across;
       if (!(dt > 0))
         continue; // the contact sits on a corner of the flank: no extent along the line
@@ -105,6 +105,7 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
             cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth, cell.gear_tooth = c.gear_tooth;
             cell.t = t0 + (i + 0.5) * dt, cell.s = -w + (j + 0.5) * ds;
             cell.dt = dt, cell.ds = ds;
+            cell.zone_edge = w == w_band && (j == 0 || j == o.cells_across - 1);
             const auto p = project(flank, assembly, phi, c.position + cell.s * e_s + cell.t * e_t,
                                    c.u1, c.v1);
             if (!p)

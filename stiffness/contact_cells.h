@@ -35,6 +35,9 @@ struct ContactCell
   double table_u1 = 0, table_v1 = 0, table_u2 = 0, table_v2 = 0;
   double s = 0, t = 0;                  ///< centre in the pair's tangent plane [m]
   double ds = 0, dt = 0;                ///< cell size [m]
+  /// In the outermost row across of a zone the gap band cut short of the flank: contact here
+  /// means the zone is too narrow for the load.
+  bool zone_edge = false;
 };
 
 /// Cells of every pair of `position` that touches or stands within the gap band. Cells off

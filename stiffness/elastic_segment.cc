@@ -179,6 +179,29 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   if (coarse.n_active_cells() == 0 || !coarse.all_reference_cells_are_hyper_cube())
     throw InputError("elastic segment: " + file +
                      " must contain hexahedra only (gmsh: recombine and extrude, or subdivide)");
+  {
+    // Degenerate or inverted elements: the Jacobian at some corner not positive (relative to
+    // the element's mean, so thin elements pass).
+    const FE_Q<3>   q1(1);
+    const QTrapezoid<3> corners;
+    FEValues<3>     values(m.mapping, q1, corners, update_JxW_values);
+    for (const auto &cell : coarse.active_cell_iterators())
+      {
+        values.reinit(cell);
+        double mean = 0, worst = HUGE_VAL;
+        for (unsigned q = 0; q < corners.size(); ++q)
+          mean += std::abs(values.JxW(q)), worst = std::min(worst, values.JxW(q));
+        if (!(worst > 1e-9 * mean))
+          {
+            std::ostringstream msg;
+            msg << "elastic segment: " << file << " has a degenerate or inverted hexahedron (cell "
+                << cell->index() << " at " << cell->center() * 1e3
+                << " mm: corner Jacobian " << worst / mean * corners.size()
+                << " of its mean); allowed: positive Jacobians at every corner";
+            throw InputError(msg.str());
+          }
+      }
+  }
   m.tria.copy_triangulation(coarse);
   m.tria.refine_global(o.refinements);
   m.cache_ptr = std::make_unique<GridTools::Cache<3>>(m.tria, m.mapping);

@@ -94,6 +94,16 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
       return out;
     }
   const ContactSolution s = solve_contact(p);
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (s.force[i] > 0 && out.cells[i].zone_edge)
+      {
+        std::ostringstream msg;
+        msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and "
+            << torque << " N m the contact spreads to the edge of the cell zone (pinion tooth "
+            << out.cells[i].pinion_tooth << "); raise the gap band (scene: Loaded contact/<pair>/"
+               "gap band [um]) above the largest elastic approach";
+        throw InputError(msg.str());
+      }
   const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
   out.force        = s.force;
   out.active_cells = s.active;

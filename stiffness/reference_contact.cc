@@ -21,10 +21,10 @@ seconds_since(std::chrono::steady_clock::time_point t0)
 /// Where a cell sits on one member's flank (member frame) and the box its traction covers.
 struct MemberCell
 {
-  int  tooth = 0;
-  Vec3 position, normal; ///< normal out of the material
-  Eigen::Matrix3d axes;  ///< rows: across (s), along (t), normal
-  Vec3 half_size;
+  int             tooth = 0;
+  Vec3            position, normal; ///< normal out of the material
+  Eigen::Matrix3d axes;             ///< rows: across (s), along (t), normal
+  Vec3            half_size;
 };
 
 MemberCell
@@ -33,13 +33,13 @@ member_cell(const MemberFlanks &flanks, FlankSide side, int tooth, double u, dou
 {
   const FlankPoint q = flanks.flank(tooth, side).evaluate(u, v);
   MemberCell       m;
-  m.tooth           = tooth;
-  m.position        = q.position;
-  m.normal          = q.normal.normalized();
-  const Vec3 along  = (q.d_dv - q.d_dv.dot(m.normal) * m.normal).normalized();
-  m.axes.row(0)     = m.normal.cross(along).transpose();
-  m.axes.row(1)     = along.transpose();
-  m.axes.row(2)     = m.normal.transpose();
+  m.tooth          = tooth;
+  m.position       = q.position;
+  m.normal         = q.normal.normalized();
+  const Vec3 along = (q.d_dv - q.d_dv.dot(m.normal) * m.normal).normalized();
+  m.axes.row(0)    = m.normal.cross(along).transpose();
+  m.axes.row(1)    = along.transpose();
+  m.axes.row(2)    = m.normal.transpose();
   // the box reaches a whole cell width off the flank: the flank curves away from its tangent
   // plane by far less than that over a cell
   m.half_size = Vec3(c.ds / 2, c.dt / 2, c.ds);
@@ -84,11 +84,10 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
                        std::to_string(T) + " N m)");
 
   const FlankSide side = tca.options_data().side;
-  const auto near = loaded_segments({position}, pinion.teeth(), gear.teeth(),
-                                    o.cells.cells.gap_band);
-  out.pinion_segment =
-      segment_for(o.pinion_segment, near.first, o.min_segment_teeth);
-  out.gear_segment = segment_for(o.gear_segment, near.second, o.min_segment_teeth);
+  const auto      near =
+      loaded_segments({position}, pinion.teeth(), gear.teeth(), o.cells.cells.gap_band);
+  out.pinion_segment = segment_for(o.pinion_segment, near.first, o.min_segment_teeth);
+  out.gear_segment   = segment_for(o.gear_segment, near.second, o.min_segment_teeth);
 
   // The segments carry every cell: pairs outside them are refused when they touch.
   auto in_segment = [](const SegmentChoice &s, int z, int tooth) {
@@ -100,19 +99,19 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
     return in_segment(out.pinion_segment, pinion.teeth(), p) &&
            in_segment(out.gear_segment, gear.teeth(), g);
   };
-  lo.table_parameters = nullptr;
+  lo.table_parameters            = nullptr;
   std::vector<ContactCell> cells = loaded_cells(tca, position, lo);
   const Eigen::Index       n     = Eigen::Index(cells.size());
 
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
-  std::vector<std::vector<PatchLoad>> member_loads(2);
+  Eigen::MatrixXd                              C = Eigen::MatrixXd::Zero(n, n);
+  std::vector<std::vector<PatchLoad>>          member_loads(2);
   std::vector<std::unique_ptr<ElasticSegment>> bodies;
   std::vector<std::vector<int>>                segment_teeth;
   for (int member = 0; member < 2; ++member)
     {
-      const bool           is_pinion = member == 0;
-      const InvoluteGear  &g         = is_pinion ? pinion : gear;
-      const MemberFlanks  &flanks    = is_pinion ? tca.pinion_flanks() : tca.gear_flanks();
+      const bool              is_pinion = member == 0;
+      const InvoluteGear     &g         = is_pinion ? pinion : gear;
+      const MemberFlanks     &flanks    = is_pinion ? tca.pinion_flanks() : tca.gear_flanks();
       std::vector<MemberCell> mc;
       for (const ContactCell &c : cells)
         mc.push_back(is_pinion ? member_cell(flanks, side, c.pinion_tooth, c.u1, c.v1, c)
@@ -120,19 +119,19 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
 
       // Refinement about each pair's contact line: the cell nearest the line (smallest |s|)
       // marks it, the cells' reach across sets the radius.
-      SegmentMeshOptions mesh;
-      const SegmentChoice &seg = is_pinion ? out.pinion_segment : out.gear_segment;
-      mesh.teeth         = seg.teeth;
-      mesh.central_tooth = seg.central;
-      mesh.flank_size    = o.flank_size;
-      mesh.far_size      = o.far_size;
-      double ds = HUGE_VAL, dt = HUGE_VAL, reach = 0;
+      SegmentMeshOptions   mesh;
+      const SegmentChoice &seg                  = is_pinion ? out.pinion_segment : out.gear_segment;
+      mesh.teeth                                = seg.teeth;
+      mesh.central_tooth                        = seg.central;
+      mesh.flank_size                           = o.flank_size;
+      mesh.far_size                             = o.far_size;
+      double                                 ds = HUGE_VAL, dt = HUGE_VAL, reach = 0;
       std::map<int, std::pair<double, Vec2>> line; // pair -> (|s|, section point)
       for (Eigen::Index i = 0; i < n; ++i)
         {
           const ContactCell &c = cells[i];
           ds = std::min(ds, c.ds), dt = std::min(dt, c.dt);
-          reach = std::max(reach, std::abs(c.s) + c.ds);
+          reach   = std::max(reach, std::abs(c.s) + c.ds);
           auto it = line.find(c.pair);
           if (it == line.end() || std::abs(c.s) < it->second.first)
             line[c.pair] = {std::abs(c.s), mc[i].position.head<2>()};
@@ -141,12 +140,13 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
         mesh.refine_points.push_back(l.second);
       mesh.refine_size   = ds / o.elements_per_cell;
       mesh.refine_radius = reach;
-      mesh.face_layers   = std::max(2, int(std::lround(g.data().face_width / dt)) * o.layers_per_cell);
+      mesh.face_layers =
+          std::max(2, int(std::lround(g.data().face_width / dt)) * o.layers_per_cell);
       const std::string file =
           (std::filesystem::path(o.work_directory) /
            (std::string(is_pinion ? "reference_pinion" : "reference_gear") + ".msh"))
               .string();
-      auto t0 = std::chrono::steady_clock::now();
+      auto                  t0      = std::chrono::steady_clock::now();
       const SegmentMeshInfo segment = write_tooth_segment_mesh(g, mesh, file);
       out.mesh_seconds += seconds_since(t0);
       out.hexahedra += segment.hexahedra;
@@ -165,9 +165,9 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
       std::vector<PatchLoad> &loads = member_loads[member];
       for (const MemberCell &m : mc)
         {
-          const int i = int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(),
-                                      m.tooth) -
-                            segment.member_teeth.begin());
+          const int i =
+              int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(), m.tooth) -
+                  segment.member_teeth.begin());
           PatchLoad l;
           l.point      = m.position;
           l.force      = -m.normal; // a unit force pressing into the material
@@ -181,7 +181,7 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
       out.solve_seconds += seconds_since(t0);
     }
 
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto                  t0 = std::chrono::steady_clock::now();
   std::vector<LoadedPosition> results;
   for (std::size_t k = 0; k < torques.size(); ++k)
     {

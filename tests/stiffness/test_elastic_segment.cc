@@ -164,4 +164,24 @@ TEST(ElasticSegment, BadInputIsRefused)
                         "$EndElements\n";
   o.clamped = {1};
   EXPECT_THROW(ElasticSegment(tet, o), InputError);
+  // a flat (zero-volume) hexahedron and a folded one: rejected with a message, not a NaN
+  for (const char *top : {"0 0 0", "0.5 0.5 -1"})
+    {
+      const std::string flat =
+          (std::filesystem::temp_directory_path() / "gearkit-elastic-flat.msh").string();
+      std::ofstream(flat) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n"
+                             "2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 "
+                          << top << "\n$EndNodes\n$Elements\n2\n1 3 2 1 1 1 2 3 4\n"
+                             "2 5 2 1 1 1 2 3 4 5 6 7 8\n$EndElements\n";
+      try
+        {
+          ElasticSegment body(flat, o);
+          ADD_FAILURE() << "a degenerate hexahedron was accepted (node 8 at " << top << ")";
+        }
+      catch (const InputError &e)
+        {
+          EXPECT_NE(std::string(e.what()).find("degenerate or inverted"), std::string::npos)
+              << e.what();
+        }
+    }
 }

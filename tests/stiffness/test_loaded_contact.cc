@@ -19,17 +19,18 @@ struct SpurPair
   {
     const auto [pd, gd] = test_data::fzg_c_pair();
     pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-    a      = working_centre_distance(*pinion, *gear);
-    alpha  = working_pressure_angle(*pinion, *gear);
-    tca    = std::make_unique<UnloadedTca>(pinion, gear, a);
+    a     = working_centre_distance(*pinion, *gear);
+    alpha = working_pressure_angle(*pinion, *gear);
+    tca   = std::make_unique<UnloadedTca>(pinion, gear, a);
   }
   /// A position with `pairs` touching pairs, the single one nearest the pitch point.
   TcaPosition
   position(int pairs) const
   {
-    TcaPosition best;
-    double      best_distance = HUGE_VAL;
-    const double rho_pitch    = a * pinion->teeth() / (pinion->teeth() + gear->teeth()) * std::sin(alpha);
+    TcaPosition  best;
+    double       best_distance = HUGE_VAL;
+    const double rho_pitch =
+        a * pinion->teeth() / (pinion->teeth() + gear->teeth()) * std::sin(alpha);
     for (int k = 0; k < 40; ++k)
       {
         const TcaPosition p = tca->at(2 * pi / pinion->teeth() * k / 40);
@@ -54,23 +55,25 @@ TEST(LoadedContact, HertzStripAndTorqueBalanceAtThePitchPoint)
   ASSERT_EQ(pos.touching, 1);
   LoadedContactOptions o;
   o.pinion_material = o.gear_material = {206e9, 0.3};
-  o.cells.cells_across = 20;
-  const double T = 5912 * s.pinion->base_radius; // F_bt of FZG C14 on the line of action
+  o.cells.cells_across                = 20;
+  const double         T = 5912 * s.pinion->base_radius; // F_bt of FZG C14 on the line of action
   const LoadedPosition r = loaded_contact(*s.tca, pos, T, o, rigid, rigid);
   EXPECT_NEAR(r.lever, s.pinion->base_radius, 1e-9);
   EXPECT_NEAR(r.normal_force, 5912, 1e-6);
   EXPECT_GT(r.eL, r.e0);
   // Middle strip: Hertzian for its own load per length (see the half-space tests).
-  const PairContact &c   = pos.pairs[pos.leading];
-  const double       rho1 = std::sqrt(c.position.head<2>().squaredNorm() - std::pow(s.pinion->base_radius, 2));
-  const double       R    = 1 / (1 / rho1 + 1 / (s.a * std::sin(s.alpha) - rho1));
-  const double       Es   = contact_modulus(o.pinion_material, o.gear_material);
-  double             q = 0, peak = 0, z_mid = HUGE_VAL; // the strip nearest the middle of the face
+  const PairContact &c = pos.pairs[pos.leading];
+  const double       rho1 =
+      std::sqrt(c.position.head<2>().squaredNorm() - std::pow(s.pinion->base_radius, 2));
+  const double R  = 1 / (1 / rho1 + 1 / (s.a * std::sin(s.alpha) - rho1));
+  const double Es = contact_modulus(o.pinion_material, o.gear_material);
+  double       q = 0, peak = 0, z_mid = HUGE_VAL; // the strip nearest the middle of the face
   for (const ContactCell &c : r.cells)
     if (std::abs(c.position.z()) < std::abs(z_mid))
       z_mid = c.position.z();
   for (std::size_t i = 0; i < r.cells.size(); ++i)
-    if (r.cells[i].pair == pos.leading && std::abs(r.cells[i].position.z() - z_mid) < r.cells[i].dt / 4)
+    if (r.cells[i].pair == pos.leading &&
+        std::abs(r.cells[i].position.z() - z_mid) < r.cells[i].dt / 4)
       {
         q += r.force[i] / r.cells[i].dt;
         peak = std::max(peak, r.force[i] / (r.cells[i].ds * r.cells[i].dt));
@@ -84,11 +87,11 @@ TEST(LoadedContact, StructuralComplianceAddsExactly)
 {
   // A member compliance c on every pair of cells of the same tooth shifts all cells' approach by
   // c F: the forces stay, and e_L grows by T (c_p + c_g) / lambda^2.
-  const SpurPair    s;
-  const TcaPosition pos = s.position(1);
-  LoadedContactOptions o;
-  const double T = 200;
-  const double cp = 3e-10, cg = 5e-10;
+  const SpurPair             s;
+  const TcaPosition          pos = s.position(1);
+  LoadedContactOptions       o;
+  const double               T  = 200;
+  const double               cp = 3e-10, cg = 5e-10;
   const StructuralCompliance pinion = [&](const ContactCell &a, const ContactCell &b) {
     return a.pinion_tooth == b.pinion_tooth ? cp : 0.0;
   };
@@ -98,7 +101,8 @@ TEST(LoadedContact, StructuralComplianceAddsExactly)
   const LoadedPosition hs = loaded_contact(*s.tca, pos, T, o, rigid, rigid);
   const LoadedPosition st = loaded_contact(*s.tca, pos, T, o, pinion, gear);
   const double         lb = s.pinion->base_radius;
-  EXPECT_NEAR((st.eL - st.e0) - (hs.eL - hs.e0), T * (cp + cg) / (lb * lb), 1e-9 * T * (cp + cg) / (lb * lb));
+  EXPECT_NEAR((st.eL - st.e0) - (hs.eL - hs.e0), T * (cp + cg) / (lb * lb),
+              1e-9 * T * (cp + cg) / (lb * lb));
   EXPECT_NEAR((st.force - hs.force).norm(), 0, 1e-9 * hs.force.norm());
   // and K_m is the series spring: 1/K = 1/K_hs + (c_p + c_g)
   EXPECT_NEAR(1 / st.mesh_stiffness, 1 / hs.mesh_stiffness + cp + cg, 1e-9 / st.mesh_stiffness);
@@ -134,4 +138,52 @@ TEST(LoadedContact, TwoPairsShareTheLoadAndZeroLoadGivesTheUnloadedTE)
   EXPECT_NEAR(zero.eL, pos.transmission_error, 1e-12);
   EXPECT_EQ(zero.normal_force, 0);
   EXPECT_THROW(loaded_contact(*s.tca, pos, -1, o, spring, rigid), InputError);
+}
+
+TEST(LoadedContact, VeryHighLoadSpreadsToTheTipOrIsRefusedWhenTheZoneIsTooNarrow)
+{
+  const SpurPair s;
+  // The position where a pair touches nearest the tip of the pinion (end of the path).
+  TcaPosition tip;
+  int         tip_pair = 0;
+  double      rho_max  = 0;
+  for (int k = 0; k < 40; ++k)
+    {
+      const TcaPosition p = s.tca->at(2 * pi / s.pinion->teeth() * k / 40);
+      for (std::size_t j = 0; j < p.pairs.size(); ++j)
+        {
+          const Vec3   x = p.pairs[j].position;
+          const double rho =
+              std::sqrt(x.head<2>().squaredNorm() - std::pow(s.pinion->base_radius, 2));
+          if (p.pairs[j].found && p.pairs[j].separation < 1e-9 && rho > rho_max)
+            tip = p, tip_pair = int(j), rho_max = rho;
+        }
+    }
+  LoadedContactOptions o;
+  const double         T = 20 * 5912 * s.pinion->base_radius; // twenty times FZG C14
+  try
+    {
+      loaded_contact(*s.tca, tip, T, o, rigid, rigid);
+      ADD_FAILURE() << "a contact wider than its cell zone was accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("gap band"), std::string::npos) << e.what();
+    }
+  // A wide zone: the contact runs onto the tip edge of the pinion flank and stays balanced.
+  o.cells.gap_band = 300e-6, o.cells.cells_across = 41;
+  const LoadedPosition r = loaded_contact(*s.tca, tip, T, o, rigid, rigid);
+  EXPECT_NEAR(r.normal_force * r.lever, T, 1e-9 * T);
+  const FlankDomain d =
+      s.tca->pinion_flanks().flank(tip.pairs[tip_pair].pinion_tooth, FlankSide::drive).domain();
+  double u_loaded = -HUGE_VAL, u_all = -HUGE_VAL;
+  for (std::size_t i = 0; i < r.cells.size(); ++i)
+    if (r.cells[i].pair == tip_pair)
+      {
+        u_all = std::max(u_all, r.cells[i].u1);
+        if (r.force[Eigen::Index(i)] > 0)
+          u_loaded = std::max(u_loaded, r.cells[i].u1);
+      }
+  EXPECT_EQ(u_loaded, u_all); // the last cell row before the tip carries load
+  EXPECT_GT(u_all, d.u_max - 0.05 * (d.u_max - d.u_min));
 }

@@ -25,9 +25,9 @@ struct Pitch
   {
     const auto [pd, gd] = test_data::fzg_c_pair();
     pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-    const double a = working_centre_distance(*pinion, *gear);
-    const double alpha = working_pressure_angle(*pinion, *gear);
-    tca = std::make_unique<UnloadedTca>(pinion, gear, a);
+    const double a         = working_centre_distance(*pinion, *gear);
+    const double alpha     = working_pressure_angle(*pinion, *gear);
+    tca                    = std::make_unique<UnloadedTca>(pinion, gear, a);
     const double rho_pitch = pinion->base_radius * std::tan(alpha);
     double       best      = HUGE_VAL;
     for (int k = 0; k < 40; ++k)
@@ -55,17 +55,17 @@ TEST(ReferenceContact, HertzStripTorqueBalanceAndTheFastMode)
 {
   const Pitch s;
   ASSERT_EQ(s.position.touching, 1);
-  const Material steel{206e9, 0.3};
+  const Material          steel{206e9, 0.3};
   ReferenceContactOptions o;
   o.cells.pinion_material = o.cells.gear_material = steel;
   o.cells.cells.cells_across = 21, o.cells.cells.cells_along = 4;
   o.cells.cells.gap_band = 8e-6;
-  o.min_segment_teeth   = 1;
-  o.elements_per_cell   = 1;
-  o.far_size            = 2 * s.pinion->data().normal_module;
-  o.work_directory      = work_directory("reference");
+  o.min_segment_teeth    = 1;
+  o.elements_per_cell    = 1;
+  o.far_size             = 2 * s.pinion->data().normal_module;
+  o.work_directory       = work_directory("reference");
   const double F = 5912, T = F * s.pinion->base_radius; // FZG C14: F_bt on the line of action
-  ReferenceContactInfo info;
+  ReferenceContactInfo              info;
   const std::vector<LoadedPosition> r =
       reference_contact(*s.pinion, *s.gear, *s.tca, s.position, {0, T / 2, T}, o, &info);
   ASSERT_EQ(r.size(), 3u);
@@ -84,7 +84,7 @@ TEST(ReferenceContact, HertzStripTorqueBalanceAndTheFastMode)
 
   // The middle strips: Hertzian for their own load per length q (peak 2 q / (pi a(q))).
   const double Es = contact_modulus(steel, steel);
-  double q = 0, peak = 0, along = 0, s_min = HUGE_VAL, s_max = -HUGE_VAL;
+  double       q = 0, peak = 0, along = 0, s_min = HUGE_VAL, s_max = -HUGE_VAL;
   for (std::size_t i = 0; i < r[2].cells.size(); ++i)
     {
       const ContactCell &c = r[2].cells[i];
@@ -113,10 +113,10 @@ TEST(ReferenceContact, HertzStripTorqueBalanceAndTheFastMode)
     mo.material = steel, mo.work_directory = o.work_directory;
     return involute_member_compliance(g, f, mo);
   };
-  const FlankCompliance cp = table(*s.pinion, s.tca->pinion_flanks(), info.pinion_segment);
-  const FlankCompliance cg = table(*s.gear, s.tca->gear_flanks(), info.gear_segment);
-  LoadedContactOptions lo = o.cells;
-  lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
+  const FlankCompliance cp  = table(*s.pinion, s.tca->pinion_flanks(), info.pinion_segment);
+  const FlankCompliance cg  = table(*s.gear, s.tca->gear_flanks(), info.gear_segment);
+  LoadedContactOptions  lo  = o.cells;
+  lo.covered                = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
   const LoadedPosition fast = loaded_contact(
       *s.tca, s.position, T, lo,
       [&](const ContactCell &i, const ContactCell &j) {
@@ -140,8 +140,8 @@ TEST(ReferenceContact, BadInputIsRefused)
   o.elements_per_cell = 1;
   o.work_directory    = "/nonexistent/gearkit";
   EXPECT_THROW(reference_contact(*s.pinion, *s.gear, *s.tca, s.position, {1.0}, o), InputError);
-  const auto [pd, gd] = test_data::fzg_c_pair(15 * pi / 180);
-  const auto hp = InvoluteGear::create(pd), hg = InvoluteGear::create(gd);
+  const auto [pd, gd]  = test_data::fzg_c_pair(15 * pi / 180);
+  const auto        hp = InvoluteGear::create(pd), hg = InvoluteGear::create(gd);
   const UnloadedTca helical(hp, hg, working_centre_distance(*hp, *hg));
   o.work_directory = work_directory("reference-bad");
   EXPECT_THROW(reference_contact(*hp, *hg, helical, helical.at(0), {1.0}, o), InputError);

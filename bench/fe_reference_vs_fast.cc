@@ -7,6 +7,7 @@
 //          [cells across = 17] [cells along = 14] [fast flank size / m_n = 0.2]
 //          [segment teeth = 3] [first position = 0] [last position = positions - 1]
 //          [fast grid n_u = 9] [n_v = 7] [reference flank size / m_n = 0.2] [reference: 1|0]
+//          [fast response depth in elements = 3]
 #include "../tests/fzg_c_pair.h"
 #include "loaded_contact.h"
 #include "member_compliance.h"
@@ -35,20 +36,22 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const int                                positions = argc > 1 ? std::atoi(argv[1]) : 20;
-  const double                             torque    = argc > 2 ? std::atof(argv[2]) : 200;
-  const double                             per_cell  = argc > 3 ? std::atof(argv[3]) : 1;
-  const int                                layers    = argc > 4 ? std::atoi(argv[4]) : 1;
-  const int                                across    = argc > 5 ? std::atoi(argv[5]) : 17;
-  const int                                along     = argc > 6 ? std::atoi(argv[6]) : 14;
-  const double                             fast_size = argc > 7 ? std::atof(argv[7]) : 0.2;
-  const int                                teeth     = argc > 8 ? std::atoi(argv[8]) : 3;
-  const int                                first     = argc > 9 ? std::atoi(argv[9]) : 0;
-  const int                                last = argc > 10 ? std::atoi(argv[10]) : positions - 1;
-  const int                                n_u  = argc > 11 ? std::atoi(argv[11]) : 9;
-  const int                                n_v  = argc > 12 ? std::atoi(argv[12]) : 7;
-  const double                             ref_size  = argc > 13 ? std::atof(argv[13]) : 0.2;
-  const bool                               reference = argc > 14 ? std::atoi(argv[14]) != 0 : true;
+
+  const int    positions = argc > 1 ? std::atoi(argv[1]) : 20;
+  const double torque    = argc > 2 ? std::atof(argv[2]) : 200;
+  const double per_cell  = argc > 3 ? std::atof(argv[3]) : 1;
+  const int    layers    = argc > 4 ? std::atoi(argv[4]) : 1;
+  const int    across    = argc > 5 ? std::atoi(argv[5]) : 17;
+  const int    along     = argc > 6 ? std::atoi(argv[6]) : 14;
+  const double fast_size = argc > 7 ? std::atof(argv[7]) : 0.2;
+  const int    teeth     = argc > 8 ? std::atoi(argv[8]) : 3;
+  const int    first     = argc > 9 ? std::atoi(argv[9]) : 0;
+  const int    last      = argc > 10 ? std::atoi(argv[10]) : positions - 1;
+  const int    n_u       = argc > 11 ? std::atoi(argv[11]) : 9;
+  const int    n_v       = argc > 12 ? std::atoi(argv[12]) : 7;
+  const double ref_size  = argc > 13 ? std::atof(argv[13]) : 0.2;
+  const bool   reference = argc > 14 ? std::atoi(argv[14]) != 0 : true;
+  const double depth     = argc > 15 ? std::atof(argv[15]) : 3;
   try
     {
       const auto [pd, gd]      = test_data::fzg_c_pair();
@@ -74,6 +77,7 @@ main(int argc, char **argv)
         o.mesh.flank_size = fast_size * g.data().normal_module;
         o.material = steel, o.work_directory = dir;
         o.n_u = n_u, o.n_v = n_v;
+        o.depth_elements = depth;
         return involute_member_compliance(g, f, o);
       };
       const FlankCompliance cp        = member(*pinion, *pf, segments.first);

@@ -15,9 +15,9 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
                      "margin in [0, 0.5)");
   for (int tooth : spec.teeth)
     {
-      const Flank      &f = flanks.flank(tooth, spec.side);
-      const FlankDomain d = f.domain();
-      const double du = d.u_max - d.u_min, dv = d.v_max - d.v_min;
+      const Flank      &f  = flanks.flank(tooth, spec.side);
+      const FlankDomain d  = f.domain();
+      const double      du = d.u_max - d.u_min, dv = d.v_max - d.v_min;
       u_range.emplace_back(d.u_min + spec.margin * du, d.u_max - spec.margin * du);
       v_range.emplace_back(d.v_min + spec.margin * dv, d.v_max - spec.margin * dv);
       for (int i = 0; i < spec.n_u; ++i)
@@ -25,8 +25,10 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
           {
             Point p;
             p.tooth = tooth;
-            p.u = u_range.back().first + (u_range.back().second - u_range.back().first) * i / (spec.n_u - 1);
-            p.v = v_range.back().first + (v_range.back().second - v_range.back().first) * j / (spec.n_v - 1);
+            p.u     = u_range.back().first +
+                  (u_range.back().second - u_range.back().first) * i / (spec.n_u - 1);
+            p.v = v_range.back().first +
+                  (v_range.back().second - v_range.back().first) * j / (spec.n_v - 1);
             const FlankPoint q = f.evaluate(p.u, p.v);
             p.position = q.position, p.normal = q.normal;
             grid.push_back(p);
@@ -57,15 +59,15 @@ FlankCompliance::weights(int tooth, double u, double v) const
   if (it == spec.teeth.end())
     throw InputError("flank compliance: tooth " + std::to_string(tooth) +
                      " carries load but lies outside the finite-element segment's loaded teeth");
-  const int    t  = int(it - spec.teeth.begin());
-  auto frac = [](double x, double lo, double hi, int n, int &i0) {
+  const int t    = int(it - spec.teeth.begin());
+  auto      frac = [](double x, double lo, double hi, int n, int &i0) {
     const double f = std::clamp((x - lo) / (hi - lo), 0.0, 1.0) * (n - 1);
     i0             = std::min(int(f), n - 2);
     return f - i0;
   };
   int          iu, iv;
-  const double fu = frac(u, u_range[t].first, u_range[t].second, spec.n_u, iu);
-  const double fv = frac(v, v_range[t].first, v_range[t].second, spec.n_v, iv);
+  const double fu   = frac(u, u_range[t].first, u_range[t].second, spec.n_u, iu);
+  const double fv   = frac(v, v_range[t].first, v_range[t].second, spec.n_v, iv);
   const int    base = t * spec.n_u * spec.n_v;
   Weights      w;
   int          k = 0;
@@ -85,18 +87,40 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
   if (S.size() == 0)
     throw InputError("flank compliance: the table has not been filled");
   const Weights wi = weights(tooth_i, u_i, v_i), wj = weights(tooth_j, u_j, v_j);
-  double        c  = 0;
+  double        c = 0;
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b)
       c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a]);
   return c;
 }
 
+double
+disk_load_displacement(double r, double z, double radius, const Material &material)
+{
+  if (radius == 0)
+    return point_load_displacement(r, z, 1.0, material);
+  // Equal-area rings (midpoints in rho^2) times equally spaced angles: the point solution
+  // averaged over the disk; smooth there, since the response lies well below the surface.
+  constexpr int rings = 6, angles = 24;
+  double        sum = 0;
+  for (int i = 0; i < rings; ++i)
+    {
+      const double rho = radius * std::sqrt((i + 0.5) / rings);
+      for (int k = 0; k < angles; ++k)
+        {
+          const double a = 2 * pi * (k + 0.5) / angles;
+          sum += point_load_displacement(std::hypot(r - rho * std::cos(a), rho * std::sin(a)), z,
+                                         1.0, material);
+        }
+    }
+  return sum / (rings * angles);
+}
+
 void
 fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
-                           const Material &material)
+                           const Material &material, double patch_radius)
 {
-  const auto &points = table.points();
+  const auto                        &points = table.points();
   std::vector<FlankLoad>             loads;
   std::vector<std::pair<Vec3, Vec3>> responses;
   for (const auto &p : points)
@@ -112,7 +136,7 @@ fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve,
           const Vec3   d = responses[j].first - points[i].position;
           const double z = -d.dot(points[i].normal); // depth below the load's tangent plane
           const double r = (d + z * points[i].normal).norm();
-          D(j, i) -= point_load_displacement(r, std::max(z, 0.0), 1.0, material);
+          D(j, i) -= disk_load_displacement(r, std::max(z, 0.0), patch_radius, material);
         }
   table.set(D);
 }

@@ -89,9 +89,16 @@ using ElasticResponse = std::function<Eigen::MatrixXd(
     const std::vector<FlankLoad> &loads, const std::vector<std::pair<Vec3, Vec3>> &responses)>;
 
 /// Fills the table from unit normal loads at the grid points, read `depth` below the flank
-/// along the normal; the Boussinesq displacement of a point force at that depth is subtracted
-/// for points of the same tooth.
+/// along the normal; the half-space displacement at that depth of the load as applied (a unit
+/// force spread uniformly over a disk of `patch_radius`; 0: a point force) is subtracted for
+/// points of the same tooth.
 void
 fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
-                           const Material &material);
+                           const Material &material, double patch_radius = 0);
+
+/// Normal displacement of a half-space at depth z and horizontal distance r from the centre of
+/// a unit normal force spread uniformly over a disk of the given radius (0: Boussinesq's point
+/// force) [m/N].
+double
+disk_load_displacement(double r, double z, double radius, const Material &material);
 } // namespace gearkit

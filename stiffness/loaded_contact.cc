@@ -29,9 +29,8 @@ loaded_cells(const UnloadedTca &tca, const TcaPosition &position, const LoadedCo
   if (cells.empty())
     {
       std::ostringstream msg;
-      msg << "loaded contact: no contact cell within the gap band ("
-          << o.cells.gap_band * 1e6 << " um) at pinion angle " << position.pinion_angle
-          << " rad";
+      msg << "loaded contact: no contact cell within the gap band (" << o.cells.gap_band * 1e6
+          << " um) at pinion angle " << position.pinion_angle << " rad";
       throw InputError(msg.str());
     }
   if (o.table_parameters)
@@ -40,25 +39,59 @@ loaded_cells(const UnloadedTca &tca, const TcaPosition &position, const LoadedCo
   return cells;
 }
 
+static LoadedPosition
+loaded_contact_in_zone(const UnloadedTca &, const TcaPosition &, double,
+                       const LoadedContactOptions &, const StructuralCompliance &,
+                       const StructuralCompliance &);
+
 LoadedPosition
 loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
-               const LoadedContactOptions &o, const StructuralCompliance &pinion,
+               const LoadedContactOptions &options, const StructuralCompliance &pinion,
                const StructuralCompliance &gear)
+{
+  LoadedContactOptions o = options;
+  for (int widening = 0;; ++widening)
+    {
+      LoadedPosition r = loaded_contact_in_zone(tca, position, torque, o, pinion, gear);
+      if (!r.zone_edge_reached)
+        return r;
+      if (widening == 4)
+        {
+          std::ostringstream msg;
+          msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and "
+              << torque << " N m the contact spreads beyond a cell zone of gap band "
+              << o.cells.gap_band * 1e6
+              << " um; check the load and the compliances, or raise "
+                 "the gap band (scene: Loaded contact/<pair>/gap band [um])";
+          throw InputError(msg.str());
+        }
+      o.cells.gap_band *= 2;
+      // the zone's width grows with the square root of the gap band: cells of the same size
+      o.cells.cells_across = int(std::ceil(o.cells.cells_across * std::sqrt(2.0))) | 1;
+    }
+}
+
+static LoadedPosition
+loaded_contact_in_zone(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                       const LoadedContactOptions &o, const StructuralCompliance &pinion,
+                       const StructuralCompliance &gear)
 {
   std::vector<ContactCell> cells = loaded_cells(tca, position, o);
   const Eigen::Index       n     = Eigen::Index(cells.size());
   Eigen::MatrixXd          C(n, n);
-  const double Estar = contact_modulus(o.pinion_material, o.gear_material);
+  const double             Estar = contact_modulus(o.pinion_material, o.gear_material);
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n; ++j)
       {
         const ContactCell &ci = cells[i], &cj = cells[j];
-        double             c  = pinion(ci, cj) + gear(ci, cj);
+        double             c = pinion(ci, cj) + gear(ci, cj);
         if (o.half_space && ci.pair == cj.pair)
           c += rectangle_displacement(cj.s - ci.s, cj.t - ci.t, ci.ds / 2, ci.dt / 2, 1.0, Estar);
         C(j, i) = c;
       }
-  return solve_loaded_contact(tca, position, torque, std::move(cells), C);
+  LoadedPosition r = solve_loaded_contact(tca, position, torque, std::move(cells), C);
+  r.gap_band       = o.cells.gap_band;
+  return r;
 }
 
 LoadedPosition
@@ -88,27 +121,19 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
 
   if (torque == 0)
     {
-      out.eL = out.e0; // nothing moves; the cells' first touch only samples the gap
+      out.eL    = out.e0; // nothing moves; the cells' first touch only samples the gap
       out.force = Eigen::VectorXd::Zero(n);
       out.pair_force.assign(position.pairs.size(), 0.0);
       return out;
     }
   const ContactSolution s = solve_contact(p);
   for (Eigen::Index i = 0; i < n; ++i)
-    if (s.force[i] > 0 && out.cells[i].zone_edge)
-      {
-        std::ostringstream msg;
-        msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and "
-            << torque << " N m the contact spreads to the edge of the cell zone (pinion tooth "
-            << out.cells[i].pinion_tooth << "); raise the gap band (scene: Loaded contact/<pair>/"
-               "gap band [um]) above the largest elastic approach";
-        throw InputError(msg.str());
-      }
+    out.zone_edge_reached = out.zone_edge_reached || (s.force[i] > 0 && out.cells[i].zone_edge);
   const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
-  out.force        = s.force;
-  out.active_cells = s.active;
-  out.iterations   = s.iterations;
-  out.eL           = out.e0 + sign * s.approach;
+  out.force         = s.force;
+  out.active_cells  = s.active;
+  out.iterations    = s.iterations;
+  out.eL            = out.e0 + sign * s.approach;
   out.pair_force.assign(position.pairs.size(), 0.0);
   for (Eigen::Index i = 0; i < n; ++i)
     out.pair_force[out.cells[i].pair] += s.force[i];

@@ -37,22 +37,28 @@ struct LoadedContactOptions
 
 struct LoadedPosition
 {
-  double pinion_angle = 0;       ///< phi [rad]
-  double e0           = 0;       ///< unloaded TE [rad, pinion]
-  double eL           = 0;       ///< loaded TE [rad, pinion]
-  double torque       = 0;       ///< pinion torque [N m]
-  double normal_force = 0;       ///< F, sum of the cell forces [N]
-  double lever        = 0;       ///< lambda = torque / F [m] (the base radius for spur gears)
-  double mesh_stiffness = 0;     ///< K_m = F / (lambda (e_L - e_0)) [N/m]; 0 at zero load
-  std::vector<double>      pair_force; ///< normal force per entry of TcaPosition::pairs [N]
+  double              pinion_angle = 0; ///< phi [rad]
+  double              e0           = 0; ///< unloaded TE [rad, pinion]
+  double              eL           = 0; ///< loaded TE [rad, pinion]
+  double              torque       = 0; ///< pinion torque [N m]
+  double              normal_force = 0; ///< F, sum of the cell forces [N]
+  double              lever = 0; ///< lambda = torque / F [m] (the base radius for spur gears)
+  double              mesh_stiffness = 0; ///< K_m = F / (lambda (e_L - e_0)) [N/m]; 0 at zero load
+  std::vector<double> pair_force;         ///< normal force per entry of TcaPosition::pairs [N]
   std::vector<ContactCell> cells;
-  Eigen::VectorXd          force;       ///< per cell [N]; pressure = force / (ds dt)
+  Eigen::VectorXd          force; ///< per cell [N]; pressure = force / (ds dt)
   int                      active_cells = 0;
   int                      iterations   = 0;
+  double                   gap_band     = 0; ///< of the cell zone used [m]
+  /// Contact in the outermost row of a zone the gap band cut short of the flank: the zone was
+  /// too narrow for the load (loaded_contact widens it and solves again).
+  bool zone_edge_reached = false;
 };
 
 /// Solves the loaded contact at one position of the unloaded TCA under a pinion torque >= 0.
-/// Throws InputError when no cell lies within the gap band.
+/// When the contact reaches the edge of the cell zone, the gap band is doubled (and the cells
+/// across by sqrt 2, so their size stays) and the position solved again, up to four times.
+/// Throws InputError when no cell lies within the gap band and when the zone stays too narrow.
 LoadedPosition
 loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
                const LoadedContactOptions &options, const StructuralCompliance &pinion,

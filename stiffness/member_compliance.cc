@@ -106,7 +106,7 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
       probes.push_back({x, d});
     return body.response(patches, probes);
   };
-  fill_structural_compliance(table, solve, out.depth, o.material);
+  fill_structural_compliance(table, solve, out.depth, o.material, out.patch_radius);
   out.solve_seconds = seconds_since(t0);
   return table;
 }

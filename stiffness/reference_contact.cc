@@ -186,6 +186,12 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
   for (std::size_t k = 0; k < torques.size(); ++k)
     {
       results.push_back(solve_loaded_contact(tca, position, torques[k], cells, C));
+      results.back().gap_band = o.cells.cells.gap_band;
+      if (results.back().zone_edge_reached)
+        throw InputError("reference contact: at " + std::to_string(torques[k]) +
+                         " N m the contact reaches the edge of the cell zone; raise the gap band "
+                         "(now " +
+                         std::to_string(o.cells.cells.gap_band * 1e6) + " um)");
       if (!o.vtu_prefix.empty())
         for (int member = 0; member < 2; ++member)
           {

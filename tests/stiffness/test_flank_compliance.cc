@@ -9,12 +9,12 @@ using namespace gearkit;
 
 TEST(FlankCompliance, BilinearDataInterpolatedExactly)
 {
-  const auto gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  const auto                 gear = InvoluteGear::create(test_data::fzg_c_pair().first);
   const InvoluteMemberFlanks flanks(gear);
-  FlankGridSpec spec;
+  FlankGridSpec              spec;
   spec.teeth = {15, 0, 1};
   FlankCompliance table(flanks, spec);
-  const auto &pts = table.points();
+  const auto     &pts = table.points();
   ASSERT_EQ(pts.size(), 3u * 7 * 7);
   auto f = [](int tooth, double u, double v) { return (1 + tooth) * (2 + 3 * u) * (1 - 40 * v); };
   Eigen::MatrixXd S(pts.size(), pts.size());
@@ -25,7 +25,8 @@ TEST(FlankCompliance, BilinearDataInterpolatedExactly)
   const FlankDomain d = flanks.flank(0, FlankSide::drive).domain();
   for (double a : {0.13, 0.5, 0.91})
     {
-      const double u = d.u_min + a * (d.u_max - d.u_min), v = d.v_min + (1 - a) * (d.v_max - d.v_min);
+      const double u        = d.u_min + a * (d.u_max - d.u_min),
+                   v        = d.v_min + (1 - a) * (d.v_max - d.v_min);
       const double expected = f(1, u, v) * f(15, u, v) * 1e-9;
       EXPECT_NEAR(table(1, u, v, 15, u, v), expected, 1e-12 * std::abs(expected));
     }
@@ -34,16 +35,16 @@ TEST(FlankCompliance, BilinearDataInterpolatedExactly)
 
 TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
 {
-  const auto gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  const auto                 gear = InvoluteGear::create(test_data::fzg_c_pair().first);
   const InvoluteMemberFlanks flanks(gear);
-  FlankGridSpec spec;
+  FlankGridSpec              spec;
   spec.teeth = {0};
   spec.n_u = spec.n_v = 4;
   FlankCompliance table(flanks, spec);
-  const Material steel{210e9, 0.3};
-  const double   depth = 1e-3;
+  const Material  steel{210e9, 0.3};
+  const double    depth = 1e-3;
   // a "member" whose response is the Boussinesq field of each load in its own tangent plane
-  const ElasticResponse half_space = [&](const std::vector<FlankLoad> &loads,
+  const ElasticResponse half_space = [&](const std::vector<FlankLoad>             &loads,
                                          const std::vector<std::pair<Vec3, Vec3>> &responses) {
     Eigen::MatrixXd D(responses.size(), loads.size());
     for (std::size_t i = 0; i < loads.size(); ++i)
@@ -58,4 +59,32 @@ TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
   };
   fill_structural_compliance(table, half_space, depth, steel);
   EXPECT_LT(table.matrix().cwiseAbs().maxCoeff(), 1e-25);
+}
+
+TEST(FlankCompliance, DiskLoadAtDepthAgainstBruteForce)
+{
+  // The unit force spread over a disk of radius R, seen at depth z >= 2 R: the quadrature of
+  // disk_load_displacement against a fine Cartesian sum, and the point force in the limit.
+  const Material steel{206e9, 0.3};
+  const double   R = 1e-3;
+  for (const auto &[r, z] : {std::pair{0.0, 2e-3}, std::pair{1.5e-3, 3e-3}, std::pair{4e-3, 2e-3}})
+    {
+      const int n     = 400;
+      double    sum   = 0;
+      int       count = 0;
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < n; ++k)
+          {
+            const double x = -R + (i + 0.5) * 2 * R / n, y = -R + (k + 0.5) * 2 * R / n;
+            if (x * x + y * y <= R * R)
+              sum += point_load_displacement(std::hypot(r - x, y), z, 1.0, steel), ++count;
+          }
+      EXPECT_NEAR(disk_load_displacement(r, z, R, steel) / (sum / count), 1, 2e-4) << r << " " << z;
+      // under its centre the disk displaces the depth less than the point force does
+      if (r == 0)
+        EXPECT_LT(disk_load_displacement(r, z, R, steel),
+                  point_load_displacement(r, z, 1.0, steel));
+    }
+  EXPECT_EQ(disk_load_displacement(1e-3, 2e-3, 0, steel),
+            point_load_displacement(1e-3, 2e-3, 1.0, steel));
 }

@@ -161,6 +161,8 @@ TEST(LoadedContact, VeryHighLoadSpreadsToTheTipOrIsRefusedWhenTheZoneIsTooNarrow
     }
   LoadedContactOptions o;
   const double         T = 20 * 5912 * s.pinion->base_radius; // twenty times FZG C14
+  // A zone of 0.1 um is far too narrow for this load, and still is widened four times.
+  o.cells.gap_band = 0.1e-6, o.cells.cells_along = 6;
   try
     {
       loaded_contact(*s.tca, tip, T, o, rigid, rigid);
@@ -170,9 +172,12 @@ TEST(LoadedContact, VeryHighLoadSpreadsToTheTipOrIsRefusedWhenTheZoneIsTooNarrow
     {
       EXPECT_NE(std::string(e.what()).find("gap band"), std::string::npos) << e.what();
     }
-  // A wide zone: the contact runs onto the tip edge of the pinion flank and stays balanced.
-  o.cells.gap_band = 300e-6, o.cells.cells_across = 41;
+  // From 10 um the zone is widened until the contact fits: it runs onto the tip edge of the
+  // pinion flank and stays balanced.
+  o.cells.gap_band = 10e-6, o.cells.cells_across = 9;
   const LoadedPosition r = loaded_contact(*s.tca, tip, T, o, rigid, rigid);
+  EXPECT_GT(r.gap_band, 10e-6);
+  EXPECT_FALSE(r.zone_edge_reached);
   EXPECT_NEAR(r.normal_force * r.lever, T, 1e-9 * T);
   const FlankDomain d =
       s.tca->pinion_flanks().flank(tip.pairs[tip_pair].pinion_tooth, FlankSide::drive).domain();

@@ -144,6 +144,21 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
     results.copy_from(*files.at(r.name), "/" + r.name, "/" + r.name);
   results.commit();
   log << "results: " << summary.results_file << std::endl;
+  // Files a stage wrote beside its cache file (VTU of the reference mode) go to <dir>/vtu/.
+  for (const StageRun &r : summary.stages)
+    {
+      const fs::path beside = fs::path(r.cache_file).replace_extension("").string() + "-vtu";
+      if (!fs::is_directory(beside))
+        continue;
+      fs::create_directories(dir / "vtu");
+      for (const auto &f : fs::directory_iterator(beside))
+        if (f.path().extension() == ".vtu" || f.path().extension() == ".pvtu")
+          {
+            fs::copy_file(f.path(), dir / "vtu" / f.path().filename(),
+                          fs::copy_options::overwrite_existing);
+            log << "vtu: " << (dir / "vtu" / f.path().filename()).string() << std::endl;
+          }
+    }
   if (files.count("measured"))
     export_measured_cmm(scene, files.at("measured")->root().group("measured"),
                         (dir / "cmm").string(), log);

@@ -132,6 +132,16 @@ H5Group::has(const std::string &name) const
   return H5Lexists(handle.id(), name.c_str(), H5P_DEFAULT) > 0;
 }
 
+std::string
+H5Group::file_name() const
+{
+  const ssize_t n = H5Fget_name(id(), nullptr, 0);
+  std::string   name(std::size_t(std::max<ssize_t>(n, 0)), '\0');
+  if (n > 0)
+    H5Fget_name(id(), name.data(), std::size_t(n) + 1);
+  return name;
+}
+
 H5Group
 H5Group::group(const std::string &name) const
 {

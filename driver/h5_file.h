@@ -49,6 +49,9 @@ public:
   {
     return group_path;
   }
+  /// The file the group lives in.
+  std::string
+  file_name() const;
   hid_t
   id() const
   {

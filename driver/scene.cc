@@ -294,6 +294,13 @@ declare_loaded(ParameterHandler &prm)
   prm.declare_entry("gap band", "10", Patterns::Double(0.01),
                     "[um] The contact zone reaches where the unloaded gap opens to this; above "
                     "the largest elastic approach.");
+  prm.declare_entry("reference positions", "", Patterns::List(Patterns::Integer(0), 0, 1000),
+                    "Positions of the mesh cycle (0 = the first) solved again in reference mode "
+                    "(spur pairs: both members meshed for the position, finite elements alone, "
+                    "minutes per position), with VTU files of displacement and stress in "
+                    "<output>/vtu/.");
+  prm.declare_entry("reference elements per cell", "0.5", Patterns::Double(0.1, 4),
+                    "Reference mode: element size at the contact = cell width / this.");
   prm.declare_entry("measured flanks", "false", Patterns::Bool(),
                     "Also the loaded contact of the measured flanks (Measured flanks section), "
                     "with the theoretical pair's compliances.");
@@ -742,6 +749,15 @@ read_scene(const std::string &file)
           lc.cells.cells_along  = prm.get_integer("cells along");
           lc.cells.gap_band     = prm.get_double("gap band") * 1e-6;
           lc.measured           = prm.get_bool("measured flanks");
+          for (const std::string &i : split_list(prm.get("reference positions")))
+            {
+              lc.reference_positions.push_back(std::stoi(i));
+              if (lc.reference_positions.back() >= lc.positions)
+                throw InputError("Loaded contact/" + p + "/reference positions: " + i +
+                                 " is not a position of the mesh cycle (allowed: 0 to " +
+                                 std::to_string(lc.positions - 1) + ")");
+            }
+          lc.reference_elements_per_cell = prm.get_double("reference elements per cell");
           prm.leave_subsection();
           prm.leave_subsection();
           check_pair(pair);

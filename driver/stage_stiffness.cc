@@ -7,6 +7,7 @@
 #include "measured_flank.h"
 #include "member_compliance.h"
 #include "pair_members.h"
+#include "reference_contact.h"
 #include "stages.h"
 
 #include <algorithm>
@@ -231,8 +232,77 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.covered = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
       const H5Group g    = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
-      const double eps = analyse(
-          UnloadedTca(members.pinion, members.gear, members.assembly, tca.options), lo, g, "");
+      const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
+      const double      eps = analyse(theory, lo, g, "");
+
+      if (!lc.reference_positions.empty())
+        {
+          // Reference mode at the chosen positions on the compliance stage's segments; VTU
+          // files next to the stage's cache file (the driver copies them to <output>/vtu/).
+          std::string cache = out.file_name(); // <cache>/stiffness-<key>.h5.tmp while running
+          if (cache.size() > 4 && cache.substr(cache.size() - 4) == ".tmp")
+            cache.resize(cache.size() - 4);
+          const std::filesystem::path vtu =
+              std::filesystem::path(cache).replace_extension("").string() + "-vtu";
+          std::filesystem::create_directories(vtu);
+          ReferenceContactOptions ro;
+          ro.cells             = lo;
+          ro.cells.covered     = nullptr;
+          ro.degree            = fe.degree;
+          ro.hold_cuts         = fe.hold_cuts;
+          ro.elements_per_cell = lc.reference_elements_per_cell;
+          ro.work_directory    = vtu.string();
+          auto segment = [&](const char *member) {
+            const H5Group m = cg.group(member);
+            return SegmentChoice{int(m.read_doubles("central_tooth").front()),
+                                 int(m.read_ints("teeth").size())};
+          };
+          ro.pinion_segment = segment("pinion"), ro.gear_segment = segment("gear");
+          ro.flank_size     = fe.flank_size * pair.pinion.normal_module;
+          ro.far_size       = fe.far_size * pair.pinion.normal_module;
+          const std::size_t P = lc.reference_positions.size(), M = lc.torques.size();
+          std::vector<double> phi, eL, K, F, dofs, seconds;
+          for (std::size_t k = 0; k < P; ++k)
+            {
+              const int i = lc.reference_positions[k];
+              ro.vtu_prefix =
+                  (vtu / (pair.name + "_position" + std::to_string(i))).string();
+              ReferenceContactInfo info;
+              const std::vector<LoadedPosition> r = reference_contact(
+                  *pinion, *gear, theory,
+                  theory.at(tca.options.start_angle + 2 * pi / pinion->teeth() * i / lc.positions),
+                  lc.torques, ro, &info);
+              phi.push_back(r.front().pinion_angle);
+              for (const LoadedPosition &p : r)
+                eL.push_back(p.eL), K.push_back(p.mesh_stiffness), F.push_back(p.normal_force);
+              dofs.push_back(double(info.dofs));
+              seconds.push_back(info.mesh_seconds + info.solve_seconds + info.contact_seconds);
+              log << "  " << pair.name << " reference mode, position " << i << ": K_m";
+              for (const LoadedPosition &p : r)
+                log << " " << p.mesh_stiffness << " N/m";
+              log << " (" << info.dofs << " dofs, " << seconds.back() << " s)\n";
+            }
+          // stored position-major: [position][torque]; transposed to the fast mode's layout
+          auto by_torque = [&](const std::vector<double> &v) {
+            std::vector<double> t(v.size());
+            for (std::size_t k = 0; k < P; ++k)
+              for (std::size_t m = 0; m < M; ++m)
+                t[m * P + k] = v[k * M + m];
+            return t;
+          };
+          const H5Group rg = g.group("reference");
+          rg.attribute("method", "reference mode: both members meshed per position, graded to "
+                                 "the contact lines, finite elements alone");
+          rg.write("position", lc.reference_positions, {P}, "1",
+                   "index of the position in the mesh cycle");
+          rg.write("pinion_angle", phi, {P}, "rad", "pinion rotation phi");
+          rg.write("transmission_error_loaded", by_torque(eL), {M, P}, "rad",
+                   "e_L per torque and position (pinion radians, gear held)");
+          rg.write("mesh_stiffness", by_torque(K), {M, P}, "N/m", "K_m = F / (lambda (e_L - e_0))");
+          rg.write("normal_force", by_torque(F), {M, P}, "N", "total normal force F");
+          rg.write("dofs", dofs, {P}, "1", "degrees of freedom of both members");
+          rg.write("seconds", seconds, {P}, "s", "mesh, assembly, factorisation, solves");
+        }
 
       // ISO 6336-1 method B beside it (the standard's yardstick).
       IsoStiffnessInput iso;

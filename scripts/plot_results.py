@@ -384,6 +384,12 @@ def plot_stiffness(st, flanks, out_dir):
             for k, t in enumerate(torques):
                 ax.plot(x, grp["mesh_stiffness"][k] * 1e-6, style, color=colours[k],
                         label=f"{label}, {t:g} N m")
+        if "reference" in g:  # reference mode at a few positions, as markers
+            ref = g["reference"]
+            xr = ref["pinion_angle"][()] / (2 * np.pi / z1) if z1 else ref["pinion_angle"][()]
+            for k, t in enumerate(torques):
+                ax.plot(xr, ref["mesh_stiffness"][k] * 1e-6, "s", ms=7, mfc="none",
+                        color=colours[k], label=f"reference mode, {t:g} N m")
         for key, ls in (("iso_c_prime", ":"), ("iso_c_gamma_alpha", "-.")):
             ax.axhline(g[key][()] * 1e-6, color="k", ls=ls, lw=1,
                        label=key.replace("iso_", "ISO 6336 ").replace("_", " ") + " x b")

@@ -198,7 +198,7 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
             std::vector<PatchLoad> loads = member_loads[member];
             for (Eigen::Index i = 0; i < n; ++i)
               loads[i].force *= results.back().force[i];
-            bodies[member]->write_vtu(loads, o.vtu_prefix + "_" + std::to_string(k) +
+            bodies[member]->write_vtu(loads, o.vtu_prefix + "_torque" + std::to_string(k) +
                                                  (member == 0 ? "_pinion.vtu" : "_gear.vtu"));
           }
     }

@@ -35,7 +35,7 @@ struct ReferenceContactOptions
   double      flank_size = 0, far_size = 0; ///< segment sizes away from the contact [m]; 0: m/5, m
   int         layers_per_cell = 1;          ///< face layers per cell along the contact line
   std::string work_directory;               ///< meshes are written here
-  std::string vtu_prefix; ///< non-empty: <prefix>_<k>_{pinion,gear}.vtu per torque
+  std::string vtu_prefix; ///< non-empty: <prefix>_torque<k>_{pinion,gear}.vtu
 };
 
 struct ReferenceContactInfo

@@ -7,7 +7,7 @@
 //          [cells across = 17] [cells along = 14] [fast flank size / m_n = 0.2]
 //          [segment teeth = 3] [first position = 0] [last position = positions - 1]
 //          [fast grid n_u = 9] [n_v = 7] [reference flank size / m_n = 0.2] [reference: 1|0]
-//          [fast response depth in elements = 3]
+//          [fast response depth in elements = 3] [fast other flanks and fillets size / m_n = same]
 #include "../tests/fzg_c_pair.h"
 #include "loaded_contact.h"
 #include "member_compliance.h"
@@ -52,6 +52,7 @@ main(int argc, char **argv)
   const double ref_size  = argc > 13 ? std::atof(argv[13]) : 0.2;
   const bool   reference = argc > 14 ? std::atoi(argv[14]) != 0 : true;
   const double depth     = argc > 15 ? std::atof(argv[15]) : 3;
+  const double other     = argc > 16 ? std::atof(argv[16]) : 0;
   try
     {
       const auto [pd, gd]      = test_data::fzg_c_pair();
@@ -77,7 +78,8 @@ main(int argc, char **argv)
         o.mesh.flank_size = fast_size * g.data().normal_module;
         o.material = steel, o.work_directory = dir;
         o.n_u = n_u, o.n_v = n_v;
-        o.depth_elements = depth;
+        o.depth_elements  = depth;
+        o.mesh.other_size = other * g.data().normal_module;
         return involute_member_compliance(g, f, o);
       };
       const FlankCompliance cp        = member(*pinion, *pf, segments.first);

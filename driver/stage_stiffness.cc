@@ -32,6 +32,7 @@ member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side,
   o.hold_cuts          = fe.hold_cuts;
   o.mesh.flank_size    = fe.flank_size * g.data().normal_module;
   o.mesh.far_size      = fe.far_size * g.data().normal_module;
+  o.mesh.other_size    = fe.other_size * g.data().normal_module;
   o.degree             = fe.degree;
   o.material           = fe.material;
   o.side               = side;

@@ -5,10 +5,11 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace gearkit
 {
@@ -47,7 +48,8 @@ public:
   explicit SectionBuilder(double z0)
       : z0(z0)
       , centre(gmsh::model::geo::addPoint(0, 0, z0))
-  {}
+  {
+  }
 
   int
   point(const Vec2 &p)
@@ -58,9 +60,9 @@ public:
   void
   arc(int a, const Vec2 &pa, int b, const Vec2 &pb, int group)
   {
-    const double a0 = std::atan2(pa.y(), pa.x());
-    double       da = std::atan2(pb.y(), pb.x()) - a0;
-    da              = std::remainder(da, 2 * pi);
+    const double a0     = std::atan2(pa.y(), pa.x());
+    double       da     = std::atan2(pb.y(), pb.x()) - a0;
+    da                  = std::remainder(da, 2 * pi);
     const int    pieces = int(std::ceil(std::abs(da) / (pi / 3)));
     const double r      = pa.norm();
     int          from   = a;
@@ -117,7 +119,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   const std::vector<Vec2> half = gear.half_tooth_profile(n);
   const std::vector<Vec2> fillet(half.begin() + n, half.begin() + 2 * n + 1); // to the form point
   const std::vector<Vec2> involute(half.begin() + 2 * n, half.begin() + 3 * n + 1);
-  auto mirror = [](std::vector<Vec2> c) {
+  auto                    mirror = [](std::vector<Vec2> c) {
     for (Vec2 &p : c)
       p.y() = -p.y();
     return c;
@@ -129,10 +131,10 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     return out;
   };
 
-  const double dphi  = gear.helix_sign * std::tan(d.helix_angle) / gear.reference_radius;
-  const double phi0  = -dphi * b / 2; // the section at z = -b/2
-  const double pitch = 2 * pi / z;
-  const int    half_n = (o.teeth - 1) / 2;
+  const double dphi    = gear.helix_sign * std::tan(d.helix_angle) / gear.reference_radius;
+  const double phi0    = -dphi * b / 2; // the section at z = -b/2
+  const double pitch   = 2 * pi / z;
+  const int    half_n  = (o.teeth - 1) / 2;
   const double a_start = phi0 + pitch * (o.central_tooth - half_n) - pitch / 2;
   const double a_end   = a_start + pitch * o.teeth;
   const double ri = info.rim_inner_radius, rf = gear.root_radius;
@@ -143,7 +145,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   const Vec2 root_end = polar(rf, a_end), bore_end = polar(ri, a_end);
   const int  p_bore_start = s.point(bore_start), p_root_start = s.point(root_start);
   s.line(p_bore_start, p_root_start, boundary::cut_start);
-  int  previous = p_root_start;
+  int  previous    = p_root_start;
   Vec2 previous_xy = root_start;
   for (int i = 0; i < o.teeth; ++i)
     {
@@ -154,7 +156,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       const Vec2 c0 = rotate(coast_fillet.front(), a), c1 = rotate(coast_fillet.back(), a);
       const Vec2 c2 = rotate(coast_involute.back(), a);
       const Vec2 d2 = rotate(involute.back(), a), d1 = rotate(fillet.back(), a);
-      const Vec2 d0 = rotate(fillet.front(), a);
+      const Vec2 d0  = rotate(fillet.front(), a);
       const int  pc0 = s.point(c0), pc1 = s.point(c1), pc2 = s.point(c2);
       const int  pd2 = s.point(d2), pd1 = s.point(d1), pd0 = s.point(d0);
       s.arc(previous, previous_xy, pc0, c0, boundary::free);
@@ -174,18 +176,34 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   const int section = gmsh::model::geo::addPlaneSurface({loop});
   gmsh::model::geo::synchronize();
 
-  // Fine at the flanks and fillets, coarse toward the bore: a distance threshold field.
-  const int distance = gmsh::model::mesh::field::add("Distance");
-  gmsh::model::mesh::field::setNumbers(distance, "CurvesList",
-                                       std::vector<double>(s.fine.begin(), s.fine.end()));
-  gmsh::model::mesh::field::setNumber(distance, "NumPointsPerCurve", 4 * n);
-  const int threshold = gmsh::model::mesh::field::add("Threshold");
-  gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
-  gmsh::model::mesh::field::setNumber(threshold, "SizeMin", 2 * flank_size);
-  gmsh::model::mesh::field::setNumber(threshold, "SizeMax", 2 * far_size);
-  gmsh::model::mesh::field::setNumber(threshold, "DistMin", flank_size);
-  gmsh::model::mesh::field::setNumber(threshold, "DistMax", 2 * mn);
-  std::vector<double> fields{double(threshold)};
+  // Fine at the flanks and fillets, coarse toward the bore: distance threshold fields, the
+  // loaded side's flanks at the flank size, the other flanks and the fillets at theirs.
+  const double        other_size = o.other_size > 0 ? o.other_size : flank_size;
+  std::vector<double> loaded, others;
+  for (std::size_t c = 0; c < s.curves.size(); ++c)
+    if (std::find(s.fine.begin(), s.fine.end(), s.curves[c]) != s.fine.end())
+      {
+        bool on_loaded = false;
+        for (int i = 0; i < o.teeth; ++i)
+          on_loaded = on_loaded || s.groups[c] == boundary::flank(i, o.fine_side);
+        (on_loaded || other_size == flank_size ? loaded : others).push_back(s.curves[c]);
+      }
+  std::vector<double> fields;
+  auto                threshold_about = [&](const std::vector<double> &curves, double size) {
+    const int distance = gmsh::model::mesh::field::add("Distance");
+    gmsh::model::mesh::field::setNumbers(distance, "CurvesList", curves);
+    gmsh::model::mesh::field::setNumber(distance, "NumPointsPerCurve", 4 * n);
+    const int threshold = gmsh::model::mesh::field::add("Threshold");
+    gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
+    gmsh::model::mesh::field::setNumber(threshold, "SizeMin", 2 * size);
+    gmsh::model::mesh::field::setNumber(threshold, "SizeMax", 2 * far_size);
+    gmsh::model::mesh::field::setNumber(threshold, "DistMin", size);
+    gmsh::model::mesh::field::setNumber(threshold, "DistMax", 2 * mn);
+    fields.push_back(threshold);
+  };
+  threshold_about(loaded, flank_size);
+  if (!others.empty())
+    threshold_about(others, other_size);
   for (const Vec2 &c : o.refine_points)
     {
       std::ostringstream distance_to;
@@ -208,7 +226,8 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.Algorithm", 6); // frontal-Delaunay (8 crashes with a background field in gmsh 4.8)
+  gmsh::option::setNumber("Mesh.Algorithm",
+                          6); // frontal-Delaunay (8 crashes with a background field in gmsh 4.8)
   gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1); // blossom
   // Every element is split into hexahedra at the end (the prisms the recombination's left-over
   // triangles extrude into as well): all-hexahedral. The sizes and layers given to gmsh are
@@ -221,8 +240,8 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   if (dphi == 0)
     gmsh::model::geo::extrude({{2, section}}, 0, 0, b, out, {(layers + 1) / 2}, {}, true);
   else
-    gmsh::model::geo::twist({{2, section}}, 0, 0, 0, 0, 0, b, 0, 0, 1, dphi * b, out, {(layers + 1) / 2},
-                            {}, true);
+    gmsh::model::geo::twist({{2, section}}, 0, 0, 0, 0, 0, b, 0, 0, 1, dphi * b, out,
+                            {(layers + 1) / 2}, {}, true);
   gmsh::model::geo::synchronize();
   const int top = out[0].second, volume = out[1].second;
 
@@ -233,14 +252,20 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   auto name = [&](int id) -> std::string {
     switch (id)
       {
-        case boundary::bore: return "bore";
-        case boundary::cut_start: return "cut_start";
-        case boundary::cut_end: return "cut_end";
-        case boundary::end_front: return "end_front";
-        case boundary::end_back: return "end_back";
-        case boundary::free: return "free";
-        default:
-          return "tooth" + std::to_string((id - 10) / 2) + ((id - 10) % 2 ? "_coast" : "_drive");
+      case boundary::bore:
+        return "bore";
+      case boundary::cut_start:
+        return "cut_start";
+      case boundary::cut_end:
+        return "cut_end";
+      case boundary::end_front:
+        return "end_front";
+      case boundary::end_back:
+        return "end_back";
+      case boundary::free:
+        return "free";
+      default:
+        return "tooth" + std::to_string((id - 10) / 2) + ((id - 10) % 2 ? "_coast" : "_drive");
       }
   };
   for (const auto &[id, surfaces] : groups)
@@ -259,23 +284,25 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   for (int i = 0; i < o.teeth; ++i)
     for (FlankSide side : {FlankSide::drive, FlankSide::coast})
       {
-        const double sign = side == FlankSide::drive ? 1 : -1;
-        const double a    = phi0 + pitch * (o.central_tooth - half_n + i);
+        const double             sign = side == FlankSide::drive ? 1 : -1;
+        const double             a    = phi0 + pitch * (o.central_tooth - half_n + i);
         std::vector<std::size_t> flank_nodes;
         std::vector<double>      xyz;
         gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes, xyz);
         for (std::size_t k = 0; k < flank_nodes.size(); ++k)
           {
-            const double r  = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
-            const double xi = std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
+            const double r = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
+            const double xi =
+                std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
             const double angle = a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
-            gmsh::model::mesh::setNode(flank_nodes[k], {r * std::cos(angle), r * std::sin(angle), zk}, {});
+            gmsh::model::mesh::setNode(flank_nodes[k],
+                                       {r * std::cos(angle), r * std::sin(angle), zk}, {});
           }
       }
 
   // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b.
   const double outline_area = polygon_moments(gear.transverse_outline(400)).area;
-  info.analytic_volume = b * double(o.teeth) / z * (outline_area - pi * ri * ri);
+  info.analytic_volume      = b * double(o.teeth) / z * (outline_area - pi * ri * ri);
 
   write_mesh_atomically(path);
 
@@ -312,6 +339,7 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
   check(o.flank_size >= 0 && o.far_size >= 0 && o.face_layers >= 0, "element size / layers",
         std::min({o.flank_size, o.far_size, double(o.face_layers)}), "values >= 0 (0 = default)");
   check(o.curve_points >= 4, "curve points", o.curve_points, ">= 4");
+  check(o.other_size >= 0, "other element size", o.other_size, ">= 0 (0 = the flank size)");
   if (!o.refine_points.empty())
     {
       check(d.helix_angle == 0, "refinement points (helix angle)", d.helix_angle,
@@ -325,17 +353,17 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
         "none (the mesh is built from the nominal section)");
 
   SegmentMeshInfo info;
-  info.rim_inner_radius = o.rim_inner_radius > 0     ? o.rim_inner_radius
-                          : d.bore_diameter > 0 ? d.bore_diameter / 2
-                                                : gear.root_radius - 3.5 * mn;
+  info.rim_inner_radius = o.rim_inner_radius > 0 ? o.rim_inner_radius
+                          : d.bore_diameter > 0  ? d.bore_diameter / 2
+                                                 : gear.root_radius - 3.5 * mn;
   check(info.rim_inner_radius > 0 && info.rim_inner_radius < gear.root_radius - 0.5 * mn,
         "rim inner radius [mm]", info.rim_inner_radius * 1e3,
         "a radius in (0, root radius - m_n/2 = " +
             std::to_string((gear.root_radius - 0.5 * mn) * 1e3) + " mm)");
   const double flank_size = o.flank_size > 0 ? o.flank_size : mn / 5;
   const double far_size   = std::max(flank_size, o.far_size > 0 ? o.far_size : mn);
-  const int    layers     = o.face_layers > 0 ? o.face_layers
-                                              : std::max(2, int(std::lround(b / (2 * flank_size))));
+  const int    layers =
+      o.face_layers > 0 ? o.face_layers : std::max(2, int(std::lround(b / (2 * flank_size))));
 
   with_gmsh("tooth segment mesh",
             [&] { build_and_write(gear, o, path, info, flank_size, far_size, layers); });

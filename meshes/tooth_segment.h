@@ -39,6 +39,10 @@ struct SegmentMeshOptions
   /// 3.5 m_n below the root circle (ISO 6336 rim thickness).
   double rim_inner_radius = 0;
   double flank_size       = 0; ///< element size at the flanks and fillets [m]; 0 = m_n / 5
+  /// Element size at the fillets and the flanks of the side other than `fine_side` [m]; 0 = the
+  /// flank size. Only the loaded flanks need the fine elements for the compliance.
+  double    other_size = 0;
+  FlankSide fine_side  = FlankSide::drive;
   double far_size         = 0; ///< element size far from them [m]; 0 = m_n
   int    face_layers      = 0; ///< elements over the face width; 0 = b / (2 flank_size)
   int    curve_points     = 40; ///< spline points per fillet and per involute

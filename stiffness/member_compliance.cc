@@ -22,7 +22,7 @@ std::pair<SegmentChoice, SegmentChoice>
 loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, double gap_band)
 {
   auto choose = [&](bool pinion, int z) {
-    int  first = -1, lo = 0, hi = 0;
+    int first = -1, lo = 0, hi = 0;
     for (const TcaPosition &p : positions)
       for (const PairContact &c : p.pairs)
         if (c.found && c.separation <= gap_band)
@@ -50,24 +50,28 @@ FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &o, MemberComplianceInfo *info)
 {
-  MemberComplianceInfo local;
+  MemberComplianceInfo  local;
   MemberComplianceInfo &out = info ? *info : local;
   if (o.work_directory.empty() || !std::filesystem::is_directory(o.work_directory))
     throw InputError("member compliance: the work directory '" + o.work_directory +
                      "' does not exist");
   if (!(o.depth_elements > 0 && o.patch_elements > 0))
     throw InputError("member compliance: depth and patch radius (in element sizes) must be > 0");
-  auto t0 = std::chrono::steady_clock::now();
+  auto        t0   = std::chrono::steady_clock::now();
   std::string name = gear.data().name + "_segment";
-  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
-  const std::string mesh_file = (std::filesystem::path(o.work_directory) / (name + ".msh")).string();
-  const SegmentMeshInfo segment = write_tooth_segment_mesh(gear, o.mesh, mesh_file);
-  out.hexahedra    = segment.hexahedra;
-  out.mesh_seconds = seconds_since(t0);
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+  const std::string mesh_file =
+      (std::filesystem::path(o.work_directory) / (name + ".msh")).string();
+  SegmentMeshOptions mesh       = o.mesh;
+  mesh.fine_side                = o.side; // the loaded flanks get the flank element size
+  const SegmentMeshInfo segment = write_tooth_segment_mesh(gear, mesh, mesh_file);
+  out.hexahedra                 = segment.hexahedra;
+  out.mesh_seconds              = seconds_since(t0);
 
-  const double h      = o.mesh.flank_size > 0 ? o.mesh.flank_size : gear.data().normal_module / 5;
-  out.depth           = o.depth_elements * h;
-  out.patch_radius    = o.patch_elements * h;
+  const double h   = o.mesh.flank_size > 0 ? o.mesh.flank_size : gear.data().normal_module / 5;
+  out.depth        = o.depth_elements * h;
+  out.patch_radius = o.patch_elements * h;
   FlankGridSpec spec;
   spec.teeth = o.loaded_teeth.empty() ? segment.member_teeth : o.loaded_teeth;
   spec.side  = o.side;
@@ -90,15 +94,15 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
   out.dofs          = body.dofs();
   out.setup_seconds = seconds_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
-  const ElasticResponse solve = [&](const std::vector<FlankLoad> &loads,
+  t0                          = std::chrono::steady_clock::now();
+  const ElasticResponse solve = [&](const std::vector<FlankLoad>             &loads,
                                     const std::vector<std::pair<Vec3, Vec3>> &responses) {
     std::vector<PatchLoad> patches;
     for (const FlankLoad &l : loads)
       {
-        const int i = int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(),
-                                    l.tooth) -
-                          segment.member_teeth.begin());
+        const int i =
+            int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(), l.tooth) -
+                segment.member_teeth.begin());
         patches.push_back({l.point, l.direction, out.patch_radius, {boundary::flank(i, o.side)}});
       }
     std::vector<Probe> probes;

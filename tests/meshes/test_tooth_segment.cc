@@ -6,9 +6,8 @@
 #include "cylinder_slice.h"
 #include "tooth_segment.h"
 
-#include <gmsh.h>
-
 #include <Eigen/Dense>
+#include <gmsh.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -73,20 +72,20 @@ read(const std::string &path)
 std::pair<double, double>
 hex_volume_and_min_jacobian(const std::array<Vec3, 8> &x)
 {
-  static const int s[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                              {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  auto jacobian = [&](double a, double b, double c) {
+  static const int s[8][3]  = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                               {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  auto             jacobian = [&](double a, double b, double c) {
     Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
     for (int k = 0; k < 8; ++k)
       {
         const Vec3 g(s[k][0] * (1 + s[k][1] * b) * (1 + s[k][2] * c),
-                     s[k][1] * (1 + s[k][0] * a) * (1 + s[k][2] * c),
-                     s[k][2] * (1 + s[k][0] * a) * (1 + s[k][1] * b));
+                                 s[k][1] * (1 + s[k][0] * a) * (1 + s[k][2] * c),
+                                 s[k][2] * (1 + s[k][0] * a) * (1 + s[k][1] * b));
         J += x[k] * g.transpose() / 8;
       }
     return J.determinant();
   };
-  const double g = 1 / std::sqrt(3.0);
+  const double g      = 1 / std::sqrt(3.0);
   double       volume = 0, min_j = HUGE_VAL;
   for (int k = 0; k < 8; ++k)
     {
@@ -105,11 +104,11 @@ TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
 {
   for (double beta : {0.0, 15 * pi / 180})
     {
-      const auto gear = InvoluteGear::create(test_data::fzg_c_pair(beta).first);
+      const auto         gear = InvoluteGear::create(test_data::fzg_c_pair(beta).first);
       SegmentMeshOptions o;
-      o.teeth         = 3;
-      o.central_tooth = 0;
-      const std::string path = (dir / "segment.msh").string();
+      o.teeth                    = 3;
+      o.central_tooth            = 0;
+      const std::string     path = (dir / "segment.msh").string();
       const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
       EXPECT_TRUE(std::ifstream(path + ".json").good());
       EXPECT_EQ(info.member_teeth, (std::vector<int>{15, 0, 1}));
@@ -142,10 +141,12 @@ TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
             const InvoluteFlank f = gear->flank(info.member_teeth[i], side);
             for (std::size_t tag : m.group_nodes.at(id))
               {
-                const Vec3   x  = m.nodes.at(tag);
-                const double r  = std::hypot(x.x(), x.y());
-                const Vec3   p  = f.nominal(gear->roll_angle(std::max(r, gear->base_radius)), x.z()).position;
-                const double da = std::remainder(std::atan2(x.y(), x.x()) - std::atan2(p.y(), p.x()), 2 * pi);
+                const Vec3   x = m.nodes.at(tag);
+                const double r = std::hypot(x.x(), x.y());
+                const Vec3   p =
+                    f.nominal(gear->roll_angle(std::max(r, gear->base_radius)), x.z()).position;
+                const double da =
+                    std::remainder(std::atan2(x.y(), x.x()) - std::atan2(p.y(), p.x()), 2 * pi);
                 worst = std::max(worst, std::abs(da) * r);
               }
           }
@@ -155,8 +156,8 @@ TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
 
 TEST_F(ToothSegmentMesh, BadOptionsAreRejected)
 {
-  const auto gear = InvoluteGear::create(test_data::fzg_c_pair().first);
-  const std::string path = (dir / "bad.msh").string();
+  const auto         gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  const std::string  path = (dir / "bad.msh").string();
   SegmentMeshOptions o;
   o.teeth = 2;
   EXPECT_THROW(write_tooth_segment_mesh(*gear, o, path), InputError);
@@ -174,22 +175,23 @@ TEST_F(ToothSegmentMesh, GradedTowardTheFlanks)
   const std::string out = env ? env : dir.string();
   for (double beta : {0.0, 15 * pi / 180})
     {
-      const auto gear = InvoluteGear::create(test_data::fzg_c_pair(beta).second);
+      const auto         gear = InvoluteGear::create(test_data::fzg_c_pair(beta).second);
       SegmentMeshOptions o;
-      o.teeth = 5;
+      o.teeth                = 5;
       const std::string path = out + (beta == 0 ? "/fzg_gear_spur.msh" : "/fzg_gear_helical.msh");
-      const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
-      const MeshFile m = read(path);
-      double flank_volume = 0, bore_volume = 0;
-      int    flank_cells = 0, bore_cells = 0;
-      const std::set<std::size_t> flank_nodes(m.group_nodes.at(boundary::flank(2, FlankSide::drive)).begin(),
-                                              m.group_nodes.at(boundary::flank(2, FlankSide::drive)).end());
+      const SegmentMeshInfo       info         = write_tooth_segment_mesh(*gear, o, path);
+      const MeshFile              m            = read(path);
+      double                      flank_volume = 0, bore_volume = 0;
+      int                         flank_cells = 0, bore_cells = 0;
+      const std::set<std::size_t> flank_nodes(
+          m.group_nodes.at(boundary::flank(2, FlankSide::drive)).begin(),
+          m.group_nodes.at(boundary::flank(2, FlankSide::drive)).end());
       const std::set<std::size_t> bore_nodes(m.group_nodes.at(boundary::bore).begin(),
                                              m.group_nodes.at(boundary::bore).end());
       for (const auto &h : m.hexahedra)
         {
           std::array<Vec3, 8> x;
-          bool on_flank = false, on_bore = false;
+          bool                on_flank = false, on_bore = false;
           for (int k = 0; k < 8; ++k)
             {
               x[k] = m.nodes.at(h[k]);
@@ -218,12 +220,12 @@ TEST_F(ToothSegmentMesh, CylinderSlicesForHertz)
   for (bool upper : {true, false})
     {
       CylinderSliceOptions o;
-      o.upper = upper;
-      o.radius = upper ? 10e-3 : 15e-3;
+      o.upper        = upper;
+      o.radius       = upper ? 10e-3 : 15e-3;
       o.contact_size = 50e-6, o.fine_distance = 0.3e-3;
-      const std::string path = out + (upper ? "/cylinder_upper.msh" : "/cylinder_lower.msh");
+      const std::string       path = out + (upper ? "/cylinder_upper.msh" : "/cylinder_lower.msh");
       const CylinderSliceInfo info = write_cylinder_slice_mesh(o, path);
-      const MeshFile m = read(path);
+      const MeshFile          m    = read(path);
       ASSERT_EQ(m.hexahedra.size(), info.hexahedra);
       double volume = 0, min_j = HUGE_VAL, smallest = HUGE_VAL;
       for (const auto &h : m.hexahedra)
@@ -247,4 +249,43 @@ TEST_F(ToothSegmentMesh, CylinderSlicesForHertz)
           EXPECT_NEAR(std::hypot(x.x(), x.y() - (upper ? 1 : -1) * o.radius), o.radius, 1e-9);
         }
     }
+}
+
+TEST_F(ToothSegmentMesh, FineOnlyAtTheLoadedFlanks)
+{
+  // other_size: the coast flanks and fillets coarser than the drive flanks that carry load.
+  const auto         gear = InvoluteGear::create(test_data::fzg_c_pair().second);
+  SegmentMeshOptions o;
+  o.teeth = 3, o.flank_size = 0.1 * 4.5e-3, o.face_layers = 4;
+  const SegmentMeshInfo uniform =
+      write_tooth_segment_mesh(*gear, o, (dir / "uniform.msh").string());
+  o.other_size                      = 0.4 * 4.5e-3;
+  const std::string     path        = (dir / "loaded_fine.msh").string();
+  const SegmentMeshInfo info        = write_tooth_segment_mesh(*gear, o, path);
+  const MeshFile        m           = read(path);
+  auto                  mean_volume = [&](int group) {
+    const std::set<std::size_t> nodes(m.group_nodes.at(group).begin(),
+                                                       m.group_nodes.at(group).end());
+    double                      v = 0;
+    int                         n = 0;
+    for (const auto &h : m.hexahedra)
+      {
+        std::array<Vec3, 8> x;
+        bool                on = false;
+        for (int k = 0; k < 8; ++k)
+          x[k] = m.nodes.at(h[k]), on |= nodes.count(h[k]) > 0;
+        if (on)
+          v += hex_volume_and_min_jacobian(x).first, ++n;
+      }
+    return v / n;
+  };
+  // sizes 1:4 asked; the drive flank's grading reaches across the thin tooth, so the coast
+  // cells come out about 2.2 times larger in the section (same layers): volumes ~1:5
+  EXPECT_GT(mean_volume(boundary::flank(1, FlankSide::coast)),
+            3 * mean_volume(boundary::flank(1, FlankSide::drive)));
+  EXPECT_LT(info.hexahedra, uniform.hexahedra * 2 / 3);
+  EXPECT_NEAR(info.analytic_volume, uniform.analytic_volume, 1e-15);
+  SegmentMeshOptions bad = o;
+  bad.other_size         = -1;
+  EXPECT_THROW(write_tooth_segment_mesh(*gear, bad, path), InputError);
 }

@@ -26,6 +26,7 @@
 
 #include <petscksp.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -122,6 +123,8 @@ struct ElasticSegment::Impl
   {}
 
   /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
+  void
+  set_rigid_body_near_null_space();
   void
   local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell, FEValues<3> &values,
                FullMatrix<double> &local) const;
@@ -292,7 +295,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
                 d.JxW.push_back(face_values.JxW(q));
                 for (unsigned i = 0; i < n; ++i)
                   {
-                    std::array<double, 3> s{0, 0, 0};
+                    std::array<double, 3> s{{0, 0, 0}};
                     s[m.fe.system_to_component_index(i).first] = face_values.shape_value(i, q);
                     d.shape.push_back(s);
                   }
@@ -315,8 +318,74 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   petsc_check(KSPSetOptionsPrefix(m.ksp, "gearkit_"), "KSPSetOptionsPrefix");
   petsc_check(KSPSetTolerances(m.ksp, 1e-12, 1e-50, PETSC_DEFAULT, 10000), "KSPSetTolerances");
   petsc_check(KSPSetFromOptions(m.ksp), "KSPSetFromOptions");
+  PCType chosen;
+  petsc_check(PCGetType(pc, &chosen), "PCGetType");
+  if (std::string(chosen) == PCGAMG || std::string(chosen) == PCML)
+    m.set_rigid_body_near_null_space();
   petsc_check(KSPSetUp(m.ksp), "KSPSetUp (factorisation: is the body held?)");
   m.factor_seconds = timer.wall_time();
+}
+
+void
+ElasticSegment::Impl::set_rigid_body_near_null_space()
+{
+  // Smoothed-aggregation multigrid needs the six rigid-body motions of elasticity (three
+  // translations, three rotations about the centroid) to build coarse spaces that converge
+  // independently of the mesh; without them GAMG takes hundreds of iterations on a cantilever.
+  std::map<types::global_dof_index, Point<3>> support;
+  DoFTools::map_dofs_to_support_points(mapping, dofs, support);
+  Point<3> centre;
+  for (const auto &[index, x] : support)
+    centre += x / double(support.size());
+  std::array<Vec, 6> modes;
+  for (auto &mode : modes)
+    petsc_check(MatCreateVecs(K, &mode, nullptr), "MatCreateVecs");
+  std::map<types::global_dof_index, unsigned> component;
+  std::vector<types::global_dof_index>        indices(fe.n_dofs_per_cell());
+  for (const auto &cell : dofs.active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        cell->get_dof_indices(indices);
+        for (unsigned i = 0; i < indices.size(); ++i)
+          component[indices[i]] = fe.system_to_component_index(i).first;
+      }
+  for (const auto &[index, x] : support)
+    if (owned.is_element(index))
+      {
+        const unsigned     c = component.at(index);
+        const Tensor<1, 3> r = x - centre;
+        // rotation k: component c of e_k x r
+        const double values[6] = {c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0,
+                                  c == 1 ? -r[2] : c == 2 ? r[1] : 0.0,
+                                  c == 0 ? r[2] : c == 2 ? -r[0] : 0.0,
+                                  c == 0 ? -r[1] : c == 1 ? r[0] : 0.0};
+        for (unsigned k = 0; k < 6; ++k)
+          petsc_check(VecSetValue(modes[k], PetscInt(index), values[k], INSERT_VALUES),
+                      "VecSetValue");
+      }
+  for (auto &mode : modes)
+    {
+      petsc_check(VecAssemblyBegin(mode), "VecAssemblyBegin");
+      petsc_check(VecAssemblyEnd(mode), "VecAssemblyEnd");
+    }
+  // MatNullSpaceCreate wants an orthonormal set: modified Gram-Schmidt.
+  for (unsigned k = 0; k < 6; ++k)
+    {
+      for (unsigned j = 0; j < k; ++j)
+        {
+          PetscScalar dot;
+          petsc_check(VecDot(modes[k], modes[j], &dot), "VecDot");
+          petsc_check(VecAXPY(modes[k], -dot, modes[j]), "VecAXPY");
+        }
+      petsc_check(VecNormalize(modes[k], nullptr), "VecNormalize");
+    }
+  MatNullSpace space;
+  petsc_check(MatNullSpaceCreate(comm, PETSC_FALSE, 6, modes.data(), &space),
+              "MatNullSpaceCreate");
+  petsc_check(MatSetNearNullSpace(K, space), "MatSetNearNullSpace");
+  petsc_check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
+  for (auto &mode : modes)
+    petsc_check(VecDestroy(&mode), "VecDestroy");
 }
 
 void
@@ -364,6 +433,18 @@ double
 ElasticSegment::factorisation_seconds() const
 {
   return impl->factor_seconds;
+}
+
+std::string
+ElasticSegment::solver() const
+{
+  KSPType ksp_type;
+  PC      pc;
+  PCType  pc_type;
+  petsc_check(KSPGetType(impl->ksp, &ksp_type), "KSPGetType");
+  petsc_check(KSPGetPC(impl->ksp, &pc), "KSPGetPC");
+  petsc_check(PCGetType(pc, &pc_type), "PCGetType");
+  return std::string(ksp_type) + "/" + pc_type;
 }
 
 PETScWrappers::MPI::Vector
@@ -648,7 +729,7 @@ ElasticSegment::response(const std::vector<PatchLoad> &loads, const std::vector<
                 }
           }
       // each rank sums its own cells' parts; the ranks' sums add up
-      std::array<double, 3> sum{0, 0, 0};
+      std::array<double, 3> sum{{0, 0, 0}};
       for (const auto &[dof, h] : held)
         sum[h.first] += h.second;
       Utilities::MPI::sum(ArrayView<const double>(sum.data(), 3), m.comm,

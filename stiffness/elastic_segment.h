@@ -87,6 +87,10 @@ public:
   dofs() const;
   double
   factorisation_seconds() const;
+  /// The PETSc solver in use, "<ksp type>/<pc type>": "preonly/cholesky" unless run-time
+  /// options chose another (e.g. "cg/gamg").
+  std::string
+  solver() const;
 
 private:
   struct Impl;

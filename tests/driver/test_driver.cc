@@ -44,15 +44,6 @@ protected:
   std::ostringstream out, err;
 };
 
-std::string
-read_text(const std::string &path)
-{
-  std::ifstream      in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 const std::string small_scene = R"(
 subsection Scene
   set name    = small
@@ -451,8 +442,12 @@ TEST_F(DriverTest, HuntingCycleSpectrumShowsShaftOrdersOfAnEccentricTooth)
   for (int order : {1, 2, 15, 17})
     EXPECT_GT(eccentric[3 * order], 1e-8) << order;
   for (std::size_t k = 0; k < eccentric.size(); ++k)
-    if (k % 3 != 0)
-      EXPECT_LT(eccentric[k], 1e-12) << k;
+    {
+      if (k % 3 != 0)
+        {
+          EXPECT_LT(eccentric[k], 1e-12) << k;
+        }
+    }
   // The same on a gear tooth repeats every gear revolution, pinion order 16/24 = 2/3.
   const std::vector<double> gear_tooth = spectrum(std::regex_replace(
       text, std::regex("set number of teeth = 24\n"),

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -184,4 +185,16 @@ TEST(ElasticSegment, BadInputIsRefused)
               << e.what();
         }
     }
+}
+
+TEST(ElasticSegment, SolverFromTheRunTimeOptions)
+{
+  // The direct Cholesky by default; CTest runs this again with PETSC_OPTIONS choosing CG with
+  // algebraic multigrid and GEARKIT_EXPECT_SOLVER naming it (test stiffness_petsc_iterative),
+  // together with the patch test and the cantilever, which then run on the iterative solver.
+  ElasticSegmentOptions o;
+  o.clamped = {1};
+  const ElasticSegment body(box("solver", Vec3(1e-2, 1e-2, 1e-2), 2, 2, 2), o);
+  const char *expected = std::getenv("GEARKIT_EXPECT_SOLVER");
+  EXPECT_EQ(body.solver(), expected ? expected : "preonly/cholesky");
 }

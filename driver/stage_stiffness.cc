@@ -99,11 +99,16 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
           m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
           m.write("dofs", double(info.dofs), "1", "degrees of freedom");
           m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
+          m.write("shallow_points", double(info.shallow_points), "1",
+                  "grid points read at half the chord through the tooth (thinner than twice "
+                  "the response depth there)");
+          m.write("min_response_depth", info.min_depth, "m", "smallest response depth used");
           m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
                   "mesh, assembly, factorisation and unit-load solves");
           log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << ": "
               << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n
-              << " unit loads, " << info.mesh_seconds + info.setup_seconds + info.solve_seconds
+              << " unit loads (" << info.shallow_points << " read shallower), "
+              << info.mesh_seconds + info.setup_seconds + info.solve_seconds
               << " s\n";
         }
     }
@@ -223,8 +228,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         g.write("peak_pressure", peak, {M, N}, "Pa", "largest cell pressure");
         g.write("contact_cells", cells_out, {M, N, C, 4}, "mixed",
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
-        g.write("mean_pairs_in_contact", touching / n, "1", "unloaded contact ratio");
-        return touching / n;
+        g.write("mean_pairs_in_contact", touching / n, "1",
+                "unloaded contact ratio (eps_gamma for conjugate flanks)");
       };
 
       LoadedContactOptions lo;
@@ -234,7 +239,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const H5Group g    = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
       const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
-      const double      eps = analyse(theory, lo, g, "");
+      analyse(theory, lo, g, "");
 
       if (!lc.reference_positions.empty())
         {
@@ -313,7 +318,10 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       iso.base_helix_angle = pinion->base_helix_angle;
       iso.pressure_angle   = pair.pinion.normal_pressure_angle;
       iso.dedendum_factor  = pair.pinion.dedendum_factor;
-      iso.transverse_contact_ratio = eps;
+      const ContactRatios ratios = contact_ratios(*pinion, *gear, members.centre_distance);
+      iso.transverse_contact_ratio = ratios.transverse;
+      g.write("transverse_contact_ratio", ratios.transverse, "1", "eps_alpha of the geometry");
+      g.write("overlap_ratio", ratios.overlap, "1", "eps_beta of the geometry");
       const IsoMeshStiffness s = iso6336_mesh_stiffness(iso);
       const double           b = std::min(pair.pinion.face_width, pair.gear.face_width);
       g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",

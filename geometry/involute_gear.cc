@@ -519,6 +519,25 @@ working_centre_distance(const InvoluteGear &p, const InvoluteGear &g)
   return (p.base_radius + g.base_radius) / std::cos(working_pressure_angle(p, g));
 }
 
+ContactRatios
+contact_ratios(const InvoluteGear &p, const InvoluteGear &g, double a)
+{
+  const double rb = p.base_radius + g.base_radius;
+  if (!(a > rb))
+    throw InputError("contact ratio: centre distance " + std::to_string(a * 1e3) +
+                     " mm is not above the sum of the base radii " + std::to_string(rb * 1e3) +
+                     " mm");
+  auto path = [](double ra, double rb_) { return std::sqrt(ra * ra - rb_ * rb_); };
+  const double sin_alpha = std::sqrt(1 - (rb / a) * (rb / a));
+  ContactRatios c;
+  c.transverse = (path(p.tip_radius, p.base_radius) + path(g.tip_radius, g.base_radius) -
+                  a * sin_alpha) /
+                 p.transverse_base_pitch;
+  c.overlap = std::min(p.data().face_width, g.data().face_width) *
+              std::sin(p.data().helix_angle) / (pi * p.data().normal_module);
+  return c;
+}
+
 FlankGrid
 sample_flank(const Flank &flank, int n_u, int n_v, double margin)
 {

@@ -206,6 +206,17 @@ working_pressure_angle(const InvoluteGear &pinion, const InvoluteGear &gear);
 double
 working_centre_distance(const InvoluteGear &pinion, const InvoluteGear &gear);
 
+/// Contact ratios of an external pair at centre distance a: transverse eps_alpha =
+/// (sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin(alpha_wt)) / p_bt with
+/// cos(alpha_wt) = (r_b1 + r_b2) / a, and overlap eps_beta = b sin(beta) / (pi m_n) over the
+/// common face width b. Throws InputError when the pair cannot mesh at a (a < r_b1 + r_b2).
+struct ContactRatios
+{
+  double transverse = 0, overlap = 0;
+};
+ContactRatios
+contact_ratios(const InvoluteGear &pinion, const InvoluteGear &gear, double centre_distance);
+
 /// A sampled flank: n_u x n_v points stored row-major, index i_u * n_v + i_v.
 struct FlankGrid
 {

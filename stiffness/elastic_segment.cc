@@ -22,6 +22,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <petscksp.h>
@@ -85,9 +86,9 @@ private:
 
 struct ElasticSegment::Impl
 {
-  MPI_Comm                                  comm = MPI_COMM_WORLD;
+  MPI_Comm                                  comm;
   ElasticSegmentOptions                     options;
-  parallel::distributed::Triangulation<3>   tria{MPI_COMM_WORLD};
+  parallel::distributed::Triangulation<3>   tria;
   FESystem<3>                               fe;
   DoFHandler<3>                             dofs;
   MappingQ1<3>                              mapping;
@@ -118,13 +119,16 @@ struct ElasticSegment::Impl
   /// then do not jump with where its edge falls between the Gauss points).
   std::unique_ptr<FEFaceValues<3>> fine_face_values;
 
-  explicit Impl(unsigned degree)
-      : fe(FE_Q<3>(degree), 3)
+  Impl(unsigned degree, MPI_Comm communicator)
+      : comm(communicator)
+      , tria(communicator)
+      , fe(FE_Q<3>(degree), 3)
   {}
 
-  /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
+  /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
   set_rigid_body_near_null_space();
+  /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
   void
   local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell, FEValues<3> &values,
                FullMatrix<double> &local) const;
@@ -158,7 +162,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     throw InputError("elastic segment: the material needs E > 0 and Poisson's ratio in (-1, 0.5)");
   if (!std::ifstream(file).good())
     throw InputError("elastic segment: cannot read the mesh file " + file);
-  impl          = std::make_unique<Impl>(o.degree);
+  impl          = std::make_unique<Impl>(o.degree, o.communicator);
   Impl &m       = *impl;
   m.options     = o;
   const double E = o.material.youngs_modulus, nu = o.material.poisson_ratio;
@@ -433,6 +437,33 @@ double
 ElasticSegment::factorisation_seconds() const
 {
   return impl->factor_seconds;
+}
+
+std::vector<bool>
+ElasticSegment::contains(const std::vector<Vec3> &points) const
+{
+  // Candidates from the R-tree of the locally owned cells' bounding boxes, then the inverse
+  // mapping (cheaper than a cell search, which hunts widely before it gives up on a point
+  // outside the mesh).
+  namespace bgi = boost::geometry::index;
+  const auto           &tree = impl->cache_ptr->get_locally_owned_cell_bounding_boxes_rtree();
+  std::vector<unsigned> inside(points.size(), 0);
+  for (std::size_t j = 0; j < points.size(); ++j)
+    {
+      const Point<3> x = point(points[j]);
+      for (auto it = tree.qbegin(bgi::intersects(x)); it != tree.qend() && !inside[j]; ++it)
+        try
+          {
+            const Point<3> unit = impl->mapping.transform_real_to_unit_cell(it->second, x);
+            inside[j]           = GeometryInfo<3>::is_inside_unit_cell(unit, 1e-10);
+          }
+        catch (const std::exception &)
+          {
+            // the inverse mapping did not converge: not in this cell
+          }
+    }
+  Utilities::MPI::max(inside, impl->comm, inside);
+  return std::vector<bool>(inside.begin(), inside.end());
 }
 
 std::string

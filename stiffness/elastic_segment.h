@@ -13,6 +13,7 @@
 #include "types.h"
 
 #include <Eigen/Core>
+#include <mpi.h>
 
 #include <memory>
 #include <set>
@@ -29,6 +30,8 @@ struct ElasticSegmentOptions
   std::set<int> clamped;             ///< boundary ids held fixed (all components)
   /// (boundary id, component): one displacement component held (rollers, symmetry, plane strain)
   std::vector<std::pair<int, int>> rollers;
+  /// The processes that share the body (MPI_COMM_SELF: this process alone).
+  MPI_Comm communicator = MPI_COMM_WORLD;
 };
 
 /// A force F (vector) spread uniformly over the part of the boundary (ids `boundaries`) within
@@ -80,6 +83,10 @@ public:
   /// process with a .pvtu record when parallel), written via temporary names.
   void
   write_vtu(const std::vector<PatchLoad> &loads_together, const std::string &path) const;
+
+  /// For each point: does it lie in the body (on any process)? Collective.
+  std::vector<bool>
+  contains(const std::vector<Vec3> &points) const;
 
   std::size_t
   cells() const;

@@ -116,17 +116,29 @@ disk_load_displacement(double r, double z, double radius, const Material &materi
   return sum / (rings * angles);
 }
 
+Vec3
+response_offset(const FlankCompliance::Point &point)
+{
+  const Vec3 transverse(point.normal.x(), point.normal.y(), 0);
+  return -transverse / transverse.squaredNorm();
+}
+
 void
-fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
-                           const Material &material, double patch_radius)
+fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve,
+                           const std::vector<double> &depths, const Material &material,
+                           double patch_radius)
 {
   const auto                        &points = table.points();
   std::vector<FlankLoad>             loads;
   std::vector<std::pair<Vec3, Vec3>> responses;
-  for (const auto &p : points)
+  if (depths.size() != points.size())
+    throw InputError("flank compliance: " + std::to_string(depths.size()) +
+                     " response depths for " + std::to_string(points.size()) + " grid points");
+  for (std::size_t i = 0; i < points.size(); ++i)
     {
-      loads.push_back({p.tooth, p.position, -p.normal});
-      responses.emplace_back(p.position - depth * p.normal, -p.normal);
+      loads.push_back({points[i].tooth, points[i].position, -points[i].normal});
+      responses.emplace_back(points[i].position + depths[i] * response_offset(points[i]),
+                             -points[i].normal);
     }
   Eigen::MatrixXd D = solve(loads, responses);
   for (std::size_t i = 0; i < points.size(); ++i)

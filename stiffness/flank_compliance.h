@@ -88,13 +88,21 @@ struct FlankLoad
 using ElasticResponse = std::function<Eigen::MatrixXd(
     const std::vector<FlankLoad> &loads, const std::vector<std::pair<Vec3, Vec3>> &responses)>;
 
-/// Fills the table from unit normal loads at the grid points, read `depth` below the flank
-/// along the normal; the half-space displacement at that depth of the load as applied (a unit
-/// force spread uniformly over a disk of `patch_radius`; 0: a point force) is subtracted for
-/// points of the same tooth.
+/// Where a grid point's response is read, per unit depth: along the transverse part of the
+/// inward normal (the normal itself on spur flanks; on helical flanks this keeps responses inside
+/// the face width at the face ends, at a lateral offset depth tan(beta_b)), scaled so that
+/// `depth` times it lies `depth` below the point's tangent plane. The member axis is z.
+Vec3
+response_offset(const FlankCompliance::Point &point);
+
+/// Fills the table from unit normal loads at the grid points, read depths[i] below point i
+/// (position + depths[i] response_offset); the half-space displacement there of the load as
+/// applied (a unit force spread uniformly over a disk of `patch_radius`; 0: a point force) is
+/// subtracted for points of the same tooth.
 void
-fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve, double depth,
-                           const Material &material, double patch_radius = 0);
+fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve,
+                           const std::vector<double> &depths, const Material &material,
+                           double patch_radius = 0);
 
 /// Normal displacement of a half-space at depth z and horizontal distance r from the centre of
 /// a unit normal force spread uniformly over a disk of the given radius (0: Boussinesq's point

@@ -57,12 +57,16 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
         return r;
       if (widening == 4)
         {
+          const ContactCell &c = r.cells[std::size_t(r.zone_edge_cell)];
           std::ostringstream msg;
           msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and "
               << torque << " N m the contact spreads beyond a cell zone of gap band "
-              << o.cells.gap_band * 1e6
-              << " um; check the load and the compliances, or raise "
-                 "the gap band (scene: Loaded contact/<pair>/gap band [um])";
+              << o.cells.gap_band * 1e6 << " um (pinion tooth " << c.pinion_tooth
+              << ", gear tooth " << c.gear_tooth << ", pinion point z = " << c.position.z() * 1e3
+              << " mm, r = " << c.position.head<2>().norm() * 1e3 << " mm, "
+              << r.force[r.zone_edge_cell] << " N of " << r.normal_force
+              << " N); check the load and the compliances, or raise the gap band (scene: "
+                 "Loaded contact/<pair>/gap band [um])";
           throw InputError(msg.str());
         }
       o.cells.gap_band *= 2;
@@ -128,7 +132,10 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
     }
   const ContactSolution s = solve_contact(p);
   for (Eigen::Index i = 0; i < n; ++i)
-    out.zone_edge_reached = out.zone_edge_reached || (s.force[i] > 0 && out.cells[i].zone_edge);
+    if (s.force[i] > 0 && out.cells[i].zone_edge &&
+        (out.zone_edge_cell < 0 || s.force[i] > s.force[out.zone_edge_cell]))
+      out.zone_edge_cell = int(i);
+  out.zone_edge_reached = out.zone_edge_cell >= 0;
   const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
   out.force         = s.force;
   out.active_cells  = s.active;

@@ -53,6 +53,7 @@ struct LoadedPosition
   /// Contact in the outermost row of a zone the gap band cut short of the flank: the zone was
   /// too narrow for the load (loaded_contact widens it and solves again).
   bool zone_edge_reached = false;
+  int  zone_edge_cell    = -1; ///< the most loaded such cell (index into cells)
 };
 
 /// Solves the loaded contact at one position of the unloaded TCA under a pinion torque >= 0.

@@ -2,10 +2,13 @@
 
 #include "elastic_segment.h"
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <filesystem>
+#include <sstream>
 
 namespace gearkit
 {
@@ -46,6 +49,89 @@ loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, doubl
   return {choose(true, z1), choose(false, z2)};
 }
 
+namespace
+{
+/// gmsh on the first process of `comm` writes the segment; the others wait and receive its
+/// description (or the first one's error, so that every process throws the same InputError).
+SegmentMeshInfo
+mesh_on_first_process(const InvoluteGear &gear, const SegmentMeshOptions &options,
+                      const std::string &path, MPI_Comm comm)
+{
+  SegmentMeshInfo info;
+  std::string     error;
+  const bool      first = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  if (first)
+    try
+      {
+        info = write_tooth_segment_mesh(gear, options, path);
+      }
+    catch (const InputError &e)
+      {
+        error = e.what();
+      }
+  error = dealii::Utilities::MPI::broadcast(comm, error, 0);
+  if (!error.empty())
+    throw InputError(error);
+  std::vector<double> numbers{double(info.hexahedra), double(info.nodes), info.analytic_volume,
+                              info.rim_inner_radius};
+  numbers           = dealii::Utilities::MPI::broadcast(comm, numbers, 0);
+  info.member_teeth = dealii::Utilities::MPI::broadcast(comm, info.member_teeth, 0);
+  info.hexahedra = std::size_t(numbers[0]), info.nodes = std::size_t(numbers[1]);
+  info.analytic_volume = numbers[2], info.rim_inner_radius = numbers[3];
+  return info;
+}
+
+/// The depth at which each grid point's response is read: the nominal depth, or half the chord
+/// through the tooth along the point's response direction where the tooth is thinner (near the
+/// tip). The chord is bracketed on steps of a quarter of the depth and then bisected, so that
+/// neighbouring points get smoothly varying depths (a jump would show in the table).
+std::vector<double>
+response_depths(const FlankCompliance &table, const ElasticSegment &body, double depth)
+{
+  constexpr int     steps = 8; // up to twice the nominal depth
+  const auto       &points = table.points();
+  const std::size_t n      = points.size();
+  std::vector<Vec3> samples;
+  for (const auto &p : points)
+    for (int k = 1; k <= steps; ++k)
+      samples.push_back(p.position + depth * k / 4.0 * response_offset(p));
+  const std::vector<bool> inside = body.contains(samples);
+  std::vector<double>     in(n), out(n, -1); // chord bracket; out < 0: beyond twice the depth
+  for (std::size_t i = 0; i < n; ++i)
+    {
+      int k = 0;
+      while (k < steps && inside[i * steps + k])
+        ++k;
+      if (k == 0)
+        {
+          std::ostringstream msg;
+          msg << "member compliance: the tooth at the flank point ("
+              << points[i].position.transpose() * 1e3 << ") mm is thinner than "
+              << depth / 4 * 1e3 << " mm along its normal; use smaller flank elements";
+          throw InputError(msg.str());
+        }
+      in[i] = depth * k / 4.0;
+      if (k < steps)
+        out[i] = depth * (k + 1) / 4.0;
+    }
+  for (int it = 0; it < 8; ++it)
+    {
+      samples.clear();
+      for (std::size_t i = 0; i < n; ++i)
+        samples.push_back(points[i].position +
+                          (out[i] < 0 ? in[i] : (in[i] + out[i]) / 2) * response_offset(points[i]));
+      const std::vector<bool> mid_inside = body.contains(samples);
+      for (std::size_t i = 0; i < n; ++i)
+        if (out[i] >= 0)
+          (mid_inside[i] ? in[i] : out[i]) = (in[i] + out[i]) / 2;
+    }
+  std::vector<double> depths(n);
+  for (std::size_t i = 0; i < n; ++i)
+    depths[i] = out[i] < 0 ? depth : std::min(depth, (in[i] + out[i]) / 4); // half the chord
+  return depths;
+}
+} // namespace
+
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &o, MemberComplianceInfo *info)
@@ -65,7 +151,7 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
       (std::filesystem::path(o.work_directory) / (name + ".msh")).string();
   SegmentMeshOptions mesh       = o.mesh;
   mesh.fine_side                = o.side; // the loaded flanks get the flank element size
-  const SegmentMeshInfo segment = write_tooth_segment_mesh(gear, mesh, mesh_file);
+  const SegmentMeshInfo segment = mesh_on_first_process(gear, mesh, mesh_file, o.communicator);
   out.hexahedra                 = segment.hexahedra;
   out.mesh_seconds              = seconds_since(t0);
 
@@ -87,6 +173,7 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
   ElasticSegmentOptions eo;
   eo.degree   = o.degree;
   eo.material = o.material;
+  eo.communicator = o.communicator;
   eo.clamped  = {boundary::bore};
   if (o.hold_cuts)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
@@ -110,7 +197,11 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
       probes.push_back({x, d});
     return body.response(patches, probes);
   };
-  fill_structural_compliance(table, solve, out.depth, o.material, out.patch_radius);
+  const std::vector<double> depths = response_depths(table, body, out.depth);
+  out.min_depth      = *std::min_element(depths.begin(), depths.end());
+  out.shallow_points = std::size_t(
+      std::count_if(depths.begin(), depths.end(), [&](double d) { return d < out.depth; }));
+  fill_structural_compliance(table, solve, depths, o.material, out.patch_radius);
   out.solve_seconds = seconds_since(t0);
   return table;
 }

@@ -1,13 +1,15 @@
 // The structural compliance table of an involute member from finite elements: a gmsh tooth
 // segment around the loaded teeth (bore and radial cuts held), deal.II/PETSc with one
 // factorisation, unit normal patch loads at the flank grid points, responses a few elements
-// below the flank (where the elements resolve the Boussinesq field) with the half-space part
-// taken out (flank_compliance.h).
+// below the flank (where the elements resolve the Boussinesq field, but at most half the chord
+// through the tooth) with the half-space part taken out (flank_compliance.h).
 #pragma once
 
 #include "flank_compliance.h"
 #include "tooth_segment.h"
 #include "unloaded_tca.h"
+
+#include <mpi.h>
 
 #include <string>
 
@@ -25,12 +27,20 @@ struct MemberComplianceOptions
   double             patch_elements = 1; ///< patch load radius in flank element sizes
   bool               hold_cuts = true;   ///< radial cut faces held (else free; the bore always)
   std::string        work_directory;  ///< where the segment mesh is written
+  /// The processes that share the finite elements: the first meshes the segment (gmsh), all
+  /// solve it together; every process receives the whole table.
+  MPI_Comm communicator = MPI_COMM_WORLD;
 };
 
 struct MemberComplianceInfo
 {
   std::size_t hexahedra = 0, dofs = 0;
   double      depth = 0, patch_radius = 0;  ///< [m]
+  /// Grid points whose response depth was limited to half the chord through the tooth along
+  /// their response direction (near a thin tip the nominal depth would leave the tooth), and
+  /// the smallest depth used [m].
+  std::size_t shallow_points = 0;
+  double      min_depth      = 0;
   double      mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
 };
 

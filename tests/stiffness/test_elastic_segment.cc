@@ -198,3 +198,26 @@ TEST(ElasticSegment, SolverFromTheRunTimeOptions)
   const char *expected = std::getenv("GEARKIT_EXPECT_SOLVER");
   EXPECT_EQ(body.solver(), expected ? expected : "preonly/cholesky");
 }
+
+TEST(ElasticSegment, ContainsExactlyThePointsOfTheBody)
+{
+  // The box [0, a] x [0, b] x [0, c] (meshes/box.h): points just inside and just outside each
+  // face, the corners' neighbourhood and the centre, on every process the same answer.
+  ElasticSegmentOptions o;
+  o.clamped = {1};
+  const Vec3           size(2e-2, 1e-2, 5e-3);
+  const ElasticSegment body(box("contains", size, 4, 3, 2), o);
+  std::vector<Vec3>    points{size / 2};
+  std::vector<bool>    expected{true};
+  for (int axis = 0; axis < 3; ++axis)
+    for (double at : {-1e-6, 1e-6, size[axis] - 1e-6, size[axis] + 1e-6})
+      {
+        Vec3 x     = size / 2;
+        x[axis]    = at;
+        points.push_back(x);
+        expected.push_back(at > 0 && at < size[axis]);
+      }
+  points.push_back(size * 0.999), expected.push_back(true);
+  points.push_back(size * 1.001), expected.push_back(false);
+  EXPECT_EQ(body.contains(points), expected);
+}

@@ -35,30 +35,43 @@ TEST(FlankCompliance, BilinearDataInterpolatedExactly)
 
 TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
 {
-  const auto                 gear = InvoluteGear::create(test_data::fzg_c_pair().first);
-  const InvoluteMemberFlanks flanks(gear);
-  FlankGridSpec              spec;
-  spec.teeth = {0};
-  spec.n_u = spec.n_v = 4;
-  FlankCompliance table(flanks, spec);
-  const Material  steel{210e9, 0.3};
-  const double    depth = 1e-3;
-  // a "member" whose response is the Boussinesq field of each load in its own tangent plane
-  const ElasticResponse half_space = [&](const std::vector<FlankLoad>             &loads,
-                                         const std::vector<std::pair<Vec3, Vec3>> &responses) {
-    Eigen::MatrixXd D(responses.size(), loads.size());
-    for (std::size_t i = 0; i < loads.size(); ++i)
-      for (std::size_t j = 0; j < responses.size(); ++j)
-        {
-          const Vec3   n = -loads[i].direction; // outward
-          const Vec3   d = responses[j].first - loads[i].point;
-          const double z = -d.dot(n);
-          D(j, i) = point_load_displacement((d + z * n).norm(), std::max(z, 0.0), 1.0, steel);
-        }
-    return D;
-  };
-  fill_structural_compliance(table, half_space, depth, steel);
-  EXPECT_LT(table.matrix().cwiseAbs().maxCoeff(), 1e-25);
+  // Spur and helical flanks (responses off the normal line on helical flanks), with different
+  // depths per point: the subtraction matches the half-space response wherever it is read.
+  for (double helix : {0.0, 0.35})
+    {
+      InvoluteGearData data = test_data::fzg_c_pair().first;
+      data.helix_angle      = helix;
+      const auto                 gear = InvoluteGear::create(data);
+      const InvoluteMemberFlanks flanks(gear);
+      FlankGridSpec              spec;
+      spec.teeth = {0};
+      spec.n_u = spec.n_v = 4;
+      FlankCompliance     table(flanks, spec);
+      const Material      steel{210e9, 0.3};
+      std::vector<double> depths;
+      for (std::size_t i = 0; i < table.points().size(); ++i)
+        depths.push_back(1e-3 * (1 + 0.25 * double(i % 3)));
+      // a "member" whose response is the Boussinesq field of each load in its own tangent plane
+      const ElasticResponse half_space = [&](const std::vector<FlankLoad>             &loads,
+                                             const std::vector<std::pair<Vec3, Vec3>> &responses) {
+        Eigen::MatrixXd D(responses.size(), loads.size());
+        for (std::size_t i = 0; i < loads.size(); ++i)
+          for (std::size_t j = 0; j < responses.size(); ++j)
+            {
+              const Vec3   n = -loads[i].direction; // outward
+              const Vec3   d = responses[j].first - loads[i].point;
+              const double z = -d.dot(n);
+              D(j, i) = point_load_displacement((d + z * n).norm(), std::max(z, 0.0), 1.0, steel);
+            }
+        return D;
+      };
+      fill_structural_compliance(table, half_space, depths, steel);
+      EXPECT_LT(table.matrix().cwiseAbs().maxCoeff(), 1e-25) << helix;
+      // each response lies its depth below its own tangent plane
+      for (std::size_t i = 0; i < table.points().size(); ++i)
+        EXPECT_NEAR(-response_offset(table.points()[i]).dot(table.points()[i].normal), 1.0,
+                    1e-12);
+    }
 }
 
 TEST(FlankCompliance, DiskLoadAtDepthAgainstBruteForce)

@@ -83,11 +83,30 @@ TEST(UnloadedTca, ContactRatioOfPerfectSpurPair)
                       std::sqrt(g.tip_radius * g.tip_radius - g.base_radius * g.base_radius) -
                       s.a_w * std::sin(aw)) /
                      p.transverse_base_pitch;
+  EXPECT_NEAR(contact_ratios(p, g, s.a_w).transverse, eps, 1e-12);
+  EXPECT_EQ(contact_ratios(p, g, s.a_w).overlap, 0);
   TcaOptions o;
   o.positions_per_mesh = 200;
   const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
   EXPECT_NEAR(r.mean_pairs_in_contact, eps, 1.0 / 200);
   EXPECT_GT(eps, 1.3);
+  EXPECT_THROW(contact_ratios(p, g, p.base_radius + g.base_radius), InputError);
+}
+
+TEST(UnloadedTca, TotalContactRatioOfPerfectHelicalPair)
+{
+  // Helical: the pairs in contact average eps_gamma = eps_alpha + eps_beta, and at a larger
+  // centre distance eps_alpha drops as the formula says.
+  const Pair s = make(c_pair(15 * deg));
+  for (double da : {0.0, 0.3e-3})
+    {
+      const ContactRatios c = contact_ratios(*s.pinion, *s.gear, s.a_w + da);
+      EXPECT_NEAR(c.overlap, 14e-3 * std::sin(15 * deg) / (pi * 4.5e-3), 1e-12);
+      TcaOptions o;
+      o.positions_per_mesh = 200;
+      const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w + da, {}, o).run();
+      EXPECT_NEAR(r.mean_pairs_in_contact, c.transverse + c.overlap, 1.0 / 200) << da;
+    }
 }
 
 TEST(UnloadedTca, TorqueRatioEqualsToothRatio)

@@ -1,0 +1,72 @@
+// The fast mode's finite-element compliance shared by MPI processes: the table (and the mesh
+// stiffness it gives) equal to that of one process alone. Run by CTest with mpirun -np 2
+// (stiffness_mpi_np2) and on one process.
+#include "../fzg_c_pair.h"
+#include "loaded_contact.h"
+#include "member_compliance.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace gearkit;
+
+TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
+{
+  const auto [pd, gd] = test_data::fzg_c_pair();
+  const auto pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+  const auto pf = std::make_shared<InvoluteMemberFlanks>(pinion);
+  const auto gf = std::make_shared<InvoluteMemberFlanks>(gear);
+  const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
+  const TcaPosition at       = tca.at(0);
+  const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
+  const unsigned    rank     = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const unsigned    size     = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+
+  // Coarse Q1 segments of 3 teeth: the point is the parallel solve, not the accuracy.
+  auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s,
+                    MPI_Comm comm, const std::string &dir) {
+    MemberComplianceOptions o;
+    o.mesh.teeth         = std::max(3, s.teeth);
+    o.mesh.central_tooth = s.central;
+    o.mesh.flank_size    = g.data().normal_module / 3;
+    o.degree             = 1;
+    o.n_u = 5, o.n_v = 4;
+    o.material       = {206e9, 0.3};
+    o.work_directory = dir;
+    o.communicator   = comm;
+    std::filesystem::create_directories(dir);
+    return involute_member_compliance(g, f, o);
+  };
+  const std::string base = std::filesystem::temp_directory_path() / "gearkit-test-member-mpi";
+  const std::string shared = base + "-np" + std::to_string(size);
+  const std::string alone  = base + "-alone" + std::to_string(rank) + "of" + std::to_string(size);
+  const FlankCompliance p_all = member(*pinion, *pf, segments.first, MPI_COMM_WORLD, shared);
+  const FlankCompliance g_all = member(*gear, *gf, segments.second, MPI_COMM_WORLD, shared);
+  const FlankCompliance p_one = member(*pinion, *pf, segments.first, MPI_COMM_SELF, alone);
+  const FlankCompliance g_one = member(*gear, *gf, segments.second, MPI_COMM_SELF, alone);
+  ASSERT_EQ(p_all.matrix().rows(), p_one.matrix().rows());
+  EXPECT_LT((p_all.matrix() - p_one.matrix()).norm(), 1e-9 * p_one.matrix().norm());
+  EXPECT_LT((g_all.matrix() - g_one.matrix()).norm(), 1e-9 * g_one.matrix().norm());
+  EXPECT_GT(p_one.matrix().norm(), 0);
+
+  auto mesh_stiffness = [&](const FlankCompliance &cp, const FlankCompliance &cg) {
+    const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
+      return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+    };
+    const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
+      return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+    };
+    LoadedContactOptions lo;
+    lo.pinion_material = lo.gear_material = {206e9, 0.3};
+    lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
+    return loaded_contact(tca, at, 200, lo, sp, sg).mesh_stiffness;
+  };
+  const double K_all = mesh_stiffness(p_all, g_all), K_one = mesh_stiffness(p_one, g_one);
+  EXPECT_NEAR(K_all / K_one, 1, 1e-9);
+  // a tooth pair of steel spur gears: of the order of 10-20 N/(mm um) per face width
+  EXPECT_GT(K_one, 5e9 * pd.face_width);
+  EXPECT_LT(K_one, 40e9 * pd.face_width);
+}

@@ -192,3 +192,53 @@ TEST(LoadedContact, VeryHighLoadSpreadsToTheTipOrIsRefusedWhenTheZoneIsTooNarrow
   EXPECT_EQ(u_loaded, u_all); // the last cell row before the tip carries load
   EXPECT_GT(u_all, d.u_max - 0.05 * (d.u_max - d.u_min));
 }
+
+TEST(LoadedContact, MisalignedPairLoadsOneEndOfTheFace)
+{
+  // A crossing misalignment (deviation of parallelism, f_Sigma_beta) of 2 mrad tilts the gear
+  // flank by ~26 um over the face, far beyond the pinion's 5 um lead crowning: point contact at
+  // one face end. Under the FZG C14 load the contact spreads from that end: balanced,
+  // the load's centre on that side, peak pressure above the aligned pair's, a softer mesh; a
+  // negligible misalignment gives the aligned answer.
+  const SpurPair s;
+  const auto     loaded = [&](double crossing, int *end_side) {
+    Misalignment m;
+    m.crossing_angle = crossing;
+    const UnloadedTca tca(s.pinion, s.gear, s.a, m);
+    const TcaPosition pos = tca.at(s.position(1).pinion_angle);
+    if (end_side)
+      *end_side = pos.pairs[pos.leading].position.z() > 0 ? 1 : -1;
+    LoadedContactOptions o;
+    o.pinion_material = o.gear_material = {206e9, 0.3};
+    const double T = 5912 * s.pinion->base_radius;
+    // a tooth compliance (both members) of the order of the FE's: the contact can spread
+    const StructuralCompliance tooth = [](const ContactCell &a, const ContactCell &b) {
+      return a.pair == b.pair ? 4e-10 * std::exp(-std::abs(a.position.z() - b.position.z()) / 5e-3)
+                              : 0.0;
+    };
+    return loaded_contact(tca, pos, T, o, tooth, tooth);
+  };
+  const LoadedPosition aligned = loaded(0, nullptr);
+  const LoadedPosition tiny    = loaded(1e-9, nullptr);
+  EXPECT_NEAR(tiny.mesh_stiffness / aligned.mesh_stiffness, 1, 1e-3);
+  int                  side = 0;
+  const LoadedPosition r    = loaded(2e-3, &side);
+  EXPECT_NEAR(r.normal_force * r.lever, r.torque, 1e-9 * r.torque);
+  double z_centre = 0, z_min = HUGE_VAL, z_max = -HUGE_VAL, peak = 0, peak_aligned = 0;
+  for (std::size_t i = 0; i < r.cells.size(); ++i)
+    if (r.force[Eigen::Index(i)] > 0)
+      {
+        const ContactCell &c = r.cells[i];
+        z_centre += c.position.z() * r.force[Eigen::Index(i)] / r.normal_force;
+        z_min = std::min(z_min, c.position.z()), z_max = std::max(z_max, c.position.z());
+        peak  = std::max(peak, r.force[Eigen::Index(i)] / (c.ds * c.dt));
+      }
+  for (std::size_t i = 0; i < aligned.cells.size(); ++i)
+    peak_aligned = std::max(peak_aligned, aligned.force[Eigen::Index(i)] /
+                                              (aligned.cells[i].ds * aligned.cells[i].dt));
+  const double b = 14e-3;
+  EXPECT_GT(side * z_centre, b / 8) << z_centre;
+  EXPECT_LT(z_max - z_min, 0.9 * b); // the far end stands off
+  EXPECT_GT(peak, 1.3 * peak_aligned);
+  EXPECT_LT(r.mesh_stiffness, 0.9 * aligned.mesh_stiffness);
+}

@@ -2,6 +2,8 @@
 
 #include "stages.h"
 
+#include <deal.II/base/mpi.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -84,12 +86,37 @@ stage_key(const Scene &scene, const std::string &stage)
   return hex.str();
 }
 
-RunSummary
-run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
+std::string
+stage_side_directory(const H5Group &out, const std::string &suffix)
 {
-  const fs::path dir   = fs::path(output_root) / scene.name;
-  const fs::path cache = dir / "cache";
-  fs::create_directories(cache);
+  std::string dir;
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      std::string cache = out.file_name(); // <cache>/<stage>-<key>.h5.tmp while running
+      if (cache.size() > 4 && cache.substr(cache.size() - 4) == ".tmp")
+        cache.resize(cache.size() - 4);
+      dir = fs::path(cache).replace_extension("").string() + suffix;
+      fs::create_directories(dir);
+    }
+  dir = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, dir, 0);
+  MPI_Barrier(MPI_COMM_WORLD);
+  return dir;
+}
+
+RunSummary
+run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_log)
+{
+  // Under mpirun every process runs every stage (the finite elements together, the rest
+  // redundantly: they are cheap); the first process alone decides what the cache holds,
+  // writes files and logs.
+  const unsigned     rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  std::ostringstream quiet;
+  std::ostream      &log   = rank == 0 ? out_log : quiet;
+  const fs::path     dir   = fs::path(output_root) / scene.name;
+  const fs::path     cache = dir / "cache";
+  if (rank == 0)
+    fs::create_directories(cache);
+  MPI_Barrier(MPI_COMM_WORLD);
   log << "gearkit: scene " << scene.file << " -> " << dir.string() << "\n";
 
   RunSummary                                     summary;
@@ -101,9 +128,9 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
       run.name         = name;
       run.cache_file   = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();
       const auto start = std::chrono::steady_clock::now();
-      if (fs::exists(run.cache_file))
-        run.reused = true;
-      else
+      run.reused       = dealii::Utilities::MPI::broadcast(
+          MPI_COMM_WORLD, rank == 0 && fs::exists(run.cache_file), 0);
+      if (!run.reused)
         {
           log << "stage " << name << ": running (" << s.description << ")" << std::endl;
           // Upstream results as stored in their cache files.
@@ -115,10 +142,13 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
               groups.push_back(files.at(up)->root().group(up));
               upstream[up] = &groups.back();
             }
-          H5File out = H5File::create(run.cache_file);
+          H5File out = H5File::create(
+              rank == 0 ? run.cache_file : run.cache_file + ".process" + std::to_string(rank));
           s.run(scene, upstream, out.root().group(name), log);
-          out.commit();
+          if (rank == 0)
+            out.commit(); // the other processes' private files go with `out`
         }
+      MPI_Barrier(MPI_COMM_WORLD);
       files[name] = std::make_unique<H5File>(H5File::open(run.cache_file));
       run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       log << "stage " << name << ": " << (run.reused ? "reused" : "ran") << " in " << std::fixed
@@ -129,7 +159,9 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &log)
     }
 
   summary.results_file = (dir / "results.h5").string();
-  H5File results       = H5File::create(summary.results_file);
+  if (rank != 0)
+    return summary;
+  H5File results = H5File::create(summary.results_file);
   {
     const H5Group root = results.root();
     root.attribute("scene", scene.name);
@@ -224,7 +256,7 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostre
     {
       const Scene      scene   = read_scene(scene_file);
       const RunSummary summary = run_scene(scene, output_root, out);
-      if (plot)
+      if (plot && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         {
           out.flush(); // the log first, then the plotting script's lines
           const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR

@@ -74,9 +74,8 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       const auto segments =
           loaded_segments(positions, z1, members.gear->teeth(), segment_gap_band);
       const H5Group    g    = out.group(pair.name);
-      const std::string dir =
-          (std::filesystem::temp_directory_path() / ("gearkit-fe-" + pair.name)).string();
-      std::filesystem::create_directories(dir);
+      // The segment meshes beside the cache file: every process reads them.
+      const std::string dir = stage_side_directory(out, "-mesh-" + pair.name);
       for (const bool is_pinion : {true, false})
         {
           const auto gear = InvoluteGear::create(is_pinion ? pair.pinion : pair.gear);
@@ -245,12 +244,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         {
           // Reference mode at the chosen positions on the compliance stage's segments; VTU
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
-          std::string cache = out.file_name(); // <cache>/stiffness-<key>.h5.tmp while running
-          if (cache.size() > 4 && cache.substr(cache.size() - 4) == ".tmp")
-            cache.resize(cache.size() - 4);
-          const std::filesystem::path vtu =
-              std::filesystem::path(cache).replace_extension("").string() + "-vtu";
-          std::filesystem::create_directories(vtu);
+          const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
           ReferenceContactOptions ro;
           ro.cells             = lo;
           ro.cells.covered     = nullptr;

@@ -35,6 +35,13 @@ private:
 /// Upstream results a stage may read: stage name -> its group in its cache file.
 using Upstream = std::map<std::string, const H5Group *>;
 
+/// A directory beside the cache file of the running stage `out` belongs to ("<cache>/<stage>-
+/// <key><suffix>"), created, the same on every MPI process (under mpirun only the first
+/// process writes the cache file; the others compute into private files). For files the stage
+/// writes besides its HDF5 results: meshes, VTU.
+std::string
+stage_side_directory(const H5Group &out, const std::string &suffix);
+
 struct StageDefinition
 {
   std::string              name;

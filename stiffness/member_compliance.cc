@@ -51,36 +51,6 @@ loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, doubl
 
 namespace
 {
-/// gmsh on the first process of `comm` writes the segment; the others wait and receive its
-/// description (or the first one's error, so that every process throws the same InputError).
-SegmentMeshInfo
-mesh_on_first_process(const InvoluteGear &gear, const SegmentMeshOptions &options,
-                      const std::string &path, MPI_Comm comm)
-{
-  SegmentMeshInfo info;
-  std::string     error;
-  const bool      first = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-  if (first)
-    try
-      {
-        info = write_tooth_segment_mesh(gear, options, path);
-      }
-    catch (const InputError &e)
-      {
-        error = e.what();
-      }
-  error = dealii::Utilities::MPI::broadcast(comm, error, 0);
-  if (!error.empty())
-    throw InputError(error);
-  std::vector<double> numbers{double(info.hexahedra), double(info.nodes), info.analytic_volume,
-                              info.rim_inner_radius};
-  numbers           = dealii::Utilities::MPI::broadcast(comm, numbers, 0);
-  info.member_teeth = dealii::Utilities::MPI::broadcast(comm, info.member_teeth, 0);
-  info.hexahedra = std::size_t(numbers[0]), info.nodes = std::size_t(numbers[1]);
-  info.analytic_volume = numbers[2], info.rim_inner_radius = numbers[3];
-  return info;
-}
-
 /// The depth at which each grid point's response is read: the nominal depth, or half the chord
 /// through the tooth along the point's response direction where the tooth is thinner (near the
 /// tip). The chord is bracketed on steps of a quarter of the depth and then bisected, so that
@@ -132,6 +102,35 @@ response_depths(const FlankCompliance &table, const ElasticSegment &body, double
 }
 } // namespace
 
+SegmentMeshInfo
+write_tooth_segment_mesh_on_first_process(const InvoluteGear &gear,
+                                          const SegmentMeshOptions &options,
+                                          const std::string &path, MPI_Comm comm)
+{
+  SegmentMeshInfo info;
+  std::string     error;
+  const bool      first = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  if (first)
+    try
+      {
+        info = write_tooth_segment_mesh(gear, options, path);
+      }
+    catch (const InputError &e)
+      {
+        error = e.what();
+      }
+  error = dealii::Utilities::MPI::broadcast(comm, error, 0);
+  if (!error.empty())
+    throw InputError(error);
+  std::vector<double> numbers{double(info.hexahedra), double(info.nodes), info.analytic_volume,
+                              info.rim_inner_radius};
+  numbers           = dealii::Utilities::MPI::broadcast(comm, numbers, 0);
+  info.member_teeth = dealii::Utilities::MPI::broadcast(comm, info.member_teeth, 0);
+  info.hexahedra = std::size_t(numbers[0]), info.nodes = std::size_t(numbers[1]);
+  info.analytic_volume = numbers[2], info.rim_inner_radius = numbers[3];
+  return info;
+}
+
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &o, MemberComplianceInfo *info)
@@ -151,7 +150,7 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
       (std::filesystem::path(o.work_directory) / (name + ".msh")).string();
   SegmentMeshOptions mesh       = o.mesh;
   mesh.fine_side                = o.side; // the loaded flanks get the flank element size
-  const SegmentMeshInfo segment = mesh_on_first_process(gear, mesh, mesh_file, o.communicator);
+  const SegmentMeshInfo segment = write_tooth_segment_mesh_on_first_process(gear, mesh, mesh_file, o.communicator);
   out.hexahedra                 = segment.hexahedra;
   out.mesh_seconds              = seconds_since(t0);
 

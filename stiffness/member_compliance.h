@@ -56,6 +56,13 @@ std::pair<SegmentChoice, SegmentChoice>
 loaded_segments(const std::vector<TcaPosition> &positions, int pinion_teeth, int gear_teeth,
                 double gap_band);
 
+/// write_tooth_segment_mesh on the first process of `comm`; the others wait and receive the
+/// description, or the first process's InputError (every process throws it).
+SegmentMeshInfo
+write_tooth_segment_mesh_on_first_process(const InvoluteGear &gear,
+                                          const SegmentMeshOptions &options,
+                                          const std::string &path, MPI_Comm comm);
+
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &options,

@@ -138,7 +138,10 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
         }
       for (const auto &[pair, l] : line)
         mesh.refine_points.push_back(l.second);
-      mesh.refine_size   = ds / o.elements_per_cell;
+      // never coarser than the flank elements around it (a coarser "refinement" folds the
+      // graded quadrilaterals at the root)
+      const double flank_size = o.flank_size > 0 ? o.flank_size : g.data().normal_module / 5;
+      mesh.refine_size        = std::min(ds / o.elements_per_cell, flank_size);
       mesh.refine_radius = reach;
       mesh.face_layers =
           std::max(2, int(std::lround(g.data().face_width / dt)) * o.layers_per_cell);
@@ -147,15 +150,17 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
            (std::string(is_pinion ? "reference_pinion" : "reference_gear") + ".msh"))
               .string();
       auto                  t0      = std::chrono::steady_clock::now();
-      const SegmentMeshInfo segment = write_tooth_segment_mesh(g, mesh, file);
+      const SegmentMeshInfo segment =
+          write_tooth_segment_mesh_on_first_process(g, mesh, file, o.communicator);
       out.mesh_seconds += seconds_since(t0);
       out.hexahedra += segment.hexahedra;
       segment_teeth.push_back(segment.member_teeth);
 
       t0 = std::chrono::steady_clock::now();
       ElasticSegmentOptions eo;
-      eo.degree   = o.degree;
-      eo.material = is_pinion ? o.cells.pinion_material : o.cells.gear_material;
+      eo.degree       = o.degree;
+      eo.communicator = o.communicator;
+      eo.material     = is_pinion ? o.cells.pinion_material : o.cells.gear_material;
       eo.clamped  = {boundary::bore};
       if (o.hold_cuts)
         eo.clamped.insert({boundary::cut_start, boundary::cut_end});

@@ -36,6 +36,8 @@ struct ReferenceContactOptions
   int         layers_per_cell = 1;          ///< face layers per cell along the contact line
   std::string work_directory;               ///< meshes are written here
   std::string vtu_prefix; ///< non-empty: <prefix>_torque<k>_{pinion,gear}.vtu
+  /// The processes that share the finite elements (the first meshes).
+  MPI_Comm communicator = MPI_COMM_WORLD;
 };
 
 struct ReferenceContactInfo

@@ -39,6 +39,11 @@ member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side,
   o.n_u = fe.n_u, o.n_v = fe.n_v;
   o.depth_elements     = fe.depth;
   o.work_directory     = dir;
+  // Unit loads only on the teeth that can carry load over the mesh cycle; the segment's other
+  // teeth are there for the stiffness of the surroundings.
+  const int z = g.teeth();
+  for (int k = -(segment.teeth - 1) / 2; k <= (segment.teeth - 1) / 2; ++k)
+    o.loaded_teeth.push_back(((segment.central + k) % z + z) % z);
   return o;
 }
 

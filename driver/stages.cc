@@ -60,7 +60,7 @@ stage_definitions()
        "finite-element compliance of both members (gmsh tooth segments, deal.II + PETSc)",
        {"flanks"},
        {"Flanks", "TCA", "Finite elements"},
-       3,
+       4,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_compliance_stage},
       {"stiffness",

@@ -393,6 +393,10 @@ def plot_stiffness(st, flanks, out_dir):
         for key, ls in (("iso_c_prime", ":"), ("iso_c_gamma_alpha", "-.")):
             ax.axhline(g[key][()] * 1e-6, color="k", ls=ls, lw=1,
                        label=key.replace("iso_", "ISO 6336 ").replace("_", " ") + " x b")
+        if "transverse_contact_ratio" in g:  # the theoretical mean the FE compares with
+            mean = g["iso_c_th"][()] * (0.75 * g["transverse_contact_ratio"][()] + 0.25)
+            ax.axhline(mean * 1e-6, color="grey", ls="--", lw=1,
+                       label="ISO c'th (0.75 eps_alpha + 0.25) x b (theoretical)")
         ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
         ax.set_ylabel("K_m [N/um]")
         ax.set_title("mesh stiffness K_m = F / (lambda (e_L - e_0))")

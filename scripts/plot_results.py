@@ -20,7 +20,8 @@ import h5py
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
+import matplotlib.tri as mtri  # noqa: E402
 import numpy as np  # noqa: E402
 
 
@@ -415,18 +416,63 @@ def plot_stiffness(st, flanks, out_dir):
         ax.set_title(f"load sharing at {torques[k]:g} N m")
         ax.legend(fontsize=7)
         ax = row[3]
-        cells = g["contact_cells"][k]  # (positions, cells, 4): tooth, u, v, pressure
-        used = (cells[..., 0] >= 0) & (cells[..., 3] > 0)
-        order = np.argsort(cells[..., 3][used])  # the highest pressures drawn last
-        face, profile = flank_coordinates(flanks, name, "pinion", cells[..., 1][used][order],
-                                          cells[..., 2][used][order])
-        sc = ax.scatter(face, profile, c=cells[..., 3][used][order] * 1e-6, s=4, cmap="inferno")
-        fig.colorbar(sc, ax=ax, label="pressure [MPa]")
+        im = pressure_map(ax, flanks, name, g["contact_cells"][k])
+        fig.colorbar(im, ax=ax, label="largest pressure [MPa]")
         ax.set_xlabel("face position [mm]")
         ax.set_ylabel("roll length [mm]")
         ax.set_title(f"contact pressure on the pinion flank, {torques[k]:g} N m, all positions")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "stiffness.png"))
+
+
+def pressure_map(ax, flanks, name, cells, nx=500, ny=300):
+    """The largest pressure over all positions on a raster of the pinion flank: the cells of each
+    position and tooth pair are triangulated (Delaunay on their centres, triangles much longer
+    than the cells dropped) and interpolated linearly. A scatter of the cell centres would alias
+    into stripes where the contact lines run obliquely (helical gears)."""
+    pieces = []
+    for c in cells:  # (cells, 4) per position: tooth, u, v, pressure
+        c = c[c[:, 0] >= 0]
+        for tooth in np.unique(c[:, 0]):
+            t = c[c[:, 0] == tooth]
+            if len(t) >= 4 and np.any(t[:, 3] > 0):
+                face, profile = flank_coordinates(flanks, name, "pinion", t[:, 1], t[:, 2])
+                pieces.append((face, profile, t[:, 3]))
+    if not pieces:
+        return ax.imshow(np.zeros((2, 2)), cmap="inferno")
+    f_all = np.concatenate([p[0] for p in pieces])
+    r_all = np.concatenate([p[1] for p in pieces])
+    X, Y = np.meshgrid(np.linspace(f_all.min(), f_all.max(), nx),
+                       np.linspace(r_all.min(), r_all.max(), ny))
+    P = np.zeros_like(X)
+    skipped = 0
+    for face, profile, p in pieces:
+        # cells that coincide on the flank (the zone folded at an edge) would make the
+        # triangulation invalid: keep the first of each
+        _, keep = np.unique(np.round(np.stack([face, profile], axis=1), 6), axis=0,
+                            return_index=True)
+        face, profile, p = face[keep], profile[keep], p[keep]
+        # triangulated in coordinates scaled to the zone's extent (the cells are far longer
+        # along the contact line than across it: slivers otherwise)
+        sf, sp = max(np.ptp(face), 1e-9), max(np.ptp(profile), 1e-9)
+        # a tiny fixed jitter: the cell centres form regular grids, whose cocircular points give
+        # qhull degenerate triangles
+        jitter = np.random.default_rng(0).uniform(-1e-7, 1e-7, size=(2, len(face)))
+        face, profile = face / sf + jitter[0], profile / sp + jitter[1]
+        try:
+            tri = mtri.Triangulation(face, profile)
+            xy = np.stack([face[tri.triangles], profile[tri.triangles]], axis=-1)
+            longest = np.max(np.linalg.norm(xy - np.roll(xy, 1, axis=1), axis=-1), axis=1)
+            flat = mtri.TriAnalyzer(tri).get_flat_tri_mask(0.01, rescale=True)
+            tri.set_mask((longest > 3 * np.median(longest)) | flat)
+            P = np.fmax(P, mtri.LinearTriInterpolator(tri, p)(X / sf, Y / sp).filled(0))
+        except (RuntimeError, ValueError):  # degenerate (collinear) cell centres
+            skipped += 1
+    if skipped:
+        print(f"pressure map: {skipped} of {len(pieces)} contact zones could not be drawn")
+    return ax.imshow(np.ma.masked_less_equal(P, 0) * 1e-6, origin="lower", aspect="auto",
+                     cmap="inferno", interpolation="nearest",
+                     extent=(X.min(), X.max(), Y.min(), Y.max()))
 
 
 def main():

@@ -326,6 +326,8 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   petsc_check(PCGetType(pc, &chosen), "PCGetType");
   if (std::string(chosen) == PCGAMG || std::string(chosen) == PCML)
     m.set_rigid_body_near_null_space();
+  if (std::string(chosen) == PCHYPRE)
+    petsc_check(MatSetBlockSize(m.K, 3), "MatSetBlockSize"); // x, y, z of a node together
   petsc_check(KSPSetUp(m.ksp), "KSPSetUp (factorisation: is the body held?)");
   m.factor_seconds = timer.wall_time();
 }

@@ -47,6 +47,30 @@ file_contents(const std::string &path)
   s << in.rdbuf();
   return s.str();
 }
+
+// Runs `work` on every process. If it throws on some, every process throws the message of the
+// first that failed: an error on one process alone (a file system failure on the first, which
+// writes) would otherwise leave the others waiting at the next collective call.
+template <typename Work>
+void
+together(Work &&work)
+{
+  std::string error;
+  try
+    {
+      work();
+    }
+  catch (const std::exception &e)
+    {
+      error = e.what();
+    }
+  const unsigned n_processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const unsigned rank        = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const unsigned failed =
+      dealii::Utilities::MPI::min(error.empty() ? n_processes : rank, MPI_COMM_WORLD);
+  if (failed < n_processes)
+    throw InputError(dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, error, failed));
+}
 } // namespace
 
 std::vector<std::string>
@@ -90,14 +114,15 @@ std::string
 stage_side_directory(const H5Group &out, const std::string &suffix)
 {
   std::string dir;
-  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    {
-      std::string cache = out.file_name(); // <cache>/<stage>-<key>.h5.tmp while running
-      if (cache.size() > 4 && cache.substr(cache.size() - 4) == ".tmp")
-        cache.resize(cache.size() - 4);
-      dir = fs::path(cache).replace_extension("").string() + suffix;
-      fs::create_directories(dir);
-    }
+  together([&] {
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+      return;
+    std::string cache = out.file_name(); // <cache>/<stage>-<key>.h5.tmp while running
+    if (cache.size() > 4 && cache.substr(cache.size() - 4) == ".tmp")
+      cache.resize(cache.size() - 4);
+    dir = fs::path(cache).replace_extension("").string() + suffix;
+    fs::create_directories(dir);
+  });
   dir = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, dir, 0);
   MPI_Barrier(MPI_COMM_WORLD);
   return dir;
@@ -114,9 +139,10 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
   std::ostream      &log   = rank == 0 ? out_log : quiet;
   const fs::path     dir   = fs::path(output_root) / scene.name;
   const fs::path     cache = dir / "cache";
-  if (rank == 0)
-    fs::create_directories(cache);
-  MPI_Barrier(MPI_COMM_WORLD);
+  together([&] {
+    if (rank == 0)
+      fs::create_directories(cache);
+  });
   log << "gearkit: scene " << scene.file << " -> " << dir.string() << "\n";
 
   RunSummary                                     summary;
@@ -142,11 +168,14 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
               groups.push_back(files.at(up)->root().group(up));
               upstream[up] = &groups.back();
             }
-          H5File out = H5File::create(
-              rank == 0 ? run.cache_file : run.cache_file + ".process" + std::to_string(rank));
-          s.run(scene, upstream, out.root().group(name), log);
-          if (rank == 0)
-            out.commit(); // the other processes' private files go with `out`
+          together([&] {
+            H5File out = H5File::create(rank == 0 ? run.cache_file :
+                                                    run.cache_file + ".process" +
+                                                        std::to_string(rank));
+            s.run(scene, upstream, out.root().group(name), log);
+            if (rank == 0)
+              out.commit(); // the other processes' private files go with `out`
+          });
         }
       MPI_Barrier(MPI_COMM_WORLD);
       files[name] = std::make_unique<H5File>(H5File::open(run.cache_file));
@@ -213,9 +242,15 @@ options:
 } // namespace
 
 int
-gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostream &err)
+gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ostream &err_0)
 {
-  std::string output_root = "out", scene_file;
+  // Under mpirun every process parses the same arguments and meets the same errors: only the
+  // first one speaks.
+  std::ostream  silent(nullptr);
+  const bool    first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  std::ostream &out   = first ? out_0 : silent;
+  std::ostream &err   = first ? err_0 : silent;
+  std::string   output_root = "out", scene_file;
   bool        plot        = false;
   for (std::size_t i = 0; i < args.size(); ++i)
     {
@@ -256,7 +291,7 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostre
     {
       const Scene      scene   = read_scene(scene_file);
       const RunSummary summary = run_scene(scene, output_root, out);
-      if (plot && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      if (plot && first)
         {
           out.flush(); // the log first, then the plotting script's lines
           const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR
@@ -270,11 +305,7 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostre
         }
       return 0;
     }
-  catch (const InputError &e)
-    {
-      err << "gearkit: error: " << e.what() << "\n";
-    }
-  catch (const std::exception &e)
+  catch (const std::exception &e) // InputError and the rest
     {
       err << "gearkit: error: " << e.what() << "\n";
     }

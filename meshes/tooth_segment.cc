@@ -249,27 +249,8 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
                                          {boundary::end_back, {top}}};
   for (std::size_t c = 0; c < s.curves.size(); ++c)
     groups[s.groups[c]].push_back(out[2 + c].second);
-  auto name = [&](int id) -> std::string {
-    switch (id)
-      {
-      case boundary::bore:
-        return "bore";
-      case boundary::cut_start:
-        return "cut_start";
-      case boundary::cut_end:
-        return "cut_end";
-      case boundary::end_front:
-        return "end_front";
-      case boundary::end_back:
-        return "end_back";
-      case boundary::free:
-        return "free";
-      default:
-        return "tooth" + std::to_string((id - 10) / 2) + ((id - 10) % 2 ? "_coast" : "_drive");
-      }
-  };
   for (const auto &[id, surfaces] : groups)
-    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, surfaces, id), name(id));
+    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, surfaces, id), boundary::name(id));
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 1), "body");
 
   gmsh::model::mesh::generate(3);
@@ -306,24 +287,52 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
 
   write_mesh_atomically(path);
 
+  std::vector<int> ids;
+  for (const auto &g : groups)
+    ids.push_back(g.first);
+  write_text_atomically(path + ".json", segment_sidecar(d.name, info, ids));
+}
+} // namespace
+
+std::string
+boundary::name(int id)
+{
+  switch (id)
+    {
+    case bore:
+      return "bore";
+    case cut_start:
+      return "cut_start";
+    case cut_end:
+      return "cut_end";
+    case end_front:
+      return "end_front";
+    case end_back:
+      return "end_back";
+    case free:
+      return "free";
+    default:
+      return "tooth" + std::to_string((id - 10) / 2) + ((id - 10) % 2 ? "_coast" : "_drive");
+    }
+}
+
+std::string
+segment_sidecar(const std::string &member, const SegmentMeshInfo &info,
+                const std::vector<int> &boundary_ids)
+{
   std::ostringstream json;
   json.precision(12);
-  json << "{\n  \"gear\": \"" << d.name << "\",\n  \"analytic_volume\": " << info.analytic_volume
+  json << "{\n  \"gear\": \"" << member << "\",\n  \"analytic_volume\": " << info.analytic_volume
        << ",\n  \"hexahedra\": " << info.hexahedra << ",\n  \"nodes\": " << info.nodes
-       << ",\n  \"rim_inner_radius\": " << ri << ",\n  \"member_teeth\": [";
+       << ",\n  \"rim_inner_radius\": " << info.rim_inner_radius << ",\n  \"member_teeth\": [";
   for (std::size_t i = 0; i < info.member_teeth.size(); ++i)
     json << (i ? ", " : "") << info.member_teeth[i];
   json << "],\n  \"physical_surfaces\": {";
-  bool first = true;
-  for (const auto &[id, surfaces] : groups)
-    {
-      json << (first ? "" : ",") << "\n    \"" << name(id) << "\": " << id;
-      first = false;
-    }
+  for (std::size_t i = 0; i < boundary_ids.size(); ++i)
+    json << (i ? "," : "") << "\n    \"" << boundary::name(boundary_ids[i]) << "\": " << boundary_ids[i];
   json << "\n  },\n  \"physical_volumes\": {\"body\": 1}\n}\n";
-  write_text_atomically(path + ".json", json.str());
+  return json.str();
 }
-} // namespace
 
 SegmentMeshInfo
 write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,

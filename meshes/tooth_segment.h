@@ -29,6 +29,9 @@ flank(int segment_tooth, FlankSide side)
 {
   return 10 + 2 * segment_tooth + (side == FlankSide::coast ? 1 : 0);
 }
+/// The physical group's name ("bore", ..., "tooth<i>_drive").
+std::string
+name(int id);
 } // namespace boundary
 
 struct SegmentMeshOptions
@@ -38,6 +41,8 @@ struct SegmentMeshOptions
   /// Inner radius of the rim [m]: 0 = the bore if the gear has one, else a shaft seat
   /// 3.5 m_n below the root circle (ISO 6336 rim thickness).
   double rim_inner_radius = 0;
+  /// Spiral bevel segments (bevel_segment.h): rim thickness below the root cone [m]; 0 = 3.5 m.
+  double rim_thickness = 0;
   double flank_size       = 0; ///< element size at the flanks and fillets [m]; 0 = m_n / 5
   /// Element size at the fillets and the flanks of the side other than `fine_side` [m]; 0 = the
   /// flank size. Only the loaded flanks need the fine elements for the compliance.
@@ -60,6 +65,12 @@ struct SegmentMeshInfo
   double      rim_inner_radius = 0;       ///< the one used [m]
   std::vector<int> member_teeth;          ///< member tooth of each segment tooth
 };
+
+/// The .json sidecar of a segment mesh (for scripts/check_mesh.py): the member's name, the
+/// analytic volume, sizes, member teeth and the physical groups (boundary ids) present.
+std::string
+segment_sidecar(const std::string &member, const SegmentMeshInfo &info,
+                const std::vector<int> &boundary_ids);
 
 /// Builds the segment with gmsh and writes it to `path` (.msh 4.1) and `path`.json, each via a
 /// temporary file and a rename. Throws InputError for bad options (name, value, allowed range)

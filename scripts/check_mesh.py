@@ -5,8 +5,9 @@ For each <mesh>.msh (with its <mesh>.msh.json sidecar written by meshes/): only 
 volume and quadrilaterals on the surfaces, every physical group the sidecar lists present and
 non-empty, no inverted or degenerate hexahedron (Jacobian determinant at all eight corners
 positive, and the smallest corner Jacobian not below 1e-3 of the element's mean one), and the
-mesh volume within 1 % of the analytic segment volume. With --png, a picture of the end face
-z = -b/2 is written next to the mesh. Exit status 1 and one line per failure otherwise.
+mesh volume within 1 % of the analytic segment volume. With --png, a picture of the front end
+face ("end_front": z = -b/2, or a bevel segment's toe; else the plane z = z_min) in its
+best-fitting plane is written next to the mesh. Exit status 1 and one line per failure otherwise.
 
 usage: check_mesh.py [--png] mesh.msh [mesh.msh ...]
 """
@@ -82,24 +83,42 @@ def check(path, png):
         matplotlib.use('Agg')
         import matplotlib.pyplot as plt
         from matplotlib.collections import PolyCollection
-        z0 = mesh.points[:, 2].min()
+        # the front end face (a plane for involute segments, the toe's back cone for bevel
+        # ones), drawn in its best-fitting plane
         quads = np.concatenate([c.data for c in mesh.cells if c.type == 'quad'])
-        front = quads[np.all(np.abs(mesh.points[quads][:, :, 2] - z0) < 1e-9, axis=1)]
+        if 'end_front' in meta['physical_surfaces']:
+            quads = np.concatenate([c.data[p == meta['physical_surfaces']['end_front']]
+                                    for c, p in zip(mesh.cells, phys) if c.type == 'quad'])
+        else:  # the plane z = z_min
+            z = mesh.points[:, 2]
+            quads = quads[np.all(np.abs(z[quads] - z.min()) < 1e-9, axis=1)]
+        on_face = np.unique(quads)
+        centre = mesh.points[on_face].mean(axis=0)
+        axes = np.linalg.svd(mesh.points[on_face] - centre)[2]
+        if abs(axes[2, 2]) > 1 - 1e-9:  # a plane z = const: x and y as they are
+            axes = np.eye(3)
+        axes = axes[:2]
+        # across the teeth toward growing polar angle, and up toward the teeth (radially out)
+        radial, tangential = np.array([centre[0], centre[1], 0]), np.array([-centre[1], centre[0], 0])
+        if np.abs(axes[0] @ radial) > np.abs(axes[1] @ radial):
+            axes = axes[::-1].copy()
+        axes[0] *= np.sign(axes[0] @ tangential)
+        axes[1] *= np.sign(axes[1] @ radial)
+        flat = (mesh.points - centre) @ axes.T
         fig, ax = plt.subplots(figsize=(8, 8))
-        ax.add_collection(PolyCollection(mesh.points[front][:, :, :2] * 1e3, facecolor='none',
+        ax.add_collection(PolyCollection(flat[quads] * 1e3, facecolor='none',
                                          edgecolor='k', linewidth=0.3))
         for name, tag in meta['physical_surfaces'].items():
             if 'tooth' in name:
                 sel = np.concatenate([c.data[p == tag] for c, p in zip(mesh.cells, phys)
                                       if c.type == 'quad'])
-                pts = mesh.points[np.unique(sel)]
-                pts = pts[np.abs(pts[:, 2] - z0) < 1e-9]
-                ax.plot(pts[:, 0] * 1e3, pts[:, 1] * 1e3, '.', ms=3,
+                pts = np.intersect1d(np.unique(sel), on_face)
+                ax.plot(flat[pts, 0] * 1e3, flat[pts, 1] * 1e3, '.', ms=3,
                         color='tab:red' if 'drive' in name else 'tab:blue')
         ax.autoscale()
         ax.set_aspect('equal')
-        ax.set_xlabel('x [mm]')
-        ax.set_ylabel('y [mm]')
+        ax.set_xlabel('in the end face [mm]')
+        ax.set_ylabel('[mm]')
         flanks = any('tooth' in name for name in meta['physical_surfaces'])
         ax.set_title(f'{meta["gear"]}: end face, {len(hexes)} hexahedra'
                      + (' (drive flank nodes red, coast blue)' if flanks else ''))

@@ -4,6 +4,7 @@
 #include "../fzg_c_pair.h"
 #include "../temp_directory_test.h"
 #include "cylinder_slice.h"
+#include "read_mesh.h"
 #include "tooth_segment.h"
 
 #include <Eigen/Dense>
@@ -15,86 +16,12 @@
 #include <set>
 
 using namespace gearkit;
+using test_data::hex_volume_and_min_jacobian;
+using test_data::MeshFile;
+using test_data::read;
 
 namespace
 {
-struct MeshFile
-{
-  std::map<int, std::vector<std::size_t>> group_nodes; ///< physical surface id -> node tags
-  std::map<std::size_t, Vec3>             nodes;
-  std::vector<std::array<std::size_t, 8>> hexahedra;
-  std::set<int>                           other_element_types;
-};
-
-/// Reads the mesh back through gmsh (a second, independent path from the writer's bookkeeping).
-MeshFile
-read(const std::string &path)
-{
-  MeshFile m;
-  gmsh::initialize();
-  gmsh::option::setNumber("General.Terminal", 0);
-  gmsh::open(path);
-  std::vector<std::size_t> tags;
-  std::vector<double>      xyz, par;
-  gmsh::model::mesh::getNodes(tags, xyz, par);
-  for (std::size_t i = 0; i < tags.size(); ++i)
-    m.nodes[tags[i]] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  std::vector<int>                      types;
-  std::vector<std::vector<std::size_t>> element_tags, element_nodes;
-  gmsh::model::mesh::getElements(types, element_tags, element_nodes, 3);
-  for (std::size_t t = 0; t < types.size(); ++t)
-    {
-      if (types[t] != 5)
-        {
-          m.other_element_types.insert(types[t]);
-          continue;
-        }
-      for (std::size_t e = 0; e < element_tags[t].size(); ++e)
-        {
-          std::array<std::size_t, 8> h;
-          std::copy_n(element_nodes[t].begin() + 8 * e, 8, h.begin());
-          m.hexahedra.push_back(h);
-        }
-    }
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 2);
-  for (const auto &[dim, id] : groups)
-    {
-      std::vector<double> coords;
-      gmsh::model::mesh::getNodesForPhysicalGroup(dim, id, m.group_nodes[id], coords);
-    }
-  gmsh::finalize();
-  return m;
-}
-
-/// Volume of a trilinear hexahedron (2x2x2 Gauss) and its smallest corner Jacobian determinant
-/// (gmsh node order: bottom 0-3, top 4-7, counter-clockwise).
-std::pair<double, double>
-hex_volume_and_min_jacobian(const std::array<Vec3, 8> &x)
-{
-  static const int s[8][3]  = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                               {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  auto             jacobian = [&](double a, double b, double c) {
-    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-    for (int k = 0; k < 8; ++k)
-      {
-        const Vec3 g(s[k][0] * (1 + s[k][1] * b) * (1 + s[k][2] * c),
-                                 s[k][1] * (1 + s[k][0] * a) * (1 + s[k][2] * c),
-                                 s[k][2] * (1 + s[k][0] * a) * (1 + s[k][1] * b));
-        J += x[k] * g.transpose() / 8;
-      }
-    return J.determinant();
-  };
-  const double g      = 1 / std::sqrt(3.0);
-  double       volume = 0, min_j = HUGE_VAL;
-  for (int k = 0; k < 8; ++k)
-    {
-      volume += jacobian(s[k][0] * g, s[k][1] * g, s[k][2] * g);
-      min_j = std::min(min_j, jacobian(s[k][0], s[k][1], s[k][2]));
-    }
-  return {volume, min_j};
-}
-
 class ToothSegmentMesh : public test_data::TempDirectoryTest
 {
 };

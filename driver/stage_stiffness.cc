@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 
 namespace gearkit
 {
@@ -22,17 +23,26 @@ namespace
 /// loaded contact's gap band is 10 um by default; tip reliefs of that size engage under load).
 constexpr double segment_gap_band = 20e-6;
 
+/// The module the scene's element sizes are relative to: the normal module (involute), the mean
+/// normal module (spiral bevel).
+double
+member_module(const PairScene &pair)
+{
+  return pair.type == PairType::spiral_bevel ? bevel_geometry(pair.bevel).mean_normal_module
+                                             : pair.pinion.normal_module;
+}
+
 MemberComplianceOptions
-member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side,
+member_options(double module, int z, const FeScene &fe, FlankSide side,
                const SegmentChoice &segment, const std::string &dir)
 {
   MemberComplianceOptions o;
   o.mesh.teeth         = std::max(fe.segment_teeth, segment.teeth);
   o.mesh.central_tooth = segment.central;
   o.hold_cuts          = fe.hold_cuts;
-  o.mesh.flank_size    = fe.flank_size * g.data().normal_module;
-  o.mesh.far_size      = fe.far_size * g.data().normal_module;
-  o.mesh.other_size    = fe.other_size * g.data().normal_module;
+  o.mesh.flank_size    = fe.flank_size * module;
+  o.mesh.far_size      = fe.far_size * module;
+  o.mesh.other_size    = fe.other_size * module;
   o.degree             = fe.degree;
   o.material           = fe.material;
   o.side               = side;
@@ -41,19 +51,21 @@ member_options(const InvoluteGear &g, const FeScene &fe, FlankSide side,
   o.work_directory     = dir;
   // Unit loads only on the teeth that can carry load over the mesh cycle; the segment's other
   // teeth are there for the stiffness of the surroundings.
-  const int z = g.teeth();
   for (int k = -(segment.teeth - 1) / 2; k <= (segment.teeth - 1) / 2; ++k)
     o.loaded_teeth.push_back(((segment.central + k) % z + z) % z);
   return o;
 }
 
-void
-require_involute(const PairScene &pair)
+/// The compliance table of one member on its tooth segment.
+FlankCompliance
+compliance_table(const PairScene &pair, const MemberFlanks &flanks, bool is_pinion,
+                 const MemberComplianceOptions &o, MemberComplianceInfo *info)
 {
-  if (pair.type != PairType::involute)
-    throw InputError("Finite elements/" + pair.name +
-                     ": the finite-element stiffness handles spur and helical pairs; spiral "
-                     "bevel segments are not meshed yet (ask only for ste for this pair)");
+  if (pair.type == PairType::spiral_bevel)
+    return bevel_member_compliance(dynamic_cast<const BevelMemberFlanks &>(flanks),
+                                   is_pinion ? "pinion" : "gear", member_module(pair), o, info);
+  return involute_member_compliance(dynamic_cast<const InvoluteMemberFlanks &>(flanks).involute(),
+                                    flanks, o, info);
 }
 } // namespace
 
@@ -63,7 +75,6 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
 {
   for (const PairScene &pair : scene.pairs)
     {
-      require_involute(pair);
       const FeScene   &fe   = scene.fe.at(pair.name);
       const TcaScene  &tca  = scene.tca.at(pair.name);
       const FlankSide  side = tca.options.side;
@@ -83,12 +94,12 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       const std::string dir = stage_side_directory(out, "-mesh-" + pair.name);
       for (const bool is_pinion : {true, false})
         {
-          const auto gear = InvoluteGear::create(is_pinion ? pair.pinion : pair.gear);
-          const InvoluteMemberFlanks flanks(gear);
+          const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
           const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
-          MemberComplianceInfo info;
-          const FlankCompliance table = involute_member_compliance(
-              *gear, flanks, member_options(*gear, fe, side, segment, dir), &info);
+          MemberComplianceInfo  info;
+          const FlankCompliance table = compliance_table(
+              pair, flanks, is_pinion,
+              member_options(member_module(pair), flanks.teeth(), fe, side, segment, dir), &info);
           const H5Group m = g.group(is_pinion ? "pinion" : "gear");
           std::vector<int> teeth;
           for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
@@ -124,31 +135,32 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 {
   for (const PairScene &pair : scene.pairs)
     {
-      require_involute(pair);
       const FeScene     &fe  = scene.fe.at(pair.name);
       const LoadedScene &lc  = scene.loaded.at(pair.name);
       const TcaScene    &tca = scene.tca.at(pair.name);
       const FlankSide    side = tca.options.side;
       const PairMembers  members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
-      const auto pinion = InvoluteGear::create(pair.pinion), gear = InvoluteGear::create(pair.gear);
-      const H5Group cg = upstream.at("compliance")->group(pair.name);
+      const bool    bevel = pair.type == PairType::spiral_bevel;
+      const int     z1    = members.pinion->teeth();
+      const H5Group cg    = upstream.at("compliance")->group(pair.name);
 
       // The compliance tables as the compliance stage computed them.
-      auto table = [&](const InvoluteGear &g, const char *member) {
+      auto table = [&](const MemberFlanks &flanks, const char *member) {
         const H5Group m = cg.group(member);
         FlankGridSpec spec;
         spec.teeth = m.read_ints("teeth");
         spec.side  = side;
         spec.n_u = fe.n_u, spec.n_v = fe.n_v;
-        FlankCompliance t(InvoluteMemberFlanks(InvoluteGear::create(g.data())), spec);
+        FlankCompliance t(flanks, spec);
         std::vector<hsize_t>      shape;
         const std::vector<double> S = m.read_doubles("compliance", &shape);
         t.set(Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[0]),
                                                 Eigen::Index(shape[1])));
         return t;
       };
-      const FlankCompliance cp = table(*pinion, "pinion"), cgr = table(*gear, "gear");
+      const FlankCompliance cp  = table(*members.pinion, "pinion");
+      const FlankCompliance cgr = table(*members.gear, "gear");
       const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
         return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
       };
@@ -159,7 +171,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
         const int    n = lc.positions, m = int(lc.torques.size());
-        const double mesh_angle = 2 * pi / pinion->teeth();
+        const double mesh_angle = 2 * pi / z1;
         std::vector<TcaPosition> positions;
         double                   touching = 0;
         for (int i = 0; i < n; ++i)
@@ -245,8 +257,14 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
       analyse(theory, lo, g, "");
 
+      if (!lc.reference_positions.empty() && bevel)
+        throw InputError("Loaded contact/" + pair.name +
+                         "/reference positions: the reference mode (both members meshed per "
+                         "position) handles spur pairs; leave it empty for spiral bevel pairs");
       if (!lc.reference_positions.empty())
         {
+          const auto pinion = InvoluteGear::create(pair.pinion);
+          const auto gear   = InvoluteGear::create(pair.gear);
           // Reference mode at the chosen positions on the compliance stage's segments; VTU
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
           const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
@@ -309,20 +327,51 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           rg.write("seconds", seconds, {P}, "s", "mesh, assembly, factorisation, solves");
         }
 
-      // ISO 6336-1 method B beside it (the standard's yardstick).
+      // ISO 6336-1 method B beside it (the standard's yardstick); for spiral bevel pairs on the
+      // virtual cylindrical gears of the mean point (ISO 10300-1: z_v = z / cos delta, helix
+      // angle beta_m, normal module m_mn, addenda as cut).
       IsoStiffnessInput iso;
-      iso.z1 = pinion->teeth(), iso.z2 = gear->teeth();
-      iso.x1 = pair.pinion.profile_shift, iso.x2 = pair.gear.profile_shift;
-      iso.helix_angle      = pair.pinion.helix_angle;
-      iso.base_helix_angle = pinion->base_helix_angle;
-      iso.pressure_angle   = pair.pinion.normal_pressure_angle;
-      iso.dedendum_factor  = pair.pinion.dedendum_factor;
-      const ContactRatios ratios = contact_ratios(*pinion, *gear, members.centre_distance);
+      ContactRatios     ratios;
+      double            b = 0;
+      if (bevel)
+        {
+          const BevelPairDesign  &d    = pair.bevel;
+          const BevelPairGeometry bg   = bevel_geometry(d);
+          const double            m    = bg.mean_normal_module, beta = d.mean_spiral_angle;
+          const double            at   = std::atan(std::tan(d.pressure_angle) / std::cos(beta));
+          const double            zv1  = z1 / std::cos(bg.pitch_angle_pinion);
+          const double            zv2  = members.gear->teeth() / std::cos(bg.pitch_angle_gear);
+          const double            r1   = zv1 * m / std::cos(beta) / 2, r2 = zv2 * m / std::cos(beta) / 2;
+          auto path = [&](double r, double ha) { return std::sqrt(std::pow(r + ha, 2) - std::pow(r * std::cos(at), 2)); };
+          b                 = d.face_width;
+          ratios.transverse = (path(r1, d.pinion_addendum * m) + path(r2, (2 - d.pinion_addendum) * m) -
+                               (r1 + r2) * std::sin(at)) /
+                              (pi * m * std::cos(at) / std::cos(beta));
+          ratios.overlap       = b * std::sin(beta) / (pi * m);
+          iso.z1 = zv1, iso.z2 = zv2;
+          iso.x1 = d.pinion_addendum - 1, iso.x2 = 1 - d.pinion_addendum;
+          iso.helix_angle      = beta;
+          iso.base_helix_angle = std::asin(std::sin(beta) * std::cos(d.pressure_angle));
+          iso.pressure_angle   = d.pressure_angle;
+          iso.dedendum_factor  = 1 + d.clearance;
+          g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
+        }
+      else
+        {
+          const auto pinion = InvoluteGear::create(pair.pinion), gear = InvoluteGear::create(pair.gear);
+          iso.z1 = pinion->teeth(), iso.z2 = gear->teeth();
+          iso.x1 = pair.pinion.profile_shift, iso.x2 = pair.gear.profile_shift;
+          iso.helix_angle      = pair.pinion.helix_angle;
+          iso.base_helix_angle = pinion->base_helix_angle;
+          iso.pressure_angle   = pair.pinion.normal_pressure_angle;
+          iso.dedendum_factor  = pair.pinion.dedendum_factor;
+          ratios = contact_ratios(*pinion, *gear, members.centre_distance);
+          b      = std::min(pair.pinion.face_width, pair.gear.face_width);
+        }
       iso.transverse_contact_ratio = ratios.transverse;
       g.write("transverse_contact_ratio", ratios.transverse, "1", "eps_alpha of the geometry");
       g.write("overlap_ratio", ratios.overlap, "1", "eps_beta of the geometry");
       const IsoMeshStiffness s = iso6336_mesh_stiffness(iso);
-      const double           b = std::min(pair.pinion.face_width, pair.gear.face_width);
       g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",
               "ISO 6336-1 method B single stiffness c' times the face width");
       g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b, "N/m",
@@ -341,16 +390,12 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const auto    mp = std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
       const auto    mgr = std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
       // Compliances reused: each cell looks up the theoretical flank at its own position
-      // (involute flank parameters: roll angle from the radius, and z).
+      // (MemberFlanks::rotational_parameters).
       lo.table_parameters = [&](ContactCell &c) {
-        auto params = [](const InvoluteGear &g, const Vec3 &x, double &u, double &v) {
-          u = g.roll_angle(std::max(std::hypot(x.x(), x.y()), g.base_radius));
-          v = x.z();
-        };
-        params(*pinion, mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position, c.table_u1,
-               c.table_v1);
-        params(*gear, mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position, c.table_u2,
-               c.table_v2);
+        std::tie(c.table_u1, c.table_v1) = members.pinion->rotational_parameters(
+            mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position);
+        std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
+            mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
       };
       const H5Group gm = g.group("measured");
       gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");

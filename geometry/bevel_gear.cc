@@ -220,4 +220,19 @@ BevelMemberFlanks::BevelMemberFlanks(const BevelMemberCut &cut)
       add(k, FlankSide::coast, std::make_unique<GeneratedFlank>(coast->rotated(k * pitch)));
     }
 }
+Vec3
+BevelMemberFlanks::face_direction(const Vec3 &x) const
+{
+  const double gamma = drive->blank_data().pitch_angle, theta = std::atan2(x.y(), x.x());
+  return {std::sin(gamma) * std::cos(theta), std::sin(gamma) * std::sin(theta), std::cos(gamma)};
+}
+
+std::pair<double, double>
+BevelMemberFlanks::rotational_parameters(const Vec3 &x) const
+{
+  const BevelBlank &b  = drive->blank_data();
+  const double      cg = std::cos(b.pitch_angle), sg = std::sin(b.pitch_angle);
+  const double      r  = std::hypot(x.x(), x.y());
+  return {-x.z() * sg + r * cg, x.z() * cg + r * sg - b.mean_cone_distance};
+}
 } // namespace gearkit

@@ -123,6 +123,12 @@ public:
   {
     return side == FlankSide::drive ? *drive : *coast;
   }
+  /// Along the pitch cone's element through x (growing cone distance).
+  Vec3
+  face_direction(const Vec3 &x) const override;
+  /// (h, A - A_m) of x's axial-plane projection (face_milling.h).
+  std::pair<double, double>
+  rotational_parameters(const Vec3 &x) const override;
   /// Which blade cut the drive flank (true: the outside blade, i.e. the concave flank drives).
   bool
   concave_drives() const

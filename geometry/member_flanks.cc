@@ -57,6 +57,25 @@ MemberFlanks::flank(int tooth, FlankSide side) const
   return *it->second->flank;
 }
 
+Vec3
+MemberFlanks::face_direction(const Vec3 &) const
+{
+  return Vec3::UnitZ();
+}
+
+std::pair<double, double>
+MemberFlanks::rotational_parameters(const Vec3 &) const
+{
+  throw InputError("member flanks: these flanks have no parametrisation by the rotational "
+                   "projection (measured flanks: use the theoretical member's)");
+}
+
+std::pair<double, double>
+InvoluteMemberFlanks::rotational_parameters(const Vec3 &x) const
+{
+  return {gear->roll_angle(std::max(std::hypot(x.x(), x.y()), gear->base_radius)), x.z()};
+}
+
 std::pair<double, double>
 MemberFlanks::guess(int tooth, FlankSide side, double radius, double z) const
 {

@@ -27,6 +27,15 @@ public:
   /// Flank parameters (u, v) of the coarse sample nearest in (radius, axial position).
   std::pair<double, double>
   guess(int tooth, FlankSide side, double radius, double z) const;
+  /// The unit direction along the face width at the point x of the member: the axis +z for
+  /// cylindrical gears (the default), the pitch cone's element for bevel gears.
+  virtual Vec3
+  face_direction(const Vec3 &x) const;
+  /// The flank parameters (u, v) of a theoretical flank through the point x, from x's
+  /// rotational projection alone (the same for every tooth): reuses a theoretical table at a
+  /// measured flank's points. Throws InputError for members without such a parametrisation.
+  virtual std::pair<double, double>
+  rotational_parameters(const Vec3 &x) const;
 
 protected:
   /// Implementations add their flanks in the constructor.
@@ -53,6 +62,9 @@ public:
   {
     return *gear;
   }
+  /// Roll angle at the radius of x (at least the base circle), and z.
+  std::pair<double, double>
+  rotational_parameters(const Vec3 &x) const override;
 
 private:
   std::shared_ptr<const InvoluteGear> gear;

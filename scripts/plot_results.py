@@ -397,7 +397,8 @@ def plot_stiffness(st, flanks, out_dir):
         if "transverse_contact_ratio" in g:  # the theoretical mean the FE compares with
             mean = g["iso_c_th"][()] * (0.75 * g["transverse_contact_ratio"][()] + 0.25)
             ax.axhline(mean * 1e-6, color="grey", ls="--", lw=1,
-                       label="ISO c'th (0.75 eps_alpha + 0.25) x b (theoretical)")
+                       label="ISO c'th (0.75 eps_alpha + 0.25) x b (theoretical)"
+                       + (", virtual cylindrical gears" if "iso_basis" in g.attrs else ""))
         ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
         ax.set_ylabel("K_m [N/um]")
         ax.set_title("mesh stiffness K_m = F / (lambda (e_L - e_0))")
@@ -418,8 +419,8 @@ def plot_stiffness(st, flanks, out_dir):
         ax = row[3]
         im = pressure_map(ax, flanks, name, g["contact_cells"][k])
         fig.colorbar(im, ax=ax, label="largest pressure [MPa]")
-        ax.set_xlabel("face position [mm]")
-        ax.set_ylabel("roll length [mm]")
+        ax.set_xlabel("cone distance - A_m [mm]" if is_bevel(flanks[name]) else "face position [mm]")
+        ax.set_ylabel("height above the pitch cone [mm]" if is_bevel(flanks[name]) else "roll length [mm]")
         ax.set_title(f"contact pressure on the pinion flank, {torques[k]:g} N m, all positions")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "stiffness.png"))

@@ -31,6 +31,7 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
                   (v_range.back().second - v_range.back().first) * j / (spec.n_v - 1);
             const FlankPoint q = f.evaluate(p.u, p.v);
             p.position = q.position, p.normal = q.normal;
+            p.face_direction = flanks.face_direction(q.position);
             grid.push_back(p);
           }
     }
@@ -119,8 +120,8 @@ disk_load_displacement(double r, double z, double radius, const Material &materi
 Vec3
 response_offset(const FlankCompliance::Point &point)
 {
-  const Vec3 transverse(point.normal.x(), point.normal.y(), 0);
-  return -transverse / transverse.squaredNorm();
+  const Vec3 across = point.normal - point.normal.dot(point.face_direction) * point.face_direction;
+  return -across / across.squaredNorm();
 }
 
 void

@@ -34,6 +34,7 @@ public:
     int    tooth = 0;
     double u = 0, v = 0;
     Vec3   position = Vec3::Zero(), normal = Vec3::Zero();
+    Vec3   face_direction = Vec3::UnitZ(); ///< along the face width (MemberFlanks::face_direction)
   };
 
   FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec &spec);
@@ -88,10 +89,10 @@ struct FlankLoad
 using ElasticResponse = std::function<Eigen::MatrixXd(
     const std::vector<FlankLoad> &loads, const std::vector<std::pair<Vec3, Vec3>> &responses)>;
 
-/// Where a grid point's response is read, per unit depth: along the transverse part of the
-/// inward normal (the normal itself on spur flanks; on helical flanks this keeps responses inside
-/// the face width at the face ends, at a lateral offset depth tan(beta_b)), scaled so that
-/// `depth` times it lies `depth` below the point's tangent plane. The member axis is z.
+/// Where a grid point's response is read, per unit depth: along the part of the inward normal
+/// across the face direction (the transverse part on cylindrical gears: the normal itself on spur
+/// flanks; on helical and spiral bevel flanks this keeps responses inside the face width at the
+/// face ends), scaled so that `depth` times it lies `depth` below the point's tangent plane.
 Vec3
 response_offset(const FlankCompliance::Point &point);
 

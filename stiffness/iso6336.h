@@ -16,7 +16,7 @@ struct IsoMeshStiffness
 
 struct IsoStiffnessInput
 {
-  int    z1 = 0, z2 = 0;     ///< tooth numbers (z2 < 0: internal gear is not covered)
+  double z1 = 0, z2 = 0;     ///< tooth numbers (virtual ones may be fractional)
   double x1 = 0, x2 = 0;     ///< profile shift coefficients
   double helix_angle      = 0; ///< beta [rad]
   double base_helix_angle = 0; ///< beta_b [rad]

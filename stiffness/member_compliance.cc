@@ -103,9 +103,7 @@ response_depths(const FlankCompliance &table, const ElasticSegment &body, double
 } // namespace
 
 SegmentMeshInfo
-write_tooth_segment_mesh_on_first_process(const InvoluteGear &gear,
-                                          const SegmentMeshOptions &options,
-                                          const std::string &path, MPI_Comm comm)
+segment_mesh_on_first_process(const SegmentMesher &mesher, const std::string &path, MPI_Comm comm)
 {
   SegmentMeshInfo info;
   std::string     error;
@@ -113,7 +111,7 @@ write_tooth_segment_mesh_on_first_process(const InvoluteGear &gear,
   if (first)
     try
       {
-        info = write_tooth_segment_mesh(gear, options, path);
+        info = mesher(path);
       }
     catch (const InputError &e)
       {
@@ -135,6 +133,31 @@ FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &o, MemberComplianceInfo *info)
 {
+  SegmentMeshOptions mesh = o.mesh;
+  mesh.fine_side          = o.side; // the loaded flanks get the flank element size
+  return member_compliance(
+      flanks, gear.data().name,
+      [&](const std::string &path) { return write_tooth_segment_mesh(gear, mesh, path); },
+      o.mesh.flank_size > 0 ? o.mesh.flank_size : gear.data().normal_module / 5, o, info);
+}
+
+FlankCompliance
+bevel_member_compliance(const BevelMemberFlanks &flanks, const std::string &name, double module,
+                        const MemberComplianceOptions &o, MemberComplianceInfo *info)
+{
+  SegmentMeshOptions mesh = o.mesh;
+  mesh.fine_side          = o.side;
+  return member_compliance(
+      flanks, name,
+      [&](const std::string &path) { return write_bevel_segment_mesh(flanks, module, mesh, path); },
+      o.mesh.flank_size > 0 ? o.mesh.flank_size : module / 5, o, info);
+}
+
+FlankCompliance
+member_compliance(const MemberFlanks &flanks, const std::string &member_name,
+                  const SegmentMesher &mesher, double h, const MemberComplianceOptions &o,
+                  MemberComplianceInfo *info)
+{
   MemberComplianceInfo  local;
   MemberComplianceInfo &out = info ? *info : local;
   if (o.work_directory.empty() || !std::filesystem::is_directory(o.work_directory))
@@ -143,18 +166,15 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
   if (!(o.depth_elements > 0 && o.patch_elements > 0))
     throw InputError("member compliance: depth and patch radius (in element sizes) must be > 0");
   auto        t0   = std::chrono::steady_clock::now();
-  std::string name = gear.data().name + "_segment";
+  std::string name = member_name + "_segment";
   std::replace_if(
       name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
   const std::string mesh_file =
       (std::filesystem::path(o.work_directory) / (name + ".msh")).string();
-  SegmentMeshOptions mesh       = o.mesh;
-  mesh.fine_side                = o.side; // the loaded flanks get the flank element size
-  const SegmentMeshInfo segment = write_tooth_segment_mesh_on_first_process(gear, mesh, mesh_file, o.communicator);
+  const SegmentMeshInfo segment = segment_mesh_on_first_process(mesher, mesh_file, o.communicator);
   out.hexahedra                 = segment.hexahedra;
   out.mesh_seconds              = seconds_since(t0);
 
-  const double h   = o.mesh.flank_size > 0 ? o.mesh.flank_size : gear.data().normal_module / 5;
   out.depth        = o.depth_elements * h;
   out.patch_radius = o.patch_elements * h;
   FlankGridSpec spec;
@@ -165,7 +185,7 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
     if (std::find(segment.member_teeth.begin(), segment.member_teeth.end(), t) ==
         segment.member_teeth.end())
       throw InputError("member compliance: loaded tooth " + std::to_string(t) +
-                       " is not in the finite-element segment of " + gear.data().name);
+                       " is not in the finite-element segment of " + member_name);
   FlankCompliance table(flanks, spec);
 
   t0 = std::chrono::steady_clock::now();

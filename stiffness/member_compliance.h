@@ -1,16 +1,18 @@
-// The structural compliance table of an involute member from finite elements: a gmsh tooth
-// segment around the loaded teeth (bore and radial cuts held), deal.II/PETSc with one
+// The structural compliance table of a member from finite elements: a tooth segment (gmsh)
+// around the loaded teeth (bore and radial cuts held), deal.II/PETSc with one
 // factorisation, unit normal patch loads at the flank grid points, responses a few elements
 // below the flank (where the elements resolve the Boussinesq field, but at most half the chord
 // through the tooth) with the half-space part taken out (flank_compliance.h).
 #pragma once
 
+#include "bevel_segment.h"
 #include "flank_compliance.h"
 #include "tooth_segment.h"
 #include "unloaded_tca.h"
 
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 
 namespace gearkit
@@ -56,15 +58,32 @@ std::pair<SegmentChoice, SegmentChoice>
 loaded_segments(const std::vector<TcaPosition> &positions, int pinion_teeth, int gear_teeth,
                 double gap_band);
 
-/// write_tooth_segment_mesh on the first process of `comm`; the others wait and receive the
-/// description, or the first process's InputError (every process throws it).
-SegmentMeshInfo
-write_tooth_segment_mesh_on_first_process(const InvoluteGear &gear,
-                                          const SegmentMeshOptions &options,
-                                          const std::string &path, MPI_Comm comm);
+/// Writes a member's segment mesh to the path given and describes it.
+using SegmentMesher = std::function<SegmentMeshInfo(const std::string &path)>;
 
+/// The mesher on the first process of `comm`; the others wait and receive the description, or
+/// the first process's InputError (every process throws it).
+SegmentMeshInfo
+segment_mesh_on_first_process(const SegmentMesher &mesher, const std::string &path, MPI_Comm comm);
+
+/// The table of any member on the segment the mesher writes (its flank groups as in
+/// tooth_segment.h); `flank_size` is the mesher's element size at the loaded flanks [m] (the
+/// response depth and patch radius are multiples of it); `name` names the mesh file.
+FlankCompliance
+member_compliance(const MemberFlanks &flanks, const std::string &name, const SegmentMesher &mesher,
+                  double flank_size, const MemberComplianceOptions &options,
+                  MemberComplianceInfo *info = nullptr);
+
+/// On a gmsh tooth segment of the involute gear (options.mesh; flank size default m_n / 5).
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &options,
                            MemberComplianceInfo *info = nullptr);
+
+/// On a spiral bevel segment (bevel_segment.h; flank size default m_mn / 5, `module` = m_mn);
+/// `name` names the mesh file.
+FlankCompliance
+bevel_member_compliance(const BevelMemberFlanks &flanks, const std::string &name, double module,
+                        const MemberComplianceOptions &options,
+                        MemberComplianceInfo *info = nullptr);
 } // namespace gearkit

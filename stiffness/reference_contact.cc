@@ -150,8 +150,9 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
            (std::string(is_pinion ? "reference_pinion" : "reference_gear") + ".msh"))
               .string();
       auto                  t0      = std::chrono::steady_clock::now();
-      const SegmentMeshInfo segment =
-          write_tooth_segment_mesh_on_first_process(g, mesh, file, o.communicator);
+      const SegmentMeshInfo segment = segment_mesh_on_first_process(
+          [&](const std::string &path) { return write_tooth_segment_mesh(g, mesh, path); }, file,
+          o.communicator);
       out.mesh_seconds += seconds_since(t0);
       out.hexahedra += segment.hexahedra;
       segment_teeth.push_back(segment.member_teeth);

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Checks the seed spiral bevel case: the pair's cone geometry (reference-data.md section 1),
 the classical transmission error synthesised to the seed's 3.72e-5 rad, the measured flanks'
-higher mesh orders, and the pictures and harmonic table."""
+higher mesh orders, the loaded contact by finite elements (the seed's static mesh force at the
+case's torque, mesh stiffness against ISO 6336 on the virtual cylindrical gears), and the
+pictures and harmonic table."""
 import os
 import sys
 
@@ -31,7 +33,26 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     h, hm = g["harmonics"][:], m["harmonics"][:]
     assert hm[4:].sum() > 2 * h[4:].sum(), (h, hm)  # measured flanks: higher mesh orders
     assert m["peak_to_peak"][()] > pp
-for name in ("ste.png", "contact_pattern.png", "measured.png"):
+    st = f["stiffness"]["seed"]
+    torques = list(st["torque"][:])
+    assert torques == [97.0, 194.0], torques
+    force = st["normal_force"][:]
+    # 194 N m was chosen for the seed's static mesh force of 3350 N (reference-data.md section 1)
+    assert abs(force[1].mean() / 3350 - 1) < 0.01, force[1].mean()
+    e0, eL = st["transmission_error_unloaded"][:], st["transmission_error_loaded"][:]
+    assert np.all(eL > e0 + 50e-6), (eL - e0).min()
+    K = st["mesh_stiffness"][:]
+    assert np.all(np.isfinite(K)) and K.shape == (2, 16)
+    # a localised bearing grows with the load: the mesh stiffens
+    assert K[1].mean() > 1.1 * K[0].mean(), K.mean(axis=1)
+    # against ISO 6336-1 on the virtual cylindrical gears of the mean point: the single pair of
+    # a localised bearing below the theoretical single stiffness c'_th b (375 N/um), above c' b
+    c_th = st["iso_c_th"][()]
+    assert 0.6 < K[1].mean() / c_th < 1.0, (K[1].mean(), c_th)
+    assert st.attrs["iso_basis"].startswith("virtual cylindrical gears")
+    for member, dofs in (("pinion", 131139), ("gear", 110727)):
+        assert f["compliance"]["seed"][member]["dofs"][()] == dofs  # the mesh the README states
+for name in ("ste.png", "contact_pattern.png", "measured.png", "stiffness.png"):
     path = os.path.join(out, name)
     with open(path, "rb") as fh:
         assert fh.read(8) == b"\x89PNG\r\n\x1a\n", path
@@ -39,4 +60,4 @@ for name in ("ste.png", "contact_pattern.png", "measured.png"):
 with open(os.path.join(out, "ste_harmonics.md")) as fh:
     table = fh.read()
 assert "| 1x |" in table and "| 3x |" in table
-print("seed spiral bevel case: geometry, TE amplitude, harmonics and pictures OK")
+print("seed spiral bevel case: geometry, TE amplitude, harmonics, loaded contact and pictures OK")

@@ -1,5 +1,6 @@
 // The flank compliance table: bilinear interpolation is exact on bilinear data, teeth outside
 // the grid are refused, and a member that behaves like a half-space leaves no structural part.
+#include "../seed_bevel_pair.h"
 #include "../fzg_c_pair.h"
 #include "flank_compliance.h"
 
@@ -100,4 +101,29 @@ TEST(FlankCompliance, DiskLoadAtDepthAgainstBruteForce)
     }
   EXPECT_EQ(disk_load_displacement(1e-3, 2e-3, 0, steel),
             point_load_displacement(1e-3, 2e-3, 1.0, steel));
+}
+
+TEST(FlankCompliance, SpiralBevelResponsesReadAcrossTheConeElement)
+{
+  // On a cone the face runs along the pitch cone's element, not the axis: responses are read
+  // along the part of the inward normal across it (else they would leave the face at the toe
+  // and heel), and the theoretical flank parameters come back from the rotational projection.
+  const BevelMemberFlanks member(conjugate_cuts(test_data::seed_bevel_design()).first);
+  FlankGridSpec           spec;
+  spec.teeth = {0, 7};
+  spec.n_u = 5, spec.n_v = 6;
+  const FlankCompliance table(member, spec);
+  const double gamma = member.tooth_flank(FlankSide::drive).blank_data().pitch_angle;
+  for (const FlankCompliance::Point &p : table.points())
+    {
+      const Vec3 offset = response_offset(p);
+      EXPECT_NEAR(offset.dot(p.face_direction), 0, 1e-12);
+      EXPECT_NEAR(-offset.dot(p.normal), 1, 1e-12);
+      // the element: at the angle gamma to the axis, in the point's axial plane
+      EXPECT_NEAR(p.face_direction.z(), std::cos(gamma), 1e-12);
+      EXPECT_NEAR(p.face_direction.cross(Vec3::UnitZ()).dot(p.position), 0, 1e-12);
+      const auto [u, v] = member.rotational_parameters(p.position);
+      EXPECT_NEAR(u, p.u, 1e-12);
+      EXPECT_NEAR(v, p.v, 1e-12);
+    }
 }

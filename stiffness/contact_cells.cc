@@ -72,7 +72,63 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
       if (e_t.norm() < 1e-9)
         e_t = assembly.pinion_vector_to_global(flank.evaluate(c.u1, c.v1).d_dv, phi);
       e_t = (e_t - e_t.dot(n) * n).normalized();
-      const Vec3 e_s = n.cross(e_t);
+      Vec3 e_s = n.cross(e_t);
+      // The unloaded gap at a pinion flank point (empty off either flank).
+      auto gap_at = [&](const Vec3 &target, double s_cell, double t_cell, ContactCell &cell) {
+        const auto p = project(flank, assembly, phi, target, c.u1, c.v1);
+        double     psi;
+        if (!p || !tca.touch_angle(c.gear_tooth, p->position, position.gear_angle, psi, cell.u2,
+                                   cell.v2))
+          return false;
+        cell.s = s_cell, cell.t = t_cell;
+        cell.u1 = p->u, cell.v1 = p->v;
+        cell.position = p->position, cell.normal = p->normal;
+        const Vec3 r  = p->position - assembly.gear_centre();
+        cell.gap      = std::max(0.0, sign * (position.gear_angle - psi) *
+                                     std::abs(assembly.gear_axis().cross(r).dot(p->normal)));
+        return true;
+      };
+      // The gap at the zone's scale: a quadratic fitted to gaps sampled on two rings about the
+      // contact point. Where its principal directions or largest curvature disagree with the
+      // local ones (measured flanks: the curvature at a point carries the measurement's noise,
+      // and the contact line can turn by tens of degrees), the fit sets the zone.
+      double k_max = std::max(c.curvature_max, 1e-9);
+      {
+        const double                   rho = std::sqrt(2 * o.gap_band / k_max);
+        std::vector<Eigen::Matrix<double, 6, 1>> rows;
+        std::vector<double>            gaps;
+        for (double r : {rho / 2, rho})
+          for (int a = 0; a < 12; ++a)
+            {
+              const double s_ = r * std::cos(pi * a / 6), t_ = r * std::sin(pi * a / 6);
+              ContactCell  probe;
+              if (gap_at(c.position + s_ * e_s + t_ * e_t, s_, t_, probe))
+                {
+                  rows.emplace_back();
+                  rows.back() << 1, s_, t_, s_ * s_ / 2, s_ * t_, t_ * t_ / 2;
+                  gaps.push_back(probe.gap);
+                }
+            }
+        if (rows.size() >= 12)
+          {
+            Eigen::MatrixXd A(rows.size(), 6);
+            Eigen::VectorXd g(rows.size());
+            for (std::size_t i = 0; i < rows.size(); ++i)
+              A.row(Eigen::Index(i)) = rows[i].transpose(), g[Eigen::Index(i)] = gaps[i];
+            const Eigen::VectorXd q = A.colPivHouseholderQr().solve(g);
+            Eigen::Matrix2d       H;
+            H << q[3], q[4], q[4], q[5];
+            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H);
+            const double   k_fit = eig.eigenvalues()[1];
+            const Vec2     along = eig.eigenvectors().col(0); // least curvature, in (s, t)
+            if (k_fit > 0 && (std::abs(along.y()) < std::cos(5 * pi / 180) || k_fit < k_max / 2))
+              {
+                e_t   = (along.x() * e_s + along.y() * e_t).normalized();
+                e_s   = n.cross(e_t);
+                k_max = k_fit;
+              }
+          }
+      }
 
       // Extent along the line: where the projection leaves the flank (bisection both ways).
       const FlankDomain d    = flank.domain();
@@ -93,7 +149,23 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
         return in;
       };
       const double t0 = -reach(-1), t1 = reach(+1);
-      const double w_band = std::sqrt(2 * o.gap_band / std::max(c.curvature_max, 1e-9));
+      // Across the line the gap opens as k_max s^2 / 2 near the contact point; where the gap
+      // opens more slowly (measured flanks: the local curvature carries the measurement's noise
+      // and waviness), the band is widened until the gap at its edges reaches the band.
+      double w_band = std::sqrt(2 * o.gap_band / k_max);
+      for (int it = 0; it < 8 && w_band < span / 2; ++it)
+        {
+          double opening = HUGE_VAL;
+          for (double side : {-1.0, 1.0})
+            {
+              ContactCell probe;
+              if (gap_at(c.position + side * w_band * e_s, side * w_band, 0, probe))
+                opening = std::min(opening, probe.gap - c.separation);
+            }
+          if (opening == HUGE_VAL || opening >= o.gap_band / 2)
+            break;
+          w_band *= std::min(4.0, std::sqrt(o.gap_band / std::max(opening, 1e-12)));
+        }
       const double w      = std::min(w_band, span / 2);
       const double dt = (t1 - t0) / o.cells_along, ds = 2 * w / o.cells_across;
       if (!(dt > 0))
@@ -103,25 +175,14 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
           {
             ContactCell cell;
             cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth, cell.gear_tooth = c.gear_tooth;
-            cell.t = t0 + (i + 0.5) * dt, cell.s = -w + (j + 0.5) * ds;
             cell.dt = dt, cell.ds = ds;
             cell.zone_edge = w == w_band && (j == 0 || j == o.cells_across - 1);
-            const auto p = project(flank, assembly, phi, c.position + cell.s * e_s + cell.t * e_t,
-                                   c.u1, c.v1);
-            if (!p)
+            const double s_cell = -w + (j + 0.5) * ds, t_cell = t0 + (i + 0.5) * dt;
+            if (!gap_at(c.position + s_cell * e_s + t_cell * e_t, s_cell, t_cell, cell))
               continue;
-            double psi;
-            if (!tca.touch_angle(c.gear_tooth, p->position, position.gear_angle, psi, cell.u2,
-                                 cell.v2))
-              continue;
-            cell.u1 = p->u, cell.v1 = p->v;
             cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;
             cell.table_u2 = cell.u2, cell.table_v2 = cell.v2;
-            cell.position = p->position, cell.normal = p->normal;
-            const Vec3 r  = p->position - assembly.gear_centre();
-            cell.gap      = std::max(0.0, sign * (position.gear_angle - psi) *
-                                         std::abs(assembly.gear_axis().cross(r).dot(p->normal)));
-            cell.lever    = std::abs(Vec3::UnitZ().cross(p->position).dot(p->normal));
+            cell.lever    = std::abs(Vec3::UnitZ().cross(cell.position).dot(cell.normal));
             cells.push_back(cell);
           }
     }

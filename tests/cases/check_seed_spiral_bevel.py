@@ -50,6 +50,12 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     c_th = st["iso_c_th"][()]
     assert 0.6 < K[1].mean() / c_th < 1.0, (K[1].mean(), c_th)
     assert st.attrs["iso_basis"].startswith("virtual cylindrical gears")
+    # measured flanks, compliances reused: the rougher flanks bear less evenly, the mesh is softer
+    Km = st["measured"]["mesh_stiffness"][:]
+    assert Km.shape == K.shape and np.all(np.isfinite(Km))
+    assert 0.75 < Km[1].mean() / K[1].mean() < 0.98, (Km.mean(axis=1), K.mean(axis=1))
+    assert np.all(st["measured"]["transmission_error_loaded"][:] >
+                  st["measured"]["transmission_error_unloaded"][:])
     for member, dofs in (("pinion", 131139), ("gear", 110727)):
         assert f["compliance"]["seed"][member]["dofs"][()] == dofs  # the mesh the README states
 for name in ("ste.png", "contact_pattern.png", "measured.png", "stiffness.png"):

@@ -397,6 +397,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
             mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
       };
+      lo.cells.zone_from_gaps = true; // the measured flanks' local curvature carries their noise
       const H5Group gm = g.group("measured");
       gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");
       analyse(UnloadedTca(mp, mgr, members.assembly, tca.options), lo, gm, " measured");

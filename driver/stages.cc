@@ -67,7 +67,7 @@ stage_definitions()
        "loaded contact over the mesh cycle: loaded TE, mesh stiffness, load sharing, pressure",
        {"flanks", "measured", "compliance"},
        {"TCA", "Loaded contact"},
-       5,
+       6,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_stiffness_stage},
   };

@@ -88,11 +88,12 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
                                      std::abs(assembly.gear_axis().cross(r).dot(p->normal)));
         return true;
       };
-      // The gap at the zone's scale: a quadratic fitted to gaps sampled on two rings about the
-      // contact point. Where its principal directions or largest curvature disagree with the
-      // local ones (measured flanks: the curvature at a point carries the measurement's noise,
-      // and the contact line can turn by tens of degrees), the fit sets the zone.
+      // Optionally the gap at the zone's scale: a quadratic fitted to gaps sampled on two rings
+      // about the contact point. Where its principal directions or largest curvature disagree
+      // with the local ones (measured flanks: the curvature at a point carries the measurement's
+      // noise, and the contact line can turn by tens of degrees), the fit sets the zone.
       double k_max = std::max(c.curvature_max, 1e-9);
+      if (o.zone_from_gaps)
       {
         const double                   rho = std::sqrt(2 * o.gap_band / k_max);
         std::vector<Eigen::Matrix<double, 6, 1>> rows;

@@ -19,6 +19,11 @@ struct ContactCellOptions
   /// relative curvature opens the gap to this (s = sqrt(2 g / k_max)); choose it above the
   /// largest elastic approach expected.
   double gap_band = 10e-6;
+  /// Set the contact line's direction and the zone's width from a quadratic fitted to the
+  /// unloaded gaps about each contact point (where it disagrees with the local curvature), not
+  /// from the local curvature alone: for measured flanks, whose curvature at a point carries the
+  /// measurement's noise. Exact flanks keep their exact curvature.
+  bool zone_from_gaps = false;
 };
 
 struct ContactCell

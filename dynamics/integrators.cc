@@ -1,0 +1,259 @@
+#include "integrators.h"
+
+#include <Eigen/Dense>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace gearkit
+{
+namespace
+{
+void
+record(const PairModel &model, const RunOptions &o, double t, const PairVector &q,
+       const PairVector &v, Trajectory &out)
+{
+  const MeshState  m = model.mesh().at(model.phase(t, o.omega));
+  const PairVector g = PairModel::mesh_gradient(m);
+  const double     et_rate = m.det * model.parameters().pinion_teeth * o.omega / (2 * pi);
+  out.t.push_back(t);
+  out.q.push_back(q);
+  out.v.push_back(v);
+  out.dte.push_back(g.dot(q));
+  out.relative.push_back(g.dot(q) - m.et);
+  out.force.push_back(model.mesh_force(m, g.dot(q), g.dot(v), et_rate));
+}
+
+/// Per-DOF displacement scale: the static mesh deflection, turned into rotations through the
+/// mesh's moment arms (so that tolerances mean the same along every DOF).
+PairVector
+displacement_scale(const PairModel &model)
+{
+  const MeshState m  = model.mesh().mean();
+  const double    kd = std::max(model.parameters().half_backlash, 1e-9);
+  const double    d  = std::max(kd, 1e-6); // at least a micrometre
+  const double    arm =
+      std::max({m.lp.norm(), m.lg.norm(), 1e-3});
+  PairVector s = PairVector::Constant(d);
+  for (int i : {dof::motor, dof::load})
+    s[i] = d / arm;
+  for (int k = 0; k < 3; ++k)
+    s[dof::gear_rotation + k] = s[dof::pinion_rotation + k] = d / arm;
+  return s;
+}
+
+struct CvodeData
+{
+  const PairModel  *model;
+  const RunOptions *o;
+  double            period; // mesh period [s]
+};
+
+// y = [q; v] in SI, time tau in mesh cycles: dy/dtau = T dy/dt
+int
+cvode_rhs(sunrealtype tau, N_Vector y, N_Vector ydot, void *user)
+{
+  const auto                      *d = static_cast<CvodeData *>(user);
+  Eigen::Map<const PairVector>     q(N_VGetArrayPointer(y));
+  Eigen::Map<const PairVector>     v(N_VGetArrayPointer(y) + pair_dofs);
+  Eigen::Map<PairVector>           dq(N_VGetArrayPointer(ydot));
+  Eigen::Map<PairVector>           dv(N_VGetArrayPointer(ydot) + pair_dofs);
+  const double                     t = tau * d->period;
+  dq = d->period * v;
+  dv = d->period *
+       d->model->acceleration(t, q, v, d->o->omega, d->o->motor_torque, d->o->load_torque);
+  return 0;
+}
+
+int
+cvode_roots(sunrealtype tau, N_Vector y, sunrealtype *gout, void *user)
+{
+  const auto                  *d = static_cast<CvodeData *>(user);
+  Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
+  const MeshState              m = d->model->mesh().at(tau); // tau is the mesh phase
+  const double x = PairModel::mesh_gradient(m).dot(q) - m.et, b = d->model->parameters().half_backlash;
+  gout[0] = x - b;
+  gout[1] = x + b;
+  return 0;
+}
+
+void
+cvode_check(int flag, const char *call, double tau)
+{
+  if (flag < 0)
+    {
+      std::ostringstream msg;
+      msg << "pair dynamics: CVODE failed in " << call << " at mesh cycle " << tau << " (flag "
+          << flag << ": " << CVodeGetReturnFlagName(flag)
+          << "); try a smaller tolerance, the Newmark path, or check the model's stiffnesses";
+      throw InputError(msg.str());
+    }
+}
+
+Trajectory
+run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
+{
+  Trajectory  out;
+  CvodeData   data{&model, &o, 2 * pi / (model.parameters().pinion_teeth * o.omega)};
+  SUNContext  ctx;
+  if (SUNContext_Create(nullptr, &ctx) != 0)
+    throw InputError("pair dynamics: cannot create a SUNDIALS context");
+  N_Vector y = N_VNew_Serial(2 * pair_dofs, ctx), abstol = N_VNew_Serial(2 * pair_dofs, ctx);
+  SUNMatrix       A   = SUNDenseMatrix(2 * pair_dofs, 2 * pair_dofs, ctx);
+  SUNLinearSolver LS  = SUNLinSol_Dense(y, A, ctx);
+  void           *mem = CVodeCreate(o.method == Integrator::cvode_adams ? CV_ADAMS : CV_BDF, ctx);
+  auto release        = [&] {
+    CVodeFree(&mem);
+    SUNLinSolFree(LS);
+    SUNMatDestroy(A);
+    N_VDestroy(abstol);
+    N_VDestroy(y);
+    SUNContext_Free(&ctx);
+  };
+  try
+    {
+      Eigen::Map<PairVector>(N_VGetArrayPointer(y))             = q0;
+      Eigen::Map<PairVector>(N_VGetArrayPointer(y) + pair_dofs) = v0;
+      // scales: displacements, and their rates per mesh cycle... per second (v in SI)
+      const PairVector s = displacement_scale(model);
+      Eigen::Map<PairVector>(N_VGetArrayPointer(abstol)) = o.absolute_tolerance * s;
+      Eigen::Map<PairVector>(N_VGetArrayPointer(abstol) + pair_dofs) =
+          o.absolute_tolerance * s / data.period;
+      cvode_check(CVodeInit(mem, cvode_rhs, 0.0, y), "CVodeInit", 0);
+      cvode_check(CVodeSVtolerances(mem, o.relative_tolerance, abstol), "CVodeSVtolerances", 0);
+      cvode_check(CVodeSetUserData(mem, &data), "CVodeSetUserData", 0);
+      cvode_check(CVodeSetLinearSolver(mem, LS, A), "CVodeSetLinearSolver", 0);
+      cvode_check(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps", 0);
+      if (model.parameters().half_backlash > 0)
+        cvode_check(CVodeRootInit(mem, 2, cvode_roots), "CVodeRootInit", 0);
+      record(model, o, 0, q0, v0, out);
+      const int n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
+      double    tau   = 0;
+      for (int k = 1; k <= n_out; ++k)
+        {
+          const double tout = double(k) / o.samples_per_cycle;
+          while (true)
+            {
+              const int flag = CVode(mem, tout, y, &tau, CV_NORMAL);
+              cvode_check(flag, "CVode", tau);
+              if (flag != CV_ROOT_RETURN)
+                break;
+              ++out.events; // the mesh force changes its law here: restart the method
+              cvode_check(CVodeReInit(mem, tau, y), "CVodeReInit", tau);
+            }
+          Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
+          Eigen::Map<const PairVector> v(N_VGetArrayPointer(y) + pair_dofs);
+          record(model, o, tout * data.period, q, v, out);
+        }
+      long steps = 0;
+      CVodeGetNumSteps(mem, &steps);
+      out.steps = std::size_t(steps);
+    }
+  catch (...)
+    {
+      release();
+      throw;
+    }
+  release();
+  return out;
+}
+
+Trajectory
+run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
+{
+  Trajectory       out;
+  const double     period = 2 * pi / (model.parameters().pinion_teeth * o.omega);
+  const double     h      = period / o.steps_per_cycle;
+  const PairMatrix &M = model.mass(), &K = model.stiffness(), &C = model.damping();
+  const double     c_m = model.mesh_damping();
+  const int        z   = model.parameters().pinion_teeth;
+  PairVector       F_ext = PairVector::Zero();
+  F_ext[dof::motor]      = o.motor_torque;
+  F_ext[dof::load]       = -o.load_torque;
+  auto mesh = [&](double t, const PairVector &q, const PairVector &v, double &Fm, double &dFdq,
+                  PairVector &g) {
+    const MeshState m = model.mesh().at(model.phase(t, o.omega));
+    g                 = PairModel::mesh_gradient(m);
+    const double x = g.dot(q) - m.et, b = model.parameters().half_backlash;
+    Fm             = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
+    dFdq           = std::abs(x) >= b ? m.km : 0.0; // the damping part enters through v(q)
+  };
+  const PairVector scale = displacement_scale(model);
+  PairVector       q = q0, v = v0, a;
+  {
+    double     Fm, dF;
+    PairVector g;
+    mesh(0, q, v, Fm, dF, g);
+    a = M.ldlt().solve(F_ext - K * q - C * v - g * Fm);
+  }
+  record(model, o, 0, q, v, out);
+  const int steps_total = int(std::lround(o.mesh_cycles * o.steps_per_cycle));
+  const int every       = std::max(1, o.steps_per_cycle / o.samples_per_cycle);
+  for (int n = 1; n <= steps_total; ++n)
+    {
+      const double t  = n * h;
+      PairVector   qn = q + h * v + h * h / 4 * a; // predictor (a_{n+1} = a_n)
+      PairVector   an, vn;
+      bool         converged = false;
+      for (int it = 0; it < 30 && !converged; ++it)
+        {
+          an = 4 / (h * h) * (qn - q - h * v) - a;
+          vn = v + h / 2 * (a + an);
+          double     Fm, dF;
+          PairVector g;
+          mesh(t, qn, vn, Fm, dF, g);
+          const PairVector r = M * an + C * vn + K * qn + g * Fm - F_ext;
+          const bool contact = dF > 0;
+          const PairMatrix J = 4 / (h * h) * M + 2 / h * C + K +
+                               (dF + (contact ? 2 / h * c_m : 0.0)) * g * g.transpose();
+          const PairVector dq = J.ldlt().solve(-r);
+          qn += dq;
+          converged = (dq.array().abs() / scale.array()).maxCoeff() < 1e-10;
+        }
+      if (!converged)
+        {
+          std::ostringstream msg;
+          msg << "pair dynamics: Newmark's Newton iterations did not converge at mesh cycle "
+              << t / period << "; use more steps per mesh cycle";
+          throw InputError(msg.str());
+        }
+      an = 4 / (h * h) * (qn - q - h * v) - a;
+      vn = v + h / 2 * (a + an);
+      q = qn, v = vn, a = an;
+      if (n % every == 0)
+        record(model, o, t, q, v, out);
+    }
+  out.steps = std::size_t(steps_total);
+  return out;
+}
+} // namespace
+
+Trajectory
+simulate(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
+{
+  auto require = [](bool ok, const std::string &what, double value, const std::string &allowed) {
+    if (!ok)
+      {
+        std::ostringstream msg;
+        msg << "pair dynamics: " << what << " = " << value << " is not allowed; expected "
+            << allowed;
+        throw InputError(msg.str());
+      }
+  };
+  require(o.omega > 0 && std::isfinite(o.omega), "pinion speed [rad/s]", o.omega, "> 0");
+  require(o.mesh_cycles > 0, "mesh cycles", o.mesh_cycles, "> 0");
+  require(o.samples_per_cycle >= 1, "samples per mesh cycle", o.samples_per_cycle, ">= 1");
+  require(o.relative_tolerance > 0 && o.absolute_tolerance > 0, "tolerance",
+          std::min(o.relative_tolerance, o.absolute_tolerance), "> 0");
+  require(o.steps_per_cycle >= o.samples_per_cycle, "Newmark steps per mesh cycle",
+          o.steps_per_cycle, ">= the output samples per mesh cycle");
+  require(q0.allFinite() && v0.allFinite(), "initial state (finite)", 0, "finite values");
+  return o.method == Integrator::newmark ? run_newmark(model, q0, v0, o)
+                                         : run_cvode(model, q0, v0, o);
+}
+} // namespace gearkit

@@ -172,9 +172,10 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
   const PairMatrix &M = model.mass(), &K = model.stiffness(), &C = model.damping();
   const double     c_m = model.mesh_damping();
   const int        z   = model.parameters().pinion_teeth;
-  PairVector       F_ext = PairVector::Zero();
-  F_ext[dof::motor]      = o.motor_torque;
-  F_ext[dof::load]       = -o.load_torque;
+  const PairVector F_ext = model.torques(o.motor_torque, o.load_torque);
+  const PairVector free  = model.active();
+  const PairVector held_dofs = PairVector::Ones() - free;
+  const PairMatrix held      = held_dofs.asDiagonal();
   auto mesh = [&](double t, const PairVector &q, const PairVector &v, double &Fm, double &dFdq,
                   PairVector &g) {
     const MeshState m = model.mesh().at(model.phase(t, o.omega));
@@ -182,6 +183,7 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
     const double x = g.dot(q) - m.et, b = model.parameters().half_backlash;
     Fm             = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
     dFdq           = std::abs(x) >= b ? m.km : 0.0; // the damping part enters through v(q)
+    g              = g.cwiseProduct(free);
   };
   const PairVector scale = displacement_scale(model);
   PairVector       q = q0, v = v0, a;
@@ -189,7 +191,7 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
     double     Fm, dF;
     PairVector g;
     mesh(0, q, v, Fm, dF, g);
-    a = M.ldlt().solve(F_ext - K * q - C * v - g * Fm);
+    a = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
   }
   record(model, o, 0, q, v, out);
   const int steps_total = int(std::lround(o.mesh_cycles * o.steps_per_cycle));
@@ -207,10 +209,14 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
           double     Fm, dF;
           PairVector g;
           mesh(t, qn, vn, Fm, dF, g);
-          const PairVector r = M * an + C * vn + K * qn + g * Fm - F_ext;
-          const bool contact = dF > 0;
-          const PairMatrix J = 4 / (h * h) * M + 2 / h * C + K +
-                               (dF + (contact ? 2 / h * c_m : 0.0)) * g * g.transpose();
+          // held DOFs: their rows read dq = 0
+          const PairVector r = (M * an + C * vn + K * qn + g * Fm - F_ext).cwiseProduct(free);
+          const bool damped  = dF > 0 || !model.parameters().mesh_damping_in_contact_only;
+          const PairMatrix J = free.asDiagonal() *
+                                   (4 / (h * h) * M + 2 / h * C + K +
+                                    (dF + (damped ? 2 / h * c_m : 0.0)) * g * g.transpose()) *
+                                   free.asDiagonal() +
+                               held;
           const PairVector dq = J.ldlt().solve(-r);
           qn += dq;
           converged = (dq.array().abs() / scale.array()).maxCoeff() < 1e-10;

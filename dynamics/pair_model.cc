@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 namespace gearkit
 {
@@ -70,15 +71,32 @@ PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSampl
     , K(PairMatrix::Zero())
     , C(PairMatrix::Zero())
 {
-  require(p.motor_inertia > 0, "motor inertia [kg m^2]", p.motor_inertia, "> 0");
-  require(p.load_inertia > 0, "load inertia [kg m^2]", p.load_inertia, "> 0");
+  require(p.motor_inertia >= 0, "motor inertia [kg m^2]", p.motor_inertia, ">= 0 (0: no motor DOF)");
+  require(p.load_inertia >= 0, "load inertia [kg m^2]", p.load_inertia, ">= 0 (0: no load DOF)");
   require(p.pinion_teeth >= 1, "pinion teeth", p.pinion_teeth, ">= 1");
   require(p.half_backlash >= 0, "half backlash [m]", p.half_backlash, ">= 0");
   require(p.mesh_damping_ratio >= 0, "mesh damping ratio", p.mesh_damping_ratio, ">= 0");
   add_body(p.gear, "gear", dof::gear, M, K, C);
   add_body(p.pinion, "pinion", dof::pinion, M, K, C);
-  M(dof::motor, dof::motor) = p.motor_inertia;
-  M(dof::load, dof::load)   = p.load_inertia;
+  free = PairVector::Ones();
+  if (p.torsion_only)
+    for (int o : {dof::gear, dof::gear_rotation, dof::pinion, dof::pinion_rotation})
+      free.segment<3>(o).setZero();
+  if (p.torsion_only) // each body turns about its own axis only
+    {
+      for (int k = 0; k < 3; ++k)
+        {
+          free[dof::pinion_rotation + k] = std::abs(p.pinion.axis[k]) == 1 ? 1 : 0;
+          free[dof::gear_rotation + k]   = std::abs(p.gear.axis[k]) == 1 ? 1 : 0;
+        }
+      require(free.segment<3>(dof::pinion_rotation).sum() == 1 &&
+                  free.segment<3>(dof::gear_rotation).sum() == 1,
+              "torsional model: body axes along global axes", 0, "unit axes along X, Y or Z");
+    }
+  free[dof::motor]          = p.motor_inertia > 0 ? 1 : 0;
+  free[dof::load]           = p.load_inertia > 0 ? 1 : 0;
+  M(dof::motor, dof::motor) = p.motor_inertia > 0 ? p.motor_inertia : 1; // held if 0
+  M(dof::load, dof::load)   = p.load_inertia > 0 ? p.load_inertia : 1;
   // shafts: motor - pinion (theta_E - a_p . Theta_p), gear - load (a_g . Theta_g - theta_L)
   auto shaft = [&](const ShaftParameters &s, int end, int body, const Vec3 &axis, double sign,
                    const std::string &name) {
@@ -90,10 +108,12 @@ PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSampl
     K += s.stiffness * w * w.transpose();
     C += s.damping * w * w.transpose();
   };
-  shaft(p.motor_shaft, dof::motor, dof::pinion_rotation, p.pinion.axis, 1, "motor");
-  shaft(p.load_shaft, dof::load, dof::gear_rotation, p.gear.axis, -1, "load");
+  if (free[dof::motor] > 0)
+    shaft(p.motor_shaft, dof::motor, dof::pinion_rotation, p.pinion.axis, 1, "motor");
+  if (free[dof::load] > 0)
+    shaft(p.load_shaft, dof::load, dof::gear_rotation, p.gear.axis, -1, "load");
   const MeshState  m0 = cycle.mean();
-  const PairVector g  = mesh_gradient(m0);
+  const PairVector g  = mesh_gradient(m0).cwiseProduct(free);
   m_e                 = 1 / g.dot(M.ldlt().solve(g));
   c_m                 = 2 * p.mesh_damping_ratio * std::sqrt(m0.km * m_e);
 }
@@ -119,11 +139,27 @@ double
 PairModel::mesh_force(const MeshState &m, double delta, double delta_rate, double et_rate) const
 {
   const double x = delta - m.et, b = p.half_backlash;
+  const double damping = c_m * (delta_rate - et_rate);
   if (x >= b)
-    return m.km * (x - b) + c_m * (delta_rate - et_rate);
+    return m.km * (x - b) + damping;
   if (x <= -b)
-    return m.km * (x + b) + c_m * (delta_rate - et_rate);
-  return 0;
+    return m.km * (x + b) + damping;
+  return p.mesh_damping_in_contact_only ? 0.0 : damping;
+}
+
+PairVector
+PairModel::torques(double motor_torque, double load_torque) const
+{
+  PairVector F = PairVector::Zero();
+  if (free[dof::motor] > 0)
+    F[dof::motor] = motor_torque;
+  else
+    F.segment<3>(dof::pinion_rotation) = motor_torque * p.pinion.axis;
+  if (free[dof::load] > 0)
+    F[dof::load] = -load_torque;
+  else
+    F.segment<3>(dof::gear_rotation) = -load_torque * p.gear.axis;
+  return F;
 }
 
 PairVector
@@ -134,16 +170,14 @@ PairModel::acceleration(double t, const PairVector &q, const PairVector &qd, dou
   const PairVector g = mesh_gradient(m);
   const double     et_rate = m.det * p.pinion_teeth * omega / (2 * pi);
   const double     Fm      = mesh_force(m, g.dot(q), g.dot(qd), et_rate);
-  PairVector       F       = -K * q - C * qd - g * Fm;
-  F[dof::motor] += motor_torque;
-  F[dof::load] -= load_torque;
+  const PairVector F = torques(motor_torque, load_torque) - K * q - C * qd - g * Fm;
   // M is block diagonal: scalars and 3 x 3 blocks
   PairVector a;
   a[dof::motor] = F[dof::motor] / M(dof::motor, dof::motor);
   a[dof::load]  = F[dof::load] / M(dof::load, dof::load);
   for (int o : {dof::gear, dof::gear_rotation, dof::pinion, dof::pinion_rotation})
     a.segment<3>(o) = M.block<3, 3>(o, o).ldlt().solve(F.segment<3>(o));
-  return a;
+  return a.cwiseProduct(free); // held DOFs stay where they are
 }
 
 StaticEquilibrium
@@ -151,16 +185,40 @@ PairModel::static_equilibrium(double load_torque) const
 {
   const MeshState  m = cycle.mean();
   const PairVector g = mesh_gradient(m);
-  // drive-side contact: F_m = K_m (g . q - E_t - b_c); the motor shaft's end held
+  // drive-side contact: F_m = K_m (g . q - E_t - b_c); the motor shaft's end (or the pinion)
+  // held against turning, and the held DOFs
   const PairMatrix A   = K + m.km * g * g.transpose();
-  PairVector       rhs = m.km * (m.et + p.half_backlash) * g;
-  rhs[dof::load] -= load_torque;
-  const Eigen::Matrix<double, 13, 13> Ar = A.bottomRightCorner<13, 13>();
-  StaticEquilibrium                   s;
-  s.q.tail<13>()  = Ar.ldlt().solve(rhs.tail<13>());
-  s.deflection    = g.dot(s.q) - m.et - p.half_backlash;
-  s.mesh_force    = m.km * s.deflection;
-  s.motor_torque  = K.row(dof::motor).dot(s.q);
+  const PairVector rhs = m.km * (m.et + p.half_backlash) * g + torques(0, load_torque);
+  const int        hold = free[dof::motor] > 0 ? dof::motor : dof::pinion_rotation + [&] {
+    int k = 0;
+    while (std::abs(p.pinion.axis[k]) < std::abs(p.pinion.axis[(k + 1) % 3]) ||
+           std::abs(p.pinion.axis[k]) < std::abs(p.pinion.axis[(k + 2) % 3]))
+      ++k;
+    return k;
+  }();
+  std::vector<int> index;
+  for (int i = 0; i < pair_dofs; ++i)
+    if (free[i] > 0 && i != hold)
+      index.push_back(i);
+  const int       n = int(index.size());
+  Eigen::MatrixXd Ar(n, n);
+  Eigen::VectorXd br(n);
+  for (int i = 0; i < n; ++i)
+    {
+      br[i] = rhs[index[i]];
+      for (int j = 0; j < n; ++j)
+        Ar(i, j) = A(index[i], index[j]);
+    }
+  const Eigen::VectorXd x = Ar.ldlt().solve(br);
+  StaticEquilibrium     s;
+  for (int i = 0; i < n; ++i)
+    s.q[index[i]] = x[i];
+  s.deflection   = g.dot(s.q) - m.et - p.half_backlash;
+  s.mesh_force   = m.km * s.deflection;
+  // the torque the held DOF takes: the motor torque that balances the load
+  s.motor_torque = hold == dof::motor ? K.row(dof::motor).dot(s.q)
+                                      : (A.row(hold).dot(s.q) - rhs[hold]) /
+                                            p.pinion.axis[hold - dof::pinion_rotation];
   if (!(s.mesh_force > 0))
     {
       std::ostringstream msg;

@@ -59,16 +59,22 @@ struct ShaftParameters
 
 struct PairModelParameters
 {
-  double          motor_inertia = 0, load_inertia = 0; ///< [kg m^2]
+  /// [kg m^2]; 0 removes the DOF: the motor torque then acts on the pinion's axis directly (the
+  /// load torque on the gear's), and the shaft is not modelled
+  double          motor_inertia = 0, load_inertia = 0;
   BodyParameters  pinion, gear;
   ShaftParameters motor_shaft, load_shaft; ///< motor-pinion, gear-load
   int             pinion_teeth  = 0;
   double          half_backlash = 0;  ///< b_c [m]
   double          mesh_damping_ratio = 0; ///< c_m = 2 zeta sqrt(K_m,mean m_e)
+  /// The seed's mesh damping acts only in contact; false: always (Kahraman and Singh's model)
+  bool            mesh_damping_in_contact_only = true;
+  /// Translations and tilts of both bodies held: the pure torsional model
+  bool            torsion_only = false;
 };
 
-/// Static equilibrium under a load torque with the motor shaft's end held (the rigid rotation
-/// removed), at the phase-averaged mesh.
+/// Static equilibrium under a load torque with the motor shaft's end (or, without a motor, the
+/// pinion) held against rotation, at the phase-averaged mesh.
 struct StaticEquilibrium
 {
   PairVector q = PairVector::Zero();
@@ -118,7 +124,7 @@ public:
   {
     return c_m;
   }
-  /// Effective mass of the mesh, 1 / (g^T M^-1 g) at the mean mesh [kg].
+  /// Effective mass of the mesh, 1 / (g^T M^-1 g) over the free DOFs at the mean mesh [kg].
   double
   mesh_mass() const
   {
@@ -138,6 +144,18 @@ public:
   StaticEquilibrium
   static_equilibrium(double load_torque) const;
 
+  /// 1 for the DOFs that move, 0 for those held (removed motor or load; supports in the
+  /// torsional model).
+  const PairVector &
+  active() const
+  {
+    return free;
+  }
+  /// The external forces of the torques (motor torque on theta_E or the pinion's axis, load
+  /// torque against theta_L or the gear's axis).
+  PairVector
+  torques(double motor_torque, double load_torque) const;
+
   /// Mesh phase [mesh cycles] at time t and pinion speed Omega.
   double
   phase(double t, double omega) const;
@@ -146,6 +164,7 @@ private:
   PairModelParameters p;
   MeshCycle           cycle;
   PairMatrix          M, K, C;
+  PairVector          free;
   double              c_m = 0, m_e = 0;
 };
 } // namespace gearkit

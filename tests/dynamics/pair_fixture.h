@@ -5,6 +5,8 @@
 
 #include "pair_model.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 
 namespace gearkit::test_data

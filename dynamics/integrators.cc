@@ -176,21 +176,20 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
   const PairVector free  = model.active();
   const PairVector held_dofs = PairVector::Ones() - free;
   const PairMatrix held      = held_dofs.asDiagonal();
-  auto mesh = [&](double t, const PairVector &q, const PairVector &v, double &Fm, double &dFdq,
-                  PairVector &g) {
-    const MeshState m = model.mesh().at(model.phase(t, o.omega));
-    g                 = PairModel::mesh_gradient(m);
-    const double x = g.dot(q) - m.et, b = model.parameters().half_backlash;
-    Fm             = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
-    dFdq           = std::abs(x) >= b ? m.km : 0.0; // the damping part enters through v(q)
-    g              = g.cwiseProduct(free);
-  };
-  const PairVector scale = displacement_scale(model);
-  PairVector       q = q0, v = v0, a;
+  const double     b     = model.parameters().half_backlash;
+  const bool       always_damped = !model.parameters().mesh_damping_in_contact_only;
+  // Each step is linear in q_{n+1} except for the mesh force, a piecewise linear function of
+  // the single number delta_D = g . q_{n+1}: with L = 4/h^2 M + 2/h C + K (on the free DOFs;
+  // one factorisation), q_{n+1} = q_n + dq* - L^-1 g F_m, delta = delta* - (g^T L^-1 g) F_m(delta),
+  // solved exactly branch by branch (contact on either flank, or none) - no Newton iterations
+  // to cycle at the backlash boundaries.
+  const PairMatrix L = free.asDiagonal() * (4 / (h * h) * M + 2 / h * C + K) * free.asDiagonal() + held;
+  const Eigen::LDLT<PairMatrix> Lf(L);
+  PairVector q = q0, v = v0, a;
   {
-    double     Fm, dF;
-    PairVector g;
-    mesh(0, q, v, Fm, dF, g);
+    const MeshState  m = model.mesh().at(0);
+    const PairVector g = PairModel::mesh_gradient(m).cwiseProduct(free);
+    const double     Fm = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
     a = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
   }
   record(model, o, 0, q, v, out);
@@ -198,36 +197,41 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
   const int every       = std::max(1, o.steps_per_cycle / o.samples_per_cycle);
   for (int n = 1; n <= steps_total; ++n)
     {
-      const double t  = n * h;
-      PairVector   qn = q + h * v + h * h / 4 * a; // predictor (a_{n+1} = a_n)
-      PairVector   an, vn;
-      bool         converged = false;
-      for (int it = 0; it < 30 && !converged; ++it)
+      const double     t  = n * h;
+      const MeshState  m  = model.mesh().at(model.phase(t, o.omega));
+      const PairVector g  = PairModel::mesh_gradient(m).cwiseProduct(free);
+      const double     et_rate = m.det * z * o.omega / (2 * pi);
+      const PairVector Lg = Lf.solve(g);
+      const double     gLg = g.dot(Lg);
+      // in increments (the rigid rotation of a torque-driven train grows without bound; the
+      // step must not cancel it against itself): L dq = dq* - L^-1 g F_m
+      const PairVector rhs =
+          (F_ext - K * q + M * (4 / h * v + a) + C * v).cwiseProduct(free);
+      const PairVector dqs   = Lf.solve(rhs);
+      const double     dstar = g.dot(q) + g.dot(dqs);
+      const double     D0     = -(2 / h * g.dot(q) + g.dot(v)); // delta' = 2/h delta + D0
+      const double     c2h    = 2 / h * c_m, damp0 = c_m * (D0 - et_rate);
+      // F_m = alpha delta + beta on each branch; delta = dstar - gLg F_m
+      double delta = 0, Fm = 0;
+      bool   found = false;
+      auto   branch = [&](double alpha, double beta, double lo, double hi) {
+        if (found)
+          return;
+        const double d = (dstar - gLg * beta) / (1 + gLg * alpha);
+        const double x = d - m.et;
+        if (x >= lo && x <= hi)
+          delta = d, Fm = alpha * d + beta, found = true;
+      };
+      branch(m.km + c2h, -m.km * (m.et + b) + damp0, b, HUGE_VAL);          // drive flank
+      branch(always_damped ? c2h : 0.0, always_damped ? damp0 : 0.0, -b, b); // no contact
+      branch(m.km + c2h, -m.km * (m.et - b) + damp0, -HUGE_VAL, -b);       // coast flank
+      if (!found) // the root sits in the damping force's jump at a boundary: stay there
         {
-          an = 4 / (h * h) * (qn - q - h * v) - a;
-          vn = v + h / 2 * (a + an);
-          double     Fm, dF;
-          PairVector g;
-          mesh(t, qn, vn, Fm, dF, g);
-          // held DOFs: their rows read dq = 0
-          const PairVector r = (M * an + C * vn + K * qn + g * Fm - F_ext).cwiseProduct(free);
-          const bool damped  = dF > 0 || !model.parameters().mesh_damping_in_contact_only;
-          const PairMatrix J = free.asDiagonal() *
-                                   (4 / (h * h) * M + 2 / h * C + K +
-                                    (dF + (damped ? 2 / h * c_m : 0.0)) * g * g.transpose()) *
-                                   free.asDiagonal() +
-                               held;
-          const PairVector dq = J.ldlt().solve(-r);
-          qn += dq;
-          converged = (dq.array().abs() / scale.array()).maxCoeff() < 1e-10;
+          const double x = dstar - m.et > 0 ? b : -b;
+          delta = m.et + x, Fm = (dstar - delta) / gLg;
         }
-      if (!converged)
-        {
-          std::ostringstream msg;
-          msg << "pair dynamics: Newmark's Newton iterations did not converge at mesh cycle "
-              << t / period << "; use more steps per mesh cycle";
-          throw InputError(msg.str());
-        }
+      const PairVector qn = q + dqs - Lg * Fm;
+      PairVector       an, vn;
       an = 4 / (h * h) * (qn - q - h * v) - a;
       vn = v + h / 2 * (a + an);
       q = qn, v = vn, a = an;

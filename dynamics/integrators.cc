@@ -247,13 +247,7 @@ Trajectory
 simulate(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
 {
   auto require = [](bool ok, const std::string &what, double value, const std::string &allowed) {
-    if (!ok)
-      {
-        std::ostringstream msg;
-        msg << "pair dynamics: " << what << " = " << value << " is not allowed; expected "
-            << allowed;
-        throw InputError(msg.str());
-      }
+    require_value(ok, "pair dynamics", what, value, allowed);
   };
   require(o.omega > 0 && std::isfinite(o.omega), "pinion speed [rad/s]", o.omega, "> 0");
   require(o.mesh_cycles > 0, "mesh cycles", o.mesh_cycles, "> 0");

@@ -21,13 +21,7 @@ cross_matrix(const Vec3 &a)
 void
 require(bool ok, const std::string &parameter, double value, const std::string &allowed)
 {
-  if (!ok)
-    {
-      std::ostringstream msg;
-      msg << "pair dynamics: " << parameter << " = " << value << " is not allowed; expected "
-          << allowed;
-      throw InputError(msg.str());
-    }
+  require_value(ok, "pair dynamics", parameter, value, allowed);
 }
 
 /// One body's mass, support stiffness and damping into the 14 x 14 matrices at `offset`.

@@ -22,6 +22,12 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// Throws InputError("<context>: <parameter> = <value> is not allowed; expected <allowed>")
+/// unless ok: the one form of a bad-parameter message.
+void
+require_value(bool ok, const std::string &context, const std::string &parameter, double value,
+              const std::string &allowed);
+
 /// Which flank of a tooth. Convention (both members of a pair, each in its own frame with its
 /// axis along +z): the drive flank is the one whose outward normal points in the +theta direction.
 /// The driver rotates in +theta and pushes with its drive flank; the driven member rotates in

@@ -16,13 +16,7 @@ namespace
 void
 check(bool ok, const std::string &parameter, double value, const std::string &allowed)
 {
-  if (!ok)
-    {
-      std::ostringstream msg;
-      msg << "bevel segment mesh: " << parameter << " = " << value << " is not allowed; expected "
-          << allowed;
-      throw InputError(msg.str());
-    }
+  require_value(ok, "bevel segment mesh", parameter, value, allowed);
 }
 
 /// n + 1 fractions from 0 to 1 whose steps grow linearly from proportional to s0 to s1.

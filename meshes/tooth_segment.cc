@@ -31,13 +31,7 @@ rotate(const Vec2 &p, double a)
 void
 check(bool ok, const std::string &parameter, double value, const std::string &allowed)
 {
-  if (!ok)
-    {
-      std::ostringstream msg;
-      msg << "tooth segment mesh: " << parameter << " = " << value << " is not allowed; expected "
-          << allowed;
-      throw InputError(msg.str());
-    }
+  require_value(ok, "tooth segment mesh", parameter, value, allowed);
 }
 
 /// Builds the section curves in the geo kernel; remembers which group each curve's extrusion

@@ -98,7 +98,9 @@ TEST(PaperMode, GivesTheContactTablesOfClassicalTca)
       for (const PairContact &c : x.pairs)
         for (const PairContact &d : q.pairs)
           if (c.pinion_tooth == d.pinion_tooth && c.separation < 1e-3)
-            EXPECT_NEAR(d.separation, c.separation, 2 * E) << i;
+            {
+              EXPECT_NEAR(d.separation, c.separation, 2 * E) << i;
+            }
     }
 }
 

@@ -115,6 +115,9 @@ TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
           EXPECT_NEAR(model_rms, rms, 0.01 * rms + 1e-4) << (up ? "up" : "down") << " Omega " << W[i];
           EXPECT_NEAR(model_pp, pp, 0.01 * pp + 1e-4) << (up ? "up" : "down") << " Omega " << W[i];
           (up ? up_rms : down_rms).push_back(rms);
+          // the Poincare section found the periodic motion before the fixed settling ended
+          EXPECT_EQ(points[i].period, 1) << (up ? "up" : "down") << " Omega " << W[i];
+          EXPECT_LT(points[i].settled_cycles, o.settle_cycles);
         }
     }
   // the fixed-step path of the sweeps, up: within 2 % with 128 steps per mesh cycle

@@ -76,13 +76,21 @@ together(Work &&work)
 std::vector<std::string>
 required_stages(const std::vector<std::string> &outputs)
 {
+  Scene scene;
+  scene.outputs = outputs;
+  return required_stages(scene);
+}
+
+std::vector<std::string>
+required_stages(const Scene &scene)
+{
   std::set<std::string>                    needed;
   std::function<void(const std::string &)> add = [&](const std::string &stage) {
     if (needed.insert(stage).second)
-      for (const std::string &up : definition(stage).upstream)
+      for (const std::string &up : upstream_of(scene, definition(stage)))
         add(up);
   };
-  for (const std::string &o : outputs)
+  for (const std::string &o : scene.outputs)
     add(output_stages().at(o));
   std::vector<std::string> order; // stage_definitions() is already in dependency order
   for (const StageDefinition &s : stage_definitions())
@@ -103,7 +111,7 @@ stage_key(const Scene &scene, const std::string &stage)
     }
   for (const std::string &f : s.input_files(scene))
     text += "file " + f + " " + std::to_string(fnv1a(file_contents(f))) + "\n";
-  for (const std::string &up : s.upstream)
+  for (const std::string &up : upstream_of(scene, s))
     text += "upstream " + up + " " + stage_key(scene, up) + "\n";
   std::ostringstream hex;
   hex << std::hex << std::setw(16) << std::setfill('0') << fnv1a(text);
@@ -147,7 +155,7 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
 
   RunSummary                                     summary;
   std::map<std::string, std::unique_ptr<H5File>> files;
-  for (const std::string &name : required_stages(scene.outputs))
+  for (const std::string &name : required_stages(scene))
     {
       const StageDefinition &s = definition(name);
       StageRun               run;
@@ -161,9 +169,10 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
           log << "stage " << name << ": running (" << s.description << ")" << std::endl;
           // Upstream results as stored in their cache files.
           std::vector<H5Group> groups;
-          groups.reserve(s.upstream.size());
+          const std::vector<std::string> ups = upstream_of(scene, s);
+          groups.reserve(ups.size());
           Upstream upstream;
-          for (const std::string &up : s.upstream)
+          for (const std::string &up : ups)
             {
               groups.push_back(files.at(up)->root().group(up));
               upstream[up] = &groups.back();

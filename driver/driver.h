@@ -26,6 +26,9 @@ struct RunSummary
 /// The stages the requested outputs need, upstream first.
 std::vector<std::string>
 required_stages(const std::vector<std::string> &outputs);
+/// The same for a scene (stages needed only when its parameters say so included).
+std::vector<std::string>
+required_stages(const Scene &scene);
 
 /// Cache key of a stage: a hash of its version, its scene sections, its input files' contents
 /// and the keys of its upstream stages (hex string).

@@ -22,7 +22,7 @@ namespace
 {
 constexpr double mm = 1e-3, um = 1e-6, deg = pi / 180;
 
-const char *output_names = "flanks|measured|ste|stiffness";
+const char *output_names = "flanks|measured|ste|stiffness|dynamics";
 
 // --- declarations ----------------------------------------------------------------------------
 
@@ -312,6 +312,57 @@ declare_loaded(ParameterHandler &prm)
 }
 
 void
+declare_dynamics(ParameterHandler &prm)
+{
+  prm.declare_entry("mesh stiffness source", "finite elements",
+                    Patterns::Selection("finite elements|constant"),
+                    "finite elements: K_m over the mesh cycle from the stiffness stage (the "
+                    "torque nearest the pinion torque below); constant: the value below.");
+  prm.declare_entry("mesh stiffness", "300", Patterns::Double(0),
+                    "[N/um] Mean K_m when the source is constant.");
+  prm.declare_entry("mesh stiffness variation", "0", Patterns::Double(0, 0.9),
+                    "Fraction of the mean by which a constant-source K_m varies over the mesh "
+                    "cycle (first mesh order, K_m (1 - v cos 2 pi phase)).");
+  prm.declare_entry("pinion torque", "100", Patterns::Double(0),
+                    "[N m] Motor torque on the pinion; the load torque balances it through the "
+                    "mean moment arms.");
+  prm.declare_entry("motor inertia", "0.05", Patterns::Double(0), "[kg m^2] 0: no motor DOF.");
+  prm.declare_entry("load inertia", "0.1", Patterns::Double(0), "[kg m^2] 0: no load DOF.");
+  prm.declare_entry("motor shaft stiffness", "2e4", Patterns::Double(0), "[N m/rad] Motor-pinion.");
+  prm.declare_entry("load shaft stiffness", "3e4", Patterns::Double(0), "[N m/rad] Gear-load.");
+  prm.declare_entry("shaft damping", "2", Patterns::Double(0), "[N m s/rad] Both shafts.");
+  for (const char *member : {"pinion", "gear"})
+    {
+      const std::string m = member;
+      prm.declare_entry(m + " mass", "2", Patterns::Double(0), "[kg]");
+      prm.declare_entry(m + " axial inertia", "4e-3", Patterns::Double(0),
+                        "[kg m^2] About its axis.");
+      prm.declare_entry(m + " transverse inertia", "6e-3", Patterns::Double(0),
+                        "[kg m^2] About axes across it through the body point (the member "
+                        "frame's origin: the cone apex of a bevel member).");
+      prm.declare_entry(m + " bearing positions", "100, 160",
+                        Patterns::List(Patterns::Double(), 1, 4),
+                        "[mm] Radial bearings along the member's axis from its frame origin.");
+    }
+  prm.declare_entry("bearing stiffness", "500", Patterns::Double(0), "[N/um] Radial, every bearing.");
+  prm.declare_entry("axial stiffness", "300", Patterns::Double(0), "[N/um] Each member.");
+  prm.declare_entry("bearing damping", "500", Patterns::Double(0), "[N s/m] Radial and axial.");
+  prm.declare_entry("half backlash", "50", Patterns::Double(0), "[um] b_c.");
+  prm.declare_entry("mesh damping ratio", "0.05", Patterns::Double(0, 1),
+                    "zeta of c_m = 2 zeta sqrt(K_m m_e); the damping acts in contact only.");
+  prm.declare_entry("speed from", "100", Patterns::Double(0.001), "[rpm] Pinion speed.");
+  prm.declare_entry("speed to", "12000", Patterns::Double(0.001), "[rpm]");
+  prm.declare_entry("speeds", "100", Patterns::Integer(1, 100000),
+                    "Speeds of the sweep, swept up and then down.");
+  prm.declare_entry("settle cycles", "200", Patterns::Integer(0),
+                    "Most mesh cycles to settle at each speed (less when the motion repeats).");
+  prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
+  prm.declare_entry("integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
+                    "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
+  prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000), "Newmark.");
+}
+
+void
 declare_scene(ParameterHandler &prm)
 {
   prm.enter_subsection("Scene");
@@ -382,6 +433,14 @@ declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs)
     {
       prm.enter_subsection(pair);
       declare_loaded(prm);
+      prm.leave_subsection();
+    }
+  prm.leave_subsection();
+  prm.enter_subsection("Dynamics");
+  for (const std::string &pair : pairs)
+    {
+      prm.enter_subsection(pair);
+      declare_dynamics(prm);
       prm.leave_subsection();
     }
   prm.leave_subsection();
@@ -766,6 +825,49 @@ read_scene(const std::string &file)
                                  std::to_string(lc.positions - 1) + ")");
             }
           lc.reference_elements_per_cell = prm.get_double("reference elements per cell");
+          prm.leave_subsection();
+          prm.leave_subsection();
+          prm.enter_subsection("Dynamics");
+          prm.enter_subsection(p);
+          DynamicsScene &d      = scene.dynamics[p];
+          d.fe_stiffness        = prm.get("mesh stiffness source") == "finite elements";
+          d.mesh_stiffness      = prm.get_double("mesh stiffness") * 1e6;
+          d.stiffness_variation = prm.get_double("mesh stiffness variation");
+          d.torque              = prm.get_double("pinion torque");
+          PairModelParameters &mp = d.model;
+          mp.motor_inertia        = prm.get_double("motor inertia");
+          mp.load_inertia         = prm.get_double("load inertia");
+          const double shaft_c    = prm.get_double("shaft damping");
+          mp.motor_shaft          = {prm.get_double("motor shaft stiffness"), shaft_c};
+          mp.load_shaft           = {prm.get_double("load shaft stiffness"), shaft_c};
+          const double kb = prm.get_double("bearing stiffness") * 1e6, cb = prm.get_double("bearing damping");
+          for (const char *member : {"pinion", "gear"})
+            {
+              BodyParameters &b   = std::string(member) == "pinion" ? mp.pinion : mp.gear;
+              const std::string m = member;
+              b.mass               = prm.get_double(m + " mass");
+              b.axial_inertia      = prm.get_double(m + " axial inertia");
+              b.transverse_inertia = prm.get_double(m + " transverse inertia");
+              b.bearings.clear();
+              for (const std::string &x : split_list(prm.get(m + " bearing positions")))
+                b.bearings.push_back({std::stod(x) * 1e-3, kb, cb});
+              b.axial_stiffness = prm.get_double("axial stiffness") * 1e6;
+              b.axial_damping   = cb;
+            }
+          mp.half_backlash      = prm.get_double("half backlash") * 1e-6;
+          mp.mesh_damping_ratio = prm.get_double("mesh damping ratio");
+          d.speed_from          = prm.get_double("speed from") * 2 * pi / 60;
+          d.speed_to            = prm.get_double("speed to") * 2 * pi / 60;
+          d.speeds              = prm.get_integer("speeds");
+          d.settle_cycles       = prm.get_integer("settle cycles");
+          d.record_cycles       = prm.get_integer("record cycles");
+          const std::string integ = prm.get("integrator");
+          d.integrator = integ == "newmark" ? Integrator::newmark
+                         : integ == "cvode bdf" ? Integrator::cvode_bdf : Integrator::cvode_adams;
+          d.steps_per_cycle = prm.get_integer("steps per mesh cycle");
+          if (!(d.speed_to >= d.speed_from))
+            throw InputError("Dynamics/" + p + "/speed to: " + prm.get("speed to") +
+                             " rpm is below speed from (" + prm.get("speed from") + " rpm)");
           prm.leave_subsection();
           prm.leave_subsection();
           check_pair(pair);

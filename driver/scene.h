@@ -5,6 +5,7 @@
 #include "bevel_gear.h"
 #include "contact_cells.h"
 #include "half_space.h"
+#include "integrators.h"
 #include "involute_gear.h"
 #include "paper_mode.h"
 #include "unloaded_tca.h"
@@ -116,6 +117,21 @@ struct LoadedScene
   double              reference_elements_per_cell = 0.5;
 };
 
+/// 14-DOF pair dynamics (stage "dynamics"): the model's parameters and the speed sweep.
+struct DynamicsScene
+{
+  bool   fe_stiffness = true;    ///< K_m over the mesh cycle from the stiffness stage
+  double mesh_stiffness = 0;     ///< else constant K_m [N/m] ...
+  double stiffness_variation = 0; ///< ... varying by this fraction (first mesh order)
+  double torque = 0;              ///< pinion (motor) torque [N m]; K_m from the nearest FE torque
+  PairModelParameters model;      ///< axes, the mesh tables and the teeth come from the pair
+  double speed_from = 0, speed_to = 0; ///< [rad/s]
+  int    speeds = 0;
+  int    settle_cycles = 200, record_cycles = 50;
+  Integrator integrator = Integrator::newmark;
+  int    steps_per_cycle = 64;
+};
+
 struct Scene
 {
   std::string                          file;    ///< the scene file as given
@@ -126,6 +142,7 @@ struct Scene
   std::map<std::string, TcaScene>      tca;      ///< by pair name
   std::map<std::string, FeScene>       fe;       ///< by pair name
   std::map<std::string, LoadedScene>   loaded;   ///< by pair name
+  std::map<std::string, DynamicsScene> dynamics; ///< by pair name
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
   std::map<std::string, std::string> sections;

@@ -70,15 +70,39 @@ stage_definitions()
        6,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_stiffness_stage},
+      {"dynamics",
+       "14-DOF pair dynamics: static equilibrium, modes, speed sweeps up and down",
+       {"flanks", "ste"},
+       {"TCA", "Measured flanks", "Dynamics"},
+       1,
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_dynamics_stage,
+       [](const Scene &scene) {
+         for (const auto &[name, d] : scene.dynamics)
+           if (d.fe_stiffness)
+             return std::vector<std::string>{"stiffness"};
+         return std::vector<std::string>{};
+       }},
   };
   return stages;
+}
+
+std::vector<std::string>
+upstream_of(const Scene &scene, const StageDefinition &stage)
+{
+  std::vector<std::string> up = stage.upstream;
+  if (stage.upstream_if)
+    for (const std::string &s : stage.upstream_if(scene))
+      up.push_back(s);
+  return up;
 }
 
 const std::map<std::string, std::string> &
 output_stages()
 {
   static const std::map<std::string, std::string> map = {
-      {"flanks", "flanks"}, {"measured", "measured"}, {"ste", "ste"}, {"stiffness", "stiffness"}};
+      {"flanks", "flanks"}, {"measured", "measured"}, {"ste", "ste"}, {"stiffness", "stiffness"},
+      {"dynamics", "dynamics"}};
   return map;
 }
 } // namespace gearkit

@@ -52,7 +52,13 @@ struct StageDefinition
   /// Input files whose contents enter the key (e.g. CMM files).
   std::function<std::vector<std::string>(const Scene &)>                                input_files;
   std::function<void(const Scene &, const Upstream &, const H5Group &, std::ostream &)> run;
+  /// Stages whose results this one needs only when the scene says so (empty: none).
+  std::function<std::vector<std::string>(const Scene &)> upstream_if = nullptr;
 };
+
+/// The stage's upstream stages for this scene (upstream and upstream_if).
+std::vector<std::string>
+upstream_of(const Scene &scene, const StageDefinition &stage);
 
 /// All stages in dependency order.
 const std::vector<StageDefinition> &
@@ -73,6 +79,8 @@ void
 run_measured_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 void
 run_ste_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+void
+run_dynamics_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 
 /// A member's measured flanks as the measured stage stored them (for later stages and exports).
 MeasuredMember

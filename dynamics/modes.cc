@@ -24,7 +24,10 @@ linear_modes(const PairModel &model)
       out.frequency.push_back(std::sqrt(w2) / (2 * pi));
       const Eigen::VectorXd phi = out.shapes.col(i);
       const double          total = phi.dot(K * phi);
-      out.mesh_energy.push_back(total > 0 ? phi.dot(Km * phi) / total : 0.0);
+      // the rigid rotation (0 Hz) strains nothing: no share
+      out.mesh_energy.push_back(w2 > 1e-6 * eig.eigenvalues().maxCoeff() && total > 0
+                                    ? phi.dot(Km * phi) / total
+                                    : 0.0);
     }
   return out;
 }

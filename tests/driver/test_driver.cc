@@ -511,3 +511,41 @@ end
   for (double e : fast.root().group("ste/p1/measured").read_doubles("transmission_error"))
     EXPECT_LT(std::abs(e), 1e-8);
 }
+
+TEST_F(DriverTest, DynamicsWithConstantStiffnessSkipsTheFiniteElements)
+{
+  const std::string dyn =
+      std::regex_replace(small_scene, std::regex("set outputs = flanks"), "set outputs = dynamics") +
+      "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 16\n    set mesh "
+      "cycles = 1\n  end\nend\n"
+      "subsection Dynamics\n  subsection p1\n    set mesh stiffness source = constant\n"
+      "    set mesh stiffness = 300\n    set mesh stiffness variation = 0.1\n"
+      "    set pinion torque = 100\n    set speeds = 6\n    set speed from = 500\n"
+      "    set speed to = 6000\n    set settle cycles = 30\n    set record cycles = 10\n"
+      "  end\nend\n";
+  const std::string file = scene(dyn);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage dynamics: ran"), std::string::npos) << out.str();
+  EXPECT_EQ(out.str().find("stage compliance"), std::string::npos) << out.str();
+  EXPECT_EQ(out.str().find("stage stiffness"), std::string::npos) << out.str();
+  const H5File  f = H5File::open((dir / "out/small/results.h5").string());
+  const H5Group g = f.root().group("dynamics/p1/theoretical");
+  // spur pair: the moment arms are the base radii, F = T / r_b1, T_L = T z2 / z1
+  const double rb1 = 19 * 2e-3 / 2 * std::cos(20 * pi / 180);
+  EXPECT_NEAR(g.read_double("static_mesh_force"), 100 / rb1, 1e-6 * 100 / rb1);
+  EXPECT_NEAR(g.read_double("load_torque"), 100 * 37.0 / 19, 1e-6 * 100);
+  for (const char *direction : {"up", "down"})
+    {
+      const auto dte = g.group(direction).read_doubles("dte_peak_to_peak");
+      ASSERT_EQ(dte.size(), 6u);
+      for (double x : dte)
+        EXPECT_TRUE(std::isfinite(x) && x > 0);
+    }
+  const auto f_modes = f.root().group("dynamics/p1").read_doubles("mode_frequency");
+  EXPECT_EQ(f_modes.size(), 14u);
+  // with the finite-element source the stage graph reaches the compliance and stiffness stages
+  scene(std::regex_replace(dyn, std::regex("set mesh stiffness source = constant\n"), ""));
+  const auto stages = required_stages(read_scene(file));
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "compliance"), stages.end());
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "stiffness"), stages.end());
+}

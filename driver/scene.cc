@@ -326,6 +326,10 @@ declare_dynamics(ParameterHandler &prm)
   prm.declare_entry("pinion torque", "100", Patterns::Double(0),
                     "[N m] Motor torque on the pinion; the load torque balances it through the "
                     "mean moment arms.");
+  prm.declare_entry("motor", "speed controlled", Patterns::Selection("speed controlled|torque"),
+                    "speed controlled: the motor turns at the sweep's speed (its torque the "
+                    "reaction); torque: a constant motor torque, the train free to drift (the "
+                    "seed's model).");
   prm.declare_entry("motor inertia", "0.05", Patterns::Double(0), "[kg m^2] 0: no motor DOF.");
   prm.declare_entry("load inertia", "0.1", Patterns::Double(0), "[kg m^2] 0: no load DOF.");
   prm.declare_entry("motor shaft stiffness", "2e4", Patterns::Double(0), "[N m/rad] Motor-pinion.");
@@ -836,6 +840,7 @@ read_scene(const std::string &file)
           d.torque              = prm.get_double("pinion torque");
           PairModelParameters &mp = d.model;
           mp.motor_inertia        = prm.get_double("motor inertia");
+          mp.speed_controlled_motor = prm.get("motor") == "speed controlled";
           mp.load_inertia         = prm.get_double("load inertia");
           const double shaft_c    = prm.get_double("shaft damping");
           mp.motor_shaft          = {prm.get_double("motor shaft stiffness"), shaft_c};

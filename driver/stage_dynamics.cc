@@ -164,18 +164,20 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
               for (int order = 1; order <= 3; ++order)
                 for (double f : modes.frequency)
                   rpm.push_back(resonance_speed_rpm(f, z1, order));
-              g.write("mode_frequency", modes.frequency, {hsize_t(pair_dofs)}, "Hz",
-                      "linear modes at the mean mesh (the first: the train's rigid rotation)");
-              g.write("mode_mesh_energy", modes.mesh_energy, {hsize_t(pair_dofs)}, "1",
+              const hsize_t nm = modes.frequency.size();
+              g.write("mode_frequency", modes.frequency, {nm}, "Hz",
+                      "linear modes of the free DOFs at the mean mesh (a torque-driven train: the first is "
+                      "its rigid rotation)");
+              g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
                       "share of each mode's strain energy in the mesh");
               g.write("pinion_teeth", double(z1), "1", "mesh orders: z_p per pinion turn");
-              g.write("resonance_speed", rpm, {3, hsize_t(pair_dofs)}, "rpm",
+              g.write("resonance_speed", rpm, {3, nm}, "rpm",
                       "pinion speed at which mesh order 1, 2, 3 meets each mode");
               log << "  " << pair.name << ": static mesh force " << s.mesh_force
                   << " N; modes with mesh energy above 5 %:";
-              for (int i = 0; i < pair_dofs; ++i)
-                if (modes.mesh_energy[std::size_t(i)] > 0.05 && modes.frequency[std::size_t(i)] > 0.1)
-                  log << " " << modes.frequency[std::size_t(i)] << " Hz";
+              for (std::size_t i = 0; i < nm; ++i)
+                if (modes.mesh_energy[i] > 0.05)
+                  log << " " << modes.frequency[i] << " Hz";
               log << "\n";
               first = false;
             }

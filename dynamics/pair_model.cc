@@ -87,7 +87,7 @@ PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSampl
                   free.segment<3>(dof::gear_rotation).sum() == 1,
               "torsional model: body axes along global axes", 0, "unit axes along X, Y or Z");
     }
-  free[dof::motor]          = p.motor_inertia > 0 ? 1 : 0;
+  free[dof::motor]          = p.motor_inertia > 0 && !p.speed_controlled_motor ? 1 : 0;
   free[dof::load]           = p.load_inertia > 0 ? 1 : 0;
   M(dof::motor, dof::motor) = p.motor_inertia > 0 ? p.motor_inertia : 1; // held if 0
   M(dof::load, dof::load)   = p.load_inertia > 0 ? p.load_inertia : 1;
@@ -102,7 +102,7 @@ PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSampl
     K += s.stiffness * w * w.transpose();
     C += s.damping * w * w.transpose();
   };
-  if (free[dof::motor] > 0)
+  if (p.motor_inertia > 0)
     shaft(p.motor_shaft, dof::motor, dof::pinion_rotation, p.pinion.axis, 1, "motor");
   if (free[dof::load] > 0)
     shaft(p.load_shaft, dof::load, dof::gear_rotation, p.gear.axis, -1, "load");
@@ -147,7 +147,7 @@ PairModel::torques(double motor_torque, double load_torque) const
   PairVector F = PairVector::Zero();
   if (free[dof::motor] > 0)
     F[dof::motor] = motor_torque;
-  else
+  else if (!(p.motor_inertia > 0)) // no motor: its torque acts on the pinion
     F.segment<3>(dof::pinion_rotation) = motor_torque * p.pinion.axis;
   if (free[dof::load] > 0)
     F[dof::load] = -load_torque;
@@ -183,7 +183,8 @@ PairModel::static_equilibrium(double load_torque) const
   // held against turning, and the held DOFs
   const PairMatrix A   = K + m.km * g * g.transpose();
   const PairVector rhs = m.km * (m.et + p.half_backlash) * g + torques(0, load_torque);
-  const int        hold = free[dof::motor] > 0 ? dof::motor : dof::pinion_rotation + [&] {
+  // a speed-controlled motor holds the train already
+  const int        hold = p.motor_inertia > 0 ? dof::motor : dof::pinion_rotation + [&] {
     int k = 0;
     while (std::abs(p.pinion.axis[k]) < std::abs(p.pinion.axis[(k + 1) % 3]) ||
            std::abs(p.pinion.axis[k]) < std::abs(p.pinion.axis[(k + 2) % 3]))

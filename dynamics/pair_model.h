@@ -71,6 +71,10 @@ struct PairModelParameters
   bool            mesh_damping_in_contact_only = true;
   /// Translations and tilts of both bodies held: the pure torsional model
   bool            torsion_only = false;
+  /// The motor runs at the nominal speed (theta_E held; its torque is the reaction) instead of
+  /// at a constant torque: no free rigid rotation of the train, whose drift would otherwise
+  /// grow without bound wherever the torques balance only on average
+  bool            speed_controlled_motor = false;
 };
 
 /// Static equilibrium under a load torque with the motor shaft's end (or, without a motor, the

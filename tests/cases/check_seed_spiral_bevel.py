@@ -56,9 +56,27 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     assert 0.75 < Km[1].mean() / K[1].mean() < 0.98, (Km.mean(axis=1), K.mean(axis=1))
     assert np.all(st["measured"]["transmission_error_loaded"][:] >
                   st["measured"]["transmission_error_unloaded"][:])
+    # dynamics: the fitted supports put mesh modes at the seed's resonances (1283, 4217, 8525 Hz
+    # for 1400, 4600, 9300 rpm; reference-data.md section 1), and the sweep peaks there
+    dy = f["dynamics"]["seed"]
+    modes, energy = dy["mode_frequency"][:], dy["mode_mesh_energy"][:]
+    for target, tolerance in ((1283, 0.01), (4217, 0.01), (8525, 0.03)):
+        near = [fm for fm, e in zip(modes, energy) if e > 0.05 and abs(fm / target - 1) < tolerance]
+        assert near, (target, modes, energy)
+    th = dy["theoretical"]
+    assert abs(th["static_mesh_force"][()] / 3350 - 1) < 0.01, th["static_mesh_force"][()]
+    up, down = th["up"], th["down"]
+    rpm, pp = up["speed"][:], up["dte_peak_to_peak"][:]
+    assert np.all(np.isfinite(pp)) and np.all(up["contact_loss"][:] == 0)
+    # no contact loss: one periodic response per speed, the same up and down
+    assert np.max(np.abs(pp - down["dte_peak_to_peak"][:][::-1]) / pp) < 0.1
+    peaks = [rpm[i] for i in range(1, len(pp) - 1) if pp[i] > pp[i - 1] and pp[i] >= pp[i + 1]]
+    for seed_peak in (700, 1400, 4600, 9300):
+        assert any(abs(p / seed_peak - 1) < 0.1 for p in peaks), (seed_peak, peaks)
+    assert 1.0 < th["up"]["dynamic_load_factor"][:].max() < 3
     for member, dofs in (("pinion", 131139), ("gear", 110727)):
         assert f["compliance"]["seed"][member]["dofs"][()] == dofs  # the mesh the README states
-for name in ("ste.png", "contact_pattern.png", "measured.png", "stiffness.png"):
+for name in ("ste.png", "contact_pattern.png", "measured.png", "stiffness.png", "dynamics.png"):
     path = os.path.join(out, name)
     with open(path, "rb") as fh:
         assert fh.read(8) == b"\x89PNG\r\n\x1a\n", path
@@ -66,4 +84,5 @@ for name in ("ste.png", "contact_pattern.png", "measured.png", "stiffness.png"):
 with open(os.path.join(out, "ste_harmonics.md")) as fh:
     table = fh.read()
 assert "| 1x |" in table and "| 3x |" in table
-print("seed spiral bevel case: geometry, TE amplitude, harmonics, loaded contact and pictures OK")
+print("seed spiral bevel case: geometry, TE amplitude, harmonics, loaded contact, dynamics and "
+      "pictures OK")

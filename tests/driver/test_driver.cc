@@ -542,7 +542,8 @@ TEST_F(DriverTest, DynamicsWithConstantStiffnessSkipsTheFiniteElements)
         EXPECT_TRUE(std::isfinite(x) && x > 0);
     }
   const auto f_modes = f.root().group("dynamics/p1").read_doubles("mode_frequency");
-  EXPECT_EQ(f_modes.size(), 14u);
+  EXPECT_EQ(f_modes.size(), 13u); // the speed-controlled motor held
+  EXPECT_GT(f_modes.front(), 1.0); // no free rigid rotation
   // with the finite-element source the stage graph reaches the compliance and stiffness stages
   scene(std::regex_replace(dyn, std::regex("set mesh stiffness source = constant\n"), ""));
   const auto stages = required_stages(read_scene(file));

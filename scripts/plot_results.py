@@ -477,11 +477,11 @@ def pressure_map(ax, flanks, name, cells, nx=500, ny=300):
 
 
 def plot_dynamics(dyn, flanks, out_dir):
-    """Per pair: DTE peak-to-peak, dynamic load factor and contact loss against the pinion speed,
+    """Per pair: DTE peak-to-peak, DTE RMS and the dynamic load factor against the pinion speed,
     swept up and down (jumps show as the two curves part), and the Campbell diagram: the linear
     modes with enough mesh strain energy against the first three mesh orders."""
     pairs = list(dyn.keys())
-    fig, axes = plt.subplots(len(pairs), 3, figsize=(18, 4.8 * len(pairs)), squeeze=False)
+    fig, axes = plt.subplots(len(pairs), 4, figsize=(24, 4.8 * len(pairs)), squeeze=False)
     for row, name in zip(axes, pairs):
         g = dyn[name]
         for label in [k for k in ("theoretical", "measured") if k in g]:
@@ -490,36 +490,43 @@ def plot_dynamics(dyn, flanks, out_dir):
                 rpm = d["speed"][:]
                 row[0].plot(rpm, d["dte_peak_to_peak"][:] * 1e6, style, lw=1.2,
                             label=f"{label}, {direction}")
-                row[1].plot(rpm, d["dynamic_load_factor"][:], style, lw=1.2,
+                row[1].plot(rpm, d["dte_rms"][:] * 1e6, style, lw=1.2,
+                            label=f"{label}, {direction}")
+                row[2].plot(rpm, d["dynamic_load_factor"][:], style, lw=1.2,
                             label=f"{label}, {direction}")
         row[0].set_xlabel("pinion speed [rpm]")
         row[0].set_ylabel("DTE peak-to-peak [um]")
         row[0].set_title(f"{name}: dynamic transmission error")
         row[0].legend(fontsize=7)
         row[1].set_xlabel("pinion speed [rpm]")
-        row[1].set_ylabel("max F_m / static F_m")
-        static = g["theoretical"]["static_mesh_force"][()]
-        row[1].set_title(f"dynamic load factor (static mesh force {static:.0f} N)")
+        row[1].set_ylabel("DTE RMS [um]")
+        row[1].set_title("RMS of the dynamic transmission error")
         row[1].legend(fontsize=7)
-        ax = row[2]
+        row[2].set_xlabel("pinion speed [rpm]")
+        row[2].set_ylabel("max F_m / static F_m")
+        static = g["theoretical"]["static_mesh_force"][()]
+        row[2].set_title(f"dynamic load factor (static mesh force {static:.0f} N)")
+        row[2].legend(fontsize=7)
+        ax = row[3]
         f_modes, energy = g["mode_frequency"][:], g["mode_mesh_energy"][:]
         rpm = g["theoretical"]["up"]["speed"][:]
         n_max = rpm.max()
         z = g["pinion_teeth"][()]
-        speeds = np.linspace(0, n_max, 50)
+        top = 1.3 * f_modes.max()
         for order in (1, 2, 3):
-            ax.plot(speeds, order * z * speeds / 60, "k-", lw=0.8)
-            ax.text(n_max, order * z * n_max / 60, f" {order}x", fontsize=7, va="center")
+            n_end = min(n_max, top * 60 / (order * z))  # where the order leaves the plot
+            ax.plot([0, n_end], [0, order * z * n_end / 60], "k-", lw=0.8)
+            ax.text(n_end, order * z * n_end / 60, f" {order}x", fontsize=7, va="top")
         for f_mode, e in zip(f_modes, energy):
             if e > 0.05:
                 ax.axhline(f_mode, color="tab:red", lw=0.8 + 3 * e)
                 ax.text(0, f_mode, f" {f_mode:.0f} Hz ({100 * e:.0f} % in the mesh)", fontsize=7,
                         va="bottom")
         ax.set_xlim(0, n_max * 1.08)
-        ax.set_ylim(0, max(3 * z * n_max / 60, f_modes.max()) * 1.05)
+        ax.set_ylim(0, top)
         ax.set_xlabel("pinion speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
-        ax.set_title("Campbell diagram: modes (red, width ~ mesh energy) and mesh orders")
+        ax.set_title("Campbell: modes (red, width ~ mesh energy), mesh orders")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "dynamics.png"))
 

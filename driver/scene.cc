@@ -323,6 +323,12 @@ declare_dynamics(ParameterHandler &prm)
   prm.declare_entry("mesh stiffness variation", "0", Patterns::Double(0, 0.9),
                     "Fraction of the mean by which a constant-source K_m varies over the mesh "
                     "cycle (first mesh order, K_m (1 - v cos 2 pi phase)).");
+  prm.declare_entry("transmission error source", "tca", Patterns::Selection("tca|analytic"),
+                    "tca: E_t = lambda_pz e_0 over the mesh cycle from the unloaded TCA; "
+                    "analytic: E_t = amplitude sin(2 pi phase) (the TCA still gives the normals "
+                    "and moment arms).");
+  prm.declare_entry("transmission error amplitude", "0", Patterns::Double(0),
+                    "[um] Of the analytic E_t, as displacement along the line of action.");
   prm.declare_entry("pinion torque", "100", Patterns::Double(0),
                     "[N m] Motor torque on the pinion; the load torque balances it through the "
                     "mean moment arms.");
@@ -838,6 +844,8 @@ read_scene(const std::string &file)
           d.mesh_stiffness      = prm.get_double("mesh stiffness") * 1e6;
           d.stiffness_variation = prm.get_double("mesh stiffness variation");
           d.torque              = prm.get_double("pinion torque");
+          d.tca_transmission_error = prm.get("transmission error source") == "tca";
+          d.transmission_error_amplitude = prm.get_double("transmission error amplitude") * 1e-6;
           PairModelParameters &mp = d.model;
           mp.motor_inertia        = prm.get_double("motor inertia");
           mp.speed_controlled_motor = prm.get("motor") == "speed controlled";

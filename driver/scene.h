@@ -123,6 +123,8 @@ struct DynamicsScene
   bool   fe_stiffness = true;    ///< K_m over the mesh cycle from the stiffness stage
   double mesh_stiffness = 0;     ///< else constant K_m [N/m] ...
   double stiffness_variation = 0; ///< ... varying by this fraction (first mesh order)
+  bool   tca_transmission_error = true; ///< E_t from the TCA, else analytic:
+  double transmission_error_amplitude = 0; ///< E_t = this sin(2 pi phase) [m]
   double torque = 0;              ///< pinion (motor) torque [N m]; K_m from the nearest FE torque
   PairModelParameters model;      ///< axes, the mesh tables and the teeth come from the pair
   double speed_from = 0, speed_to = 0; ///< [rad/s]

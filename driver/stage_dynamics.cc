@@ -146,10 +146,15 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       bool                           first = true;
       for (const std::string &label : excitations)
         {
-          const bool      measured = label == "measured";
-          const PairModel model(p, measured ? mesh_tables(ste.group("measured"), n, pinion_axis,
-                                                          stiffness(true))
-                                            : mesh_tables(ste, n, pinion_axis, stiffness(false)));
+          const bool       measured = label == "measured";
+          MeshCycleSamples tables   = measured ? mesh_tables(ste.group("measured"), n, pinion_axis,
+                                                             stiffness(true))
+                                               : mesh_tables(ste, n, pinion_axis, stiffness(false));
+          if (!d.tca_transmission_error)
+            for (int i = 0; i < n; ++i)
+              tables.transmission_error[std::size_t(i)] =
+                  d.transmission_error_amplitude * std::sin(2 * pi * i / n);
+          const PairModel model(p, tables);
           const MeshState m0 = model.mesh().mean();
           const double    TE = d.torque, TL = TE * m0.lg.dot(gear_axis) / m0.lp.dot(pinion_axis);
           const StaticEquilibrium s = model.static_equilibrium(TL);

@@ -230,11 +230,11 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
           const double x = dstar - m.et > 0 ? b : -b;
           delta = m.et + x, Fm = (dstar - delta) / gLg;
         }
-      const PairVector qn = q + dqs - Lg * Fm;
-      PairVector       an, vn;
-      an = 4 / (h * h) * (qn - q - h * v) - a;
-      vn = v + h / 2 * (a + an);
-      q = qn, v = vn, a = an;
+      const PairVector dq = dqs - Lg * Fm; // the increment: no cancellation against q
+      const PairVector an = 4 / (h * h) * (dq - h * v) - a;
+      v += h / 2 * (a + an);
+      q += dq;
+      a = an;
       if (n % every == 0)
         record(model, o, t, q, v, out);
     }

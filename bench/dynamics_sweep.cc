@@ -21,7 +21,7 @@ tables()
   MeshCycleSamples t = test_data::bevel_like_tables(48, 3e8);
   for (int i = 0; i < 48; ++i)
     {
-      const double f = 2 * pi * i / 48;
+      const double f          = 2 * pi * i / 48;
       t.mesh_stiffness[i]     = 3e8 * (1 - 0.1 * std::cos(f) - 0.05 * std::cos(2 * f));
       t.transmission_error[i] = 4e-6 * std::sin(f) + 1.5e-6 * std::sin(2 * f + 0.3);
     }
@@ -38,17 +38,17 @@ rpm(double r)
 int
 main(int argc, char **argv)
 {
-  const bool      quick = argc > 1 && std::string(argv[1]) == "--quick";
-  const PairModel model(test_data::bevel_like_parameters(10e-6), tables());
-  const MeshState m0 = model.mesh().mean();
-  const double    F  = 3000, TL = F * m0.lg.y(), TE = F * m0.lp.z();
+  const bool              quick = argc > 1 && std::string(argv[1]) == "--quick";
+  const PairModel         model(test_data::bevel_like_parameters(10e-6), tables());
+  const MeshState         m0 = model.mesh().mean();
+  const double            F = 3000, TL = F * m0.lg.y(), TE = F * m0.lp.z();
   const StaticEquilibrium s = model.static_equilibrium(TL);
   std::printf("static mesh force %.1f N, deflection %.2f um; mesh mass %.3f kg\n", s.mesh_force,
               s.deflection * 1e6, model.mesh_mass());
 
   // 1. time against error
   const std::vector<double> speeds{rpm(2000), rpm(5000), rpm(8000)};
-  auto dte_pp = [&](RunOptions r, double omega) {
+  auto                      dte_pp = [&](RunOptions r, double omega) {
     r.omega = omega, r.motor_torque = TE, r.load_torque = TL;
     SweepOptions o;
     o.speeds = {omega}, o.motor_torque = TE, o.load_torque = TL;
@@ -64,11 +64,12 @@ main(int argc, char **argv)
   for (double w : speeds)
     ref.push_back(dte_pp(reference, w));
   std::printf("reference DTE p-p [um]: %.5f %.5f %.5f\n", ref[0] * 1e6, ref[1] * 1e6, ref[2] * 1e6);
-  std::printf("| integrator | setting | time per speed (250 mesh cycles) | worst DTE p-p error |\n");
+  std::printf(
+      "| integrator | setting | time per speed (250 mesh cycles) | worst DTE p-p error |\n");
   std::printf("|---|---|---|---|\n");
   auto row = [&](const char *name, const std::string &setting, RunOptions r) {
-    double worst = 0;
-    const double t = bench::median_seconds(
+    double       worst = 0;
+    const double t     = bench::median_seconds(
         [&] {
           worst = 0;
           for (std::size_t k = 0; k < speeds.size(); ++k)
@@ -95,8 +96,8 @@ main(int argc, char **argv)
       }
 
   // 2. the 1000-speed sweep, up and down at once
-  const int     n_speeds = quick ? 100 : 1000;
-  SweepOptions  o;
+  const int    n_speeds = quick ? 100 : 1000;
+  SweepOptions o;
   o.motor_torque = TE, o.load_torque = TL;
   o.settle_cycles = 200, o.record_cycles = 50;
   o.run.method = Integrator::newmark, o.run.steps_per_cycle = 32, o.run.samples_per_cycle = 32;
@@ -108,13 +109,13 @@ main(int argc, char **argv)
       SweepOptions down  = o;
       std::reverse(down.speeds.begin(), down.speeds.end());
       std::vector<SweepPoint> up_points, down_points;
-      const double t = bench::median_seconds(
+      const double            t = bench::median_seconds(
           [&] {
             std::thread up([&] {
               PairVector q = s.q, v = PairVector::Zero();
               up_points = sweep(model, q, v, o);
             });
-            PairVector q = s.q, v = PairVector::Zero();
+            PairVector  q = s.q, v = PairVector::Zero();
             down_points = sweep(model, q, v, down);
             up.join();
           },

@@ -162,13 +162,13 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
       run.name         = name;
       run.cache_file   = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();
       const auto start = std::chrono::steady_clock::now();
-      run.reused       = dealii::Utilities::MPI::broadcast(
-          MPI_COMM_WORLD, rank == 0 && fs::exists(run.cache_file), 0);
+      run.reused       = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD,
+                                                           rank == 0 && fs::exists(run.cache_file), 0);
       if (!run.reused)
         {
           log << "stage " << name << ": running (" << s.description << ")" << std::endl;
           // Upstream results as stored in their cache files.
-          std::vector<H5Group> groups;
+          std::vector<H5Group>           groups;
           const std::vector<std::string> ups = upstream_of(scene, s);
           groups.reserve(ups.size());
           Upstream upstream;
@@ -178,9 +178,8 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
               upstream[up] = &groups.back();
             }
           together([&] {
-            H5File out = H5File::create(rank == 0 ? run.cache_file :
-                                                    run.cache_file + ".process" +
-                                                        std::to_string(rank));
+            H5File out = H5File::create(
+                rank == 0 ? run.cache_file : run.cache_file + ".process" + std::to_string(rank));
             s.run(scene, upstream, out.root().group(name), log);
             if (rank == 0)
               out.commit(); // the other processes' private files go with `out`
@@ -256,11 +255,11 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
   // Under mpirun every process parses the same arguments and meets the same errors: only the
   // first one speaks.
   std::ostream  silent(nullptr);
-  const bool    first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  std::ostream &out   = first ? out_0 : silent;
-  std::ostream &err   = first ? err_0 : silent;
+  const bool    first       = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  std::ostream &out         = first ? out_0 : silent;
+  std::ostream &err         = first ? err_0 : silent;
   std::string   output_root = "out", scene_file;
-  bool        plot        = false;
+  bool          plot        = false;
   for (std::size_t i = 0; i < args.size(); ++i)
     {
       const std::string &a = args[i];

@@ -354,7 +354,8 @@ declare_dynamics(ParameterHandler &prm)
                         Patterns::List(Patterns::Double(), 1, 4),
                         "[mm] Radial bearings along the member's axis from its frame origin.");
     }
-  prm.declare_entry("bearing stiffness", "500", Patterns::Double(0), "[N/um] Radial, every bearing.");
+  prm.declare_entry("bearing stiffness", "500", Patterns::Double(0),
+                    "[N/um] Radial, every bearing.");
   prm.declare_entry("axial stiffness", "300", Patterns::Double(0), "[N/um] Each member.");
   prm.declare_entry("bearing damping", "500", Patterns::Double(0), "[N s/m] Radial and axial.");
   prm.declare_entry("half backlash", "50", Patterns::Double(0), "[um] b_c.");
@@ -367,8 +368,9 @@ declare_dynamics(ParameterHandler &prm)
   prm.declare_entry("settle cycles", "200", Patterns::Integer(0),
                     "Most mesh cycles to settle at each speed (less when the motion repeats).");
   prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
-  prm.declare_entry("integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
-                    "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
+  prm.declare_entry(
+      "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
+      "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
   prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000), "Newmark.");
 }
 
@@ -839,25 +841,26 @@ read_scene(const std::string &file)
           prm.leave_subsection();
           prm.enter_subsection("Dynamics");
           prm.enter_subsection(p);
-          DynamicsScene &d      = scene.dynamics[p];
-          d.fe_stiffness        = prm.get("mesh stiffness source") == "finite elements";
-          d.mesh_stiffness      = prm.get_double("mesh stiffness") * 1e6;
-          d.stiffness_variation = prm.get_double("mesh stiffness variation");
-          d.torque              = prm.get_double("pinion torque");
-          d.tca_transmission_error = prm.get("transmission error source") == "tca";
+          DynamicsScene &d               = scene.dynamics[p];
+          d.fe_stiffness                 = prm.get("mesh stiffness source") == "finite elements";
+          d.mesh_stiffness               = prm.get_double("mesh stiffness") * 1e6;
+          d.stiffness_variation          = prm.get_double("mesh stiffness variation");
+          d.torque                       = prm.get_double("pinion torque");
+          d.tca_transmission_error       = prm.get("transmission error source") == "tca";
           d.transmission_error_amplitude = prm.get_double("transmission error amplitude") * 1e-6;
-          PairModelParameters &mp = d.model;
-          mp.motor_inertia        = prm.get_double("motor inertia");
-          mp.speed_controlled_motor = prm.get("motor") == "speed controlled";
-          mp.load_inertia         = prm.get_double("load inertia");
-          const double shaft_c    = prm.get_double("shaft damping");
-          mp.motor_shaft          = {prm.get_double("motor shaft stiffness"), shaft_c};
-          mp.load_shaft           = {prm.get_double("load shaft stiffness"), shaft_c};
-          const double kb = prm.get_double("bearing stiffness") * 1e6, cb = prm.get_double("bearing damping");
+          PairModelParameters &mp        = d.model;
+          mp.motor_inertia               = prm.get_double("motor inertia");
+          mp.speed_controlled_motor      = prm.get("motor") == "speed controlled";
+          mp.load_inertia                = prm.get_double("load inertia");
+          const double shaft_c           = prm.get_double("shaft damping");
+          mp.motor_shaft                 = {prm.get_double("motor shaft stiffness"), shaft_c};
+          mp.load_shaft                  = {prm.get_double("load shaft stiffness"), shaft_c};
+          const double kb                = prm.get_double("bearing stiffness") * 1e6,
+                       cb                = prm.get_double("bearing damping");
           for (const char *member : {"pinion", "gear"})
             {
-              BodyParameters &b   = std::string(member) == "pinion" ? mp.pinion : mp.gear;
-              const std::string m = member;
+              BodyParameters   &b  = std::string(member) == "pinion" ? mp.pinion : mp.gear;
+              const std::string m  = member;
               b.mass               = prm.get_double(m + " mass");
               b.axial_inertia      = prm.get_double(m + " axial inertia");
               b.transverse_inertia = prm.get_double(m + " transverse inertia");
@@ -867,17 +870,18 @@ read_scene(const std::string &file)
               b.axial_stiffness = prm.get_double("axial stiffness") * 1e6;
               b.axial_damping   = cb;
             }
-          mp.half_backlash      = prm.get_double("half backlash") * 1e-6;
-          mp.mesh_damping_ratio = prm.get_double("mesh damping ratio");
-          d.speed_from          = prm.get_double("speed from") * 2 * pi / 60;
-          d.speed_to            = prm.get_double("speed to") * 2 * pi / 60;
-          d.speeds              = prm.get_integer("speeds");
-          d.settle_cycles       = prm.get_integer("settle cycles");
-          d.record_cycles       = prm.get_integer("record cycles");
+          mp.half_backlash        = prm.get_double("half backlash") * 1e-6;
+          mp.mesh_damping_ratio   = prm.get_double("mesh damping ratio");
+          d.speed_from            = prm.get_double("speed from") * 2 * pi / 60;
+          d.speed_to              = prm.get_double("speed to") * 2 * pi / 60;
+          d.speeds                = prm.get_integer("speeds");
+          d.settle_cycles         = prm.get_integer("settle cycles");
+          d.record_cycles         = prm.get_integer("record cycles");
           const std::string integ = prm.get("integrator");
-          d.integrator = integ == "newmark" ? Integrator::newmark
-                         : integ == "cvode bdf" ? Integrator::cvode_bdf : Integrator::cvode_adams;
-          d.steps_per_cycle = prm.get_integer("steps per mesh cycle");
+          d.integrator            = integ == "newmark"     ? Integrator::newmark
+                                    : integ == "cvode bdf" ? Integrator::cvode_bdf
+                                                           : Integrator::cvode_adams;
+          d.steps_per_cycle       = prm.get_integer("steps per mesh cycle");
           if (!(d.speed_to >= d.speed_from))
             throw InputError("Dynamics/" + p + "/speed to: " + prm.get("speed to") +
                              " rpm is below speed from (" + prm.get("speed from") + " rpm)");

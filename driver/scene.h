@@ -76,9 +76,9 @@ struct MeasuredScene
 struct TcaScene
 {
   double       centre_distance = 0; ///< [m]; 0 = the zero-backlash working centre distance
-  Misalignment misalignment; ///< (for spiral bevel pairs: offset, axial shifts, shaft angle)
+  Misalignment misalignment;        ///< (for spiral bevel pairs: offset, axial shifts, shaft angle)
   TcaOptions   options;
-  int          harmonics = 10; ///< mesh orders reported
+  int          harmonics        = 10;      ///< mesh orders reported
   double       elastic_approach = 6.32e-6; ///< for the contact ellipses [m]
   /// Also run the fast discrete-point analysis on the pair's measured flanks (/measured).
   bool measured = false;
@@ -100,9 +100,9 @@ struct FeScene
   double   far_size      = 1.0;  ///< element size toward the bore / m_n
   double   other_size    = 0;    ///< at fillets and unloaded flanks / m_n; 0 = flank size
   unsigned degree        = 2;
-  double   depth         = 3;    ///< response depth in flank element sizes
-  int      n_u = 9, n_v = 7;     ///< load grid per flank
-  Material material;             ///< both members
+  double   depth         = 3; ///< response depth in flank element sizes
+  int      n_u = 9, n_v = 7;  ///< load grid per flank
+  Material material;          ///< both members
 };
 
 /// Loaded contact over the mesh cycle (stage "stiffness").
@@ -113,25 +113,25 @@ struct LoadedScene
   ContactCellOptions  cells;
   bool                measured = false; ///< also the measured flanks, compliances reused
   /// Positions (indices into the mesh cycle) solved again in reference mode, with VTU files.
-  std::vector<int>    reference_positions;
-  double              reference_elements_per_cell = 0.5;
+  std::vector<int> reference_positions;
+  double           reference_elements_per_cell = 0.5;
 };
 
 /// 14-DOF pair dynamics (stage "dynamics"): the model's parameters and the speed sweep.
 struct DynamicsScene
 {
-  bool   fe_stiffness = true;    ///< K_m over the mesh cycle from the stiffness stage
-  double mesh_stiffness = 0;     ///< else constant K_m [N/m] ...
-  double stiffness_variation = 0; ///< ... varying by this fraction (first mesh order)
-  bool   tca_transmission_error = true; ///< E_t from the TCA, else analytic:
-  double transmission_error_amplitude = 0; ///< E_t = this sin(2 pi phase) [m]
-  double torque = 0;              ///< pinion (motor) torque [N m]; K_m from the nearest FE torque
+  bool                fe_stiffness   = true;   ///< K_m over the mesh cycle from the stiffness stage
+  double              mesh_stiffness = 0;      ///< else constant K_m [N/m] ...
+  double              stiffness_variation = 0; ///< ... varying by this fraction (first mesh order)
+  bool                tca_transmission_error       = true; ///< E_t from the TCA, else analytic:
+  double              transmission_error_amplitude = 0;    ///< E_t = this sin(2 pi phase) [m]
+  double              torque = 0; ///< pinion (motor) torque [N m]; K_m from the nearest FE torque
   PairModelParameters model;      ///< axes, the mesh tables and the teeth come from the pair
-  double speed_from = 0, speed_to = 0; ///< [rad/s]
-  int    speeds = 0;
-  int    settle_cycles = 200, record_cycles = 50;
-  Integrator integrator = Integrator::newmark;
-  int    steps_per_cycle = 64;
+  double              speed_from = 0, speed_to = 0; ///< [rad/s]
+  int                 speeds        = 0;
+  int                 settle_cycles = 200, record_cycles = 50;
+  Integrator          integrator      = Integrator::newmark;
+  int                 steps_per_cycle = 64;
 };
 
 struct Scene

@@ -40,11 +40,11 @@ MeshCycleSamples
 mesh_tables(const H5Group &ste, int n, const Vec3 &pinion_axis, const std::vector<double> &km)
 {
   std::vector<hsize_t> shape;
-  const auto np = ste.read_doubles("normal_pinion", &shape);
-  const auto lp = ste.read_doubles("lambda_pinion"), lg = ste.read_doubles("lambda_gear");
-  const auto e0 = ste.read_doubles("transmission_error");
-  const auto lead = ste.read_ints("leading");
-  const std::size_t slots = shape[1];
+  const auto           np = ste.read_doubles("normal_pinion", &shape);
+  const auto           lp = ste.read_doubles("lambda_pinion"), lg = ste.read_doubles("lambda_gear");
+  const auto           e0    = ste.read_doubles("transmission_error");
+  const auto           lead  = ste.read_ints("leading");
+  const std::size_t    slots = shape[1];
   if (shape[0] < std::size_t(n))
     throw InputError("dynamics: the TCA has fewer positions than one mesh cycle");
   MeshCycleSamples s;
@@ -75,7 +75,7 @@ column(const std::vector<SweepPoint> &p, double SweepPoint::*field)
 void
 write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
 {
-  const hsize_t n = p.size();
+  const hsize_t       n = p.size();
   std::vector<double> rpm;
   std::vector<int>    period, settled;
   for (const SweepPoint &x : p)
@@ -107,7 +107,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       const PairMembers    members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
       const H5Group ste = upstream.at("ste")->group(pair.name);
-      const int     n   = tca.options.positions_per_mesh, z1 = members.pinion->teeth();
+      const int     n = tca.options.positions_per_mesh, z1 = members.pinion->teeth();
       const Vec3    pinion_axis = Vec3::UnitZ();
       const Vec3    gear_axis   = -members.assembly.gear_axis(); // its driven sense
 
@@ -117,21 +117,23 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           {
             std::vector<double> k;
             for (int i = 0; i < n; ++i)
-              k.push_back(d.mesh_stiffness * (1 - d.stiffness_variation * std::cos(2 * pi * i / n)));
+              k.push_back(d.mesh_stiffness *
+                          (1 - d.stiffness_variation * std::cos(2 * pi * i / n)));
             return k;
           }
-        const H5Group all = upstream.at("stiffness")->group(pair.name);
-        const bool    own = measured && all.has("measured");
-        const auto    torques = all.read_doubles("torque");
+        const H5Group        all     = upstream.at("stiffness")->group(pair.name);
+        const bool           own     = measured && all.has("measured");
+        const auto           torques = all.read_doubles("torque");
         std::vector<hsize_t> shape;
-        const auto K = own ? all.group("measured").read_doubles("mesh_stiffness", &shape)
-                           : all.read_doubles("mesh_stiffness", &shape);
-        std::size_t         best = 0;
+        const auto           K = own ? all.group("measured").read_doubles("mesh_stiffness", &shape)
+                                     : all.read_doubles("mesh_stiffness", &shape);
+        std::size_t          best = 0;
         for (std::size_t t = 1; t < torques.size(); ++t)
           if (std::abs(torques[t] - d.torque) < std::abs(torques[best] - d.torque))
             best = t;
-        return resample_periodic(
-            std::vector<double>(K.begin() + long(best * shape[1]), K.begin() + long((best + 1) * shape[1])), n);
+        return resample_periodic(std::vector<double>(K.begin() + long(best * shape[1]),
+                                                     K.begin() + long((best + 1) * shape[1])),
+                                 n);
       };
 
       PairModelParameters p = d.model;
@@ -141,15 +143,15 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       for (RadialBearing &b : p.gear.bearings) // given along the gear frame's axis
         b.position = -b.position;
 
-      const H5Group g = out.group(pair.name);
+      const H5Group                  g = out.group(pair.name);
       const std::vector<std::string> excitations{"theoretical"};
       bool                           first = true;
       for (const std::string &label : excitations)
         {
           const bool       measured = label == "measured";
-          MeshCycleSamples tables   = measured ? mesh_tables(ste.group("measured"), n, pinion_axis,
-                                                             stiffness(true))
-                                               : mesh_tables(ste, n, pinion_axis, stiffness(false));
+          MeshCycleSamples tables =
+              measured ? mesh_tables(ste.group("measured"), n, pinion_axis, stiffness(true))
+                       : mesh_tables(ste, n, pinion_axis, stiffness(false));
           if (!d.tca_transmission_error)
             for (int i = 0; i < n; ++i)
               tables.transmission_error[std::size_t(i)] =
@@ -164,14 +166,15 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           e.write("load_torque", TL, "N m", "T_L balancing the pinion torque");
           if (first)
             {
-              const PairModes modes = linear_modes(model);
+              const PairModes     modes = linear_modes(model);
               std::vector<double> rpm;
               for (int order = 1; order <= 3; ++order)
                 for (double f : modes.frequency)
                   rpm.push_back(resonance_speed_rpm(f, z1, order));
               const hsize_t nm = modes.frequency.size();
               g.write("mode_frequency", modes.frequency, {nm}, "Hz",
-                      "linear modes of the free DOFs at the mean mesh (a torque-driven train: the first is "
+                      "linear modes of the free DOFs at the mean mesh (a torque-driven train: the "
+                      "first is "
                       "its rigid rotation)");
               g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
                       "share of each mode's strain energy in the mesh");
@@ -189,11 +192,12 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           SweepOptions o;
           o.motor_torque = TE, o.load_torque = TL;
           o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
-          o.run.method          = d.integrator;
-          o.run.steps_per_cycle = d.steps_per_cycle;
+          o.run.method            = d.integrator;
+          o.run.steps_per_cycle   = d.steps_per_cycle;
           o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
           for (int i = 0; i < d.speeds; ++i)
-            o.speeds.push_back(d.speed_from + (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
+            o.speeds.push_back(d.speed_from +
+                               (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
           PairVector q = s.q, v = PairVector::Zero();
           const auto up = sweep(model, q, v, o);
           std::reverse(o.speeds.begin(), o.speeds.end());

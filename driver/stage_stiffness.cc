@@ -47,8 +47,8 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   o.material           = fe.material;
   o.side               = side;
   o.n_u = fe.n_u, o.n_v = fe.n_v;
-  o.depth_elements     = fe.depth;
-  o.work_directory     = dir;
+  o.depth_elements = fe.depth;
+  o.work_directory = dir;
   // Unit loads only on the teeth that can carry load over the mesh cycle; the segment's other
   // teeth are there for the stiffness of the surroundings.
   for (int k = -(segment.teeth - 1) / 2; k <= (segment.teeth - 1) / 2; ++k)
@@ -75,9 +75,9 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
 {
   for (const PairScene &pair : scene.pairs)
     {
-      const FeScene   &fe   = scene.fe.at(pair.name);
-      const TcaScene  &tca  = scene.tca.at(pair.name);
-      const FlankSide  side = tca.options.side;
+      const FeScene  &fe   = scene.fe.at(pair.name);
+      const TcaScene &tca  = scene.tca.at(pair.name);
+      const FlankSide side = tca.options.side;
       // The teeth that can carry load over a mesh cycle decide the segments.
       const PairMembers members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
@@ -87,30 +87,30 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       for (int i = 0; i < tca.options.positions_per_mesh; ++i)
         positions.push_back(
             t.at(tca.options.start_angle + 2 * pi / z1 * i / tca.options.positions_per_mesh));
-      const auto segments =
-          loaded_segments(positions, z1, members.gear->teeth(), segment_gap_band);
-      const H5Group    g    = out.group(pair.name);
+      const auto segments = loaded_segments(positions, z1, members.gear->teeth(), segment_gap_band);
+      const H5Group g     = out.group(pair.name);
       // The segment meshes beside the cache file: every process reads them.
       const std::string dir = stage_side_directory(out, "-mesh-" + pair.name);
       for (const bool is_pinion : {true, false})
         {
-          const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
-          const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
+          const MemberFlanks   &flanks  = is_pinion ? *members.pinion : *members.gear;
+          const SegmentChoice  &segment = is_pinion ? segments.first : segments.second;
           MemberComplianceInfo  info;
           const FlankCompliance table = compliance_table(
               pair, flanks, is_pinion,
               member_options(member_module(pair), flanks.teeth(), fe, side, segment, dir), &info);
-          const H5Group m = g.group(is_pinion ? "pinion" : "gear");
+          const H5Group    m = g.group(is_pinion ? "pinion" : "gear");
           std::vector<int> teeth;
           for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
             teeth.push_back(table.points()[k].tooth);
-          const hsize_t n = table.points().size();
+          const hsize_t       n = table.points().size();
           std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
           m.write("compliance", S, {n, n}, "m/N",
                   "structural compliance S(i, j) (column-major: load j, response i) on the load "
                   "grid, half-space part below the response depth removed");
           m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
-          m.write("central_tooth", double(segment.central), "1", "tooth in the middle of the segment");
+          m.write("central_tooth", double(segment.central), "1",
+                  "tooth in the middle of the segment");
           m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
           m.write("dofs", double(info.dofs), "1", "degrees of freedom");
           m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
@@ -121,10 +121,9 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
           m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
                   "mesh, assembly, factorisation and unit-load solves");
           log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << ": "
-              << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n
-              << " unit loads (" << info.shallow_points << " read shallower), "
-              << info.mesh_seconds + info.setup_seconds + info.solve_seconds
-              << " s\n";
+              << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n << " unit loads ("
+              << info.shallow_points << " read shallower), "
+              << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s\n";
         }
     }
 }
@@ -135,9 +134,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 {
   for (const PairScene &pair : scene.pairs)
     {
-      const FeScene     &fe  = scene.fe.at(pair.name);
-      const LoadedScene &lc  = scene.loaded.at(pair.name);
-      const TcaScene    &tca = scene.tca.at(pair.name);
+      const FeScene     &fe   = scene.fe.at(pair.name);
+      const LoadedScene &lc   = scene.loaded.at(pair.name);
+      const TcaScene    &tca  = scene.tca.at(pair.name);
       const FlankSide    side = tca.options.side;
       const PairMembers  members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
@@ -152,16 +151,16 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         spec.teeth = m.read_ints("teeth");
         spec.side  = side;
         spec.n_u = fe.n_u, spec.n_v = fe.n_v;
-        FlankCompliance t(flanks, spec);
+        FlankCompliance           t(flanks, spec);
         std::vector<hsize_t>      shape;
         const std::vector<double> S = m.read_doubles("compliance", &shape);
         t.set(Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[0]),
                                                 Eigen::Index(shape[1])));
         return t;
       };
-      const FlankCompliance cp  = table(*members.pinion, "pinion");
-      const FlankCompliance cgr = table(*members.gear, "gear");
-      const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
+      const FlankCompliance      cp  = table(*members.pinion, "pinion");
+      const FlankCompliance      cgr = table(*members.gear, "gear");
+      const StructuralCompliance sp  = [&](const ContactCell &i, const ContactCell &j) {
         return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
       };
       const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
@@ -170,8 +169,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
-        const int    n = lc.positions, m = int(lc.torques.size());
-        const double mesh_angle = 2 * pi / z1;
+        const int                n = lc.positions, m = int(lc.torques.size());
+        const double             mesh_angle = 2 * pi / z1;
         std::vector<TcaPosition> positions;
         double                   touching = 0;
         for (int i = 0; i < n; ++i)
@@ -189,7 +188,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         std::vector<double> phi, e0, eL, K, F, lever, pair_force, peak, cells_out;
         std::size_t         max_cells = 0;
         std::vector<std::vector<LoadedPosition>> results(m);
-        Progress progress(log, "stiffness", std::size_t(n * m));
+        Progress                                 progress(log, "stiffness", std::size_t(n * m));
         for (int k = 0; k < m; ++k)
           for (int i = 0; i < n; ++i)
             {
@@ -212,14 +211,14 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                 double p_max = 0;
                 for (std::size_t c = 0; c < max_cells; ++c)
                   {
-                    const bool used = c < r.cells.size();
-                    const ContactCell none;
+                    const bool         used = c < r.cells.size();
+                    const ContactCell  none;
                     const ContactCell &cell = used ? r.cells[c] : none;
                     const double p = used ? r.force[Eigen::Index(c)] / (cell.ds * cell.dt) : 0.0;
-                    p_max = std::max(p_max, p);
+                    p_max          = std::max(p_max, p);
                     // the contact pattern on the pinion flank: tooth, u, v, pressure
-                    cells_out.insert(cells_out.end(),
-                                     {used ? double(cell.pinion_tooth) : -1.0, cell.u1, cell.v1, p});
+                    cells_out.insert(cells_out.end(), {used ? double(cell.pinion_tooth) : -1.0,
+                                                       cell.u1, cell.v1, p});
                   }
                 peak.push_back(p_max);
                 k_mean += r.mesh_stiffness / n;
@@ -240,7 +239,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         g.write("lever", lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
         g.write("pair_force", pair_force, {M, N, S}, "N",
                 "normal force per pair slot of the unloaded TCA at the same position");
-        g.write("pinion_tooth", slot_tooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
+        g.write("pinion_tooth", slot_tooth, {N, S}, "1",
+                "pinion tooth of each pair slot (-1: empty)");
         g.write("peak_pressure", peak, {M, N}, "Pa", "largest cell pressure");
         g.write("contact_cells", cells_out, {M, N, C, 4}, "mixed",
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
@@ -251,8 +251,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       LoadedContactOptions lo;
       lo.cells           = lc.cells;
       lo.pinion_material = lo.gear_material = fe.material;
-      lo.covered = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
-      const H5Group g    = out.group(pair.name);
+      lo.covered      = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
+      const H5Group g = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
       const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
       analyse(theory, lo, g, "");
@@ -268,29 +268,28 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           // Reference mode at the chosen positions on the compliance stage's segments; VTU
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
           const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
-          ReferenceContactOptions ro;
+          ReferenceContactOptions     ro;
           ro.cells             = lo;
           ro.cells.covered     = nullptr;
           ro.degree            = fe.degree;
           ro.hold_cuts         = fe.hold_cuts;
           ro.elements_per_cell = lc.reference_elements_per_cell;
           ro.work_directory    = vtu.string();
-          auto segment = [&](const char *member) {
+          auto segment         = [&](const char *member) {
             const H5Group m = cg.group(member);
             return SegmentChoice{int(m.read_doubles("central_tooth").front()),
                                  int(m.read_ints("teeth").size())};
           };
           ro.pinion_segment = segment("pinion"), ro.gear_segment = segment("gear");
-          ro.flank_size     = fe.flank_size * pair.pinion.normal_module;
-          ro.far_size       = fe.far_size * pair.pinion.normal_module;
-          const std::size_t P = lc.reference_positions.size(), M = lc.torques.size();
+          ro.flank_size         = fe.flank_size * pair.pinion.normal_module;
+          ro.far_size           = fe.far_size * pair.pinion.normal_module;
+          const std::size_t   P = lc.reference_positions.size(), M = lc.torques.size();
           std::vector<double> phi, eL, K, F, dofs, seconds;
           for (std::size_t k = 0; k < P; ++k)
             {
-              const int i = lc.reference_positions[k];
-              ro.vtu_prefix =
-                  (vtu / (pair.name + "_position" + std::to_string(i))).string();
-              ReferenceContactInfo info;
+              const int i   = lc.reference_positions[k];
+              ro.vtu_prefix = (vtu / (pair.name + "_position" + std::to_string(i))).string();
+              ReferenceContactInfo              info;
               const std::vector<LoadedPosition> r = reference_contact(
                   *pinion, *gear, theory,
                   theory.at(tca.options.start_angle + 2 * pi / pinion->teeth() * i / lc.positions),
@@ -335,19 +334,21 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       double            b = 0;
       if (bevel)
         {
-          const BevelPairDesign  &d    = pair.bevel;
-          const BevelPairGeometry bg   = bevel_geometry(d);
-          const double            m    = bg.mean_normal_module, beta = d.mean_spiral_angle;
-          const double            at   = std::atan(std::tan(d.pressure_angle) / std::cos(beta));
-          const double            zv1  = z1 / std::cos(bg.pitch_angle_pinion);
-          const double            zv2  = members.gear->teeth() / std::cos(bg.pitch_angle_gear);
-          const double            r1   = zv1 * m / std::cos(beta) / 2, r2 = zv2 * m / std::cos(beta) / 2;
-          auto path = [&](double r, double ha) { return std::sqrt(std::pow(r + ha, 2) - std::pow(r * std::cos(at), 2)); };
+          const BevelPairDesign  &d  = pair.bevel;
+          const BevelPairGeometry bg = bevel_geometry(d);
+          const double            m = bg.mean_normal_module, beta = d.mean_spiral_angle;
+          const double            at  = std::atan(std::tan(d.pressure_angle) / std::cos(beta));
+          const double            zv1 = z1 / std::cos(bg.pitch_angle_pinion);
+          const double            zv2 = members.gear->teeth() / std::cos(bg.pitch_angle_gear);
+          const double r1 = zv1 * m / std::cos(beta) / 2, r2 = zv2 * m / std::cos(beta) / 2;
+          auto         path = [&](double r, double ha) {
+            return std::sqrt(std::pow(r + ha, 2) - std::pow(r * std::cos(at), 2));
+          };
           b                 = d.face_width;
-          ratios.transverse = (path(r1, d.pinion_addendum * m) + path(r2, (2 - d.pinion_addendum) * m) -
-                               (r1 + r2) * std::sin(at)) /
+          ratios.transverse = (path(r1, d.pinion_addendum * m) +
+                               path(r2, (2 - d.pinion_addendum) * m) - (r1 + r2) * std::sin(at)) /
                               (pi * m * std::cos(at) / std::cos(beta));
-          ratios.overlap       = b * std::sin(beta) / (pi * m);
+          ratios.overlap = b * std::sin(beta) / (pi * m);
           iso.z1 = zv1, iso.z2 = zv2;
           iso.x1 = d.pinion_addendum - 1, iso.x2 = 1 - d.pinion_addendum;
           iso.helix_angle      = beta;
@@ -358,15 +359,16 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         }
       else
         {
-          const auto pinion = InvoluteGear::create(pair.pinion), gear = InvoluteGear::create(pair.gear);
+          const auto pinion = InvoluteGear::create(pair.pinion),
+                     gear   = InvoluteGear::create(pair.gear);
           iso.z1 = pinion->teeth(), iso.z2 = gear->teeth();
           iso.x1 = pair.pinion.profile_shift, iso.x2 = pair.gear.profile_shift;
           iso.helix_angle      = pair.pinion.helix_angle;
           iso.base_helix_angle = pinion->base_helix_angle;
           iso.pressure_angle   = pair.pinion.normal_pressure_angle;
           iso.dedendum_factor  = pair.pinion.dedendum_factor;
-          ratios = contact_ratios(*pinion, *gear, members.centre_distance);
-          b      = std::min(pair.pinion.face_width, pair.gear.face_width);
+          ratios               = contact_ratios(*pinion, *gear, members.centre_distance);
+          b                    = std::min(pair.pinion.face_width, pair.gear.face_width);
         }
       iso.transverse_contact_ratio = ratios.transverse;
       g.write("transverse_contact_ratio", ratios.transverse, "1", "eps_alpha of the geometry");
@@ -387,8 +389,10 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                          ": measured flanks = true needs measured flanks: set Measured flanks/" +
                          pair.name + "/source");
       const H5Group mg = measured.group(pair.name);
-      const auto    mp = std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
-      const auto    mgr = std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
+      const auto    mp =
+          std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
+      const auto mgr =
+          std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
       // Compliances reused: each cell looks up the theoretical flank at its own position
       // (MemberFlanks::rotational_parameters).
       lo.table_parameters = [&](ContactCell &c) {
@@ -398,7 +402,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
             mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
       };
       lo.cells.zone_from_gaps = true; // the measured flanks' local curvature carries their noise
-      const H5Group gm = g.group("measured");
+      const H5Group gm        = g.group("measured");
       gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");
       analyse(UnloadedTca(mp, mgr, members.assembly, tca.options), lo, gm, " measured");
     }

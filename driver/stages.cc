@@ -100,9 +100,11 @@ upstream_of(const Scene &scene, const StageDefinition &stage)
 const std::map<std::string, std::string> &
 output_stages()
 {
-  static const std::map<std::string, std::string> map = {
-      {"flanks", "flanks"}, {"measured", "measured"}, {"ste", "ste"}, {"stiffness", "stiffness"},
-      {"dynamics", "dynamics"}};
+  static const std::map<std::string, std::string> map = {{"flanks", "flanks"},
+                                                         {"measured", "measured"},
+                                                         {"ste", "ste"},
+                                                         {"stiffness", "stiffness"},
+                                                         {"dynamics", "dynamics"}};
   return map;
 }
 } // namespace gearkit

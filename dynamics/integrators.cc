@@ -1,14 +1,14 @@
 #include "integrators.h"
 
 #include <Eigen/Dense>
+
+#include <cmath>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
+#include <sstream>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
-
-#include <cmath>
-#include <sstream>
 
 namespace gearkit
 {
@@ -18,8 +18,8 @@ void
 record(const PairModel &model, const RunOptions &o, double t, const PairVector &q,
        const PairVector &v, Trajectory &out)
 {
-  const MeshState  m = model.mesh().at(model.phase(t, o.omega));
-  const PairVector g = PairModel::mesh_gradient(m);
+  const MeshState  m       = model.mesh().at(model.phase(t, o.omega));
+  const PairVector g       = PairModel::mesh_gradient(m);
   const double     et_rate = m.det * model.parameters().pinion_teeth * o.omega / (2 * pi);
   out.t.push_back(t);
   out.q.push_back(q);
@@ -34,12 +34,11 @@ record(const PairModel &model, const RunOptions &o, double t, const PairVector &
 PairVector
 displacement_scale(const PairModel &model)
 {
-  const MeshState m  = model.mesh().mean();
-  const double    kd = std::max(model.parameters().half_backlash, 1e-9);
-  const double    d  = std::max(kd, 1e-6); // at least a micrometre
-  const double    arm =
-      std::max({m.lp.norm(), m.lg.norm(), 1e-3});
-  PairVector s = PairVector::Constant(d);
+  const MeshState m   = model.mesh().mean();
+  const double    kd  = std::max(model.parameters().half_backlash, 1e-9);
+  const double    d   = std::max(kd, 1e-6); // at least a micrometre
+  const double    arm = std::max({m.lp.norm(), m.lg.norm(), 1e-3});
+  PairVector      s   = PairVector::Constant(d);
   for (int i : {dof::motor, dof::load})
     s[i] = d / arm;
   for (int k = 0; k < 3; ++k)
@@ -58,14 +57,14 @@ struct CvodeData
 int
 cvode_rhs(sunrealtype tau, N_Vector y, N_Vector ydot, void *user)
 {
-  const auto                      *d = static_cast<CvodeData *>(user);
-  Eigen::Map<const PairVector>     q(N_VGetArrayPointer(y));
-  Eigen::Map<const PairVector>     v(N_VGetArrayPointer(y) + pair_dofs);
-  Eigen::Map<PairVector>           dq(N_VGetArrayPointer(ydot));
-  Eigen::Map<PairVector>           dv(N_VGetArrayPointer(ydot) + pair_dofs);
-  const double                     t = tau * d->period;
-  dq = d->period * v;
-  dv = d->period *
+  const auto                  *d = static_cast<CvodeData *>(user);
+  Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
+  Eigen::Map<const PairVector> v(N_VGetArrayPointer(y) + pair_dofs);
+  Eigen::Map<PairVector>       dq(N_VGetArrayPointer(ydot));
+  Eigen::Map<PairVector>       dv(N_VGetArrayPointer(ydot) + pair_dofs);
+  const double                 t = tau * d->period;
+  dq                             = d->period * v;
+  dv                             = d->period *
        d->model->acceleration(t, q, v, d->o->omega, d->o->motor_torque, d->o->load_torque);
   return 0;
 }
@@ -76,9 +75,10 @@ cvode_roots(sunrealtype tau, N_Vector y, sunrealtype *gout, void *user)
   const auto                  *d = static_cast<CvodeData *>(user);
   Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
   const MeshState              m = d->model->mesh().at(tau); // tau is the mesh phase
-  const double x = PairModel::mesh_gradient(m).dot(q) - m.et, b = d->model->parameters().half_backlash;
-  gout[0] = x - b;
-  gout[1] = x + b;
+  const double                 x = PairModel::mesh_gradient(m).dot(q) - m.et,
+               b                 = d->model->parameters().half_backlash;
+  gout[0]                        = x - b;
+  gout[1]                        = x + b;
   return 0;
 }
 
@@ -98,16 +98,16 @@ cvode_check(int flag, const char *call, double tau)
 Trajectory
 run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
 {
-  Trajectory  out;
-  CvodeData   data{&model, &o, 2 * pi / (model.parameters().pinion_teeth * o.omega)};
-  SUNContext  ctx;
+  Trajectory out;
+  CvodeData  data{&model, &o, 2 * pi / (model.parameters().pinion_teeth * o.omega)};
+  SUNContext ctx;
   if (SUNContext_Create(nullptr, &ctx) != 0)
     throw InputError("pair dynamics: cannot create a SUNDIALS context");
-  N_Vector y = N_VNew_Serial(2 * pair_dofs, ctx), abstol = N_VNew_Serial(2 * pair_dofs, ctx);
+  N_Vector        y = N_VNew_Serial(2 * pair_dofs, ctx), abstol = N_VNew_Serial(2 * pair_dofs, ctx);
   SUNMatrix       A   = SUNDenseMatrix(2 * pair_dofs, 2 * pair_dofs, ctx);
   SUNLinearSolver LS  = SUNLinSol_Dense(y, A, ctx);
   void           *mem = CVodeCreate(o.method == Integrator::cvode_adams ? CV_ADAMS : CV_BDF, ctx);
-  auto release        = [&] {
+  auto            release = [&] {
     CVodeFree(&mem);
     SUNLinSolFree(LS);
     SUNMatDestroy(A);
@@ -120,7 +120,7 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
       Eigen::Map<PairVector>(N_VGetArrayPointer(y))             = q0;
       Eigen::Map<PairVector>(N_VGetArrayPointer(y) + pair_dofs) = v0;
       // scales: displacements, and their rates per mesh cycle... per second (v in SI)
-      const PairVector s = displacement_scale(model);
+      const PairVector s                                 = displacement_scale(model);
       Eigen::Map<PairVector>(N_VGetArrayPointer(abstol)) = o.absolute_tolerance * s;
       Eigen::Map<PairVector>(N_VGetArrayPointer(abstol) + pair_dofs) =
           o.absolute_tolerance * s / data.period;
@@ -166,54 +166,54 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
 Trajectory
 run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
 {
-  Trajectory       out;
-  const double     period = 2 * pi / (model.parameters().pinion_teeth * o.omega);
-  const double     h      = period / o.steps_per_cycle;
+  Trajectory        out;
+  const double      period = 2 * pi / (model.parameters().pinion_teeth * o.omega);
+  const double      h      = period / o.steps_per_cycle;
   const PairMatrix &M = model.mass(), &K = model.stiffness(), &C = model.damping();
-  const double     c_m = model.mesh_damping();
-  const int        z   = model.parameters().pinion_teeth;
-  const PairVector F_ext = model.torques(o.motor_torque, o.load_torque);
-  const PairVector free  = model.active();
-  const PairVector held_dofs = PairVector::Ones() - free;
-  const PairMatrix held      = held_dofs.asDiagonal();
-  const double     b     = model.parameters().half_backlash;
-  const bool       always_damped = !model.parameters().mesh_damping_in_contact_only;
+  const double      c_m           = model.mesh_damping();
+  const int         z             = model.parameters().pinion_teeth;
+  const PairVector  F_ext         = model.torques(o.motor_torque, o.load_torque);
+  const PairVector  free          = model.active();
+  const PairVector  held_dofs     = PairVector::Ones() - free;
+  const PairMatrix  held          = held_dofs.asDiagonal();
+  const double      b             = model.parameters().half_backlash;
+  const bool        always_damped = !model.parameters().mesh_damping_in_contact_only;
   // Each step is linear in q_{n+1} except for the mesh force, a piecewise linear function of
   // the single number delta_D = g . q_{n+1}: with L = 4/h^2 M + 2/h C + K (on the free DOFs;
   // one factorisation), q_{n+1} = q_n + dq* - L^-1 g F_m, delta = delta* - (g^T L^-1 g) F_m(delta),
   // solved exactly branch by branch (contact on either flank, or none) - no Newton iterations
   // to cycle at the backlash boundaries.
-  const PairMatrix L = free.asDiagonal() * (4 / (h * h) * M + 2 / h * C + K) * free.asDiagonal() + held;
+  const PairMatrix L =
+      free.asDiagonal() * (4 / (h * h) * M + 2 / h * C + K) * free.asDiagonal() + held;
   const Eigen::LDLT<PairMatrix> Lf(L);
-  PairVector q = q0, v = v0, a;
+  PairVector                    q = q0, v = v0, a;
   {
-    const MeshState  m = model.mesh().at(0);
-    const PairVector g = PairModel::mesh_gradient(m).cwiseProduct(free);
+    const MeshState  m  = model.mesh().at(0);
+    const PairVector g  = PairModel::mesh_gradient(m).cwiseProduct(free);
     const double     Fm = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
-    a = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
+    a                   = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
   }
   record(model, o, 0, q, v, out);
   const int steps_total = int(std::lround(o.mesh_cycles * o.steps_per_cycle));
   const int every       = std::max(1, o.steps_per_cycle / o.samples_per_cycle);
   for (int n = 1; n <= steps_total; ++n)
     {
-      const double     t  = n * h;
-      const MeshState  m  = model.mesh().at(model.phase(t, o.omega));
-      const PairVector g  = PairModel::mesh_gradient(m).cwiseProduct(free);
+      const double     t       = n * h;
+      const MeshState  m       = model.mesh().at(model.phase(t, o.omega));
+      const PairVector g       = PairModel::mesh_gradient(m).cwiseProduct(free);
       const double     et_rate = m.det * z * o.omega / (2 * pi);
-      const PairVector Lg = Lf.solve(g);
-      const double     gLg = g.dot(Lg);
+      const PairVector Lg      = Lf.solve(g);
+      const double     gLg     = g.dot(Lg);
       // in increments (the rigid rotation of a torque-driven train grows without bound; the
       // step must not cancel it against itself): L dq = dq* - L^-1 g F_m
-      const PairVector rhs =
-          (F_ext - K * q + M * (4 / h * v + a) + C * v).cwiseProduct(free);
+      const PairVector rhs   = (F_ext - K * q + M * (4 / h * v + a) + C * v).cwiseProduct(free);
       const PairVector dqs   = Lf.solve(rhs);
       const double     dstar = g.dot(q) + g.dot(dqs);
-      const double     D0     = -(2 / h * g.dot(q) + g.dot(v)); // delta' = 2/h delta + D0
-      const double     c2h    = 2 / h * c_m, damp0 = c_m * (D0 - et_rate);
+      const double     D0    = -(2 / h * g.dot(q) + g.dot(v)); // delta' = 2/h delta + D0
+      const double     c2h = 2 / h * c_m, damp0 = c_m * (D0 - et_rate);
       // F_m = alpha delta + beta on each branch; delta = dstar - gLg F_m
       double delta = 0, Fm = 0;
-      bool   found = false;
+      bool   found  = false;
       auto   branch = [&](double alpha, double beta, double lo, double hi) {
         if (found)
           return;
@@ -222,9 +222,9 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
         if (x >= lo && x <= hi)
           delta = d, Fm = alpha * d + beta, found = true;
       };
-      branch(m.km + c2h, -m.km * (m.et + b) + damp0, b, HUGE_VAL);          // drive flank
+      branch(m.km + c2h, -m.km * (m.et + b) + damp0, b, HUGE_VAL);           // drive flank
       branch(always_damped ? c2h : 0.0, always_damped ? damp0 : 0.0, -b, b); // no contact
-      branch(m.km + c2h, -m.km * (m.et - b) + damp0, -HUGE_VAL, -b);       // coast flank
+      branch(m.km + c2h, -m.km * (m.et - b) + damp0, -HUGE_VAL, -b);         // coast flank
       if (!found) // the root sits in the damping force's jump at a boundary: stay there
         {
           const double x = dstar - m.et > 0 ? b : -b;

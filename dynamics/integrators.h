@@ -25,28 +25,28 @@ enum class Integrator
 
 struct RunOptions
 {
-  double     omega        = 0;   ///< pinion speed [rad/s] (> 0)
-  double     motor_torque = 0;   ///< T_E [N m]
-  double     load_torque  = 0;   ///< T_L [N m]
-  double     mesh_cycles  = 10;  ///< duration [mesh cycles]
-  int        samples_per_cycle = 32; ///< output samples per mesh cycle
-  Integrator method       = Integrator::cvode_bdf;
+  double     omega              = 0;  ///< pinion speed [rad/s] (> 0)
+  double     motor_torque       = 0;  ///< T_E [N m]
+  double     load_torque        = 0;  ///< T_L [N m]
+  double     mesh_cycles        = 10; ///< duration [mesh cycles]
+  int        samples_per_cycle  = 32; ///< output samples per mesh cycle
+  Integrator method             = Integrator::cvode_bdf;
   double     relative_tolerance = 1e-8; ///< CVODE
   /// CVODE absolute tolerance relative to the displacement scale (the static mesh deflection,
   /// per DOF through the mesh's moment arms) and its rate
-  double     absolute_tolerance = 1e-8;
-  int        steps_per_cycle    = 64; ///< Newmark
+  double absolute_tolerance = 1e-8;
+  int    steps_per_cycle    = 64; ///< Newmark
 };
 
 struct Trajectory
 {
-  std::vector<double>     t;        ///< [s]
-  std::vector<PairVector> q, v;     ///< state at the output times
-  std::vector<double>     dte;      ///< delta_D [m]
-  std::vector<double>     relative; ///< delta_D - E_t [m]
-  std::vector<double>     force;    ///< F_m [N]
-  std::size_t events = 0;           ///< backlash boundaries crossed (CVODE)
-  std::size_t steps  = 0;           ///< integrator steps taken
+  std::vector<double>     t;          ///< [s]
+  std::vector<PairVector> q, v;       ///< state at the output times
+  std::vector<double>     dte;        ///< delta_D [m]
+  std::vector<double>     relative;   ///< delta_D - E_t [m]
+  std::vector<double>     force;      ///< F_m [N]
+  std::size_t             events = 0; ///< backlash boundaries crossed (CVODE)
+  std::size_t             steps  = 0; ///< integrator steps taken
 };
 
 /// Integrates from (q0, v0) at t = 0. Throws InputError for bad options and for integrator

@@ -103,9 +103,9 @@ MeshCycle::at(double phase) const
 {
   const auto &t = impl->tables;
   MeshState   m;
-  m.et  = t[0](phase);
-  m.det = t[0].prime(phase);
-  m.km  = t[1](phase);
+  m.et       = t[0](phase);
+  m.det      = t[0].prime(phase);
+  m.km       = t[1](phase);
   Vec3 *v[4] = {&m.np, &m.ng, &m.lp, &m.lg};
   for (int j = 0; j < 4; ++j)
     for (int k = 0; k < 3; ++k)

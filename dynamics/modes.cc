@@ -10,8 +10,8 @@ namespace gearkit
 PairModes
 linear_modes(const PairModel &model)
 {
-  const MeshState  m = model.mesh().mean();
-  const PairVector g = PairModel::mesh_gradient(m);
+  const MeshState  m  = model.mesh().mean();
+  const PairVector g  = PairModel::mesh_gradient(m);
   const PairMatrix Km = m.km * g * g.transpose();
   const PairMatrix K  = model.stiffness() + Km;
   // on the free DOFs (a speed-controlled motor, a torsional model hold the others)
@@ -27,7 +27,8 @@ linear_modes(const PairModel &model)
             Kmr(i, j) = Km(index[i], index[j]);
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Kr, Mr);
   if (eig.info() != Eigen::Success)
-    throw InputError("pair dynamics: the modal analysis failed (mass matrix not positive definite?)");
+    throw InputError(
+        "pair dynamics: the modal analysis failed (mass matrix not positive definite?)");
   PairModes out;
   out.shapes = Eigen::MatrixXd::Zero(pair_dofs, n);
   for (int i = 0; i < n; ++i)
@@ -39,9 +40,8 @@ linear_modes(const PairModel &model)
       const Eigen::VectorXd phi   = eig.eigenvectors().col(i);
       const double          total = phi.dot(Kr * phi);
       // the rigid rotation (0 Hz) strains nothing: no share
-      out.mesh_energy.push_back(w2 > 1e-6 * eig.eigenvalues().maxCoeff() && total > 0
-                                    ? phi.dot(Kmr * phi) / total
-                                    : 0.0);
+      out.mesh_energy.push_back(
+          w2 > 1e-6 * eig.eigenvalues().maxCoeff() && total > 0 ? phi.dot(Kmr * phi) / total : 0.0);
     }
   return out;
 }

@@ -12,9 +12,9 @@ namespace gearkit
 {
 struct PairModes
 {
-  std::vector<double> frequency;      ///< [Hz], ascending; one per free DOF
-  std::vector<double> mesh_energy;    ///< share of each mode's strain energy in the mesh
-  Eigen::MatrixXd     shapes;         ///< columns: mass-normalised mode shapes
+  std::vector<double> frequency;   ///< [Hz], ascending; one per free DOF
+  std::vector<double> mesh_energy; ///< share of each mode's strain energy in the mesh
+  Eigen::MatrixXd     shapes;      ///< columns: mass-normalised mode shapes
 };
 
 PairModes

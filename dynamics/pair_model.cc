@@ -38,8 +38,8 @@ add_body(const BodyParameters &b, const std::string &name, int offset, PairMatri
           "at least one (two hold the tilt)");
   require(b.axial_stiffness >= 0 && b.axial_damping >= 0, name + " axial stiffness / damping",
           std::min(b.axial_stiffness, b.axial_damping), ">= 0");
-  const Vec3           &a = b.axis;
-  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - a * a.transpose();
+  const Vec3           &a       = b.axis;
+  const Eigen::Matrix3d P       = Eigen::Matrix3d::Identity() - a * a.transpose();
   M.block<3, 3>(offset, offset) = b.mass * Eigen::Matrix3d::Identity();
   M.block<3, 3>(offset + 3, offset + 3) =
       b.transverse_inertia * P + b.axial_inertia * a * a.transpose();
@@ -65,7 +65,8 @@ PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSampl
     , K(PairMatrix::Zero())
     , C(PairMatrix::Zero())
 {
-  require(p.motor_inertia >= 0, "motor inertia [kg m^2]", p.motor_inertia, ">= 0 (0: no motor DOF)");
+  require(p.motor_inertia >= 0, "motor inertia [kg m^2]", p.motor_inertia,
+          ">= 0 (0: no motor DOF)");
   require(p.load_inertia >= 0, "load inertia [kg m^2]", p.load_inertia, ">= 0 (0: no load DOF)");
   require(p.pinion_teeth >= 1, "pinion teeth", p.pinion_teeth, ">= 1");
   require(p.half_backlash >= 0, "half backlash [m]", p.half_backlash, ">= 0");
@@ -96,8 +97,8 @@ PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSampl
                    const std::string &name) {
     require(s.stiffness >= 0 && s.damping >= 0, name + " shaft stiffness / damping",
             std::min(s.stiffness, s.damping), ">= 0");
-    PairVector w = PairVector::Zero();
-    w[end]       = sign;
+    PairVector w       = PairVector::Zero();
+    w[end]             = sign;
     w.segment<3>(body) = -sign * axis;
     K += s.stiffness * w * w.transpose();
     C += s.damping * w * w.transpose();
@@ -160,11 +161,11 @@ PairVector
 PairModel::acceleration(double t, const PairVector &q, const PairVector &qd, double omega,
                         double motor_torque, double load_torque) const
 {
-  const MeshState  m = cycle.at(phase(t, omega));
-  const PairVector g = mesh_gradient(m);
+  const MeshState  m       = cycle.at(phase(t, omega));
+  const PairVector g       = mesh_gradient(m);
   const double     et_rate = m.det * p.pinion_teeth * omega / (2 * pi);
   const double     Fm      = mesh_force(m, g.dot(q), g.dot(qd), et_rate);
-  const PairVector F = torques(motor_torque, load_torque) - K * q - C * qd - g * Fm;
+  const PairVector F       = torques(motor_torque, load_torque) - K * q - C * qd - g * Fm;
   // M is block diagonal: scalars and 3 x 3 blocks
   PairVector a;
   a[dof::motor] = F[dof::motor] / M(dof::motor, dof::motor);
@@ -208,8 +209,8 @@ PairModel::static_equilibrium(double load_torque) const
   StaticEquilibrium     s;
   for (int i = 0; i < n; ++i)
     s.q[index[i]] = x[i];
-  s.deflection   = g.dot(s.q) - m.et - p.half_backlash;
-  s.mesh_force   = m.km * s.deflection;
+  s.deflection = g.dot(s.q) - m.et - p.half_backlash;
+  s.mesh_force = m.km * s.deflection;
   // the torque the held DOF takes: the motor torque that balances the load
   s.motor_torque = hold == dof::motor ? K.row(dof::motor).dot(s.q)
                                       : (A.row(hold).dot(s.q) - rhs[hold]) /

@@ -43,12 +43,12 @@ struct RadialBearing
 
 struct BodyParameters
 {
-  double mass               = 0; ///< [kg]
-  double axial_inertia      = 0; ///< about the body's axis [kg m^2]
-  double transverse_inertia = 0; ///< about axes across it through the centre [kg m^2]
+  double mass               = 0;             ///< [kg]
+  double axial_inertia      = 0;             ///< about the body's axis [kg m^2]
+  double transverse_inertia = 0;             ///< about axes across it through the centre [kg m^2]
   Vec3   axis               = Vec3::UnitZ(); ///< unit, global
   std::vector<RadialBearing> bearings;
-  double axial_stiffness = 0, axial_damping = 0; ///< [N/m], [N s/m]
+  double                     axial_stiffness = 0, axial_damping = 0; ///< [N/m], [N s/m]
 };
 
 struct ShaftParameters
@@ -64,24 +64,24 @@ struct PairModelParameters
   double          motor_inertia = 0, load_inertia = 0;
   BodyParameters  pinion, gear;
   ShaftParameters motor_shaft, load_shaft; ///< motor-pinion, gear-load
-  int             pinion_teeth  = 0;
-  double          half_backlash = 0;  ///< b_c [m]
+  int             pinion_teeth       = 0;
+  double          half_backlash      = 0; ///< b_c [m]
   double          mesh_damping_ratio = 0; ///< c_m = 2 zeta sqrt(K_m,mean m_e)
   /// The seed's mesh damping acts only in contact; false: always (Kahraman and Singh's model)
-  bool            mesh_damping_in_contact_only = true;
+  bool mesh_damping_in_contact_only = true;
   /// Translations and tilts of both bodies held: the pure torsional model
-  bool            torsion_only = false;
+  bool torsion_only = false;
   /// The motor runs at the nominal speed (theta_E held; its torque is the reaction) instead of
   /// at a constant torque: no free rigid rotation of the train, whose drift would otherwise
   /// grow without bound wherever the torques balance only on average
-  bool            speed_controlled_motor = false;
+  bool speed_controlled_motor = false;
 };
 
 /// Static equilibrium under a load torque with the motor shaft's end (or, without a motor, the
 /// pinion) held against rotation, at the phase-averaged mesh.
 struct StaticEquilibrium
 {
-  PairVector q = PairVector::Zero();
+  PairVector q            = PairVector::Zero();
   double     mesh_force   = 0; ///< F_m [N]
   double     deflection   = 0; ///< delta_D - E_t - b_c [m]
   double     motor_torque = 0; ///< T_E that balances the load torque [N m]

@@ -34,8 +34,9 @@ repeat_period(const std::vector<PairVector> &q, const std::vector<PairVector> &v
       for (int k = n - p; k < n; ++k) // the last p points against those a period earlier
         {
           const PairVector dq = (q[k] - q[k - 1]) - (q[k - p] - q[k - p - 1]);
-          worst = std::max(worst, (dq.array() / scale.array()).abs().maxCoeff());
-          worst = std::max(worst, ((v[k] - v[k - p]).array() / (rate_scale * scale.array())).abs().maxCoeff());
+          worst               = std::max(worst, (dq.array() / scale.array()).abs().maxCoeff());
+          worst               = std::max(
+                            worst, ((v[k] - v[k - p]).array() / (rate_scale * scale.array())).abs().maxCoeff());
         }
       if (worst < tolerance)
         return p;
@@ -50,7 +51,7 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
   if (o.speeds.empty() || o.settle_cycles < 0 || o.record_cycles < 1)
     throw InputError("pair dynamics: a sweep needs speeds, settle cycles >= 0 and record cycles "
                      ">= 1");
-  const double static_force = model.static_equilibrium(o.load_torque).mesh_force;
+  const double            static_force = model.static_equilibrium(o.load_torque).mesh_force;
   std::vector<SweepPoint> out;
   for (double omega : o.speeds)
     {
@@ -61,9 +62,9 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       int settled = 0, period = 0;
       {
         const StaticEquilibrium s0 = model.static_equilibrium(o.load_torque);
-        PairVector scale = PairVector::Constant(std::max(std::abs(s0.deflection), 1e-9));
-        const MeshState m = model.mesh().mean();
-        const double arm = std::max({m.lp.norm(), m.lg.norm(), 1e-3});
+        PairVector      scale      = PairVector::Constant(std::max(std::abs(s0.deflection), 1e-9));
+        const MeshState m          = model.mesh().mean();
+        const double    arm        = std::max({m.lp.norm(), m.lg.norm(), 1e-3});
         for (int i : {dof::motor, dof::load})
           scale[i] /= arm;
         for (int k = 0; k < 3; ++k)
@@ -94,8 +95,8 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       p.speed = omega;
       peak_and_rms(t.dte, p.dte_pp, p.dte_rms);
       peak_and_rms(t.relative, p.relative_pp, p.relative_rms);
-      p.max_force   = *std::max_element(t.force.begin(), t.force.end());
-      p.load_factor = p.max_force / static_force;
+      p.max_force    = *std::max_element(t.force.begin(), t.force.end());
+      p.load_factor  = p.max_force / static_force;
       const double b = model.parameters().half_backlash;
       p.contact_loss = double(std::count_if(t.relative.begin(), t.relative.end(),
                                             [&](double x) { return std::abs(x) < b; })) /

@@ -60,14 +60,14 @@ bevel_geometry(const BevelPairDesign &d)
       g.outer_transverse_module = d.module / cb * g.outer_cone_distance / g.mean_cone_distance;
     }
   require(d.face_width > 0 && d.face_width < g.outer_cone_distance, "face width [mm]",
-          d.face_width * 1e3, "in (0, outer cone distance = " +
-                                  std::to_string(g.outer_cone_distance * 1e3) + " mm)");
-  const double m  = g.mean_normal_module;
-  const double c  = d.clearance * m;
-  g.pinion        = {d.pinion_teeth, g.pitch_angle_pinion, g.mean_cone_distance, d.face_width,
-                     d.pinion_addendum * m, (2 - d.pinion_addendum) * m + c};
-  g.gear          = {d.gear_teeth, g.pitch_angle_gear, g.mean_cone_distance, d.face_width,
-                     (2 - d.pinion_addendum) * m, d.pinion_addendum * m + c};
+          d.face_width * 1e3,
+          "in (0, outer cone distance = " + std::to_string(g.outer_cone_distance * 1e3) + " mm)");
+  const double m = g.mean_normal_module;
+  const double c = d.clearance * m;
+  g.pinion       = {d.pinion_teeth, g.pitch_angle_pinion,  g.mean_cone_distance,
+                    d.face_width,   d.pinion_addendum * m, (2 - d.pinion_addendum) * m + c};
+  g.gear         = {d.gear_teeth, g.pitch_angle_gear,          g.mean_cone_distance,
+                    d.face_width, (2 - d.pinion_addendum) * m, d.pinion_addendum * m + c};
   return g;
 }
 
@@ -102,24 +102,24 @@ conjugate_cuts(const BevelPairDesign &d)
   pinion.blank = g.pinion;
   gear.blank   = g.gear;
   MachineSettings mp;
-  mp.radial_setting = n.radial_setting;
-  mp.cradle_angle   = q;
-  mp.root_angle     = g.pitch_angle_pinion;
-  mp.ratio_of_roll  = n.ratio_of_roll_pinion;
-  MachineSettings mg = mp;
-  mg.cradle_angle    = -q;
-  mg.root_angle      = g.pitch_angle_gear;
-  mg.ratio_of_roll   = n.ratio_of_roll_gear;
+  mp.radial_setting      = n.radial_setting;
+  mp.cradle_angle        = q;
+  mp.root_angle          = g.pitch_angle_pinion;
+  mp.ratio_of_roll       = n.ratio_of_roll_pinion;
+  MachineSettings mg     = mp;
+  mg.cradle_angle        = -q;
+  mg.root_angle          = g.pitch_angle_gear;
+  mg.ratio_of_roll       = n.ratio_of_roll_gear;
   pinion.outside_machine = pinion.inside_machine = mp;
   gear.outside_machine = gear.inside_machine = mg;
 
-  const double a           = d.pressure_angle;
-  pinion.outside_blade     = {d.cutter_radius + slot / 2, a, +1};
-  pinion.inside_blade      = {d.cutter_radius - slot / 2, a, -1};
-  gear.inside_blade        = {d.cutter_radius + slot / 2, a, -1};
-  gear.outside_blade       = {d.cutter_radius - slot / 2, a, +1};
-  for (Blade *b : {&pinion.outside_blade, &pinion.inside_blade, &gear.outside_blade,
-                   &gear.inside_blade})
+  const double a       = d.pressure_angle;
+  pinion.outside_blade = {d.cutter_radius + slot / 2, a, +1};
+  pinion.inside_blade  = {d.cutter_radius - slot / 2, a, -1};
+  gear.inside_blade    = {d.cutter_radius + slot / 2, a, -1};
+  gear.outside_blade   = {d.cutter_radius - slot / 2, a, +1};
+  for (Blade *b :
+       {&pinion.outside_blade, &pinion.inside_blade, &gear.outside_blade, &gear.inside_blade})
     b->edge_radius = d.edge_radius * g.mean_normal_module;
   return {pinion, gear};
 }
@@ -127,28 +127,28 @@ conjugate_cuts(const BevelPairDesign &d)
 std::pair<BevelMemberCut, BevelMemberCut>
 formate_cuts(const BevelPairDesign &d)
 {
-  auto [pinion, gear] = conjugate_cuts(d);
-  const BevelPairGeometry g = bevel_geometry(d);
+  auto [pinion, gear]            = conjugate_cuts(d);
+  const BevelPairGeometry g      = bevel_geometry(d);
   gear.outside_machine.generated = gear.inside_machine.generated = false;
 
   // The gear's machine frame seen from the pinion's: T = Ry(90 deg - gamma_2) Rx(pi) takes the
   // gear axis to -z and the gear's pitch element to the common element; the cutter (fixed in the
   // gear) then sits at T C' with its axis -T z' (blades toward the pinion).
-  const MachineSettings &mg = gear.outside_machine;
-  const double          beta = pi / 2 - g.pitch_angle_gear;
-  const Eigen::Matrix3d T    = (Eigen::AngleAxisd(beta, Vec3::UnitY()) *
-                             Eigen::AngleAxisd(pi, Vec3::UnitX()))
-                                .toRotationMatrix();
-  const Vec3 C = T * Vec3(mg.radial_setting * std::cos(mg.cradle_angle),
-                          mg.radial_setting * std::sin(mg.cradle_angle), 0);
+  const MachineSettings &mg   = gear.outside_machine;
+  const double           beta = pi / 2 - g.pitch_angle_gear;
+  const Eigen::Matrix3d  T =
+      (Eigen::AngleAxisd(beta, Vec3::UnitY()) * Eigen::AngleAxisd(pi, Vec3::UnitX()))
+          .toRotationMatrix();
+  const Vec3      C = T * Vec3(mg.radial_setting * std::cos(mg.cradle_angle),
+                               mg.radial_setting * std::sin(mg.cradle_angle), 0);
   MachineSettings mp;
-  mp.radial_setting = C.head<2>().norm();
-  mp.cradle_angle   = std::atan2(C.y(), C.x());
-  mp.tilt           = beta;
-  mp.swivel         = -mp.cradle_angle; // leaning toward +x
-  mp.sliding_base   = C.z();
-  mp.root_angle     = d.shaft_angle - pi / 2;
-  mp.ratio_of_roll  = double(d.gear_teeth) / d.pinion_teeth;
+  mp.radial_setting      = C.head<2>().norm();
+  mp.cradle_angle        = std::atan2(C.y(), C.x());
+  mp.tilt                = beta;
+  mp.swivel              = -mp.cradle_angle; // leaning toward +x
+  mp.sliding_base        = C.z();
+  mp.root_angle          = d.shaft_angle - pi / 2;
+  mp.ratio_of_roll       = double(d.gear_teeth) / d.pinion_teeth;
   pinion.outside_machine = pinion.inside_machine = mp;
   // Each pinion blade is the gear's opposite blade cone seen from the other side.
   pinion.outside_blade       = gear.inside_blade;
@@ -174,12 +174,12 @@ mismatched_cuts(const BevelPairDesign &d, const PinionMismatch &m)
       const double change = blade->slope * m.cutter_radius;
       const Vec2   C(machine->radial_setting * std::cos(machine->cradle_angle),
                      machine->radial_setting * std::sin(machine->cradle_angle));
-      const Vec2 towards_centre = (C - Vec2(Am, 0)).normalized();
-      const Vec2 moved          = C + change * towards_centre;
-      machine->radial_setting   = moved.norm();
-      machine->cradle_angle     = std::atan2(moved.y(), moved.x());
-      machine->modified_roll_2c = m.modified_roll_2c;
-      machine->modified_roll_6d = m.modified_roll_6d;
+      const Vec2   towards_centre = (C - Vec2(Am, 0)).normalized();
+      const Vec2   moved          = C + change * towards_centre;
+      machine->radial_setting     = moved.norm();
+      machine->cradle_angle       = std::atan2(moved.y(), moved.x());
+      machine->modified_roll_2c   = m.modified_roll_2c;
+      machine->modified_roll_6d   = m.modified_roll_6d;
       blade->pitch_radius += change;
       blade->curvature     = m.blade_curvature;
       blade->parabola_apex = 0;
@@ -205,15 +205,15 @@ BevelMemberFlanks::BevelMemberFlanks(const BevelMemberCut &cut)
   if (!(facing_out * facing_in < 0))
     throw InputError("spiral bevel member: the outside and inside blades cut flanks facing the "
                      "same way; expected one flank of each side of the tooth");
-  outside_is_drive            = facing_out > 0;
-  const double theta_d        = outside_is_drive ? theta_out : theta_in;
-  const double theta_c        = outside_is_drive ? theta_in : theta_out;
-  const double pitch          = 2 * pi / z;
-  const double thickness      = theta_d - theta_c - pitch * std::floor((theta_d - theta_c) / pitch);
-  const GeneratedFlank &fd    = outside_is_drive ? outside : inside;
-  const GeneratedFlank &fc    = outside_is_drive ? inside : outside;
-  drive = std::make_unique<GeneratedFlank>(fd.rotated(thickness / 2 - theta_d));
-  coast = std::make_unique<GeneratedFlank>(fc.rotated(-thickness / 2 - theta_c));
+  outside_is_drive         = facing_out > 0;
+  const double theta_d     = outside_is_drive ? theta_out : theta_in;
+  const double theta_c     = outside_is_drive ? theta_in : theta_out;
+  const double pitch       = 2 * pi / z;
+  const double thickness   = theta_d - theta_c - pitch * std::floor((theta_d - theta_c) / pitch);
+  const GeneratedFlank &fd = outside_is_drive ? outside : inside;
+  const GeneratedFlank &fc = outside_is_drive ? inside : outside;
+  drive                    = std::make_unique<GeneratedFlank>(fd.rotated(thickness / 2 - theta_d));
+  coast                    = std::make_unique<GeneratedFlank>(fc.rotated(-thickness / 2 - theta_c));
   for (int k = 0; k < z; ++k)
     {
       add(k, FlankSide::drive, std::make_unique<GeneratedFlank>(drive->rotated(k * pitch)));
@@ -232,7 +232,7 @@ BevelMemberFlanks::rotational_parameters(const Vec3 &x) const
 {
   const BevelBlank &b  = drive->blank_data();
   const double      cg = std::cos(b.pitch_angle), sg = std::sin(b.pitch_angle);
-  const double      r  = std::hypot(x.x(), x.y());
+  const double      r = std::hypot(x.x(), x.y());
   return {-x.z() * sg + r * cg, x.z() * cg + r * sg - b.mean_cone_distance};
 }
 } // namespace gearkit

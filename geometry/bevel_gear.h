@@ -19,28 +19,28 @@ enum class BevelModule
 /// Design data of a spiral bevel pair (uniform depth, plane generating gear). SI units.
 struct BevelPairDesign
 {
-  int         pinion_teeth        = 12;
-  int         gear_teeth          = 36;
-  double      shaft_angle         = pi / 2;
-  double      module              = 6e-3;
-  BevelModule module_kind         = BevelModule::outer_transverse;
-  double      face_width          = 25.4e-3;
-  double      mean_spiral_angle   = 35 * pi / 180;
-  double      pressure_angle      = 20 * pi / 180; ///< normal pressure angle of both sides
-  Hand        pinion_hand         = Hand::left;
-  double      cutter_radius       = 76.2e-3; ///< r_c: mean radius of the head cutter
-  double      pinion_addendum     = 1;    ///< h_a1 / m_mn; the gear's is 2 - this
-  double      clearance           = 0.25; ///< c / m_mn
-  double      pinion_thickness    = 0.5;  ///< pinion tooth thickness / normal pitch at the mean point
-  double      edge_radius         = 0;    ///< r_e / m_mn: blade tip edge radius (cuts the fillet)
+  int         pinion_teeth      = 12;
+  int         gear_teeth        = 36;
+  double      shaft_angle       = pi / 2;
+  double      module            = 6e-3;
+  BevelModule module_kind       = BevelModule::outer_transverse;
+  double      face_width        = 25.4e-3;
+  double      mean_spiral_angle = 35 * pi / 180;
+  double      pressure_angle    = 20 * pi / 180; ///< normal pressure angle of both sides
+  Hand        pinion_hand       = Hand::left;
+  double      cutter_radius     = 76.2e-3; ///< r_c: mean radius of the head cutter
+  double      pinion_addendum   = 1;       ///< h_a1 / m_mn; the gear's is 2 - this
+  double      clearance         = 0.25;    ///< c / m_mn
+  double      pinion_thickness  = 0.5; ///< pinion tooth thickness / normal pitch at the mean point
+  double      edge_radius       = 0;   ///< r_e / m_mn: blade tip edge radius (cuts the fillet)
 };
 
 /// Derived blank geometry of the pair.
 struct BevelPairGeometry
 {
-  double pitch_angle_pinion = 0, pitch_angle_gear = 0; ///< gamma_1, gamma_2
-  double outer_cone_distance = 0, mean_cone_distance = 0; ///< A_0, A_m
-  double outer_transverse_module = 0, mean_normal_module = 0;
+  double     pitch_angle_pinion = 0, pitch_angle_gear = 0;    ///< gamma_1, gamma_2
+  double     outer_cone_distance = 0, mean_cone_distance = 0; ///< A_0, A_m
+  double     outer_transverse_module = 0, mean_normal_module = 0;
   BevelBlank pinion, gear;
 };
 

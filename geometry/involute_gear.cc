@@ -527,14 +527,14 @@ contact_ratios(const InvoluteGear &p, const InvoluteGear &g, double a)
     throw InputError("contact ratio: centre distance " + std::to_string(a * 1e3) +
                      " mm is not above the sum of the base radii " + std::to_string(rb * 1e3) +
                      " mm");
-  auto path = [](double ra, double rb_) { return std::sqrt(ra * ra - rb_ * rb_); };
-  const double sin_alpha = std::sqrt(1 - (rb / a) * (rb / a));
+  auto          path      = [](double ra, double rb_) { return std::sqrt(ra * ra - rb_ * rb_); };
+  const double  sin_alpha = std::sqrt(1 - (rb / a) * (rb / a));
   ContactRatios c;
-  c.transverse = (path(p.tip_radius, p.base_radius) + path(g.tip_radius, g.base_radius) -
-                  a * sin_alpha) /
-                 p.transverse_base_pitch;
-  c.overlap = std::min(p.data().face_width, g.data().face_width) *
-              std::sin(p.data().helix_angle) / (pi * p.data().normal_module);
+  c.transverse =
+      (path(p.tip_radius, p.base_radius) + path(g.tip_radius, g.base_radius) - a * sin_alpha) /
+      p.transverse_base_pitch;
+  c.overlap = std::min(p.data().face_width, g.data().face_width) * std::sin(p.data().helix_angle) /
+              (pi * p.data().normal_module);
   return c;
 }
 

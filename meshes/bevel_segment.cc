@@ -84,8 +84,8 @@ public:
     check(o.central_tooth >= 0 && o.central_tooth < z, "central tooth", o.central_tooth,
           "a tooth index in [0, z - 1]");
     check(o.flank_size >= 0 && o.far_size >= 0 && o.other_size >= 0 && o.face_layers >= 0,
-          "element size / layers", std::min({o.flank_size, o.far_size, o.other_size,
-                                             double(o.face_layers)}),
+          "element size / layers",
+          std::min({o.flank_size, o.far_size, o.other_size, double(o.face_layers)}),
           "values >= 0 (0 = default)");
     check(o.rim_thickness >= 0, "rim thickness [mm]", o.rim_thickness * 1e3, ">= 0 (0 = 3.5 m)");
     check(o.refine_points.empty(), "refinement points", double(o.refine_points.size()),
@@ -94,8 +94,7 @@ public:
       check(member.tooth_flank(side).blank_data().teeth == z, "blank teeth", z, "one blank");
     h_rim = -blank.dedendum - rim_thickness;
     check(blank.axial_plane(blank.mean_cone_distance - blank.face_width / 2, h_rim).y() > 0,
-          "rim thickness [mm]", rim_thickness * 1e3,
-          "a rim that stays off the axis at the toe");
+          "rim thickness [mm]", rim_thickness * 1e3, "a rim that stays off the axis at the toe");
     for (int i = 0; i < o.teeth; ++i)
       member_teeth.push_back(((o.central_tooth - (o.teeth - 1) / 2 + i) % z + z) % z);
     choose_counts();
@@ -136,8 +135,8 @@ public:
       nodes.push_back(p);
       return int(nodes.size()) - 1;
     };
-    const double pitch = 2 * pi / z;
-    const Counts &c    = counts;
+    const double           pitch = 2 * pi / z;
+    const Counts          &c     = counts;
     std::vector<ToothSide> coast, drive;
     for (int i = -1; i <= o.teeth; ++i) // the neighbours outside place the cuts
       {
@@ -150,8 +149,8 @@ public:
       }
     // The rim's top, left to right: half land, then per tooth the coast lower fillet, the
     // chord under the tooth, the drive lower fillet and a land (the last a half land).
-    std::vector<int>  top;
-    std::vector<int>  top_kind; // per top edge: -1 free, else the tooth whose block stands on it
+    std::vector<int> top;
+    std::vector<int> top_kind; // per top edge: -1 free, else the tooth whose block stands on it
     std::vector<std::vector<int>> chord(o.teeth);
     auto land = [&](SectionPoint a, SectionPoint b, int n, bool first_node) {
       for (int k = first_node ? 0 : 1; k <= n; ++k)
@@ -208,7 +207,7 @@ public:
         rim[k][c.rim] = top[k];
       }
     // Teeth: between the sides, rows at the sides' points, graded across.
-    const int n_up = c.fillet_upper + c.flank;
+    const int                                  n_up = c.fillet_upper + c.flank;
     std::vector<std::vector<std::vector<int>>> tooth(o.teeth);
     for (int i = 0; i < o.teeth; ++i)
       {
@@ -315,8 +314,7 @@ public:
     std::map<int, std::vector<std::size_t>> faces;
     for (int k = 0; k < n_face; ++k)
       for (const auto &[a, b, id] : edges)
-        faces[id].insert(faces[id].end(),
-                         {node(k, a), node(k, b), node(k + 1, b), node(k + 1, a)});
+        faces[id].insert(faces[id].end(), {node(k, a), node(k, b), node(k + 1, b), node(k + 1, a)});
     for (const auto &q : quads)
       for (const auto &[k, id] : {std::pair{0, boundary::end_front}, {n_face, boundary::end_back}})
         faces[id].insert(faces[id].end(),
@@ -342,9 +340,9 @@ public:
     std::tie(info.hexahedra, info.nodes) = require_hexahedra("bevel segment mesh");
     info.member_teeth                    = member_teeth;
     write_mesh_atomically(path);
-    write_text_atomically(path + ".json", segment_sidecar("bevel member, " + std::to_string(z) +
-                                                              " teeth",
-                                                          info, ids));
+    write_text_atomically(
+        path + ".json",
+        segment_sidecar("bevel member, " + std::to_string(z) + " teeth", info, ids));
   }
 
   /// The volume by Green's theorem per section (integral of r dtheta dh = closed integral of
@@ -364,7 +362,7 @@ public:
       {
         const double v = blank.face_width / 2 * (g < 4 ? -xg[g] : xg[g - 4]);
         const double A = blank.mean_cone_distance + v;
-        auto P = [&](double h) { return -(A * sg * h + cg * h * h / 2); };
+        auto         P = [&](double h) { return -(A * sg * h + cg * h * h / 2); };
         // the boundary's top part from right to left (cut_end to cut_start), then the bore
         std::vector<SectionPoint> path;
         std::vector<ToothSide>    coast, drive;
@@ -405,10 +403,10 @@ private:
   corner_jacobian(const std::array<std::size_t, 8> &h, int corner, const Positions &X)
   {
     // edges from the corner along the three directions of the trilinear map
-    static const int along[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
-                                    {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
-    static const double sign[8]  = {1, -1, 1, -1, -1, 1, -1, 1};
-    const Vec3          x        = X(h[corner]);
+    static const int    along[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
+                                       {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
+    static const double sign[8]     = {1, -1, 1, -1, -1, 1, -1, 1};
+    const Vec3          x           = X(h[corner]);
     return sign[corner] * (X(h[along[corner][0]]) - x)
                               .cross(X(h[along[corner][1]]) - x)
                               .dot(X(h[along[corner][2]]) - x);
@@ -419,10 +417,10 @@ private:
   {
     Counts &c = counts;
     // sizes at the mean section
-    const ToothSide cs = side(FlankSide::coast, 0, 0, 1, 1, 1);
-    const ToothSide ds = side(FlankSide::drive, 0, 0, 1, 1, 1);
-    const double    r  = blank.axial_plane(blank.mean_cone_distance, -blank.dedendum).y();
-    auto arc = [&](const SectionPoint &a, const SectionPoint &b) {
+    const ToothSide cs  = side(FlankSide::coast, 0, 0, 1, 1, 1);
+    const ToothSide ds  = side(FlankSide::drive, 0, 0, 1, 1, 1);
+    const double    r   = blank.axial_plane(blank.mean_cone_distance, -blank.dedendum).y();
+    auto            arc = [&](const SectionPoint &a, const SectionPoint &b) {
       return std::hypot(r * (a.theta - b.theta), a.h - b.h);
     };
     c.fillet_lower = cells(std::max(arc(cs.lower[0], cs.lower[1]), arc(ds.lower[0], ds.lower[1])),
@@ -439,25 +437,25 @@ private:
     c.across              = cells(width, flank_size, other_size, 2);
     c.across_fractions    = drive_fine ? graded(c.across, other_size, flank_size)
                                        : graded(c.across, flank_size, other_size);
-    const double land = r * (cs.lower[0].theta + 2 * pi / z - ds.lower[0].theta);
+    const double land     = r * (cs.lower[0].theta + 2 * pi / z - ds.lower[0].theta);
     check(land > 0, "root land width [mm]", land * 1e3, "> 0 (teeth do not overlap at the root)");
-    c.land = 2 * cells(land / 2, other_size, other_size);
-    c.rim  = cells(rim_thickness, far_size, other_size, 2);
+    c.land          = 2 * cells(land / 2, other_size, other_size);
+    c.rim           = cells(rim_thickness, far_size, other_size, 2);
     c.rim_fractions = graded(c.rim, far_size, other_size);
-    c.face = o.face_layers > 0 ? o.face_layers
-                               : std::max(2, int(std::lround(blank.face_width / (2 * flank_size))));
+    c.face          = o.face_layers > 0 ? o.face_layers
+                                        : std::max(2, int(std::lround(blank.face_width / (2 * flank_size))));
   }
 
-  const BevelMemberFlanks  &member;
-  const SegmentMeshOptions &o;
-  const BevelBlank          blank;
-  const int                 z;
-  const double              flank_size, other_size, far_size, rim_thickness;
-  double                    h_rim = 0;
-  Counts                    counts;
-  int                       n_section = 0, orientation = 0;
-  std::vector<std::array<int, 4>>          quads;
-  std::vector<std::tuple<int, int, int>>   edges;
+  const BevelMemberFlanks               &member;
+  const SegmentMeshOptions              &o;
+  const BevelBlank                       blank;
+  const int                              z;
+  const double                           flank_size, other_size, far_size, rim_thickness;
+  double                                 h_rim = 0;
+  Counts                                 counts;
+  int                                    n_section = 0, orientation = 0;
+  std::vector<std::array<int, 4>>        quads;
+  std::vector<std::tuple<int, int, int>> edges;
 };
 } // namespace
 

@@ -29,23 +29,6 @@ record(const PairModel &model, const RunOptions &o, double t, const PairVector &
   out.force.push_back(model.mesh_force(m, g.dot(q), g.dot(v), et_rate));
 }
 
-/// Per-DOF displacement scale: the static mesh deflection, turned into rotations through the
-/// mesh's moment arms (so that tolerances mean the same along every DOF).
-PairVector
-displacement_scale(const PairModel &model)
-{
-  const MeshState m   = model.mesh().mean();
-  const double    kd  = std::max(model.parameters().half_backlash, 1e-9);
-  const double    d   = std::max(kd, 1e-6); // at least a micrometre
-  const double    arm = std::max({m.lp.norm(), m.lg.norm(), 1e-3});
-  PairVector      s   = PairVector::Constant(d);
-  for (int i : {dof::motor, dof::load})
-    s[i] = d / arm;
-  for (int k = 0; k < 3; ++k)
-    s[dof::gear_rotation + k] = s[dof::pinion_rotation + k] = d / arm;
-  return s;
-}
-
 struct CvodeData
 {
   const PairModel  *model;
@@ -120,7 +103,8 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
       Eigen::Map<PairVector>(N_VGetArrayPointer(y))             = q0;
       Eigen::Map<PairVector>(N_VGetArrayPointer(y) + pair_dofs) = v0;
       // scales: displacements, and their rates per mesh cycle... per second (v in SI)
-      const PairVector s                                 = displacement_scale(model);
+      // the static mesh deflection's scale: the half backlash, at least a micrometre
+      const PairVector s = model.dof_scale(std::max(model.parameters().half_backlash, 1e-6));
       Eigen::Map<PairVector>(N_VGetArrayPointer(abstol)) = o.absolute_tolerance * s;
       Eigen::Map<PairVector>(N_VGetArrayPointer(abstol) + pair_dofs) =
           o.absolute_tolerance * s / data.period;

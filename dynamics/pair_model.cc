@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -122,6 +123,19 @@ PairModel::mesh_gradient(const MeshState &m)
   g.segment<3>(dof::pinion)          = m.np;
   g.segment<3>(dof::pinion_rotation) = m.lp;
   return g;
+}
+
+PairVector
+PairModel::dof_scale(double length) const
+{
+  const MeshState m   = cycle.mean();
+  const double    arm = std::max({m.lp.norm(), m.lg.norm(), 1e-3});
+  PairVector      s   = PairVector::Constant(length);
+  for (int i : {dof::motor, dof::load})
+    s[i] = length / arm;
+  for (int k = 0; k < 3; ++k)
+    s[dof::gear_rotation + k] = s[dof::pinion_rotation + k] = length / arm;
+  return s;
 }
 
 double

@@ -160,6 +160,11 @@ public:
   PairVector
   torques(double motor_torque, double load_torque) const;
 
+  /// Per-DOF scale of a mesh displacement `length` [m]: translations the length itself,
+  /// rotations the length over the mean moment arm (tolerances mean the same along every DOF).
+  PairVector
+  dof_scale(double length) const;
+
   /// Mesh phase [mesh cycles] at time t and pinion speed Omega.
   double
   phase(double t, double omega) const;

@@ -51,7 +51,9 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
   if (o.speeds.empty() || o.settle_cycles < 0 || o.record_cycles < 1)
     throw InputError("pair dynamics: a sweep needs speeds, settle cycles >= 0 and record cycles "
                      ">= 1");
-  const double            static_force = model.static_equilibrium(o.load_torque).mesh_force;
+  const StaticEquilibrium s0 = model.static_equilibrium(o.load_torque);
+  // Poincare points compare against the static deflection's scale
+  const PairVector        scale = model.dof_scale(std::max(std::abs(s0.deflection), 1e-9));
   std::vector<SweepPoint> out;
   for (double omega : o.speeds)
     {
@@ -61,14 +63,6 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       // settle in chunks, watching the Poincare points (states at whole mesh cycles)
       int settled = 0, period = 0;
       {
-        const StaticEquilibrium s0 = model.static_equilibrium(o.load_torque);
-        PairVector      scale      = PairVector::Constant(std::max(std::abs(s0.deflection), 1e-9));
-        const MeshState m          = model.mesh().mean();
-        const double    arm        = std::max({m.lp.norm(), m.lg.norm(), 1e-3});
-        for (int i : {dof::motor, dof::load})
-          scale[i] /= arm;
-        for (int k = 0; k < 3; ++k)
-          scale[dof::gear_rotation + k] /= arm, scale[dof::pinion_rotation + k] /= arm;
         const double rate = model.parameters().pinion_teeth * omega; // mesh frequency [rad/s]
         std::vector<PairVector> pq{q}, pv{v};
         while (settled < o.settle_cycles && period == 0)
@@ -96,7 +90,7 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       peak_and_rms(t.dte, p.dte_pp, p.dte_rms);
       peak_and_rms(t.relative, p.relative_pp, p.relative_rms);
       p.max_force    = *std::max_element(t.force.begin(), t.force.end());
-      p.load_factor  = p.max_force / static_force;
+      p.load_factor  = p.max_force / s0.mesh_force;
       const double b = model.parameters().half_backlash;
       p.contact_loss = double(std::count_if(t.relative.begin(), t.relative.end(),
                                             [&](double x) { return std::abs(x) < b; })) /

@@ -1,6 +1,7 @@
 #include "mesh_cycle.h"
 
 #include <boost/math/interpolators/cardinal_trigonometric.hpp>
+#include <boost/math/interpolators/makima.hpp>
 
 #include <array>
 #include <cmath>
@@ -10,43 +11,67 @@ namespace gearkit
 {
 namespace
 {
-using Trig = boost::math::interpolators::cardinal_trigonometric<std::vector<double>>;
+using Trig   = boost::math::interpolators::cardinal_trigonometric<std::vector<double>>;
+using Makima = boost::math::interpolators::makima<std::vector<double>>;
 
-/// One periodic table: constant, or the trigonometric interpolant over one period [0, 1).
+/// One periodic table over [0, period): constant, or an interpolant of the samples at
+/// period / n steps. Makima is not periodic by itself: it is built on the samples extended by
+/// three periodic copies on each side, so that its slopes wrap around.
 struct Periodic
 {
-  double                constant = 0;
-  std::shared_ptr<Trig> trig;
-  double                mean = 0;
+  double                  period   = 1;
+  double                  constant = 0;
+  std::shared_ptr<Trig>   trig;
+  std::shared_ptr<Makima> makima;
+  double                  mean = 0;
 
-  explicit Periodic(const std::vector<double> &v)
+  Periodic(const std::vector<double> &v, double period, MeshInterpolation how)
+      : period(period)
   {
+    const std::size_t n = v.size();
     for (double x : v)
-      mean += x / double(v.size());
+      mean += x / double(n);
     bool same = true;
     for (double x : v)
       same = same && x == v.front();
     if (same)
       constant = v.front();
+    else if (how == MeshInterpolation::trigonometric)
+      trig = std::make_shared<Trig>(v, 0.0, period / double(n));
     else
-      trig = std::make_shared<Trig>(v, 0.0, 1.0 / double(v.size()));
+      {
+        const long          pad = 3, m = long(n);
+        std::vector<double> x, y;
+        for (long i = -pad; i <= m + pad; ++i)
+          {
+            x.push_back(period * double(i) / double(m));
+            y.push_back(v[std::size_t(((i % m) + m) % m)]);
+          }
+        makima = std::make_shared<Makima>(std::move(x), std::move(y));
+      }
+  }
+  double
+  wrap(double phase) const
+  {
+    return phase - period * std::floor(phase / period);
   }
   double
   operator()(double phase) const
   {
-    return trig ? (*trig)(phase - std::floor(phase)) : constant;
+    return trig ? (*trig)(wrap(phase)) : makima ? (*makima)(wrap(phase)) : constant;
   }
   double
   prime(double phase) const
   {
-    return trig ? trig->prime(phase - std::floor(phase)) : 0.0;
+    return trig ? trig->prime(wrap(phase)) : makima ? makima->prime(wrap(phase)) : 0.0;
   }
 };
 } // namespace
 
 struct MeshCycle::Impl
 {
-  std::size_t           n = 0;
+  std::size_t           n      = 0;
+  int                   cycles = 1;
   std::vector<Periodic> tables; // E_t, K_m, then n_p, n_g, l_p, l_g (x, y, z each)
 };
 
@@ -57,6 +82,10 @@ MeshCycle::MeshCycle(const MeshCycleSamples &s)
   auto fail = [&](const std::string &what) { throw InputError("mesh cycle tables: " + what); };
   if (n == 0)
     fail("no samples");
+  if (s.cycles < 1)
+    fail("the tables span " + std::to_string(s.cycles) + " mesh cycles; expected >= 1");
+  if (s.interpolation == MeshInterpolation::makima && n > 1 && n < 4)
+    fail(std::to_string(n) + " samples; makima interpolation needs >= 4 (or 1: constant)");
   if (s.mesh_stiffness.size() != n || s.normal_pinion.size() != n || s.normal_gear.size() != n ||
       s.arm_pinion.size() != n || s.arm_gear.size() != n)
     fail("every table needs the same number of samples (" + std::to_string(n) +
@@ -77,16 +106,20 @@ MeshCycle::MeshCycle(const MeshCycleSamples &s)
       if (!s.arm_pinion[i].allFinite() || !s.arm_gear[i].allFinite())
         fail("moment arm is not finite" + where.str());
     }
-  impl->n = n;
-  impl->tables.emplace_back(s.transmission_error);
-  impl->tables.emplace_back(s.mesh_stiffness);
+  impl->n      = n;
+  impl->cycles = s.cycles;
+  auto add     = [&](const std::vector<double> &v) {
+    impl->tables.emplace_back(v, double(s.cycles), s.interpolation);
+  };
+  add(s.transmission_error);
+  add(s.mesh_stiffness);
   for (const auto *table : {&s.normal_pinion, &s.normal_gear, &s.arm_pinion, &s.arm_gear})
     for (int k = 0; k < 3; ++k)
       {
         std::vector<double> c(n);
         for (std::size_t i = 0; i < n; ++i)
           c[i] = (*table)[i][k];
-        impl->tables.emplace_back(c);
+        add(c);
       }
 }
 
@@ -96,6 +129,12 @@ std::size_t
 MeshCycle::samples() const
 {
   return impl->n;
+}
+
+int
+MeshCycle::cycles() const
+{
+  return impl->cycles;
 }
 
 MeshState

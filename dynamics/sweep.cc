@@ -1,8 +1,13 @@
 #include "sweep.h"
 
+#include "harmonics.h"
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <numeric>
+#include <thread>
 
 namespace gearkit
 {
@@ -19,8 +24,8 @@ peak_and_rms(const std::vector<double> &x, double &pp, double &rms)
     s += (xi - mean) * (xi - mean);
   rms = std::sqrt(s / double(x.size()));
 }
-/// Period (1 to 4 mesh cycles) with which the last Poincare points repeat, or 0. The train's
-/// rigid rotation may drift: displacements are compared through their increments per cycle.
+/// Period (1 to 4 sections) with which the last Poincare points repeat, or 0. The train's
+/// rigid rotation may drift: displacements are compared through their increments per section.
 int
 repeat_period(const std::vector<PairVector> &q, const std::vector<PairVector> &v,
               const PairVector &scale, double rate_scale, double tolerance)
@@ -43,48 +48,72 @@ repeat_period(const std::vector<PairVector> &q, const std::vector<PairVector> &v
     }
   return 0;
 }
+/// Rounded up to whole periods of the excitation.
+int
+whole_periods(int cycles, int period)
+{
+  return period * ((cycles + period - 1) / period);
+}
 } // namespace
 
 std::vector<SweepPoint>
 sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &o)
 {
-  if (o.speeds.empty() || o.settle_cycles < 0 || o.record_cycles < 1)
-    throw InputError("pair dynamics: a sweep needs speeds, settle cycles >= 0 and record cycles "
-                     ">= 1");
+  if (o.speeds.empty() || o.settle_cycles < 0 || o.record_cycles < 1 || o.spectrum_orders < 0 ||
+      o.warmup_speeds < 0 || o.warmup_speeds >= int(o.speeds.size()))
+    throw InputError("pair dynamics: a sweep needs speeds (more than its warm-up speeds), settle "
+                     "cycles >= 0, record cycles >= 1 and spectrum orders >= 0");
+  const int               K  = model.mesh().cycles(); // mesh cycles per period of the excitation
   const StaticEquilibrium s0 = model.static_equilibrium(o.load_torque);
   // Poincare points compare against the static deflection's scale
-  const PairVector        scale = model.dof_scale(std::max(std::abs(s0.deflection), 1e-9));
-  std::vector<SweepPoint> out;
-  for (double omega : o.speeds)
+  const PairVector scale       = model.dof_scale(std::max(std::abs(s0.deflection), 1e-9));
+  const int        record      = whole_periods(o.record_cycles, K);
+  const int        settle_most = whole_periods(o.settle_cycles, K);
+  // the swept speeds whose time series are kept
+  std::vector<bool> keep(o.speeds.size(), false);
+  for (double w : o.series_speeds)
     {
-      RunOptions r   = o.run;
-      r.omega        = omega;
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < o.speeds.size(); ++i)
+        if (std::abs(o.speeds[i] - w) < std::abs(o.speeds[best] - w))
+          best = i;
+      keep[best] = true;
+    }
+  std::vector<SweepPoint> out;
+  for (std::size_t i = 0; i < o.speeds.size(); ++i)
+    {
+      const double omega = o.speeds[i];
+      RunOptions   r     = o.run;
+      r.omega            = omega;
       r.motor_torque = o.motor_torque, r.load_torque = o.load_torque;
-      // settle in chunks, watching the Poincare points (states at whole mesh cycles)
+      // settle in chunks of whole periods (each run starts at phase 0), watching the Poincare
+      // points (states at whole periods)
       int settled = 0, period = 0;
       {
-        const double rate = model.parameters().pinion_teeth * omega; // mesh frequency [rad/s]
+        const double            rate = model.parameters().pinion_teeth * omega / K; // [rad/s]
         std::vector<PairVector> pq{q}, pv{v};
-        while (settled < o.settle_cycles && period == 0)
+        while (settled < settle_most && period == 0)
           {
             RunOptions settle        = r;
-            settle.mesh_cycles       = std::min(10, o.settle_cycles - settled);
+            settle.mesh_cycles       = std::min(whole_periods(10, K), settle_most - settled);
             settle.samples_per_cycle = 1;
             settle.steps_per_cycle   = std::max(r.steps_per_cycle, 1);
             const Trajectory t       = simulate(model, q, v, settle);
-            pq.insert(pq.end(), t.q.begin() + 1, t.q.end());
-            pv.insert(pv.end(), t.v.begin() + 1, t.v.end());
+            for (std::size_t k = std::size_t(K); k < t.q.size(); k += std::size_t(K))
+              pq.push_back(t.q[k]), pv.push_back(t.v[k]);
             q = t.q.back(), v = t.v.back();
             settled += int(settle.mesh_cycles);
             if (o.steady_tolerance > 0 && settled >= o.min_settle_cycles)
-              period = repeat_period(pq, pv, scale, rate, o.steady_tolerance);
+              period = K * repeat_period(pq, pv, scale, rate, o.steady_tolerance);
             if (pq.size() > 16) // keep the last points only
               pq.erase(pq.begin(), pq.end() - 16), pv.erase(pv.begin(), pv.end() - 16);
           }
       }
-      r.mesh_cycles      = o.record_cycles;
+      r.mesh_cycles      = record;
       const Trajectory t = simulate(model, q, v, r);
       q = t.q.back(), v = t.v.back();
+      if (int(i) < o.warmup_speeds)
+        continue;
       SweepPoint p;
       p.speed = omega;
       peak_and_rms(t.dte, p.dte_pp, p.dte_rms);
@@ -98,8 +127,73 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       p.events         = t.events;
       p.settled_cycles = settled;
       p.period         = period;
-      out.push_back(p);
+      p.record_cycles  = record;
+      // the samples cover whole periods; the last one starts the next
+      p.spectrum = amplitude_spectrum(std::vector<double>(t.dte.begin(), t.dte.end() - 1),
+                                      o.spectrum_orders * record);
+      if (keep[i])
+        for (std::size_t k = 0; k < t.t.size(); ++k)
+          {
+            p.series_time.push_back(t.t[k]);
+            p.series_dte.push_back(t.dte[k]);
+            p.series_transmission_error.push_back(t.dte[k] - t.relative[k]);
+            p.series_force.push_back(t.force[k]);
+          }
+      out.push_back(std::move(p));
     }
   return out;
+}
+
+std::vector<SweepOptions>
+split_sweep(const SweepOptions &o, int blocks, int warmup)
+{
+  const int n = int(o.speeds.size());
+  if (blocks < 1 || warmup < 0)
+    throw InputError("pair dynamics: a sweep splits into >= 1 blocks with >= 0 warm-up speeds");
+  blocks = std::min(blocks, std::max(n, 1));
+  std::vector<SweepOptions> out;
+  for (int b = 0; b < blocks; ++b)
+    {
+      const int    begin = n * b / blocks, end = n * (b + 1) / blocks;
+      const int    from  = std::max(0, begin - warmup);
+      SweepOptions piece = o;
+      piece.speeds.assign(o.speeds.begin() + from, o.speeds.begin() + end);
+      piece.warmup_speeds = begin - from;
+      out.push_back(std::move(piece));
+    }
+  return out;
+}
+
+std::vector<std::vector<SweepPoint>>
+run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads)
+{
+  if (threads == 0)
+    threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min<unsigned>(threads, unsigned(tasks.size()));
+  std::vector<std::vector<SweepPoint>> results(tasks.size());
+  std::vector<std::exception_ptr>      errors(tasks.size());
+  std::atomic<std::size_t>             next{0};
+  auto                                 work = [&] {
+    for (std::size_t i; (i = next++) < tasks.size();)
+      try
+        {
+          PairVector q = tasks[i].q, v = tasks[i].v;
+          results[i] = sweep(*tasks[i].model, q, v, tasks[i].options);
+        }
+      catch (...)
+        {
+          errors[i] = std::current_exception();
+        }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k)
+    pool.emplace_back(work);
+  work();
+  for (std::thread &t : pool)
+    t.join();
+  for (const std::exception_ptr &e : errors)
+    if (e)
+      std::rethrow_exception(e);
+  return results;
 }
 } // namespace gearkit

@@ -1,10 +1,16 @@
 // Speed sweeps of the pair model with continuation: the state at the end of one speed starts
 // the next (up or down the list), so that jumps and hysteresis show. Per speed: settle until
-// the motion repeats (Poincare section at whole mesh cycles: the state - its elastic part, the
-// train's rigid rotation may drift - returns after 1 to 4 cycles within the tolerance), or at
-// most for the given number of mesh cycles, then record; dynamic transmission error delta_D
-// peak-to-peak and RMS (about its mean), the largest mesh force, the dynamic load factor (largest
-// over the static mesh force) and the share of the time out of contact.
+// the motion repeats (Poincare section at whole periods of the excitation - one mesh cycle, or
+// the several a measured pair's tables span: the state - its elastic part, the train's rigid
+// rotation may drift - returns after 1 to 4 periods within the tolerance), or at most for the
+// given number of mesh cycles, then record; dynamic transmission error delta_D peak-to-peak and
+// RMS (about its mean), its amplitude spectrum, the largest mesh force, the dynamic load factor
+// (largest over the static mesh force) and the share of the time out of contact; the time
+// series at chosen speeds.
+//
+// Sweeps are independent tasks (excitations, directions, blocks of speeds); run_sweeps runs
+// them on threads, split_sweep cuts one sweep into blocks that start a few speeds early to
+// regain the continuation (for threads here, or MPI processes in the driver).
 #pragma once
 
 #include "integrators.h"
@@ -16,13 +22,21 @@ namespace gearkit
 struct SweepOptions
 {
   std::vector<double> speeds; ///< pinion speeds [rad/s], in the order swept
-  double              motor_torque = 0, load_torque = 0;       ///< [N m]
-  int                 settle_cycles = 200, record_cycles = 50; ///< settle: at most
+  double              motor_torque = 0, load_torque = 0; ///< [N m]
+  /// Mesh cycles: settle at most this many, record this many (both rounded up to whole
+  /// periods of the excitation).
+  int settle_cycles = 200, record_cycles = 50;
   /// Steady when the Poincare points repeat within this (relative to the static deflection and
   /// its rate at the mesh frequency); 0: always settle for settle_cycles.
-  double     steady_tolerance  = 1e-6;
-  int        min_settle_cycles = 20;
-  RunOptions run; ///< integrator, tolerances, samples / steps per mesh cycle
+  double steady_tolerance  = 1e-6;
+  int    min_settle_cycles = 20;
+  /// Swept first to regain the continuation, not returned (the first speeds of a block).
+  int warmup_speeds = 0;
+  /// DTE spectrum up to this mesh order, at the record's resolution (1 / record cycles).
+  int spectrum_orders = 10;
+  /// Keep the recorded time series at the swept speeds nearest to these [rad/s].
+  std::vector<double> series_speeds;
+  RunOptions          run; ///< integrator, tolerances, samples / steps per mesh cycle
 };
 
 struct SweepPoint
@@ -36,13 +50,38 @@ struct SweepPoint
   double      contact_loss   = 0;                ///< share of the recorded samples without contact
   std::size_t events         = 0;                ///< backlash boundaries crossed while recording
   int         settled_cycles = 0;                ///< mesh cycles spent settling
-  /// Mesh cycles after which the motion repeats (1: periodic with the mesh; 2 to 4:
-  /// subharmonic); 0: not steady within settle_cycles (or not checked).
+  /// Mesh cycles after which the motion repeats (a multiple of the excitation's period; 1:
+  /// periodic with the mesh); 0: not steady within settle_cycles (or not checked).
   int period = 0;
+  /// Amplitudes of delta_D at mesh orders k / record cycles, k = 0 .. spectrum_orders * record
+  /// cycles [m] (k = 0: the mean).
+  std::vector<double> spectrum;
+  int                 record_cycles = 0; ///< as recorded (the spectrum's resolution)
+  /// The recorded time series, at the speeds asked for (else empty): time [s], delta_D, E_t [m],
+  /// F_m [N].
+  std::vector<double> series_time, series_dte, series_transmission_error, series_force;
 };
 
 /// Sweeps from (q, v) (e.g. the static equilibrium at rest); the final state is returned in
 /// q and v (for a sweep back).
 std::vector<SweepPoint>
 sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &options);
+
+/// One sweep in `blocks` consecutive pieces of its speed list, each but the first starting
+/// `warmup` speeds early (SweepOptions::warmup_speeds): concatenated, their results are the
+/// sweep's (up to the settling the warm-up hides).
+std::vector<SweepOptions>
+split_sweep(const SweepOptions &options, int blocks, int warmup);
+
+struct SweepTask
+{
+  const PairModel *model = nullptr;
+  PairVector       q = PairVector::Zero(), v = PairVector::Zero(); ///< start
+  SweepOptions     options;
+};
+
+/// Runs the tasks on up to `threads` threads (0: the hardware's); results in the tasks'
+/// order. An error in any task is rethrown (the first task's by index) after all have stopped.
+std::vector<std::vector<SweepPoint>>
+run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads = 0);
 } // namespace gearkit

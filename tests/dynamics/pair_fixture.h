@@ -5,9 +5,11 @@
 
 #include "pair_model.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <complex>
 
 namespace gearkit::test_data
 {
@@ -16,10 +18,10 @@ bevel_like_parameters(double half_backlash = 0, double damping = 1)
 {
   PairModelParameters p;
   p.motor_inertia = 0.05, p.load_inertia = 0.1;
-  p.pinion_teeth  = 55;
-  p.half_backlash = half_backlash;
+  p.pinion_teeth       = 55;
+  p.half_backlash      = half_backlash;
   p.mesh_damping_ratio = 0.05 * damping;
-  auto body = [&](double m, double ia, double it, Vec3 axis) {
+  auto body            = [&](double m, double ia, double it, Vec3 axis) {
     BodyParameters b;
     b.mass = m, b.axial_inertia = ia, b.transverse_inertia = it, b.axis = axis;
     b.bearings        = {{-0.04, 5e8, 500 * damping}, {0.05, 4e8, 400 * damping}};
@@ -36,8 +38,8 @@ bevel_like_parameters(double half_backlash = 0, double damping = 1)
 inline MeshCycleSamples
 bevel_like_tables(int n = 1, double km = 3e8, double amplitude = 0)
 {
-  const Vec3 P(0.075, 0, 0.06), pinion_centre(0, 0, 0), gear_centre(0, 0.09, 0);
-  const Vec3 normal = Vec3(0.3, 0.9, -0.3).normalized();
+  const Vec3       P(0.075, 0, 0.06), pinion_centre(0, 0, 0), gear_centre(0, 0.09, 0);
+  const Vec3       normal = Vec3(0.3, 0.9, -0.3).normalized();
   MeshCycleSamples s;
   for (int i = 0; i < n; ++i)
     {
@@ -49,5 +51,20 @@ bevel_like_tables(int n = 1, double km = 3e8, double amplitude = 0)
       s.arm_gear.push_back((P - gear_centre).cross(normal));
     }
   return s;
+}
+/// Steady response of delta_D to E_t = E sin(w t) of a linear model (constant mesh, no
+/// backlash): delta_D - delta_static = Re D sin(w t) + Im D cos(w t), from
+/// (K + K_m g g^T - w^2 M + i w (C + c_m g g^T)) Q = g (K_m + i w c_m) E, D = g . Q.
+inline std::complex<double>
+frequency_response(const PairModel &model, double w, double E)
+{
+  using Complex            = std::complex<double>;
+  const MeshState        m = model.mesh().mean();
+  const PairVector       g = PairModel::mesh_gradient(m);
+  const Eigen::MatrixXcd A =
+      (model.stiffness() + m.km * g * g.transpose() - w * w * model.mass()).cast<Complex>() +
+      Complex(0, w) * (model.damping() + model.mesh_damping() * g * g.transpose()).cast<Complex>();
+  const Eigen::VectorXcd rhs = g.cast<Complex>() * Complex(m.km, w * model.mesh_damping()) * E;
+  return g.cast<Complex>().dot(A.partialPivLu().solve(rhs));
 }
 } // namespace gearkit::test_data

@@ -5,6 +5,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -372,6 +373,23 @@ declare_dynamics(ParameterHandler &prm)
       "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
   prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000), "Newmark.");
+  prm.declare_entry("excitations", "theoretical",
+                    Patterns::MultipleSelection("theoretical|measured"),
+                    "Tables swept: the theoretical flanks', the measured flanks' (their TCA: "
+                    "TCA/<pair>/measured flanks = true), or both (the seed's comparison).");
+  prm.declare_entry("excitation cycles", "0", Patterns::Integer(0),
+                    "Mesh cycles of the measured flanks' TCA that form one period of their "
+                    "excitation (teeth differ, so it does not repeat with the mesh cycle); 0: "
+                    "all the TCA computed (the hunting cycle when it ran over it).");
+  prm.declare_entry("time series speeds", "", Patterns::List(Patterns::Double(0), 0),
+                    "[rpm] Keep the recorded time series at the swept speeds nearest these.");
+  prm.declare_entry("spectrum orders", "10", Patterns::Integer(1, 1000),
+                    "DTE spectrum per speed up to this mesh order.");
+  prm.declare_entry("sweep blocks", "1", Patterns::Integer(1, 100000),
+                    "Each sweep in this many blocks of consecutive speeds, run in parallel "
+                    "(threads, and MPI processes under mpirun); 1: one continuation.");
+  prm.declare_entry("warm-up speeds", "3", Patterns::Integer(0),
+                    "Speeds each block but the first starts early to regain the continuation.");
 }
 
 void
@@ -882,6 +900,28 @@ read_scene(const std::string &file)
                                     : integ == "cvode bdf" ? Integrator::cvode_bdf
                                                            : Integrator::cvode_adams;
           d.steps_per_cycle       = prm.get_integer("steps per mesh cycle");
+          const auto excitations  = split_list(prm.get("excitations"));
+          auto       has          = [&](const char *what) {
+            return std::find(excitations.begin(), excitations.end(), what) != excitations.end();
+          };
+          d.theoretical       = has("theoretical");
+          d.measured          = has("measured");
+          d.excitation_cycles = prm.get_integer("excitation cycles");
+          for (const std::string &x : split_list(prm.get("time series speeds")))
+            d.series_speeds.push_back(std::stod(x) * 2 * pi / 60);
+          d.spectrum_orders = prm.get_integer("spectrum orders");
+          d.sweep_blocks    = prm.get_integer("sweep blocks");
+          d.warmup_speeds   = prm.get_integer("warm-up speeds");
+          if (d.measured && !scene.tca[p].measured)
+            throw InputError("Dynamics/" + p +
+                             "/excitations: measured needs the measured "
+                             "flanks' TCA (set TCA/" +
+                             p + "/measured flanks = true)");
+          if (d.measured && d.excitation_cycles > scene.tca[p].options.mesh_cycles)
+            throw InputError(
+                "Dynamics/" + p + "/excitation cycles: " + std::to_string(d.excitation_cycles) +
+                " is more than the " + std::to_string(scene.tca[p].options.mesh_cycles) +
+                " mesh cycles the TCA computes (TCA/" + p + "/mesh cycles)");
           if (!(d.speed_to >= d.speed_from))
             throw InputError("Dynamics/" + p + "/speed to: " + prm.get("speed to") +
                              " rpm is below speed from (" + prm.get("speed from") + " rpm)");

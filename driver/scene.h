@@ -132,6 +132,17 @@ struct DynamicsScene
   int                 settle_cycles = 200, record_cycles = 50;
   Integrator          integrator      = Integrator::newmark;
   int                 steps_per_cycle = 64;
+  /// Excitations swept: the theoretical flanks' tables, and the measured flanks' (needs the
+  /// TCA of the measured flanks).
+  bool theoretical = true, measured = false;
+  /// Mesh cycles of the measured flanks' TCA that form one period of their excitation (0: all
+  /// the TCA computed - the hunting cycle when it ran over it).
+  int                 excitation_cycles = 0;
+  std::vector<double> series_speeds;        ///< keep time series at these speeds [rad/s]
+  int                 spectrum_orders = 10; ///< DTE spectrum up to this mesh order
+  /// Each sweep in this many blocks of speeds (run in parallel on threads and MPI processes),
+  /// each but the first started this many speeds early.
+  int sweep_blocks = 1, warmup_speeds = 3;
 };
 
 struct Scene

@@ -1,18 +1,22 @@
-// Stage "dynamics": the 14-DOF pair model (dynamics/pair_model.h) on the mesh-cycle tables of
-// the unloaded TCA (E_t = lambda_pz e_0, normals, moment arms of the contact that carries the
-// load) and K_m from the stiffness stage (or constant); static equilibrium, linear modes with
-// the resonance speeds of the first mesh orders, and a speed sweep up and then down with
-// continuation, for the theoretical flanks. (Measured flanks with pitch errors do not repeat
-// with the mesh cycle - only over the hunting period - so one cycle of their e_0 is no periodic
-// excitation; not yet run.)
+// Stage "dynamics": the 14-DOF pair model (dynamics/pair_model.h) on the tables of the unloaded
+// TCA (E_t = lambda_pz e_0, normals, moment arms of the contact that carries the load) and K_m
+// from the stiffness stage (or constant); static equilibrium, linear modes with the resonance
+// speeds of the first mesh orders, and speed sweeps up and down with continuation, for the
+// theoretical flanks (one mesh cycle repeats) and the measured flanks (their teeth differ: the
+// excitation's period is the TCA's mesh cycles, interpolated by makima). The sweeps - per
+// excitation and direction, optionally in blocks of speeds - run on threads, and spread over
+// the MPI processes under mpirun; every process gathers all results.
 #include "modes.h"
 #include "pair_members.h"
 #include "stages.h"
 #include "sweep.h"
 
 #include <boost/math/interpolators/cardinal_trigonometric.hpp>
+#include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace gearkit
 {
@@ -33,34 +37,114 @@ resample_periodic(const std::vector<double> &k, int n)
   return out;
 }
 
-/// The mesh-cycle tables of the first mesh cycle of a TCA group (the leading pair's contact).
-/// n = pinion outward normal (the pinion pushes the gear along it) for both members; the
-/// gear's arm r_g x n is minus the TCA's (taken with the gear's own outward normal).
+/// The tables of the first `cycles` mesh cycles (n positions each) of a TCA group (the leading
+/// pair's contact). n = pinion outward normal (the pinion pushes the gear along it) for both
+/// members; the gear's arm r_g x n is minus the TCA's (taken with the gear's own outward
+/// normal). K_m (one mesh cycle, n values) repeats over the cycles.
 MeshCycleSamples
-mesh_tables(const H5Group &ste, int n, const Vec3 &pinion_axis, const std::vector<double> &km)
+mesh_tables(const H5Group &ste, int n, int cycles, const Vec3 &pinion_axis,
+            const std::vector<double> &km)
 {
   std::vector<hsize_t> shape;
   const auto           np = ste.read_doubles("normal_pinion", &shape);
   const auto           lp = ste.read_doubles("lambda_pinion"), lg = ste.read_doubles("lambda_gear");
   const auto           e0    = ste.read_doubles("transmission_error");
   const auto           lead  = ste.read_ints("leading");
-  const std::size_t    slots = shape[1];
-  if (shape[0] < std::size_t(n))
-    throw InputError("dynamics: the TCA has fewer positions than one mesh cycle");
+  const std::size_t    slots = shape[1], N = std::size_t(n * cycles);
+  if (shape[0] < N)
+    throw InputError("dynamics: the TCA has " + std::to_string(shape[0]) +
+                     " positions, fewer than " + std::to_string(cycles) + " mesh cycles of " +
+                     std::to_string(n));
   MeshCycleSamples s;
-  for (int i = 0; i < n; ++i)
+  s.cycles = cycles;
+  for (std::size_t i = 0; i < N; ++i)
     {
-      const std::size_t k = (std::size_t(i) * slots + std::size_t(std::max(lead[i], 0))) * 3;
+      const std::size_t k = (i * slots + std::size_t(std::max(lead[i], 0))) * 3;
       const Vec3        normal(np[k], np[k + 1], np[k + 2]);
       const Vec3        arm_p(lp[k], lp[k + 1], lp[k + 2]);
       s.normal_pinion.push_back(normal);
       s.normal_gear.push_back(normal);
       s.arm_pinion.push_back(arm_p);
       s.arm_gear.push_back(-Vec3(lg[k], lg[k + 1], lg[k + 2]));
-      s.transmission_error.push_back(arm_p.dot(pinion_axis) * e0[std::size_t(i)]);
-      s.mesh_stiffness.push_back(km[std::size_t(i)]);
+      s.transmission_error.push_back(arm_p.dot(pinion_axis) * e0[i]);
+      s.mesh_stiffness.push_back(km[i % std::size_t(n)]);
     }
   return s;
+}
+
+// A sweep point as numbers (for the MPI gather) and back.
+void
+pack(const SweepPoint &p, std::vector<double> &out)
+{
+  out.insert(out.end(), {p.speed, p.dte_pp, p.dte_rms, p.relative_pp, p.relative_rms, p.max_force,
+                         p.load_factor, p.contact_loss, double(p.events), double(p.settled_cycles),
+                         double(p.period), double(p.record_cycles)});
+  for (const auto *v :
+       {&p.spectrum, &p.series_time, &p.series_dte, &p.series_transmission_error, &p.series_force})
+    {
+      out.push_back(double(v->size()));
+      out.insert(out.end(), v->begin(), v->end());
+    }
+}
+
+SweepPoint
+unpack(const std::vector<double> &in, std::size_t &at)
+{
+  SweepPoint p;
+  for (double *x : {&p.speed, &p.dte_pp, &p.dte_rms, &p.relative_pp, &p.relative_rms, &p.max_force,
+                    &p.load_factor, &p.contact_loss})
+    *x = in[at++];
+  p.events         = std::size_t(in[at++]);
+  p.settled_cycles = int(in[at++]);
+  p.period         = int(in[at++]);
+  p.record_cycles  = int(in[at++]);
+  for (auto *v :
+       {&p.spectrum, &p.series_time, &p.series_dte, &p.series_transmission_error, &p.series_force})
+    {
+      const auto n = std::size_t(in[at++]);
+      v->assign(in.begin() + long(at), in.begin() + long(at + n));
+      at += n;
+    }
+  return p;
+}
+
+/// The tasks, spread over the MPI processes (task i on process i mod size) and each process's
+/// share of the threads; every process returns all results.
+std::vector<std::vector<SweepPoint>>
+run_everywhere(const std::vector<SweepTask> &tasks)
+{
+  const unsigned size = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+                 rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  std::vector<SweepTask>   mine;
+  std::vector<std::size_t> index;
+  for (std::size_t i = rank; i < tasks.size(); i += size)
+    mine.push_back(tasks[i]), index.push_back(i);
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency() / size);
+  std::vector<std::vector<SweepPoint>> results(tasks.size());
+  const auto                           done = run_sweeps(mine, threads);
+  if (size == 1)
+    {
+      for (std::size_t k = 0; k < mine.size(); ++k)
+        results[index[k]] = done[k];
+      return results;
+    }
+  std::vector<double> payload;
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    {
+      payload.push_back(double(index[k]));
+      payload.push_back(double(done[k].size()));
+      for (const SweepPoint &p : done[k])
+        pack(p, payload);
+    }
+  for (const std::vector<double> &from :
+       dealii::Utilities::MPI::all_gather(MPI_COMM_WORLD, payload))
+    for (std::size_t at = 0; at < from.size();)
+      {
+        const auto i = std::size_t(from[at++]), n = std::size_t(from[at++]);
+        for (std::size_t k = 0; k < n; ++k)
+          results[i].push_back(unpack(from, at));
+      }
+  return results;
 }
 
 std::vector<double>
@@ -93,6 +177,32 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
           "share of the recorded time out of contact");
   g.write("period", period, {n}, "mesh cycles", "the motion repeats after (0: not steady)");
   g.write("settled_cycles", settled, {n}, "mesh cycles", "spent settling");
+
+  // the DTE spectrum: every speed recorded the same whole periods
+  const int           R    = p.front().record_cycles;
+  const std::size_t   bins = p.front().spectrum.size();
+  std::vector<double> spectrum, order;
+  for (const SweepPoint &x : p)
+    spectrum.insert(spectrum.end(), x.spectrum.begin(), x.spectrum.end());
+  for (std::size_t k = 0; k < bins; ++k)
+    order.push_back(double(k) / R);
+  g.write("spectrum_order", order, {bins}, "1",
+          "mesh orders of dte_spectrum (resolution 1 / recorded mesh cycles)");
+  g.write("dte_spectrum", spectrum, {n, bins}, "m",
+          "amplitude of delta_D at each speed and mesh order (order 0: the mean)");
+
+  int k = 0;
+  for (const SweepPoint &x : p)
+    if (!x.series_time.empty())
+      {
+        const H5Group s = g.group("time_series").group(std::to_string(k++));
+        const hsize_t m = x.series_time.size();
+        s.write("speed", x.speed * 60 / (2 * pi), "rpm", "pinion speed");
+        s.write("time", x.series_time, {m}, "s", "from the start of the record (mesh phase 0)");
+        s.write("dte", x.series_dte, {m}, "m", "delta_D");
+        s.write("transmission_error", x.series_transmission_error, {m}, "m", "E_t");
+        s.write("mesh_force", x.series_force, {m}, "N", "F_m");
+      }
 }
 } // namespace
 
@@ -143,72 +253,128 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       for (RadialBearing &b : p.gear.bearings) // given along the gear frame's axis
         b.position = -b.position;
 
-      const H5Group                  g = out.group(pair.name);
-      const std::vector<std::string> excitations{"theoretical"};
-      bool                           first = true;
-      for (const std::string &label : excitations)
+      // the excitations: models and static equilibria
+      struct Excitation
+      {
+        std::string                label;
+        std::unique_ptr<PairModel> model;
+        StaticEquilibrium          s;
+        double                     TE = 0, TL = 0;
+      };
+      std::vector<Excitation> excitations;
+      const H5Group           g = out.group(pair.name);
+      for (const char *label : {"theoretical", "measured"})
         {
-          const bool       measured = label == "measured";
+          const bool measured = std::string(label) == "measured";
+          if (!(measured ? d.measured : d.theoretical))
+            continue;
+          const int K =
+              measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles)
+                       : 1;
           MeshCycleSamples tables =
-              measured ? mesh_tables(ste.group("measured"), n, pinion_axis, stiffness(true))
-                       : mesh_tables(ste, n, pinion_axis, stiffness(false));
+              measured ? mesh_tables(ste.group("measured"), n, K, pinion_axis, stiffness(true))
+                       : mesh_tables(ste, n, K, pinion_axis, stiffness(false));
+          if (measured) // kinks and noise: no ringing between the samples
+            tables.interpolation = MeshInterpolation::makima;
           if (!d.tca_transmission_error)
-            for (int i = 0; i < n; ++i)
+            for (int i = 0; i < n * K; ++i)
               tables.transmission_error[std::size_t(i)] =
                   d.transmission_error_amplitude * std::sin(2 * pi * i / n);
-          const PairModel model(p, tables);
-          const MeshState m0 = model.mesh().mean();
-          const double    TE = d.torque, TL = TE * m0.lg.dot(gear_axis) / m0.lp.dot(pinion_axis);
-          const StaticEquilibrium s = model.static_equilibrium(TL);
-          const H5Group           e = g.group(label);
-          e.write("static_mesh_force", s.mesh_force, "N", "F_m in the static equilibrium");
-          e.write("static_deflection", s.deflection, "m", "delta_D - E_t - b_c, static");
-          e.write("load_torque", TL, "N m", "T_L balancing the pinion torque");
-          if (first)
+          Excitation      e{label, std::make_unique<PairModel>(p, tables), {}, d.torque, 0};
+          const MeshState m0 = e.model->mesh().mean();
+          e.TL               = e.TE * m0.lg.dot(gear_axis) / m0.lp.dot(pinion_axis);
+          e.s                = e.model->static_equilibrium(e.TL);
+          const H5Group eg   = g.group(label);
+          eg.write("static_mesh_force", e.s.mesh_force, "N", "F_m in the static equilibrium");
+          eg.write("static_deflection", e.s.deflection, "m", "delta_D - E_t - b_c, static");
+          eg.write("load_torque", e.TL, "N m", "T_L balancing the pinion torque");
+          eg.write("excitation_cycles", double(K), "mesh cycles", "period of the tables");
+          const auto  &et   = tables.transmission_error;
+          const double wrap = et.front() - et.back();
+          double       step = 0;
+          for (std::size_t i = 1; i < et.size(); ++i)
+            step = std::max(step, std::abs(et[i] - et[i - 1]));
+          eg.write("wrap_step", wrap, "m",
+                   "E_t(period start) - E_t(last sample): the step where the tables wrap");
+          log << "  " << pair.name << " " << label << ": " << K << " mesh cycle"
+              << (K > 1 ? "s" : "") << " of " << n << " samples per period";
+          if (measured)
+            log << "; E_t steps " << wrap * 1e6 << " um where the period wraps (largest step "
+                << "between samples " << step * 1e6 << " um)";
+          log << "\n";
+          excitations.push_back(std::move(e));
+        }
+      if (excitations.empty())
+        throw InputError("Dynamics/" + pair.name + "/excitations: none chosen");
+
+      // modes of the first excitation's mean mesh
+      {
+        const Excitation   &e     = excitations.front();
+        const PairModes     modes = linear_modes(*e.model);
+        std::vector<double> rpm;
+        for (int order = 1; order <= 3; ++order)
+          for (double f : modes.frequency)
+            rpm.push_back(resonance_speed_rpm(f, z1, order));
+        const hsize_t nm = modes.frequency.size();
+        g.write("mode_frequency", modes.frequency, {nm}, "Hz",
+                "linear modes of the free DOFs at the mean mesh of the " + e.label +
+                    " excitation (a torque-driven train: the first is its rigid rotation)");
+        g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
+                "share of each mode's strain energy in the mesh");
+        g.write("pinion_teeth", double(z1), "1", "mesh orders: z_p per pinion turn");
+        g.write("resonance_speed", rpm, {3, nm}, "rpm",
+                "pinion speed at which mesh order 1, 2, 3 meets each mode");
+        log << "  " << pair.name << ": static mesh force " << e.s.mesh_force
+            << " N; modes with mesh energy above 5 %:";
+        for (std::size_t i = 0; i < nm; ++i)
+          if (modes.mesh_energy[i] > 0.05)
+            log << " " << modes.frequency[i] << " Hz";
+        log << "\n";
+      }
+
+      // the sweeps: per excitation up and down (each from the static equilibrium at its first
+      // speed), in blocks
+      std::vector<SweepTask>   tasks;
+      std::vector<std::size_t> first_task; // per (excitation, direction)
+      for (const Excitation &e : excitations)
+        for (bool up : {true, false})
+          {
+            SweepOptions o;
+            o.motor_torque = e.TE, o.load_torque = e.TL;
+            o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
+            o.spectrum_orders       = d.spectrum_orders;
+            o.series_speeds         = d.series_speeds;
+            o.run.method            = d.integrator;
+            o.run.steps_per_cycle   = d.steps_per_cycle;
+            o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
+            for (int i = 0; i < d.speeds; ++i)
+              o.speeds.push_back(d.speed_from +
+                                 (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
+            if (!up)
+              std::reverse(o.speeds.begin(), o.speeds.end());
+            first_task.push_back(tasks.size());
+            for (const SweepOptions &b : split_sweep(o, d.sweep_blocks, d.warmup_speeds))
+              tasks.push_back({e.model.get(), e.s.q, PairVector::Zero(), b});
+          }
+      first_task.push_back(tasks.size());
+      const auto results = run_everywhere(tasks);
+      for (std::size_t x = 0; x < excitations.size(); ++x)
+        {
+          const H5Group eg  = g.group(excitations[x].label);
+          double        dlf = 0;
+          for (int dir = 0; dir < 2; ++dir)
             {
-              const PairModes     modes = linear_modes(model);
-              std::vector<double> rpm;
-              for (int order = 1; order <= 3; ++order)
-                for (double f : modes.frequency)
-                  rpm.push_back(resonance_speed_rpm(f, z1, order));
-              const hsize_t nm = modes.frequency.size();
-              g.write("mode_frequency", modes.frequency, {nm}, "Hz",
-                      "linear modes of the free DOFs at the mean mesh (a torque-driven train: the "
-                      "first is "
-                      "its rigid rotation)");
-              g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
-                      "share of each mode's strain energy in the mesh");
-              g.write("pinion_teeth", double(z1), "1", "mesh orders: z_p per pinion turn");
-              g.write("resonance_speed", rpm, {3, nm}, "rpm",
-                      "pinion speed at which mesh order 1, 2, 3 meets each mode");
-              log << "  " << pair.name << ": static mesh force " << s.mesh_force
-                  << " N; modes with mesh energy above 5 %:";
-              for (std::size_t i = 0; i < nm; ++i)
-                if (modes.mesh_energy[i] > 0.05)
-                  log << " " << modes.frequency[i] << " Hz";
-              log << "\n";
-              first = false;
+              const std::size_t       j = 2 * x + std::size_t(dir);
+              std::vector<SweepPoint> points;
+              for (std::size_t t = first_task[j]; t < first_task[j + 1]; ++t)
+                points.insert(points.end(), results[t].begin(), results[t].end());
+              write_sweep(eg.group(dir == 0 ? "up" : "down"), points);
+              for (const auto &pt : points)
+                dlf = std::max(dlf, pt.load_factor);
             }
-          SweepOptions o;
-          o.motor_torque = TE, o.load_torque = TL;
-          o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
-          o.run.method            = d.integrator;
-          o.run.steps_per_cycle   = d.steps_per_cycle;
-          o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
-          for (int i = 0; i < d.speeds; ++i)
-            o.speeds.push_back(d.speed_from +
-                               (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
-          PairVector q = s.q, v = PairVector::Zero();
-          const auto up = sweep(model, q, v, o);
-          std::reverse(o.speeds.begin(), o.speeds.end());
-          const auto down = sweep(model, q, v, o);
-          write_sweep(e.group("up"), up);
-          write_sweep(e.group("down"), down);
-          double dlf = 0;
-          for (const auto &x : up)
-            dlf = std::max(dlf, x.load_factor);
-          log << "  " << pair.name << " " << label << ": " << d.speeds
-              << " speeds up and down, largest dynamic load factor " << dlf << "\n";
+          log << "  " << pair.name << " " << excitations[x].label << ": " << d.speeds
+              << " speeds up and down in " << tasks.size() << " tasks, largest dynamic load factor "
+              << dlf << "\n";
         }
     }
 }

@@ -48,6 +48,16 @@ repeat_period(const std::vector<PairVector> &q, const std::vector<PairVector> &v
     }
   return 0;
 }
+/// Index of the speed in the list nearest w.
+std::size_t
+nearest(const std::vector<double> &speeds, double w)
+{
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < speeds.size(); ++i)
+    if (std::abs(speeds[i] - w) < std::abs(speeds[best] - w))
+      best = i;
+  return best;
+}
 /// Rounded up to whole periods of the excitation.
 int
 whole_periods(int cycles, int period)
@@ -72,13 +82,7 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
   // the swept speeds whose time series are kept
   std::vector<bool> keep(o.speeds.size(), false);
   for (double w : o.series_speeds)
-    {
-      std::size_t best = 0;
-      for (std::size_t i = 1; i < o.speeds.size(); ++i)
-        if (std::abs(o.speeds[i] - w) < std::abs(o.speeds[best] - w))
-          best = i;
-      keep[best] = true;
-    }
+    keep[nearest(o.speeds, w)] = true;
   std::vector<SweepPoint> out;
   for (std::size_t i = 0; i < o.speeds.size(); ++i)
     {
@@ -159,6 +163,10 @@ split_sweep(const SweepOptions &o, int blocks, int warmup)
       SweepOptions piece = o;
       piece.speeds.assign(o.speeds.begin() + from, o.speeds.begin() + end);
       piece.warmup_speeds = begin - from;
+      piece.series_speeds.clear(); // the whole sweep's nearest speeds, in the block that has them
+      for (double w : o.series_speeds)
+        if (const auto i = int(nearest(o.speeds, w)); i >= begin && i < end)
+          piece.series_speeds.push_back(o.speeds[std::size_t(i)]);
       out.push_back(std::move(piece));
     }
   return out;

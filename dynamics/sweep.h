@@ -69,7 +69,8 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
 
 /// One sweep in `blocks` consecutive pieces of its speed list, each but the first starting
 /// `warmup` speeds early (SweepOptions::warmup_speeds): concatenated, their results are the
-/// sweep's (up to the settling the warm-up hides).
+/// sweep's (up to the settling the warm-up hides). Time series are kept at the whole sweep's
+/// speeds nearest those asked for.
 std::vector<SweepOptions>
 split_sweep(const SweepOptions &options, int blocks, int warmup);
 

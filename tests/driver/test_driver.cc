@@ -515,7 +515,8 @@ end
 TEST_F(DriverTest, DynamicsWithConstantStiffnessSkipsTheFiniteElements)
 {
   const std::string dyn =
-      std::regex_replace(small_scene, std::regex("set outputs = flanks"), "set outputs = dynamics") +
+      std::regex_replace(small_scene, std::regex("set outputs = flanks"),
+                         "set outputs = dynamics") +
       "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 16\n    set mesh "
       "cycles = 1\n  end\nend\n"
       "subsection Dynamics\n  subsection p1\n    set mesh stiffness source = constant\n"
@@ -565,11 +566,110 @@ TEST_F(DriverTest, DynamicsWithConstantStiffnessSkipsTheFiniteElements)
     }
   scene(dyn);
   const auto f_modes = f.root().group("dynamics/p1").read_doubles("mode_frequency");
-  EXPECT_EQ(f_modes.size(), 13u); // the speed-controlled motor held
+  EXPECT_EQ(f_modes.size(), 13u);  // the speed-controlled motor held
   EXPECT_GT(f_modes.front(), 1.0); // no free rigid rotation
   // with the finite-element source the stage graph reaches the compliance and stiffness stages
   scene(std::regex_replace(dyn, std::regex("set mesh stiffness source = constant\n"), ""));
   const auto stages = required_stages(read_scene(file));
   EXPECT_NE(std::find(stages.begin(), stages.end(), "compliance"), stages.end());
   EXPECT_NE(std::find(stages.begin(), stages.end(), "stiffness"), stages.end());
+}
+
+TEST_F(DriverTest, DynamicsOfMeasuredFlanksRepeatOverTheTcasMeshCycles)
+{
+  // synthesised measured flanks with pitch errors: their tables span the TCA's 3 mesh cycles,
+  // so their DTE has orders 1/3 and 2/3, which the theoretical flanks' has not; blocks of speeds
+  // on threads; a time series kept; bad combinations refused
+  const std::string dyn = std::regex_replace(small_scene, std::regex("set outputs = flanks"),
+                                             "set outputs = dynamics") +
+                          R"(
+subsection Measured flanks
+  subsection p1
+    set source         = synthesised
+    set profile points = 5
+    set face points    = 7
+    subsection Synthesis
+      set noise       = 0.2
+      set pitch error = 3
+    end
+  end
+end
+subsection TCA
+  subsection p1
+    set positions per mesh cycle = 16
+    set mesh cycles              = 3
+    set measured flanks          = true
+  end
+end
+subsection Dynamics
+  subsection p1
+    set mesh stiffness source = constant
+    set mesh stiffness        = 300
+    set mesh stiffness variation = 0.1
+    set pinion torque         = 100
+    set speeds                = 6
+    set speed from            = 500
+    set speed to              = 6000
+    set settle cycles         = 3000
+    set record cycles         = 10
+    set excitations           = theoretical, measured
+    set time series speeds    = 2700
+    set sweep blocks          = 2
+    set warm-up speeds        = 1
+  end
+end
+)";
+  const std::string file = scene(dyn);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  const H5File  f = H5File::open((dir / "out/small/results.h5").string());
+  const H5Group g = f.root().group("dynamics/p1");
+  EXPECT_EQ(g.group("theoretical").read_double("excitation_cycles"), 1);
+  EXPECT_EQ(g.group("measured").read_double("excitation_cycles"), 3);
+  for (const char *label : {"theoretical", "measured"})
+    for (const char *direction : {"up", "down"})
+      {
+        const H5Group        s = g.group(label).group(direction);
+        std::vector<hsize_t> shape;
+        const auto           spectrum = s.read_doubles("dte_spectrum", &shape);
+        const auto           order    = s.read_doubles("spectrum_order");
+        const auto           speed    = s.read_doubles("speed");
+        const auto           period   = s.read_ints("period");
+        ASSERT_EQ(shape[0], 6u);
+        ASSERT_EQ(shape[1], order.size());
+        const bool measured = std::string(label) == "measured";
+        const auto R        = std::size_t(std::lround(1 / order[1]));
+        EXPECT_EQ(R, measured ? 12u : 10u) << "record cycles rounded up to whole periods";
+        for (std::size_t i = 0; i < 6; ++i)
+          {
+            const double *a     = &spectrum[i * shape[1]];
+            const double  first = a[R]; // mesh order 1
+            EXPECT_GT(first, 0) << label;
+            if (measured)
+              {
+                EXPECT_EQ(period[i] % 3, 0) << speed[i]; // whole periods, or 0: not steady
+                EXPECT_GT(a[R / 3], 1e-3 * first) << label << " " << speed[i] << " rpm";
+              }
+            else
+              {
+                // settled (the Poincare points repeat to 1e-6 of the static deflection, which
+                // leaves ~1e-5 of the first order's amplitude between the mesh orders)
+                EXPECT_GE(period[i], 1) << speed[i];
+                for (std::size_t k = 1; k < R; ++k)
+                  EXPECT_LT(a[k], 1e-4 * first) << speed[i] << " rpm, bin " << k;
+              }
+          }
+        // the series at the swept speed nearest 2700 rpm (2700 itself: 500 + 2 x 1100)
+        const H5Group series = s.group("time_series").group("0");
+        EXPECT_DOUBLE_EQ(series.read_double("speed"), 2700);
+        const auto dte = series.read_doubles("dte");
+        EXPECT_EQ(dte.size(), 32 * R + 1);
+      }
+  // measured excitation without the measured flanks' TCA; more cycles than the TCA has
+  scene(std::regex_replace(dyn, std::regex("set measured flanks          = true"), ""));
+  EXPECT_NE(run({file}), 0);
+  EXPECT_NE(err.str().find("measured flanks = true"), std::string::npos) << err.str();
+  scene(std::regex_replace(dyn, std::regex("set sweep blocks          = 2"),
+                           "set excitation cycles = 4"));
+  EXPECT_NE(run({file}), 0);
+  EXPECT_NE(err.str().find("excitation cycles: 4"), std::string::npos) << err.str();
 }

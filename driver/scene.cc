@@ -369,6 +369,9 @@ declare_dynamics(ParameterHandler &prm)
   prm.declare_entry("settle cycles", "200", Patterns::Integer(0),
                     "Most mesh cycles to settle at each speed (less when the motion repeats).");
   prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
+  prm.declare_entry("steady tolerance", "1e-4", Patterns::Double(0),
+                    "Settled when the states at whole excitation periods repeat within this, "
+                    "relative to the static mesh deflection; 0: always settle cycles.");
   prm.declare_entry(
       "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
@@ -895,6 +898,7 @@ read_scene(const std::string &file)
           d.speeds                = prm.get_integer("speeds");
           d.settle_cycles         = prm.get_integer("settle cycles");
           d.record_cycles         = prm.get_integer("record cycles");
+          d.steady_tolerance      = prm.get_double("steady tolerance");
           const std::string integ = prm.get("integrator");
           d.integrator            = integ == "newmark"     ? Integrator::newmark
                                     : integ == "cvode bdf" ? Integrator::cvode_bdf

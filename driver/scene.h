@@ -130,8 +130,9 @@ struct DynamicsScene
   double              speed_from = 0, speed_to = 0; ///< [rad/s]
   int                 speeds        = 0;
   int                 settle_cycles = 200, record_cycles = 50;
-  Integrator          integrator      = Integrator::newmark;
-  int                 steps_per_cycle = 64;
+  double              steady_tolerance = 1e-4; ///< SweepOptions::steady_tolerance
+  Integrator          integrator       = Integrator::newmark;
+  int                 steps_per_cycle  = 64;
   /// Excitations swept: the theoretical flanks' tables, and the measured flanks' (needs the
   /// TCA of the measured flanks).
   bool theoretical = true, measured = false;

@@ -342,6 +342,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             SweepOptions o;
             o.motor_torque = e.TE, o.load_torque = e.TL;
             o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
+            o.steady_tolerance      = d.steady_tolerance;
             o.spectrum_orders       = d.spectrum_orders;
             o.series_speeds         = d.series_speeds;
             o.run.method            = d.integrator;
@@ -358,10 +359,39 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           }
       first_task.push_back(tasks.size());
       const auto results = run_everywhere(tasks);
+
+      // parametric stability of the mesh in contact at every swept speed (Floquet)
+      for (const Excitation &e : excitations)
+        {
+          std::vector<double> rpm, radius;
+          std::string         unstable;
+          for (int i = 0; i < d.speeds; ++i)
+            {
+              RunOptions r;
+              r.omega = d.speed_from + (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1);
+              r.motor_torque = e.TE, r.load_torque = e.TL;
+              r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
+              rpm.push_back(r.omega * 60 / (2 * pi));
+              radius.push_back(std::abs(floquet_multipliers(*e.model, r).front()));
+              if (radius.back() > 1)
+                unstable += " " + std::to_string(int(std::lround(rpm.back())));
+            }
+          const H5Group st = g.group(e.label).group("stability");
+          const hsize_t ns = rpm.size();
+          st.write("speed", rpm, {ns}, "rpm", "pinion speed");
+          st.write("spectral_radius", radius, {ns}, "1",
+                   "largest Floquet multiplier modulus of the mesh in contact over one period "
+                   "of the tables (> 1: parametric resonance, vibrations grow until contact is "
+                   "lost)");
+          if (!unstable.empty())
+            log << "  " << pair.name << " " << e.label
+                << ": parametrically unstable in contact (Floquet) at [rpm]:" << unstable << "\n";
+        }
       for (std::size_t x = 0; x < excitations.size(); ++x)
         {
           const H5Group eg  = g.group(excitations[x].label);
           double        dlf = 0;
+          std::string   unsteady;
           for (int dir = 0; dir < 2; ++dir)
             {
               const std::size_t       j = 2 * x + std::size_t(dir);
@@ -370,11 +400,20 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                 points.insert(points.end(), results[t].begin(), results[t].end());
               write_sweep(eg.group(dir == 0 ? "up" : "down"), points);
               for (const auto &pt : points)
-                dlf = std::max(dlf, pt.load_factor);
+                {
+                  dlf = std::max(dlf, pt.load_factor);
+                  if (pt.period == 0 && d.steady_tolerance > 0)
+                    unsteady += " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
+                                (dir == 0 ? " up" : " down");
+                }
             }
           log << "  " << pair.name << " " << excitations[x].label << ": " << d.speeds
               << " speeds up and down in " << tasks.size() << " tasks, largest dynamic load factor "
               << dlf << "\n";
+          if (!unsteady.empty())
+            log << "  " << pair.name << " " << excitations[x].label << ": not steady within "
+                << d.settle_cycles << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady
+                << "\n";
         }
     }
 }

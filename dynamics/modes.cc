@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -44,5 +45,47 @@ linear_modes(const PairModel &model)
           w2 > 1e-6 * eig.eigenvalues().maxCoeff() && total > 0 ? phi.dot(Kmr * phi) / total : 0.0);
     }
   return out;
+}
+
+std::vector<std::complex<double>>
+floquet_multipliers(const PairModel &model, const RunOptions &run)
+{
+  // the model in contact: no backlash, so the mesh force is linear on both sides and a
+  // perturbation's response is the difference of two runs, exactly
+  PairModelParameters p          = model.parameters();
+  p.half_backlash                = 0;
+  p.mesh_damping_in_contact_only = false;
+  const PairModel linear(p, model.tables());
+  RunOptions      o     = run;
+  o.mesh_cycles         = model.mesh().cycles(); // one period of the tables
+  o.samples_per_cycle   = 1;
+  const PairVector q0   = linear.static_equilibrium(o.load_torque).q;
+  const Trajectory base = simulate(linear, q0, PairVector::Zero(), o);
+  std::vector<int> index;
+  for (int i = 0; i < pair_dofs; ++i)
+    if (model.active()[i] > 0)
+      index.push_back(i);
+  const int n = int(index.size());
+  // perturbations of the static deflection's order (exact for any size: linear), per DOF
+  const PairVector scale = linear.dof_scale(1e-6);
+  const double     rate  = model.parameters().pinion_teeth * o.omega; // [rad/s]
+  Eigen::MatrixXd  Phi(2 * n, 2 * n);
+  for (int j = 0; j < 2 * n; ++j)
+    {
+      PairVector dq = PairVector::Zero(), dv = PairVector::Zero();
+      const int  i         = index[std::size_t(j % n)];
+      (j < n ? dq : dv)[i] = j < n ? scale[i] : rate * scale[i];
+      const Trajectory t   = simulate(linear, q0 + dq, dv, o);
+      for (int k = 0; k < n; ++k) // in the same scaled coordinates
+        {
+          const int d   = index[std::size_t(k)];
+          Phi(k, j)     = (t.q.back()[d] - base.q.back()[d]) / scale[d];
+          Phi(n + k, j) = (t.v.back()[d] - base.v.back()[d]) / (rate * scale[d]);
+        }
+    }
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(Phi, false);
+  std::vector<std::complex<double>>         mu(eig.eigenvalues().begin(), eig.eigenvalues().end());
+  std::sort(mu.begin(), mu.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+  return mu;
 }
 } // namespace gearkit

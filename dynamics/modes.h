@@ -2,10 +2,17 @@
 // phase-averaged mesh: (K + K_m g g^T) phi = omega^2 M phi. With a torque-driven motor the rigid
 // rotation of the whole train is the first mode (0 Hz). The mesh resonances of a speed sweep
 // sit where a mesh order j z_p n / 60 meets a mode with mesh strain energy (Campbell diagram).
+//
+// Parametric stability: with K_m, the normals and the arms varying over the mesh cycle the
+// model in contact is linear with periodic coefficients; its Floquet multipliers (eigenvalues
+// of the map of a perturbation over one period of the tables) tell whether vibrations die out
+// (all |mu| < 1) or grow (parametric resonance: some |mu| > 1, where no steady state exists
+// until contact is lost).
 #pragma once
 
-#include "pair_model.h"
+#include "integrators.h"
 
+#include <complex>
 #include <vector>
 
 namespace gearkit
@@ -19,6 +26,14 @@ struct PairModes
 
 PairModes
 linear_modes(const PairModel &model);
+
+/// Floquet multipliers of the model in contact (no backlash: linear) at the pinion speed
+/// run.omega and run's torques: the monodromy matrix over one period of the tables, built
+/// column by column from perturbations of the free DOFs and their rates (integrated with run's
+/// method and settings), largest modulus first. A torque-driven train's rigid rotation gives
+/// multipliers 1.
+std::vector<std::complex<double>>
+floquet_multipliers(const PairModel &model, const RunOptions &run);
 
 /// Pinion speeds [rpm] at which mesh order `order` excites a mode of the given frequency.
 inline double

@@ -61,6 +61,7 @@ add_body(const BodyParameters &b, const std::string &name, int offset, PairMatri
 
 PairModel::PairModel(const PairModelParameters &parameters, const MeshCycleSamples &tables)
     : p(parameters)
+    , samples(tables)
     , cycle(tables)
     , M(PairMatrix::Zero())
     , K(PairMatrix::Zero())

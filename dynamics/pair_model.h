@@ -114,6 +114,12 @@ public:
   {
     return cycle;
   }
+  /// The samples the mesh interpolates.
+  const MeshCycleSamples &
+  tables() const
+  {
+    return samples;
+  }
   const PairModelParameters &
   parameters() const
   {
@@ -171,6 +177,7 @@ public:
 
 private:
   PairModelParameters p;
+  MeshCycleSamples    samples;
   MeshCycle           cycle;
   PairMatrix          M, K, C;
   PairVector          free;

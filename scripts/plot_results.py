@@ -476,27 +476,41 @@ def pressure_map(ax, flanks, name, cells, nx=500, ny=300):
                      extent=(X.min(), X.max(), Y.min(), Y.max()))
 
 
+EXCITATION_COLOURS = {"theoretical": "tab:blue", "measured": "tab:orange"}
+
+
 def plot_dynamics(dyn, flanks, out_dir):
     """Per pair: DTE peak-to-peak, DTE RMS and the dynamic load factor against the pinion speed,
-    swept up and down (jumps show as the two curves part), and the Campbell diagram: the linear
-    modes with enough mesh strain energy against the first three mesh orders."""
+    swept up and down (jumps show as the two curves part) for each excitation (theoretical and
+    measured flanks: the seed's comparison), and the Campbell diagram: the linear modes with
+    enough mesh strain energy against the first three mesh orders."""
     pairs = list(dyn.keys())
     fig, axes = plt.subplots(len(pairs), 4, figsize=(24, 4.8 * len(pairs)), squeeze=False)
     for row, name in zip(axes, pairs):
         g = dyn[name]
-        for label in [k for k in ("theoretical", "measured") if k in g]:
+        labels = [k for k in ("theoretical", "measured") if k in g]
+        for label in labels:
             for direction, style in (("up", "-"), ("down", "--")):
                 d = g[label][direction]
                 rpm = d["speed"][:]
-                row[0].plot(rpm, d["dte_peak_to_peak"][:] * 1e6, style, lw=1.2,
-                            label=f"{label}, {direction}")
-                row[1].plot(rpm, d["dte_rms"][:] * 1e6, style, lw=1.2,
-                            label=f"{label}, {direction}")
-                row[2].plot(rpm, d["dynamic_load_factor"][:], style, lw=1.2,
-                            label=f"{label}, {direction}")
+                kw = dict(lw=1.2, color=EXCITATION_COLOURS[label], label=f"{label}, {direction}")
+                row[0].plot(rpm, d["dte_peak_to_peak"][:] * 1e6, style, **kw)
+                row[1].plot(rpm, d["dte_rms"][:] * 1e6, style, **kw)
+                row[2].plot(rpm, d["dynamic_load_factor"][:], style, **kw)
+        # speeds where the mesh in contact is parametrically unstable (Floquet): shaded
+        for label in labels:
+            if "stability" not in g[label]:
+                continue
+            st = g[label]["stability"]
+            rpm, radius = st["speed"][:], st["spectral_radius"][:]
+            step = rpm[1] - rpm[0] if len(rpm) > 1 else 1
+            for i in np.nonzero(radius > 1)[0]:
+                for ax in row[:3]:
+                    ax.axvspan(rpm[i] - step / 2, rpm[i] + step / 2, color=EXCITATION_COLOURS[label],
+                               alpha=0.15, lw=0)
         row[0].set_xlabel("pinion speed [rpm]")
         row[0].set_ylabel("DTE peak-to-peak [um]")
-        row[0].set_title(f"{name}: dynamic transmission error")
+        row[0].set_title(f"{name}: dynamic transmission error (shaded: parametrically unstable)")
         row[0].legend(fontsize=7)
         row[1].set_xlabel("pinion speed [rpm]")
         row[1].set_ylabel("DTE RMS [um]")
@@ -504,12 +518,12 @@ def plot_dynamics(dyn, flanks, out_dir):
         row[1].legend(fontsize=7)
         row[2].set_xlabel("pinion speed [rpm]")
         row[2].set_ylabel("max F_m / static F_m")
-        static = g["theoretical"]["static_mesh_force"][()]
+        static = g[labels[0]]["static_mesh_force"][()]
         row[2].set_title(f"dynamic load factor (static mesh force {static:.0f} N)")
         row[2].legend(fontsize=7)
         ax = row[3]
         f_modes, energy = g["mode_frequency"][:], g["mode_mesh_energy"][:]
-        rpm = g["theoretical"]["up"]["speed"][:]
+        rpm = g[labels[0]]["up"]["speed"][:]
         n_max = rpm.max()
         z = g["pinion_teeth"][()]
         top = 1.3 * f_modes.max()
@@ -529,6 +543,75 @@ def plot_dynamics(dyn, flanks, out_dir):
         ax.set_title("Campbell: modes (red, width ~ mesh energy), mesh orders")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "dynamics.png"))
+    plot_dynamics_spectra(dyn, out_dir)
+    plot_dynamics_time(dyn, out_dir)
+
+
+def plot_dynamics_spectra(dyn, out_dir):
+    """Per pair and excitation: the DTE amplitude spectrum of the up sweep against speed and mesh
+    order (a speed map, logarithmic colour): mesh orders are horizontal lines, resonances light
+    them up; measured flanks add orders between them (their excitation repeats over several
+    mesh cycles)."""
+    rows = [(name, label) for name in dyn for label in ("theoretical", "measured")
+            if label in dyn[name]]
+    fig, axes = plt.subplots(len(rows), 1, figsize=(12, 4.2 * len(rows)), squeeze=False)
+    for ax, (name, label) in zip(axes[:, 0], rows):
+        d = dyn[name][label]["up"]
+        rpm, order = d["speed"][:], d["spectrum_order"][:]
+        a = d["dte_spectrum"][:, 1:] * 1e6  # without the mean
+        top = a.max()
+        image = ax.pcolormesh(rpm, order[1:], np.log10(np.maximum(a.T, top * 1e-4)),
+                              shading="nearest", cmap="viridis")
+        fig.colorbar(image, ax=ax, label="log10 DTE amplitude [um]")
+        ax.set_xlabel("pinion speed [rpm]")
+        ax.set_ylabel("mesh order")
+        cycles = dyn[name][label]["excitation_cycles"][()]
+        ax.set_title(f"{name}, {label} flanks: DTE spectrum, swept up (excitation period "
+                     f"{cycles:.0f} mesh cycle{'s' if cycles > 1 else ''})")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "dynamics_spectra.png"))
+
+
+def plot_dynamics_time(dyn, out_dir):
+    """Per pair: the recorded DTE (and the excitation E_t, dotted; both about their means) and
+    the mesh force over the first 9 recorded mesh cycles at the speeds kept (the up sweep),
+    theoretical and measured flanks together."""
+    pairs = [n for n in dyn if any("time_series" in dyn[n][l]["up"]
+                                   for l in ("theoretical", "measured") if l in dyn[n])]
+    if not pairs:
+        return
+    speeds = {n: sorted({dyn[n][l]["up"]["time_series"][k]["speed"][()]
+                         for l in ("theoretical", "measured") if l in dyn[n]
+                         for k in dyn[n][l]["up"].get("time_series", {})}) for n in pairs}
+    rows = [(n, v) for n in pairs for v in speeds[n]]
+    fig, axes = plt.subplots(len(rows), 2, figsize=(16, 3.2 * len(rows)), squeeze=False)
+    for (ax_d, ax_f), (name, rpm) in zip(axes, rows):
+        z = dyn[name]["pinion_teeth"][()]
+        for label in ("theoretical", "measured"):
+            if label not in dyn[name] or "time_series" not in dyn[name][label]["up"]:
+                continue
+            for s in dyn[name][label]["up"]["time_series"].values():
+                if s["speed"][()] != rpm:
+                    continue
+                cycles = s["time"][:] * rpm / 60 * z
+                k = cycles <= 9
+                dte, et = s["dte"][:][k], s["transmission_error"][:][k]
+                c = EXCITATION_COLOURS[label]
+                ax_d.plot(cycles[k], (dte - dte.mean()) * 1e6, color=c, lw=1,
+                          label=f"{label}: delta_D")
+                ax_d.plot(cycles[k], (et - et.mean()) * 1e6, ":", color=c, lw=1,
+                          label=f"{label}: E_t")
+                ax_f.plot(cycles[k], s["mesh_force"][:][k], color=c, lw=1, label=label)
+        ax_d.set_xlabel("mesh cycles")
+        ax_d.set_ylabel("about the mean [um]")
+        ax_d.set_title(f"{name} at {rpm:.0f} rpm: dynamic TE and its excitation")
+        ax_d.legend(fontsize=7, ncol=2)
+        ax_f.set_xlabel("mesh cycles")
+        ax_f.set_ylabel("F_m [N]")
+        ax_f.set_title(f"{name} at {rpm:.0f} rpm: mesh force")
+        ax_f.legend(fontsize=7)
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "dynamics_time.png"))
 
 
 def main():

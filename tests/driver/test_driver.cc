@@ -611,6 +611,7 @@ subsection Dynamics
     set speed from            = 500
     set speed to              = 6000
     set settle cycles         = 3000
+    set steady tolerance      = 1e-6
     set record cycles         = 10
     set excitations           = theoretical, measured
     set time series speeds    = 2700

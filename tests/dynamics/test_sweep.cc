@@ -1,6 +1,7 @@
 // Mesh tables over several mesh cycles (measured flanks), makima interpolation, the sweep's DTE
 // spectrum against the frequency-domain solution (one and three mesh cycles per excitation
 // period), time series kept, and sweeps in parallel and in blocks against one sequential sweep.
+#include "modes.h"
 #include "pair_fixture.h"
 #include "sweep.h"
 
@@ -189,4 +190,67 @@ TEST(Sweep, ThreadsAndBlocksReproduceTheSequentialSweep)
   bad.options.record_cycles = 0;
   EXPECT_THROW(run_sweeps({tasks[0], bad}, 2), InputError);
   EXPECT_THROW(split_sweep(o, 0, 1), InputError);
+}
+
+TEST(Floquet, ConstantMeshMatchesTheStateMatrixAndVaryingStiffnessResonatesParametrically)
+{
+  // constant tables: the multipliers are exp(lambda T) of the state matrix's eigenvalues (T one
+  // mesh period), the largest modulus to 1e-6 (a speed-controlled motor: no rigid rotation,
+  // whose multiplier would be 1)
+  PairModelParameters held    = test_data::bevel_like_parameters();
+  held.speed_controlled_motor = true;
+  const PairModel model(held, test_data::bevel_like_tables());
+  RunOptions      o;
+  o.omega = 2 * pi * 3000 / 60, o.load_torque = 100;
+  o.motor_torque = model.static_equilibrium(100).motor_torque;
+  o.method = Integrator::cvode_bdf, o.relative_tolerance = 1e-11, o.absolute_tolerance = 1e-11;
+  const auto mu = floquet_multipliers(model, o);
+
+  std::vector<int> index;
+  for (int i = 0; i < pair_dofs; ++i)
+    if (model.active()[i] > 0)
+      index.push_back(i);
+  const int        n = int(index.size());
+  const MeshState  m = model.mesh().mean();
+  const PairVector g = PairModel::mesh_gradient(m);
+  const PairMatrix K = model.stiffness() + m.km * g * g.transpose();
+  const PairMatrix C = model.damping() + model.mesh_damping() * g * g.transpose();
+  Eigen::MatrixXd  A = Eigen::MatrixXd::Zero(2 * n, 2 * n), Mr(n, n), Kr(n, n), Cr(n, n);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      Mr(a, b) = model.mass()(index[a], index[b]), Kr(a, b) = K(index[a], index[b]),
+            Cr(a, b) = C(index[a], index[b]);
+  A.topRightCorner(n, n)    = Eigen::MatrixXd::Identity(n, n);
+  A.bottomLeftCorner(n, n)  = -Mr.ldlt().solve(Kr);
+  A.bottomRightCorner(n, n) = -Mr.ldlt().solve(Cr);
+  const double T            = 2 * pi / (model.parameters().pinion_teeth * o.omega);
+  double       largest      = 0;
+  const Eigen::EigenSolver<Eigen::MatrixXd> state(A, false);
+  for (const auto &lambda : state.eigenvalues())
+    largest = std::max(largest, std::exp(lambda.real() * T));
+  ASSERT_EQ(int(mu.size()), 2 * n);
+  EXPECT_NEAR(std::abs(mu.front()), largest, 1e-6);
+  EXPECT_LT(std::abs(mu.front()), 1);
+
+  // K_m varying by +-30 % over the mesh cycle: at a mesh frequency of twice the mesh mode's
+  // (the principal parametric resonance) a multiplier leaves the unit circle; at 1.3 times it,
+  // or without the variation, none does
+  MeshCycleSamples varying = test_data::bevel_like_tables(64);
+  for (int i = 0; i < 64; ++i)
+    varying.mesh_stiffness[std::size_t(i)] *= 1 + 0.3 * std::cos(2 * pi * i / 64);
+  const PairModel   pumped(held, varying);
+  const PairModes   modes = linear_modes(pumped);
+  const std::size_t k =
+      std::size_t(std::max_element(modes.mesh_energy.begin(), modes.mesh_energy.end()) -
+                  modes.mesh_energy.begin());
+  const double f      = modes.frequency[k]; // the mesh mode [Hz]
+  auto         radius = [&](const PairModel &mdl, double mesh_frequency) {
+    RunOptions r = o;
+    r.method = Integrator::newmark, r.steps_per_cycle = 512;
+    r.omega = 2 * pi * mesh_frequency / mdl.parameters().pinion_teeth;
+    return std::abs(floquet_multipliers(mdl, r).front());
+  };
+  EXPECT_GT(radius(pumped, 2 * f), 1.01) << f << " Hz";
+  EXPECT_LT(radius(pumped, 1.3 * f), 1) << f << " Hz";
+  EXPECT_LT(radius(model, 2 * f), 1) << f << " Hz";
 }

@@ -102,7 +102,7 @@ main(int argc, char **argv)
   o.run.method = Integrator::newmark, o.run.steps_per_cycle = 32, o.run.samples_per_cycle = 32;
   for (int i = 0; i < n_speeds; ++i)
     o.speeds.push_back(rpm(100 + 11900.0 * i / (n_speeds - 1)));
-  for (double tolerance : {0.0, 1e-6})
+  for (double tolerance : {0.0, 1e-4})
     {
       o.steady_tolerance = tolerance;
       SweepOptions down  = o;
@@ -121,7 +121,7 @@ main(int argc, char **argv)
       std::printf("%d speeds 100-12000 rpm up and down (two threads), %s + 50 mesh cycles each, "
                   "Newmark 32 steps / cycle: %.1f s; mean settling %.0f cycles; largest dynamic "
                   "load factor %.2f\n",
-                  n_speeds, tolerance > 0 ? "settled to 1e-6 (at most 200)" : "200", t,
+                  n_speeds, tolerance > 0 ? "settled to 1e-4 (at most 200)" : "200", t,
                   settled / up_points.size(), worst_dlf);
       if (tolerance == 0)
         continue;
@@ -141,12 +141,18 @@ main(int argc, char **argv)
               },
               1);
           double worst = 0;
+          int    off   = 0;
           for (std::size_t i = 0; i < joined.size(); ++i)
-            worst = std::max(worst, std::abs(joined[i].dte_pp - up_points[i].dte_pp) /
-                                        up_points[i].dte_pp);
+            {
+              const double e =
+                  std::abs(joined[i].dte_pp - up_points[i].dte_pp) / up_points[i].dte_pp;
+              worst = std::max(worst, e);
+              off += e > 1e-2;
+            }
           std::printf("  up sweep in %d blocks (3 warm-up speeds each) on two threads: %.1f s; "
-                      "DTE p-p against the continuous sweep within %.2e\n",
-                      blocks, tb, worst);
+                      "DTE p-p against the continuous sweep: %d of %zu speeds off by more than "
+                      "1 %%, worst %.2e\n",
+                      blocks, tb, off, joined.size(), worst);
         }
     }
   return 0;

@@ -204,6 +204,70 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
         s.write("mesh_force", x.series_force, {m}, "N", "F_m");
       }
 }
+
+/// The sweep's speeds [rad/s], ascending.
+std::vector<double>
+sweep_speeds(const DynamicsScene &d)
+{
+  std::vector<double> w;
+  for (int i = 0; i < d.speeds; ++i)
+    w.push_back(d.speed_from + (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
+  return w;
+}
+
+/// Linear modes at the model's mean mesh and the resonance speeds of mesh orders 1 to 3.
+void
+write_modes(const H5Group &g, const PairModel &model, const std::string &label, int z1,
+            std::ostream &log, const std::string &pair)
+{
+  const PairModes     modes = linear_modes(model);
+  std::vector<double> rpm;
+  for (int order = 1; order <= 3; ++order)
+    for (double f : modes.frequency)
+      rpm.push_back(resonance_speed_rpm(f, z1, order));
+  const hsize_t nm = modes.frequency.size();
+  g.write("mode_frequency", modes.frequency, {nm}, "Hz",
+          "linear modes of the free DOFs at the mean mesh of the " + label +
+              " excitation (a torque-driven train: the first is its rigid rotation)");
+  g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
+          "share of each mode's strain energy in the mesh");
+  g.write("pinion_teeth", double(z1), "1", "mesh orders: z_p per pinion turn");
+  g.write("resonance_speed", rpm, {3, nm}, "rpm",
+          "pinion speed at which mesh order 1, 2, 3 meets each mode");
+  log << "  " << pair << ": modes with mesh energy above 5 %:";
+  for (std::size_t i = 0; i < nm; ++i)
+    if (modes.mesh_energy[i] > 0.05)
+      log << " " << modes.frequency[i] << " Hz";
+  log << "\n";
+}
+
+/// Parametric stability of the mesh in contact at every swept speed (Floquet), in `g`.
+void
+write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d, double TE,
+                double TL, std::ostream &log, const std::string &what)
+{
+  std::vector<double> rpm, radius;
+  std::string         unstable;
+  for (double w : sweep_speeds(d))
+    {
+      RunOptions r;
+      r.omega        = w;
+      r.motor_torque = TE, r.load_torque = TL;
+      r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
+      rpm.push_back(w * 60 / (2 * pi));
+      radius.push_back(std::abs(floquet_multipliers(model, r).front()));
+      if (radius.back() > 1)
+        unstable += " " + std::to_string(int(std::lround(rpm.back())));
+    }
+  const hsize_t n = rpm.size();
+  g.write("speed", rpm, {n}, "rpm", "pinion speed");
+  g.write("spectral_radius", radius, {n}, "1",
+          "largest Floquet multiplier modulus of the mesh in contact over one period of the "
+          "tables (> 1: parametric resonance, vibrations grow until contact is lost)");
+  if (!unstable.empty())
+    log << "  " << what << ": parametrically unstable in contact (Floquet) at [rpm]:" << unstable
+        << "\n";
+}
 } // namespace
 
 void
@@ -307,30 +371,9 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       if (excitations.empty())
         throw InputError("Dynamics/" + pair.name + "/excitations: none chosen");
 
-      // modes of the first excitation's mean mesh
-      {
-        const Excitation   &e     = excitations.front();
-        const PairModes     modes = linear_modes(*e.model);
-        std::vector<double> rpm;
-        for (int order = 1; order <= 3; ++order)
-          for (double f : modes.frequency)
-            rpm.push_back(resonance_speed_rpm(f, z1, order));
-        const hsize_t nm = modes.frequency.size();
-        g.write("mode_frequency", modes.frequency, {nm}, "Hz",
-                "linear modes of the free DOFs at the mean mesh of the " + e.label +
-                    " excitation (a torque-driven train: the first is its rigid rotation)");
-        g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
-                "share of each mode's strain energy in the mesh");
-        g.write("pinion_teeth", double(z1), "1", "mesh orders: z_p per pinion turn");
-        g.write("resonance_speed", rpm, {3, nm}, "rpm",
-                "pinion speed at which mesh order 1, 2, 3 meets each mode");
-        log << "  " << pair.name << ": static mesh force " << e.s.mesh_force
-            << " N; modes with mesh energy above 5 %:";
-        for (std::size_t i = 0; i < nm; ++i)
-          if (modes.mesh_energy[i] > 0.05)
-            log << " " << modes.frequency[i] << " Hz";
-        log << "\n";
-      }
+      log << "  " << pair.name << ": static mesh force " << excitations.front().s.mesh_force
+          << " N\n";
+      write_modes(g, *excitations.front().model, excitations.front().label, z1, log, pair.name);
 
       // the sweeps: per excitation up and down (each from the static equilibrium at its first
       // speed), in blocks
@@ -348,9 +391,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             o.run.method            = d.integrator;
             o.run.steps_per_cycle   = d.steps_per_cycle;
             o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
-            for (int i = 0; i < d.speeds; ++i)
-              o.speeds.push_back(d.speed_from +
-                                 (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
+            o.speeds                = sweep_speeds(d);
             if (!up)
               std::reverse(o.speeds.begin(), o.speeds.end());
             first_task.push_back(tasks.size());
@@ -360,33 +401,9 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       first_task.push_back(tasks.size());
       const auto results = run_everywhere(tasks);
 
-      // parametric stability of the mesh in contact at every swept speed (Floquet)
       for (const Excitation &e : excitations)
-        {
-          std::vector<double> rpm, radius;
-          std::string         unstable;
-          for (int i = 0; i < d.speeds; ++i)
-            {
-              RunOptions r;
-              r.omega = d.speed_from + (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1);
-              r.motor_torque = e.TE, r.load_torque = e.TL;
-              r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
-              rpm.push_back(r.omega * 60 / (2 * pi));
-              radius.push_back(std::abs(floquet_multipliers(*e.model, r).front()));
-              if (radius.back() > 1)
-                unstable += " " + std::to_string(int(std::lround(rpm.back())));
-            }
-          const H5Group st = g.group(e.label).group("stability");
-          const hsize_t ns = rpm.size();
-          st.write("speed", rpm, {ns}, "rpm", "pinion speed");
-          st.write("spectral_radius", radius, {ns}, "1",
-                   "largest Floquet multiplier modulus of the mesh in contact over one period "
-                   "of the tables (> 1: parametric resonance, vibrations grow until contact is "
-                   "lost)");
-          if (!unstable.empty())
-            log << "  " << pair.name << " " << e.label
-                << ": parametrically unstable in contact (Floquet) at [rpm]:" << unstable << "\n";
-        }
+        write_stability(g.group(e.label).group("stability"), *e.model, d, e.TE, e.TL, log,
+                        pair.name + " " + e.label);
       for (std::size_t x = 0; x < excitations.size(); ++x)
         {
           const H5Group eg  = g.group(excitations[x].label);

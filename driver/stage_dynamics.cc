@@ -78,7 +78,7 @@ pack(const SweepPoint &p, std::vector<double> &out)
 {
   out.insert(out.end(), {p.speed, p.dte_pp, p.dte_rms, p.relative_pp, p.relative_rms, p.max_force,
                          p.load_factor, p.contact_loss, double(p.events), double(p.settled_cycles),
-                         double(p.period), double(p.record_cycles)});
+                         double(p.period), double(p.record_cycles), double(p.diverged)});
   for (const auto *v :
        {&p.spectrum, &p.series_time, &p.series_dte, &p.series_transmission_error, &p.series_force})
     {
@@ -98,6 +98,7 @@ unpack(const std::vector<double> &in, std::size_t &at)
   p.settled_cycles = int(in[at++]);
   p.period         = int(in[at++]);
   p.record_cycles  = int(in[at++]);
+  p.diverged       = in[at++] != 0;
   for (auto *v :
        {&p.spectrum, &p.series_time, &p.series_dte, &p.series_transmission_error, &p.series_force})
     {
@@ -161,10 +162,10 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
 {
   const hsize_t       n = p.size();
   std::vector<double> rpm;
-  std::vector<int>    period, settled;
+  std::vector<int>    period, settled, diverged;
   for (const SweepPoint &x : p)
     rpm.push_back(x.speed * 60 / (2 * pi)), period.push_back(x.period),
-        settled.push_back(x.settled_cycles);
+        settled.push_back(x.settled_cycles), diverged.push_back(x.diverged);
   g.write("speed", rpm, {n}, "rpm", "pinion speed, in the order swept");
   g.write("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m", "DTE delta_D peak-to-peak");
   g.write("dte_rms", column(p, &SweepPoint::dte_rms), {n}, "m", "RMS of delta_D about its mean");
@@ -177,6 +178,9 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
           "share of the recorded time out of contact");
   g.write("period", period, {n}, "mesh cycles", "the motion repeats after (0: not steady)");
   g.write("settled_cycles", settled, {n}, "mesh cycles", "spent settling");
+  g.write("diverged", diverged, {n}, "1",
+          "1: the response grew past 1000 times the static deflection and clearance (its results "
+          "NaN; the next speed started from the static equilibrium)");
 
   // the DTE spectrum: every speed recorded the same whole periods
   const int           R    = p.front().record_cycles;
@@ -408,7 +412,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
         {
           const H5Group eg  = g.group(excitations[x].label);
           double        dlf = 0;
-          std::string   unsteady;
+          std::string   unsteady, diverged;
           for (int dir = 0; dir < 2; ++dir)
             {
               const std::size_t       j = 2 * x + std::size_t(dir);
@@ -418,10 +422,15 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
               write_sweep(eg.group(dir == 0 ? "up" : "down"), points);
               for (const auto &pt : points)
                 {
-                  dlf = std::max(dlf, pt.load_factor);
-                  if (pt.period == 0 && d.steady_tolerance > 0)
-                    unsteady += " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
-                                (dir == 0 ? " up" : " down");
+                  const std::string at =
+                      " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
+                      (dir == 0 ? " up" : " down");
+                  if (pt.diverged)
+                    diverged += at;
+                  else
+                    dlf = std::max(dlf, pt.load_factor);
+                  if (!pt.diverged && pt.period == 0 && d.steady_tolerance > 0)
+                    unsteady += at;
                 }
             }
           log << "  " << pair.name << " " << excitations[x].label << ": " << d.speeds
@@ -430,6 +439,10 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           if (!unsteady.empty())
             log << "  " << pair.name << " " << excitations[x].label << ": not steady within "
                 << d.settle_cycles << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady
+                << "\n";
+          if (!diverged.empty())
+            log << "  " << pair.name << " " << excitations[x].label
+                << ": DIVERGED (the response grew without bound, results NaN) at [rpm]:" << diverged
                 << "\n";
         }
     }

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <numeric>
 #include <thread>
 
@@ -79,6 +80,16 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
   const PairVector scale       = model.dof_scale(std::max(std::abs(s0.deflection), 1e-9));
   const int        record      = whole_periods(o.record_cycles, K);
   const int        settle_most = whole_periods(o.settle_cycles, K);
+  // a response beyond any physical meaning (or not finite): the mesh deflection far past the
+  // static one and the clearance
+  const double bound =
+      o.divergence_factor * (std::abs(s0.deflection) + model.parameters().half_backlash);
+  auto beyond = [&](const Trajectory &t) {
+    for (double x : t.relative)
+      if (!std::isfinite(x) || std::abs(x) > bound)
+        return true;
+    return false;
+  };
   // the swept speeds whose time series are kept
   std::vector<bool> keep(o.speeds.size(), false);
   for (double w : o.series_speeds)
@@ -92,11 +103,12 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       r.motor_torque = o.motor_torque, r.load_torque = o.load_torque;
       // settle in chunks of whole periods (each run starts at phase 0), watching the Poincare
       // points (states at whole periods)
-      int settled = 0, period = 0;
+      int  settled = 0, period = 0;
+      bool diverged = false;
       {
         const double            rate = model.parameters().pinion_teeth * omega / K; // [rad/s]
         std::vector<PairVector> pq{q}, pv{v};
-        while (settled < settle_most && period == 0)
+        while (settled < settle_most && period == 0 && !diverged)
           {
             RunOptions settle        = r;
             settle.mesh_cycles       = std::min(whole_periods(10, K), settle_most - settled);
@@ -107,19 +119,39 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
               pq.push_back(t.q[k]), pv.push_back(t.v[k]);
             q = t.q.back(), v = t.v.back();
             settled += int(settle.mesh_cycles);
+            diverged = beyond(t);
             if (o.steady_tolerance > 0 && settled >= o.min_settle_cycles)
               period = K * repeat_period(pq, pv, scale, rate, o.steady_tolerance);
             if (pq.size() > 16) // keep the last points only
               pq.erase(pq.begin(), pq.end() - 16), pv.erase(pv.begin(), pv.end() - 16);
           }
       }
-      r.mesh_cycles      = record;
-      const Trajectory t = simulate(model, q, v, r);
-      q = t.q.back(), v = t.v.back();
+      r.mesh_cycles = record;
+      Trajectory t;
+      if (!diverged)
+        {
+          t = simulate(model, q, v, r);
+          q = t.q.back(), v = t.v.back();
+          diverged = beyond(t);
+        }
+      if (diverged) // the next speed starts afresh
+        q = s0.q, v = PairVector::Zero();
       if (int(i) < o.warmup_speeds)
         continue;
       SweepPoint p;
-      p.speed = omega;
+      p.speed          = omega;
+      p.settled_cycles = settled;
+      p.record_cycles  = record;
+      if (diverged)
+        {
+          const double nan = std::numeric_limits<double>::quiet_NaN();
+          p.dte_pp = p.dte_rms = p.relative_pp = p.relative_rms = p.max_force = p.load_factor =
+              p.contact_loss                                                  = nan;
+          p.spectrum.assign(std::size_t(o.spectrum_orders * record) + 1, nan);
+          p.diverged = true;
+          out.push_back(std::move(p));
+          continue;
+        }
       peak_and_rms(t.dte, p.dte_pp, p.dte_rms);
       peak_and_rms(t.relative, p.relative_pp, p.relative_rms);
       p.max_force    = *std::max_element(t.force.begin(), t.force.end());
@@ -128,10 +160,8 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       p.contact_loss = double(std::count_if(t.relative.begin(), t.relative.end(),
                                             [&](double x) { return std::abs(x) < b; })) /
                        double(t.relative.size());
-      p.events         = t.events;
-      p.settled_cycles = settled;
-      p.period         = period;
-      p.record_cycles  = record;
+      p.events = t.events;
+      p.period = period;
       // the samples cover whole periods; the last one starts the next
       p.spectrum = amplitude_spectrum(std::vector<double>(t.dte.begin(), t.dte.end() - 1),
                                       o.spectrum_orders * record);

@@ -30,6 +30,10 @@ struct SweepOptions
   /// its rate at the mesh frequency); 0: always settle for settle_cycles.
   double steady_tolerance  = 1e-6;
   int    min_settle_cycles = 20;
+  /// Diverged when |delta_D - E_t| exceeds this times (static deflection + half backlash) or is
+  /// not finite (e.g. parametric resonance pumping without bound): the point's results are NaN,
+  /// flagged, and the next speed starts from the static equilibrium.
+  double divergence_factor = 1e3;
   /// Swept first to regain the continuation, not returned (the first speeds of a block).
   int warmup_speeds = 0;
   /// DTE spectrum up to this mesh order, at the record's resolution (1 / record cycles).
@@ -52,7 +56,8 @@ struct SweepPoint
   int         settled_cycles = 0;                ///< mesh cycles spent settling
   /// Mesh cycles after which the motion repeats (a multiple of the excitation's period; 1:
   /// periodic with the mesh); 0: not steady within settle_cycles (or not checked).
-  int period = 0;
+  int  period   = 0;
+  bool diverged = false; ///< see SweepOptions::divergence_factor (the results are NaN)
   /// Amplitudes of delta_D at mesh orders k / record cycles, k = 0 .. spectrum_orders * record
   /// cycles [m] (k = 0: the mean).
   std::vector<double> spectrum;

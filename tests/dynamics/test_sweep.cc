@@ -253,4 +253,24 @@ TEST(Floquet, ConstantMeshMatchesTheStateMatrixAndVaryingStiffnessResonatesParam
   EXPECT_GT(radius(pumped, 2 * f), 1.01) << f << " Hz";
   EXPECT_LT(radius(pumped, 1.3 * f), 1) << f << " Hz";
   EXPECT_LT(radius(model, 2 * f), 1) << f << " Hz";
+
+  // swept there without backlash (nothing limits the growth): the point is flagged diverged
+  // with NaN results, and the next speed starts afresh from the static equilibrium
+  PairModelParameters tight = held;
+  tight.half_backlash       = 0;
+  const PairModel lin(tight, varying);
+  SweepOptions    sw;
+  sw.load_torque = 100, sw.motor_torque = lin.static_equilibrium(100).motor_torque;
+  sw.speeds      = {2 * pi * 2 * f / 55, 2 * pi * 1.3 * f / 55};
+  sw.settle_cycles = 3000, sw.record_cycles = 10;
+  sw.run.method = Integrator::newmark, sw.run.steps_per_cycle = 128;
+  PairVector q = lin.static_equilibrium(100).q, v = PairVector::Zero();
+  const auto points = sweep(lin, q, v, sw);
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_TRUE(points[0].diverged);
+  EXPECT_TRUE(std::isnan(points[0].dte_pp) && std::isnan(points[0].load_factor));
+  EXPECT_EQ(points[0].spectrum.size(), points[1].spectrum.size());
+  EXPECT_FALSE(points[1].diverged);
+  EXPECT_GT(points[1].period, 0);
+  EXPECT_TRUE(std::isfinite(points[1].dte_pp) && points[1].load_factor < 2);
 }

@@ -166,16 +166,20 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
   for (const SweepPoint &x : p)
     rpm.push_back(x.speed * 60 / (2 * pi)), period.push_back(x.period),
         settled.push_back(x.settled_cycles), diverged.push_back(x.diverged);
+  const std::string diverged_gap = "where the response diverged";
   g.write("speed", rpm, {n}, "rpm", "pinion speed, in the order swept");
-  g.write("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m", "DTE delta_D peak-to-peak");
-  g.write("dte_rms", column(p, &SweepPoint::dte_rms), {n}, "m", "RMS of delta_D about its mean");
-  g.write("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n}, "m",
-          "delta_D - E_t peak-to-peak (the mesh deflection)");
-  g.write("max_mesh_force", column(p, &SweepPoint::max_force), {n}, "N", "largest F_m");
-  g.write("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n}, "1",
-          "largest F_m over the static mesh force");
-  g.write("contact_loss", column(p, &SweepPoint::contact_loss), {n}, "1",
-          "share of the recorded time out of contact");
+  g.write_with_gaps("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m",
+                    "DTE delta_D peak-to-peak", diverged_gap);
+  g.write_with_gaps("dte_rms", column(p, &SweepPoint::dte_rms), {n}, "m",
+                    "RMS of delta_D about its mean", diverged_gap);
+  g.write_with_gaps("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n}, "m",
+                    "delta_D - E_t peak-to-peak (the mesh deflection)", diverged_gap);
+  g.write_with_gaps("max_mesh_force", column(p, &SweepPoint::max_force), {n}, "N", "largest F_m",
+                    diverged_gap);
+  g.write_with_gaps("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n}, "1",
+                    "largest F_m over the static mesh force", diverged_gap);
+  g.write_with_gaps("contact_loss", column(p, &SweepPoint::contact_loss), {n}, "1",
+                    "share of the recorded time out of contact", diverged_gap);
   g.write("period", period, {n}, "mesh cycles", "the motion repeats after (0: not steady)");
   g.write("settled_cycles", settled, {n}, "mesh cycles", "spent settling");
   g.write("diverged", diverged, {n}, "1",
@@ -192,8 +196,9 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
     order.push_back(double(k) / R);
   g.write("spectrum_order", order, {bins}, "1",
           "mesh orders of dte_spectrum (resolution 1 / recorded mesh cycles)");
-  g.write("dte_spectrum", spectrum, {n, bins}, "m",
-          "amplitude of delta_D at each speed and mesh order (order 0: the mean)");
+  g.write_with_gaps("dte_spectrum", spectrum, {n, bins}, "m",
+                    "amplitude of delta_D at each speed and mesh order (order 0: the mean)",
+                    diverged_gap);
 
   int k = 0;
   for (const SweepPoint &x : p)

@@ -559,7 +559,7 @@ def plot_dynamics_spectra(dyn, out_dir):
         d = dyn[name][label]["up"]
         rpm, order = d["speed"][:], d["spectrum_order"][:]
         a = d["dte_spectrum"][:, 1:] * 1e6  # without the mean
-        top = a.max()
+        top = np.nanmax(a)
         image = ax.pcolormesh(rpm, order[1:], np.log10(np.maximum(a.T, top * 1e-4)),
                               shading="nearest", cmap="viridis")
         fig.colorbar(image, ax=ax, label="log10 DTE amplitude [um]")

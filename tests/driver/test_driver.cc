@@ -674,3 +674,54 @@ end
   EXPECT_NE(run({file}), 0);
   EXPECT_NE(err.str().find("excitation cycles: 4"), std::string::npos) << err.str();
 }
+
+TEST_F(DriverTest, DynamicsFlagsSpeedsWhereTheResponseDiverges)
+{
+  // no backlash, no damping, K_m varying by 60 %: the principal parametric resonance grows
+  // without bound. The run still succeeds; those speeds are flagged, their results NaN, the
+  // Floquet multipliers there > 1, the log names them
+  const std::string dyn = std::regex_replace(small_scene, std::regex("set outputs = flanks"),
+                                             "set outputs = dynamics") +
+                          R"(
+subsection TCA
+  subsection p1
+    set positions per mesh cycle = 16
+  end
+end
+subsection Dynamics
+  subsection p1
+    set mesh stiffness source    = constant
+    set mesh stiffness           = 300
+    set mesh stiffness variation = 0.6
+    set half backlash            = 0
+    set mesh damping ratio       = 0
+    set bearing damping          = 0
+    set shaft damping            = 0
+    set speeds                   = 30
+    set speed from               = 2000
+    set speed to                 = 60000
+    set settle cycles            = 400
+    set record cycles            = 10
+  end
+end
+)";
+  ASSERT_EQ(run({scene(dyn)}), 0) << err.str();
+  EXPECT_NE(out.str().find("DIVERGED"), std::string::npos) << out.str();
+  const H5File  f      = H5File::open((dir / "out/small/results.h5").string());
+  const H5Group g      = f.root().group("dynamics/p1/theoretical");
+  const auto    radius = g.group("stability").read_doubles("spectral_radius");
+  const H5Group up     = g.group("up");
+  const auto    flag   = up.read_ints("diverged");
+  const auto    pp     = up.read_doubles("dte_peak_to_peak");
+  int           n      = 0;
+  for (std::size_t i = 0; i < flag.size(); ++i)
+    if (flag[i])
+      {
+        ++n;
+        EXPECT_TRUE(std::isnan(pp[i]));
+        EXPECT_GT(radius[i], 1) << i; // only an unstable mesh grows without bound
+      }
+    else
+      EXPECT_TRUE(std::isfinite(pp[i])) << i;
+  EXPECT_GT(n, 0);
+}

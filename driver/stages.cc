@@ -74,7 +74,7 @@ stage_definitions()
        "14-DOF pair dynamics: static equilibrium, modes, speed sweeps up and down",
        {"flanks", "ste"},
        {"TCA", "Measured flanks", "Dynamics"},
-       4,
+       5,
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {

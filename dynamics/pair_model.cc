@@ -195,12 +195,12 @@ PairModel::static_equilibrium(double load_torque) const
 {
   const MeshState  m = cycle.mean();
   const PairVector g = mesh_gradient(m);
-  // drive-side contact: F_m = K_m (g . q - E_t - b_c); the motor shaft's end (or the pinion)
-  // held against turning, and the held DOFs
-  const PairMatrix A   = K + m.km * g * g.transpose();
-  const PairVector rhs = m.km * (m.et + p.half_backlash) * g + torques(0, load_torque);
-  // a speed-controlled motor holds the train already
-  const int        hold = p.motor_inertia > 0 ? dof::motor : dof::pinion_rotation + [&] {
+  // drive-side contact: F_m = K_m (g . q - E_t - b_c); the pinion's rotation about its axis
+  // held (the reaction there is the motor torque), the motor too; then the motor angle that
+  // carries that torque through its shaft (held there in the dynamics when speed-controlled)
+  const PairMatrix A    = K + m.km * g * g.transpose();
+  const PairVector rhs  = m.km * (m.et + p.half_backlash) * g + torques(0, load_torque);
+  const int        hold = dof::pinion_rotation + [&] {
     int k = 0;
     while (std::abs(p.pinion.axis[k]) < std::abs(p.pinion.axis[(k + 1) % 3]) ||
            std::abs(p.pinion.axis[k]) < std::abs(p.pinion.axis[(k + 2) % 3]))
@@ -209,7 +209,7 @@ PairModel::static_equilibrium(double load_torque) const
   }();
   std::vector<int> index;
   for (int i = 0; i < pair_dofs; ++i)
-    if (free[i] > 0 && i != hold)
+    if (free[i] > 0 && i != hold && i != dof::motor)
       index.push_back(i);
   const int       n = int(index.size());
   Eigen::MatrixXd Ar(n, n);
@@ -227,9 +227,9 @@ PairModel::static_equilibrium(double load_torque) const
   s.deflection = g.dot(s.q) - m.et - p.half_backlash;
   s.mesh_force = m.km * s.deflection;
   // the torque the held DOF takes: the motor torque that balances the load
-  s.motor_torque = hold == dof::motor ? K.row(dof::motor).dot(s.q)
-                                      : (A.row(hold).dot(s.q) - rhs[hold]) /
-                                            p.pinion.axis[hold - dof::pinion_rotation];
+  s.motor_torque = (A.row(hold).dot(s.q) - rhs[hold]) / p.pinion.axis[hold - dof::pinion_rotation];
+  if (p.motor_inertia > 0)
+    s.q[dof::motor] = (s.motor_torque - K.row(dof::motor).dot(s.q)) / K(dof::motor, dof::motor);
   if (!(s.mesh_force > 0))
     {
       std::ostringstream msg;

@@ -77,8 +77,12 @@ struct PairModelParameters
   bool speed_controlled_motor = false;
 };
 
-/// Static equilibrium under a load torque with the motor shaft's end (or, without a motor, the
-/// pinion) held against rotation, at the phase-averaged mesh.
+/// Static equilibrium under a load torque at the phase-averaged mesh, with the pinion's rotation
+/// about its axis held at zero: the shafts' wind-up goes to the motor and load angles (a
+/// speed-controlled motor is then held at its wound-up angle), so that the bodies' rotations are
+/// the mesh's own. (Linearised, delta_D = lambda . Theta turns a static rotation of the pinion
+/// into a time-varying term lambda(t) . Theta wherever the arms vary over the cycle - a
+/// first-order phase shift of e_0 - which for a noisy measured e_0 is no small quantity.)
 struct StaticEquilibrium
 {
   PairVector q            = PairVector::Zero();

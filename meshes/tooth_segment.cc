@@ -244,7 +244,8 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   for (std::size_t c = 0; c < s.curves.size(); ++c)
     groups[s.groups[c]].push_back(out[2 + c].second);
   for (const auto &[id, surfaces] : groups)
-    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, surfaces, id), boundary::name(id));
+    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, surfaces, id),
+                                 boundary::name(id));
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 1), "body");
 
   gmsh::model::mesh::generate(3);
@@ -323,7 +324,8 @@ segment_sidecar(const std::string &member, const SegmentMeshInfo &info,
     json << (i ? ", " : "") << info.member_teeth[i];
   json << "],\n  \"physical_surfaces\": {";
   for (std::size_t i = 0; i < boundary_ids.size(); ++i)
-    json << (i ? "," : "") << "\n    \"" << boundary::name(boundary_ids[i]) << "\": " << boundary_ids[i];
+    json << (i ? "," : "") << "\n    \"" << boundary::name(boundary_ids[i])
+         << "\": " << boundary_ids[i];
   json << "\n  },\n  \"physical_volumes\": {\"body\": 1}\n}\n";
   return json.str();
 }

@@ -26,19 +26,18 @@ project(const Flank &flank, const Assembly &assembly, double phi, const Vec3 &ta
     {
       for (int it = 0; it < 20; ++it)
         {
-          const FlankPoint p = flank.evaluate(u, v);
+          const FlankPoint            p = flank.evaluate(u, v);
           Eigen::Matrix<double, 3, 2> J;
-          J.col(0)             = assembly.pinion_vector_to_global(p.d_du, phi);
-          J.col(1)             = assembly.pinion_vector_to_global(p.d_dv, phi);
-          const Vec3 r         = target - assembly.pinion_to_global(p.position, phi);
-          const Vec2 step      = (J.transpose() * J).ldlt().solve(J.transpose() * r);
+          J.col(0)        = assembly.pinion_vector_to_global(p.d_du, phi);
+          J.col(1)        = assembly.pinion_vector_to_global(p.d_dv, phi);
+          const Vec3 r    = target - assembly.pinion_to_global(p.position, phi);
+          const Vec2 step = (J.transpose() * J).ldlt().solve(J.transpose() * r);
           u += step.x(), v += step.y();
           if (std::abs(step.x()) < 1e-13 * (d.u_max - d.u_min) &&
               std::abs(step.y()) < 1e-13 * (d.v_max - d.v_min))
             break;
         }
-      if (!(u >= d.u_min && u <= d.u_max && v >= d.v_min && v <= d.v_max) ||
-          !flank.contains(u, v))
+      if (!(u >= d.u_min && u <= d.u_max && v >= d.v_min && v <= d.v_max) || !flank.contains(u, v))
         return std::nullopt;
       const FlankPoint p = flank.evaluate(u, v);
       return Projection{u, v, assembly.pinion_to_global(p.position, phi),
@@ -56,10 +55,10 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
 {
   if (!(o.cells_across >= 1 && o.cells_along >= 1 && o.gap_band > 0))
     throw InputError("contact cells: cells across and along must be >= 1 and the gap band > 0");
-  const TcaOptions &topt     = tca.options_data();
-  const Assembly   &assembly = tca.assembly_data();
-  const double      sign     = topt.side == FlankSide::drive ? 1.0 : -1.0;
-  const double      phi      = position.pinion_angle;
+  const TcaOptions        &topt     = tca.options_data();
+  const Assembly          &assembly = tca.assembly_data();
+  const double             sign     = topt.side == FlankSide::drive ? 1.0 : -1.0;
+  const double             phi      = position.pinion_angle;
   std::vector<ContactCell> cells;
   for (std::size_t k = 0; k < position.pairs.size(); ++k)
     {
@@ -68,24 +67,24 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
         continue;
       const Flank &flank = tca.pinion_flanks().flank(c.pinion_tooth, topt.side);
       const Vec3   n     = c.normal_pinion;
-      Vec3 e_t = c.major_direction - c.major_direction.dot(n) * n;
+      Vec3         e_t   = c.major_direction - c.major_direction.dot(n) * n;
       if (e_t.norm() < 1e-9)
         e_t = assembly.pinion_vector_to_global(flank.evaluate(c.u1, c.v1).d_dv, phi);
-      e_t = (e_t - e_t.dot(n) * n).normalized();
+      e_t      = (e_t - e_t.dot(n) * n).normalized();
       Vec3 e_s = n.cross(e_t);
       // The unloaded gap at a pinion flank point (empty off either flank).
       auto gap_at = [&](const Vec3 &target, double s_cell, double t_cell, ContactCell &cell) {
         const auto p = project(flank, assembly, phi, target, c.u1, c.v1);
         double     psi;
-        if (!p || !tca.touch_angle(c.gear_tooth, p->position, position.gear_angle, psi, cell.u2,
-                                   cell.v2))
+        if (!p ||
+            !tca.touch_angle(c.gear_tooth, p->position, position.gear_angle, psi, cell.u2, cell.v2))
           return false;
         cell.s = s_cell, cell.t = t_cell;
         cell.u1 = p->u, cell.v1 = p->v;
         cell.position = p->position, cell.normal = p->normal;
-        const Vec3 r  = p->position - assembly.gear_centre();
-        cell.gap      = std::max(0.0, sign * (position.gear_angle - psi) *
-                                     std::abs(assembly.gear_axis().cross(r).dot(p->normal)));
+        const Vec3 r = p->position - assembly.gear_centre();
+        cell.gap     = std::max(0.0, sign * (position.gear_angle - psi) *
+                                         std::abs(assembly.gear_axis().cross(r).dot(p->normal)));
         return true;
       };
       // Optionally the gap at the zone's scale: a quadratic fitted to gaps sampled on two rings
@@ -94,48 +93,48 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
       // noise, and the contact line can turn by tens of degrees), the fit sets the zone.
       double k_max = std::max(c.curvature_max, 1e-9);
       if (o.zone_from_gaps)
-      {
-        const double                   rho = std::sqrt(2 * o.gap_band / k_max);
-        std::vector<Eigen::Matrix<double, 6, 1>> rows;
-        std::vector<double>            gaps;
-        for (double r : {rho / 2, rho})
-          for (int a = 0; a < 12; ++a)
+        {
+          const double                             rho = std::sqrt(2 * o.gap_band / k_max);
+          std::vector<Eigen::Matrix<double, 6, 1>> rows;
+          std::vector<double>                      gaps;
+          for (double r : {rho / 2, rho})
+            for (int a = 0; a < 12; ++a)
+              {
+                const double s_ = r * std::cos(pi * a / 6), t_ = r * std::sin(pi * a / 6);
+                ContactCell  probe;
+                if (gap_at(c.position + s_ * e_s + t_ * e_t, s_, t_, probe))
+                  {
+                    rows.emplace_back();
+                    rows.back() << 1, s_, t_, s_ * s_ / 2, s_ * t_, t_ * t_ / 2;
+                    gaps.push_back(probe.gap);
+                  }
+              }
+          if (rows.size() >= 12)
             {
-              const double s_ = r * std::cos(pi * a / 6), t_ = r * std::sin(pi * a / 6);
-              ContactCell  probe;
-              if (gap_at(c.position + s_ * e_s + t_ * e_t, s_, t_, probe))
+              Eigen::MatrixXd A(rows.size(), 6);
+              Eigen::VectorXd g(rows.size());
+              for (std::size_t i = 0; i < rows.size(); ++i)
+                A.row(Eigen::Index(i)) = rows[i].transpose(), g[Eigen::Index(i)] = gaps[i];
+              const Eigen::VectorXd q = A.colPivHouseholderQr().solve(g);
+              Eigen::Matrix2d       H;
+              H << q[3], q[4], q[4], q[5];
+              const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H);
+              const double                                         k_fit = eig.eigenvalues()[1];
+              const Vec2 along = eig.eigenvectors().col(0); // least curvature, in (s, t)
+              if (k_fit > 0 && (std::abs(along.y()) < std::cos(5 * pi / 180) || k_fit < k_max / 2))
                 {
-                  rows.emplace_back();
-                  rows.back() << 1, s_, t_, s_ * s_ / 2, s_ * t_, t_ * t_ / 2;
-                  gaps.push_back(probe.gap);
+                  e_t   = (along.x() * e_s + along.y() * e_t).normalized();
+                  e_s   = n.cross(e_t);
+                  k_max = k_fit;
                 }
             }
-        if (rows.size() >= 12)
-          {
-            Eigen::MatrixXd A(rows.size(), 6);
-            Eigen::VectorXd g(rows.size());
-            for (std::size_t i = 0; i < rows.size(); ++i)
-              A.row(Eigen::Index(i)) = rows[i].transpose(), g[Eigen::Index(i)] = gaps[i];
-            const Eigen::VectorXd q = A.colPivHouseholderQr().solve(g);
-            Eigen::Matrix2d       H;
-            H << q[3], q[4], q[4], q[5];
-            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(H);
-            const double   k_fit = eig.eigenvalues()[1];
-            const Vec2     along = eig.eigenvectors().col(0); // least curvature, in (s, t)
-            if (k_fit > 0 && (std::abs(along.y()) < std::cos(5 * pi / 180) || k_fit < k_max / 2))
-              {
-                e_t   = (along.x() * e_s + along.y() * e_t).normalized();
-                e_s   = n.cross(e_t);
-                k_max = k_fit;
-              }
-          }
-      }
+        }
 
       // Extent along the line: where the projection leaves the flank (bisection both ways).
-      const FlankDomain d    = flank.domain();
-      const double      span = (flank.evaluate(d.u_max, d.v_max).position -
-                           flank.evaluate(d.u_min, d.v_min).position)
-                              .norm();
+      const FlankDomain d = flank.domain();
+      const double      span =
+          (flank.evaluate(d.u_max, d.v_max).position - flank.evaluate(d.u_min, d.v_min).position)
+              .norm();
       auto reach = [&](double direction) {
         double in = 0, out = span;
         if (project(flank, assembly, phi, c.position + direction * out * e_t, c.u1, c.v1))
@@ -167,7 +166,7 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
             break;
           w_band *= std::min(4.0, std::sqrt(o.gap_band / std::max(opening, 1e-12)));
         }
-      const double w      = std::min(w_band, span / 2);
+      const double w  = std::min(w_band, span / 2);
       const double dt = (t1 - t0) / o.cells_along, ds = 2 * w / o.cells_across;
       if (!(dt > 0))
         continue; // the contact sits on a corner of the flank: no extent along the line
@@ -177,13 +176,13 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
             ContactCell cell;
             cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth, cell.gear_tooth = c.gear_tooth;
             cell.dt = dt, cell.ds = ds;
-            cell.zone_edge = w == w_band && (j == 0 || j == o.cells_across - 1);
+            cell.zone_edge      = w == w_band && (j == 0 || j == o.cells_across - 1);
             const double s_cell = -w + (j + 0.5) * ds, t_cell = t0 + (i + 0.5) * dt;
             if (!gap_at(c.position + s_cell * e_s + t_cell * e_t, s_cell, t_cell, cell))
               continue;
             cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;
             cell.table_u2 = cell.u2, cell.table_v2 = cell.v2;
-            cell.lever    = std::abs(Vec3::UnitZ().cross(cell.position).dot(cell.normal));
+            cell.lever = std::abs(Vec3::UnitZ().cross(cell.position).dot(cell.normal));
             cells.push_back(cell);
           }
     }

@@ -13,8 +13,8 @@ namespace gearkit
 {
 struct ContactCellOptions
 {
-  int    cells_across = 17; ///< cells across the contact line (s); odd: a row on the line
-  int    cells_along  = 24; ///< cells along it (t), over the flank
+  int cells_across = 17; ///< cells across the contact line (s); odd: a row on the line
+  int cells_along  = 24; ///< cells along it (t), over the flank
   /// Largest unloaded gap the zone covers [m]: the band across the line reaches where the
   /// relative curvature opens the gap to this (s = sqrt(2 g / k_max)); choose it above the
   /// largest elastic approach expected.
@@ -28,18 +28,18 @@ struct ContactCellOptions
 
 struct ContactCell
 {
-  int    pair = 0;                      ///< index into TcaPosition::pairs
+  int    pair         = 0; ///< index into TcaPosition::pairs
   int    pinion_tooth = 0, gear_tooth = 0;
   double u1 = 0, v1 = 0, u2 = 0, v2 = 0; ///< flank parameters on pinion and gear
-  Vec3   position = Vec3::Zero();       ///< pinion flank point, global [m]
-  Vec3   normal   = Vec3::Zero();       ///< pinion outward normal, global
-  double gap   = 0;                     ///< unloaded normal gap to the gear flank [m]
-  double lever = 0;                     ///< normal motion per pinion rotation, |(e_z x r) . n| [m]
+  Vec3   position = Vec3::Zero();        ///< pinion flank point, global [m]
+  Vec3   normal   = Vec3::Zero();        ///< pinion outward normal, global
+  double gap      = 0;                   ///< unloaded normal gap to the gear flank [m]
+  double lever    = 0;                   ///< normal motion per pinion rotation, |(e_z x r) . n| [m]
   /// Flank parameters of the cell in the structural compliance tables (the theoretical
   /// flanks'): the same as u1, v1, u2, v2 unless the flanks are measured ones.
   double table_u1 = 0, table_v1 = 0, table_u2 = 0, table_v2 = 0;
-  double s = 0, t = 0;                  ///< centre in the pair's tangent plane [m]
-  double ds = 0, dt = 0;                ///< cell size [m]
+  double s = 0, t = 0;   ///< centre in the pair's tangent plane [m]
+  double ds = 0, dt = 0; ///< cell size [m]
   /// In the outermost row across of a zone the gap band cut short of the flank: contact here
   /// means the zone is too narrow for the load.
   bool zone_edge = false;

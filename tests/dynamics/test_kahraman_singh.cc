@@ -42,8 +42,8 @@ std::pair<double, double>
 oscillator(double Omega, std::array<double, 2> &y, int settle, int record)
 {
   using namespace boost::numeric::odeint;
-  auto         stepper = make_dense_output(1e-11, 1e-11, runge_kutta_dopri5<std::array<double, 2>>());
-  const double T       = 2 * pi / Omega;
+  auto stepper   = make_dense_output(1e-11, 1e-11, runge_kutta_dopri5<std::array<double, 2>>());
+  const double T = 2 * pi / Omega;
   integrate_const(stepper, KahramanSingh{Omega}, y, 0.0, settle * T, T);
   std::vector<double> x;
   integrate_const(stepper, KahramanSingh{Omega}, y, 0.0, record * T, T / 32,
@@ -63,13 +63,13 @@ TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
 {
   // physical parameters chosen freely; the nondimensional groups are the benchmark's
   const double b = 10e-6, kbar = 1e8;
-  auto         p = test_data::bevel_like_parameters(b);
+  auto         p  = test_data::bevel_like_parameters(b);
   p.motor_inertia = p.load_inertia = 0; // torques straight on pinion and gear
   p.torsion_only                   = true;
   p.mesh_damping_in_contact_only   = false;
   p.mesh_damping_ratio             = zeta;
   p.pinion_teeth                   = 1; // one mesh cycle per pinion turn
-  MeshCycleSamples t = test_data::bevel_like_tables(32, kbar);
+  MeshCycleSamples t               = test_data::bevel_like_tables(32, kbar);
   for (int i = 0; i < 32; ++i)
     {
       const double phase = double(i) / 32;
@@ -110,9 +110,10 @@ TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
       std::array<double, 2>   y{1 + Fm, 0}; // the oscillator's static state
       for (std::size_t i = 0; i < W.size(); ++i)
         {
-          const auto [rms, pp] = oscillator(W[i], y, o.settle_cycles, o.record_cycles);
+          const auto [rms, pp]   = oscillator(W[i], y, o.settle_cycles, o.record_cycles);
           const double model_rms = points[i].relative_rms / b, model_pp = points[i].relative_pp / b;
-          EXPECT_NEAR(model_rms, rms, 0.01 * rms + 1e-4) << (up ? "up" : "down") << " Omega " << W[i];
+          EXPECT_NEAR(model_rms, rms, 0.01 * rms + 1e-4)
+              << (up ? "up" : "down") << " Omega " << W[i];
           EXPECT_NEAR(model_pp, pp, 0.01 * pp + 1e-4) << (up ? "up" : "down") << " Omega " << W[i];
           (up ? up_rms : down_rms).push_back(rms);
           // the Poincare section found the periodic motion before the fixed settling ended
@@ -130,7 +131,8 @@ TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
     PairVector q = model.static_equilibrium(o.load_torque).q, v = PairVector::Zero();
     const auto points = sweep(model, q, v, n);
     for (std::size_t i = 0; i < Omegas.size(); ++i)
-      EXPECT_NEAR(points[i].relative_rms / b, up_rms[i], 0.02 * up_rms[i]) << "Newmark, Omega " << Omegas[i];
+      EXPECT_NEAR(points[i].relative_rms / b, up_rms[i], 0.02 * up_rms[i])
+          << "Newmark, Omega " << Omegas[i];
   }
   std::reverse(down_rms.begin(), down_rms.end());
   // hysteresis: near Omega = 1 the two sweeps sit on different branches

@@ -27,9 +27,9 @@ run(const PairModelParameters &p, const MeshCycleSamples &t, std::vector<double>
     Integrator method)
 {
   const PairModel         model(p, t);
-  const MeshState         m  = model.mesh().mean();
-  const double            F  = 3000;
-  const StaticEquilibrium s  = model.static_equilibrium(F * m.lg.y());
+  const MeshState         m = model.mesh().mean();
+  const double            F = 3000;
+  const StaticEquilibrium s = model.static_equilibrium(F * m.lg.y());
   SweepOptions            o;
   o.motor_torque = F * m.lp.z(), o.load_torque = F * m.lg.y();
   o.settle_cycles = 30, o.record_cycles = 10;
@@ -55,15 +55,15 @@ TEST(PairDynamicsStress, ZeroAndVeryLargeBacklash)
   for (Integrator method : {Integrator::cvode_bdf, Integrator::newmark})
     {
       // no backlash: the mesh never opens, both flanks act as one spring
-      const auto tight = run(test_data::bevel_like_parameters(0), rough_tables(20e-6),
-                             {3000, 9000}, method);
+      const auto tight =
+          run(test_data::bevel_like_parameters(0), rough_tables(20e-6), {3000, 9000}, method);
       for (const auto &p : tight)
         EXPECT_EQ(p.contact_loss, 0);
       // 1 mm half backlash and an excitation larger than the static deflection: the teeth fly
       // apart and meet again on the drive side (free flight between impacts)
       const auto loose = run(test_data::bevel_like_parameters(1e-3), rough_tables(40e-6),
                              {3000, 9000, 12000}, method);
-      double lost = 0;
+      double     lost  = 0;
       for (const auto &p : loose)
         lost = std::max(lost, p.contact_loss);
       EXPECT_GT(lost, 0) << "no contact loss with a 40 um excitation on 10 um of deflection";
@@ -92,8 +92,8 @@ TEST(PairDynamicsStress, ExtremeSupportStiffnessRatiosAndManyImpacts)
         }
     }
   // high speed, excitation three times the static deflection: impacts on both flanks
-  const auto points = run(test_data::bevel_like_parameters(10e-6), rough_tables(30e-6),
-                          {11000, 12000}, Integrator::cvode_bdf);
+  const auto  points = run(test_data::bevel_like_parameters(10e-6), rough_tables(30e-6),
+                           {11000, 12000}, Integrator::cvode_bdf);
   std::size_t events = 0;
   for (const auto &p : points)
     events += p.events;

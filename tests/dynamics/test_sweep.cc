@@ -261,7 +261,7 @@ TEST(Floquet, ConstantMeshMatchesTheStateMatrixAndVaryingStiffnessResonatesParam
   const PairModel lin(tight, varying);
   SweepOptions    sw;
   sw.load_torque = 100, sw.motor_torque = lin.static_equilibrium(100).motor_torque;
-  sw.speeds      = {2 * pi * 2 * f / 55, 2 * pi * 1.3 * f / 55};
+  sw.speeds        = {2 * pi * 2 * f / 55, 2 * pi * 1.3 * f / 55};
   sw.settle_cycles = 3000, sw.record_cycles = 10;
   sw.run.method = Integrator::newmark, sw.run.steps_per_cycle = 128;
   PairVector q = lin.static_equilibrium(100).q, v = PairVector::Zero();

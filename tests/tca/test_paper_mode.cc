@@ -32,7 +32,7 @@ TEST(PaperMode, ErrorShrinksWithSpacingAndStaysWithinTolerance)
     double w                = 0;
     for (std::size_t i = 0; i < r.seed_ste.size(); ++i)
       w = std::max(w, std::abs(r.seed_ste[i] - (exact.positions[i].transmission_error -
-                                                          exact.positions[0].transmission_error)));
+                                                exact.positions[0].transmission_error)));
     return w;
   };
   double       E_coarse, E_fine;
@@ -58,10 +58,10 @@ TEST(PaperMode, GivesTheContactTablesOfClassicalTca)
   const auto   P = InvoluteGear::create(p), G = InvoluteGear::create(g);
   const double a = working_centre_distance(*P, *G);
   TcaOptions   o;
-  o.positions_per_mesh  = 5;
-  const TcaResult exact = UnloadedTca(P, G, a, {}, o).run();
-  const auto      mp    = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*P, "pinion", 9, 29));
-  const auto      mg    = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*G, "gear", 9, 29));
+  o.positions_per_mesh   = 5;
+  const TcaResult  exact = UnloadedTca(P, G, a, {}, o).run();
+  const auto       mp    = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*P, "pinion", 9, 29));
+  const auto       mg    = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*G, "gear", 9, 29));
   PaperModeOptions po;
   po.spacing              = 200e-6;
   po.positions_per_mesh   = 5;
@@ -77,7 +77,7 @@ TEST(PaperMode, GivesTheContactTablesOfClassicalTca)
       EXPECT_NEAR(q.transmission_error, x.transmission_error, 2 * E / G->base_radius * 24 / 16);
       EXPECT_GE(q.touching, 1);
       EXPECT_LE(q.pairs[q.leading].separation, E);
-      const PairContact &lx = x.pairs[x.leading];
+      const PairContact &lx      = x.pairs[x.leading];
       bool               matched = false;
       for (const PairContact &d : q.pairs)
         {
@@ -85,10 +85,10 @@ TEST(PaperMode, GivesTheContactTablesOfClassicalTca)
             continue;
           matched = true;
           // Smallest radius of curvature of the two involutes at the contact.
-          const double rho = std::min(
-              std::sqrt(lx.position.head<2>().squaredNorm() - std::pow(P->base_radius, 2)),
-              std::sqrt((lx.position - Vec3(a, 0, 0)).head<2>().squaredNorm() -
-                        std::pow(G->base_radius, 2)));
+          const double rho =
+              std::min(std::sqrt(lx.position.head<2>().squaredNorm() - std::pow(P->base_radius, 2)),
+                       std::sqrt((lx.position - Vec3(a, 0, 0)).head<2>().squaredNorm() -
+                                 std::pow(G->base_radius, 2)));
           EXPECT_LT(std::acos(std::min(1.0, d.normal_pinion.dot(lx.normal_pinion))), 2 * E / rho);
           EXPECT_LT(std::acos(std::min(1.0, d.normal_gear.dot(lx.normal_gear))), 2 * E / rho);
           EXPECT_NEAR(d.lambda_pinion.z(), lx.lambda_pinion.z(), 1e-3 * P->base_radius) << i;
@@ -108,11 +108,11 @@ TEST(PaperMode, ToleranceBelowTheGridBoundIsRefused)
 {
   // E must cover half the point spacing in both directions and the arc of one rotation step;
   // a larger E is used as given (contact declared earlier: the error grows with it).
-  auto [p, g]    = test_data::fzg_c_pair();
-  const auto   P = InvoluteGear::create(p), G = InvoluteGear::create(g);
-  const double a = working_centre_distance(*P, *G);
-  const auto   mp = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*P, "pinion"));
-  const auto   mg = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*G, "gear"));
+  auto [p, g]        = test_data::fzg_c_pair();
+  const auto       P = InvoluteGear::create(p), G = InvoluteGear::create(g);
+  const double     a  = working_centre_distance(*P, *G);
+  const auto       mp = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*P, "pinion"));
+  const auto       mg = std::make_shared<MeasuredMemberFlanks>(virtual_cmm(*G, "gear"));
   PaperModeOptions po;
   po.spacing            = 300e-6;
   po.positions_per_mesh = 2;

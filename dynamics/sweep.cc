@@ -65,6 +65,36 @@ whole_periods(int cycles, int period)
 {
   return period * ((cycles + period - 1) / period);
 }
+/// Settles (q, v) at r.omega in chunks of whole periods of the excitation (each run starts
+/// at phase 0), watching the Poincare points (states at whole periods), until they repeat, the
+/// response diverges, or `most` mesh cycles.
+template <typename Beyond>
+void
+settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r,
+       const SweepOptions &o, int most, const PairVector &scale, const Beyond &beyond, int &settled,
+       int &period, bool &diverged)
+{
+  const int               K    = model.mesh().cycles();
+  const double            rate = model.parameters().pinion_teeth * r.omega / K; // [rad/s]
+  std::vector<PairVector> pq{q}, pv{v};
+  while (settled < most && period == 0 && !diverged)
+    {
+      RunOptions chunk        = r;
+      chunk.mesh_cycles       = std::min(whole_periods(10, K), most - settled);
+      chunk.samples_per_cycle = 1;
+      chunk.steps_per_cycle   = std::max(r.steps_per_cycle, 1);
+      const Trajectory t      = simulate(model, q, v, chunk);
+      for (std::size_t k = std::size_t(K); k < t.q.size(); k += std::size_t(K))
+        pq.push_back(t.q[k]), pv.push_back(t.v[k]);
+      q = t.q.back(), v = t.v.back();
+      settled += int(chunk.mesh_cycles);
+      diverged = beyond(t);
+      if (o.steady_tolerance > 0 && settled >= o.min_settle_cycles)
+        period = K * repeat_period(pq, pv, scale, rate, o.steady_tolerance);
+      if (pq.size() > 16) // keep the last points only
+        pq.erase(pq.begin(), pq.end() - 16), pv.erase(pv.begin(), pv.end() - 16);
+    }
+}
 } // namespace
 
 std::vector<SweepPoint>
@@ -101,31 +131,9 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       RunOptions   r     = o.run;
       r.omega            = omega;
       r.motor_torque = o.motor_torque, r.load_torque = o.load_torque;
-      // settle in chunks of whole periods (each run starts at phase 0), watching the Poincare
-      // points (states at whole periods)
       int  settled = 0, period = 0;
       bool diverged = false;
-      {
-        const double            rate = model.parameters().pinion_teeth * omega / K; // [rad/s]
-        std::vector<PairVector> pq{q}, pv{v};
-        while (settled < settle_most && period == 0 && !diverged)
-          {
-            RunOptions settle        = r;
-            settle.mesh_cycles       = std::min(whole_periods(10, K), settle_most - settled);
-            settle.samples_per_cycle = 1;
-            settle.steps_per_cycle   = std::max(r.steps_per_cycle, 1);
-            const Trajectory t       = simulate(model, q, v, settle);
-            for (std::size_t k = std::size_t(K); k < t.q.size(); k += std::size_t(K))
-              pq.push_back(t.q[k]), pv.push_back(t.v[k]);
-            q = t.q.back(), v = t.v.back();
-            settled += int(settle.mesh_cycles);
-            diverged = beyond(t);
-            if (o.steady_tolerance > 0 && settled >= o.min_settle_cycles)
-              period = K * repeat_period(pq, pv, scale, rate, o.steady_tolerance);
-            if (pq.size() > 16) // keep the last points only
-              pq.erase(pq.begin(), pq.end() - 16), pv.erase(pv.begin(), pv.end() - 16);
-          }
-      }
+      settle(model, q, v, r, o, settle_most, scale, beyond, settled, period, diverged);
       r.mesh_cycles = record;
       Trajectory t;
       if (!diverged)

@@ -119,7 +119,9 @@ TEST(Sweep, SpectrumMatchesTheFrequencyDomainOverOneAndThreeMeshCycles)
             }
           for (std::size_t j = 1; j < p.spectrum.size(); ++j)
             if (int(j) != R / cycles && int(j) != 2 * R / cycles)
-              EXPECT_LT(p.spectrum[j], 1e-3 * p.spectrum[std::size_t(R / cycles)]) << j;
+              {
+                EXPECT_LT(p.spectrum[j], 1e-3 * p.spectrum[std::size_t(R / cycles)]) << j;
+              }
         }
       // the time series at the speed nearest 2900 rpm: 3000 rpm, R cycles of samples
       EXPECT_TRUE(points[0].series_time.empty());

@@ -3,9 +3,9 @@
 // roll synthesised for a 3.72e-5 rad parabolic TE), one mesh cycle at 200 positions: classical
 // TCA on the generated flanks (reference), the fast discrete-point mode on virtual-CMM grids,
 // and (with --paper) the seed's point-cloud method at 20 positions.
-#include "bevel_synthesis.h"
-#include "paper_mode.h"
-#include "timing.h"
+#include "bench/timing.h"
+#include "tca/bevel_synthesis.h"
+#include "tca/paper_mode.h"
 
 #include <cmath>
 #include <cstdio>
@@ -20,14 +20,14 @@ main(int argc, char **argv)
   const bool      paper = argc > 1 && std::string(argv[1]) == "--paper";
   BevelPairDesign d;
   d.pinion_teeth = 55, d.gear_teeth = 47, d.module = 3e-3, d.face_width = 19e-3;
-  d.pinion_hand  = Hand::right;
+  d.pinion_hand = Hand::right;
   PinionMismatch start;
   start.cutter_radius = 2e-3;
   PinionMismatch m;
   const double   t_synthesis =
       median_seconds([&] { m = synthesise_modified_roll(d, start, 3.72e-5); }, 1);
-  const double t_build = median_seconds([&] { bevel_pair_flanks(d, m); });
-  const BevelPairFlanks f = bevel_pair_flanks(d, m);
+  const double          t_build = median_seconds([&] { bevel_pair_flanks(d, m); });
+  const BevelPairFlanks f       = bevel_pair_flanks(d, m);
   std::printf("seed spiral bevel pair: 2C = %.6g; synthesis %.2f s; generating both members "
               "(102 flanks) %.3f s\n",
               m.modified_roll_2c, t_synthesis, t_build);

@@ -4,9 +4,9 @@
 // The model: the tests' spiral-bevel-like pair (14 DOF, bearings with spans, shafts), half
 // backlash 10 um, K_m 300 N/um with 10 % and 5 % first and second mesh-order variation, E_t of
 // 4 and 1.5 um in the first two orders, 3000 N static mesh force.
-#include "../tests/dynamics/pair_fixture.h"
-#include "sweep.h"
-#include "timing.h"
+#include "bench/timing.h"
+#include "dynamics/sweep.h"
+#include "tests/dynamics/pair_fixture.h"
 
 #include <cstdio>
 

@@ -2,8 +2,8 @@
 // refinements), to choose the direct solver's settings. Run-time PETSc options apply, e.g.
 //   PETSC_OPTIONS="-gearkit_mat_mumps_icntl_7 5" build/bench_fe_factorisation 2 1
 // usage: bench_fe_factorisation [degree=2] [refinements=0] [elements per side=12]
-#include "box.h"
-#include "elastic_segment.h"
+#include "meshes/box.h"
+#include "stiffness/elastic_segment.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
@@ -19,10 +19,10 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const unsigned degree = argc > 1 ? unsigned(std::atoi(argv[1])) : 2;
-  const unsigned refine = argc > 2 ? unsigned(std::atoi(argv[2])) : 0;
-  const int      n      = argc > 3 ? std::atoi(argv[3]) : 12;
-  const std::string mesh = "/tmp/gearkit-bench-block.msh";
+  const unsigned                           degree = argc > 1 ? unsigned(std::atoi(argv[1])) : 2;
+  const unsigned                           refine = argc > 2 ? unsigned(std::atoi(argv[2])) : 0;
+  const int                                n      = argc > 3 ? std::atoi(argv[3]) : 12;
+  const std::string                        mesh   = "/tmp/gearkit-bench-block.msh";
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     write_box_mesh(Vec3(60e-3, 60e-3, 30e-3), n, n, n / 2, mesh);
   MPI_Barrier(MPI_COMM_WORLD);
@@ -39,13 +39,13 @@ main(int argc, char **argv)
       std::fprintf(stderr, "%s\n", e.what());
       return 1;
     }
-  const ElasticSegment &body = *made;
-  const double         t_setup = setup.wall_time();
-  dealii::Timer        solve;
+  const ElasticSegment &body    = *made;
+  const double          t_setup = setup.wall_time();
+  dealii::Timer         solve;
   const Eigen::MatrixXd D =
       body.response({{Vec3(30e-3, 30e-3, 30e-3), Vec3(0, 0, -1000), 2e-3, {6}}},
                     {{Vec3(30e-3, 30e-3, 25e-3), -Vec3::UnitZ()}});
-  const double t_solve = solve.wall_time();
+  const double                           t_solve = solve.wall_time();
   dealii::Utilities::System::MemoryStats mem;
   dealii::Utilities::System::get_memory_stats(mem);
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)

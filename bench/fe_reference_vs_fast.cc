@@ -8,10 +8,10 @@
 //          [segment teeth = 3] [first position = 0] [last position = positions - 1]
 //          [fast grid n_u = 9] [n_v = 7] [reference flank size / m_n = 0.2] [reference: 1|0]
 //          [fast response depth in elements = 3] [fast other flanks and fillets size / m_n = same]
-#include "../tests/fzg_c_pair.h"
-#include "loaded_contact.h"
-#include "member_compliance.h"
-#include "reference_contact.h"
+#include "stiffness/loaded_contact.h"
+#include "stiffness/member_compliance.h"
+#include "stiffness/reference_contact.h"
+#include "tests/fzg_c_pair.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>

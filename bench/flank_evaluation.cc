@@ -1,6 +1,6 @@
 // Cost of evaluating involute flanks: the nominal helicoid, the same with every modification
 // superposed (exact tangents through the normal's derivatives), and a 9 x 29 virtual-CMM grid.
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
 
 #include <benchmark/benchmark.h>
 

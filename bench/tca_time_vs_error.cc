@@ -2,10 +2,10 @@
 // the FZG C-type pair (pinion with profile and lead crowning): classical TCA on the exact flanks
 // (the reference) and the fast discrete-point mode on flanks interpolated from virtual-CMM grids.
 // Prints a table; each time is the median of 5 runs.
-#include "../tests/fzg_c_pair.h"
-#include "paper_mode.h"
-#include "timing.h"
-#include "unloaded_tca.h"
+#include "bench/timing.h"
+#include "tca/paper_mode.h"
+#include "tca/unloaded_tca.h"
+#include "tests/fzg_c_pair.h"
 
 #include <algorithm>
 #include <chrono>
@@ -93,9 +93,8 @@ study(const char *title, const InvoluteGearData &pp, const InvoluteGearData &gp,
       const double    t = median_seconds([&] { r = paper_mode_ste(*mp, *mg, a, {}, po); }, 1);
       double          e = 0;
       for (std::size_t i = 0; i < r.seed_ste.size(); ++i)
-        e = std::max(
-            e, std::abs(r.seed_ste[i] - (reference.positions[10 * i].transmission_error -
-                                         reference.positions[0].transmission_error)));
+        e = std::max(e, std::abs(r.seed_ste[i] - (reference.positions[10 * i].transmission_error -
+                                                  reference.positions[0].transmission_error)));
       char name[64];
       std::snprintf(name, sizeof name, "paper mode, %.0f um, 20 positions", spacing * 1e6);
       std::printf("%-34s %10.3f %14.2e %12.4f   (E = %.3g um)\n", name, t, e, 100 * e / (hi - lo),

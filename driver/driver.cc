@@ -1,6 +1,6 @@
-#include "driver.h"
+#include "driver/driver.h"
 
-#include "stages.h"
+#include "driver/stages.h"
 
 #include <deal.II/base/mpi.h>
 

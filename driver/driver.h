@@ -1,7 +1,7 @@
 // The gearkit driver: scene -> stage graph -> cached stage results -> results.h5 (+ plots).
 #pragma once
 
-#include "scene.h"
+#include "driver/scene.h"
 
 #include <iosfwd>
 #include <string>

@@ -1,6 +1,6 @@
-#include "h5_file.h"
+#include "driver/h5_file.h"
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // gearkit: one executable, one scene file. See `gearkit --help`.
-#include "driver.h"
+#include "driver/driver.h"
 
 #include <deal.II/base/mpi.h>
 

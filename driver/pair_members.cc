@@ -1,6 +1,6 @@
-#include "pair_members.h"
+#include "driver/pair_members.h"
 
-#include "bevel_synthesis.h"
+#include "tca/bevel_synthesis.h"
 
 #include <cmath>
 

@@ -3,8 +3,8 @@
 // modified roll as the flanks stage synthesised it (/flanks/<pair>/pinion_modified_roll_2c).
 #pragma once
 
-#include "h5_file.h"
-#include "scene.h"
+#include "driver/h5_file.h"
+#include "driver/scene.h"
 
 #include <memory>
 

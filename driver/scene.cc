@@ -1,4 +1,4 @@
-#include "scene.h"
+#include "driver/scene.h"
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>

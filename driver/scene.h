@@ -2,13 +2,13 @@
 // plain data for the stage libraries (which never see a ParameterHandler).
 #pragma once
 
-#include "bevel_gear.h"
-#include "contact_cells.h"
-#include "half_space.h"
-#include "integrators.h"
-#include "involute_gear.h"
-#include "paper_mode.h"
-#include "unloaded_tca.h"
+#include "dynamics/integrators.h"
+#include "geometry/bevel_gear.h"
+#include "geometry/involute_gear.h"
+#include "stiffness/contact_cells.h"
+#include "stiffness/half_space.h"
+#include "tca/paper_mode.h"
+#include "tca/unloaded_tca.h"
 
 #include <map>
 #include <string>

@@ -6,10 +6,10 @@
 // excitation's period is the TCA's mesh cycles, interpolated by makima). The sweeps - per
 // excitation and direction, optionally in blocks of speeds - run on threads, and spread over
 // the MPI processes under mpirun; every process gathers all results.
-#include "modes.h"
-#include "pair_members.h"
-#include "stages.h"
-#include "sweep.h"
+#include "driver/pair_members.h"
+#include "driver/stages.h"
+#include "dynamics/modes.h"
+#include "dynamics/sweep.h"
 
 #include <boost/math/interpolators/cardinal_trigonometric.hpp>
 #include <deal.II/base/mpi.h>

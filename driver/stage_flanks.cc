@@ -1,7 +1,7 @@
 // Stage "flanks": the nominal geometry of every member, its transverse outline, flank grids of
 // every tooth and side (with modifications and deviations), and mass properties.
-#include "bevel_synthesis.h"
-#include "stages.h"
+#include "driver/stages.h"
+#include "tca/bevel_synthesis.h"
 
 #include <cmath>
 #include <ostream>
@@ -195,8 +195,8 @@ write_bevel_pair(const PairScene &pair, const H5Group &pg, std::ostream &log, Pr
       mg.attribute("drive_flank", flanks.concave_drives() ? "concave" : "convex");
       for (FlankSide side : {FlankSide::drive, FlankSide::coast})
         {
-          const bool outside = (side == FlankSide::drive) == flanks.concave_drives();
-          const H5Group sg   = mg.group(to_string(side));
+          const bool    outside = (side == FlankSide::drive) == flanks.concave_drives();
+          const H5Group sg      = mg.group(to_string(side));
           write_machine(outside ? cut.outside_blade : cut.inside_blade,
                         outside ? cut.outside_machine : cut.inside_machine, sg.group("machine"));
           const GeneratedFlank &f = flanks.tooth_flank(side);
@@ -206,13 +206,12 @@ write_bevel_pair(const PairScene &pair, const H5Group &pg, std::ostream &log, Pr
                    "1 if the envelope's edge of regression limits the flank (undercut)");
           if (f.undercut_found())
             log << "  warning: " << pair.name << " " << name << " " << to_string(side)
-                << " flank is undercut; the working flank starts at h = "
-                << f.domain().u_min * 1e3 << " mm\n";
+                << " flank is undercut; the working flank starts at h = " << f.domain().u_min * 1e3
+                << " mm\n";
         }
       write_grids(flanks, pair.grid_profile_points, pair.grid_face_points, mg, "h", "m",
-                  "profile coordinate of the grid rows: height above the pitch cone",
-                  "face", "face coordinate of the grid columns: cone distance minus A_m",
-                  progress);
+                  "profile coordinate of the grid rows: height above the pitch cone", "face",
+                  "face coordinate of the grid columns: cone distance minus A_m", progress);
     }
 }
 } // namespace
@@ -233,8 +232,8 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
           continue;
         }
       pg.attribute("type", "involute");
-      const auto    pinion = InvoluteGear::create(pair.pinion);
-      const auto    gear   = InvoluteGear::create(pair.gear);
+      const auto pinion = InvoluteGear::create(pair.pinion);
+      const auto gear   = InvoluteGear::create(pair.gear);
       write_member(*pinion, pair.grid_profile_points, pair.grid_face_points, pg.group("pinion"),
                    log, progress);
       write_member(*gear, pair.grid_profile_points, pair.grid_face_points, pg.group("gear"), log,

@@ -1,9 +1,9 @@
 // Stage "measured": measured flank point sets per pair and member — sampled from the
 // theoretical flanks (virtual CMM), synthesised with realistic errors, or read from CMM or
 // topography files — with their deviation from the theoretical flank where it is known.
-#include "measured_flank.h"
-#include "pair_members.h"
-#include "stages.h"
+#include "driver/pair_members.h"
+#include "driver/stages.h"
+#include "geometry/measured_flank.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,9 +1,9 @@
 // Stage "ste": unloaded tooth contact analysis of every pair — static transmission error e_0,
 // its mesh-order harmonics, and per position and tooth pair the contact point, normals, moment
 // arms and separations (the tables the FE stiffness and the dynamics read).
-#include "harmonics.h"
-#include "pair_members.h"
-#include "stages.h"
+#include "base/spectrum.h"
+#include "driver/pair_members.h"
+#include "driver/stages.h"
 
 #include <Eigen/Geometry>
 
@@ -43,10 +43,10 @@ write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members,
   std::size_t slots = 0;
   for (const TcaPosition &p : r.positions)
     slots = std::max(slots, p.pairs.size());
-  std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg, kmin, kmax, major,
-      axes, ellipse_gear;
-  std::vector<int>    touching, leading, ptooth, gtooth, edge;
-  double              te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
+  std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg, kmin, kmax, major, axes,
+      ellipse_gear;
+  std::vector<int> touching, leading, ptooth, gtooth, edge;
+  double           te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
   for (const TcaPosition &p : r.positions)
     {
       phi.push_back(p.pinion_angle);
@@ -72,9 +72,9 @@ write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members,
           axes.insert(axes.end(), {a, b});
           // contact point and ellipse semi-axis vectors in the gear's own frame (contact
           // pattern on the gear flank)
-          const Eigen::Matrix3d turn = Eigen::AngleAxisd(p.gear_angle, Vec3::UnitZ()).matrix();
-          const Vec3            minor = c.normal_pinion.cross(c.major_direction);
-          const auto to_gear = [&](const Vec3 &v) {
+          const Eigen::Matrix3d turn    = Eigen::AngleAxisd(p.gear_angle, Vec3::UnitZ()).matrix();
+          const Vec3            minor   = c.normal_pinion.cross(c.major_direction);
+          const auto            to_gear = [&](const Vec3 &v) {
             return Vec3(turn * members.assembly.global_to_gear_unrotated_vector(v));
           };
           const Vec3 Xg = used ? Vec3(turn * members.assembly.global_to_gear_unrotated(c.position))
@@ -181,10 +181,11 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
 
   for (const PairScene &pair : scene.pairs)
     {
-      const TcaScene   &t       = scene.tca.at(pair.name);
-      const PairMembers members = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
-      const int         z1 = members.pinion->teeth();
-      const H5Group     g  = out.group(pair.name);
+      const TcaScene   &t = scene.tca.at(pair.name);
+      const PairMembers members =
+          theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
+      const int     z1 = members.pinion->teeth();
+      const H5Group g  = out.group(pair.name);
       g.attribute("method", "classical TCA on the theoretical flanks");
       const auto [pp, pairs] = write_tables(
           analyse(UnloadedTca(members.pinion, members.gear, members.assembly, t.options), t, z1,
@@ -210,12 +211,12 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       TcaResult     r;
       if (t.paper_mode)
         {
-          PaperModeOptions po = t.paper;
-          po.on_position      = [&] { progress.step(); };
+          PaperModeOptions po         = t.paper;
+          po.on_position              = [&] { progress.step(); };
           const PaperModeResult paper = paper_mode_ste(*mp, *mg, members.assembly, po);
           r                           = paper.tca;
           gm.attribute("method", "paper mode (the seed's point-cloud method) on the measured "
-                                    "flanks");
+                                 "flanks");
           gm.write("paper_tolerance", paper.tolerance, "m",
                    "contact tolerance E = sqrt((a/2)^2 + (b/2)^2 + (r theta)^2)");
           gm.write("paper_points", double(paper.points), "1", "points in all clouds");
@@ -226,7 +227,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
         {
           r = analyse(UnloadedTca(mp, mg, members.assembly, t.options), t, z1, progress);
           gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
-                                    "interpolated from the measured points");
+                                 "interpolated from the measured points");
         }
       const auto [mpp, mpairs] = write_tables(r, t, members, *mg, z1, gm);
       log << "  " << pair.name << " measured (" << (t.paper_mode ? "paper mode" : "fast")

@@ -2,13 +2,13 @@
 // (gmsh tooth segments, deal.II + PETSc; computed once, reused for every torque and for the
 // measured flanks), then the loaded contact over the mesh cycle for every torque: loaded TE
 // e_L, mesh stiffness K_m, load per tooth pair and the contact pressure on the cells.
-#include "iso6336.h"
-#include "loaded_contact.h"
-#include "measured_flank.h"
-#include "member_compliance.h"
-#include "pair_members.h"
-#include "reference_contact.h"
-#include "stages.h"
+#include "driver/pair_members.h"
+#include "driver/stages.h"
+#include "geometry/measured_flank.h"
+#include "stiffness/iso6336.h"
+#include "stiffness/loaded_contact.h"
+#include "stiffness/member_compliance.h"
+#include "stiffness/reference_contact.h"
 
 #include <algorithm>
 #include <cmath>

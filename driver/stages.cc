@@ -1,4 +1,4 @@
-#include "stages.h"
+#include "driver/stages.h"
 
 #include <ostream>
 

@@ -4,9 +4,9 @@
 // results.
 #pragma once
 
-#include "h5_file.h"
-#include "measured_flank.h"
-#include "scene.h"
+#include "driver/h5_file.h"
+#include "driver/scene.h"
+#include "geometry/measured_flank.h"
 
 #include <chrono>
 #include <functional>

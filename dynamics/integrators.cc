@@ -1,4 +1,4 @@
-#include "integrators.h"
+#include "dynamics/integrators.h"
 
 #include <Eigen/Dense>
 

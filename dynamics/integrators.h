@@ -9,7 +9,7 @@
 // static mesh deflection).
 #pragma once
 
-#include "pair_model.h"
+#include "dynamics/pair_model.h"
 
 #include <string>
 #include <vector>

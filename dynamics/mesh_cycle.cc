@@ -1,4 +1,4 @@
-#include "mesh_cycle.h"
+#include "dynamics/mesh_cycle.h"
 
 #include <boost/math/interpolators/cardinal_trigonometric.hpp>
 #include <boost/math/interpolators/makima.hpp>

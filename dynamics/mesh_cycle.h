@@ -9,7 +9,7 @@
 // noise, continuous slope) for measured ones.
 #pragma once
 
-#include "types.h"
+#include "base/types.h"
 
 #include <memory>
 #include <vector>

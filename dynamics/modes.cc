@@ -1,4 +1,4 @@
-#include "modes.h"
+#include "dynamics/modes.h"
 
 #include <Eigen/Eigenvalues>
 

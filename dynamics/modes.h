@@ -10,7 +10,7 @@
 // until contact is lost).
 #pragma once
 
-#include "integrators.h"
+#include "dynamics/integrators.h"
 
 #include <complex>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "pair_model.h"
+#include "dynamics/pair_model.h"
 
 #include <Eigen/Dense>
 

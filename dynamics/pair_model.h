@@ -16,7 +16,7 @@
 // phase = z_p Omega t / (2 pi).
 #pragma once
 
-#include "mesh_cycle.h"
+#include "dynamics/mesh_cycle.h"
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
-#include "sweep.h"
+#include "dynamics/sweep.h"
 
-#include "harmonics.h"
+#include "base/spectrum.h"
 
 #include <algorithm>
 #include <atomic>

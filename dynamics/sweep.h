@@ -13,7 +13,7 @@
 // regain the continuation (for threads here, or MPI processes in the driver).
 #pragma once
 
-#include "integrators.h"
+#include "dynamics/integrators.h"
 
 #include <vector>
 

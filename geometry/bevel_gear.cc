@@ -1,4 +1,4 @@
-#include "bevel_gear.h"
+#include "geometry/bevel_gear.h"
 
 #include <Eigen/Geometry>
 

@@ -3,8 +3,8 @@
 // milling (face_milling.h) as MemberFlanks for contact analysis.
 #pragma once
 
-#include "face_milling.h"
-#include "member_flanks.h"
+#include "geometry/face_milling.h"
+#include "geometry/member_flanks.h"
 
 #include <string>
 

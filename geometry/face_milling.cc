@@ -1,16 +1,16 @@
-#include "face_milling.h"
+#include "geometry/face_milling.h"
 
 #include <Eigen/LU>
-#include <unsupported/Eigen/AutoDiff>
 
 #include <cmath>
 #include <sstream>
+#include <unsupported/Eigen/AutoDiff>
 
 namespace gearkit
 {
 namespace
 {
-using AD   = Eigen::AutoDiffScalar<Eigen::Vector3d>;
+using AD                    = Eigen::AutoDiffScalar<Eigen::Vector3d>;
 template <class T> using V3 = Eigen::Matrix<T, 3, 1>;
 
 /// Everything the generation chain gives at one (s, theta, psi_c).
@@ -36,9 +36,9 @@ rotate_z(const V3<T> &x, const T &c, const T &s)
 Eigen::Matrix3d
 cutter_frame(const MachineSettings &m)
 {
-  const double    d = m.cradle_angle + m.swivel;
-  const Vec3      k(std::sin(m.tilt) * std::cos(d), std::sin(m.tilt) * std::sin(d), std::cos(m.tilt));
-  const Vec3      x = (Vec3::UnitX() - Vec3::UnitX().dot(k) * k).normalized();
+  const double d = m.cradle_angle + m.swivel;
+  const Vec3   k(std::sin(m.tilt) * std::cos(d), std::sin(m.tilt) * std::sin(d), std::cos(m.tilt));
+  const Vec3   x = (Vec3::UnitX() - Vec3::UnitX().dot(k) * k).normalized();
   Eigen::Matrix3d R;
   R.col(0) = x, R.col(1) = k.cross(x), R.col(2) = k;
   return R;
@@ -57,8 +57,8 @@ blade_meridian(const Blade &blade, double s_round, const T &s, T &rho, T &z, T &
   using std::sin;
   using std::sqrt;
   const double sa = std::sin(blade.angle), ca = std::cos(blade.angle);
-  const double sigma = blade.slope;
-  auto profile = [&](const auto &s_, auto &rho_, auto &z_, auto &nr_, auto &nz_) {
+  const double sigma   = blade.slope;
+  auto         profile = [&](const auto &s_, auto &rho_, auto &z_, auto &nr_, auto &nz_) {
     const auto ds     = s_ - blade.parabola_apex;
     const auto bulge  = blade.curvature * ds * ds;
     const auto dbulge = 2 * blade.curvature * ds;
@@ -73,12 +73,12 @@ blade_meridian(const Blade &blade, double s_round, const T &s, T &rho, T &z, T &
     return profile(s, rho, z, n_rho, n_z);
   double rj, zj, nrj, nzj;
   profile(s_round, rj, zj, nrj, nzj);
-  const double r  = blade.edge_radius;
-  const double aj = std::atan2(nzj, sigma * nrj); // n_j = (sigma cos a_j, sin a_j)
+  const double r   = blade.edge_radius;
+  const double aj  = std::atan2(nzj, sigma * nrj); // n_j = (sigma cos a_j, sin a_j)
   const T      phi = aj + (s - s_round) / r;
   n_rho = sigma * cos(phi), n_z = sin(phi);
-  rho   = rj - r * nrj + r * n_rho;
-  z     = zj - r * nzj + r * n_z;
+  rho = rj - r * nrj + r * n_rho;
+  z   = zj - r * nzj + r * n_z;
 }
 
 // The generation chain, shared by the value and derivative evaluations (T = double or AD).
@@ -96,8 +96,8 @@ generation_chain(const Blade &blade, double s_round, const MachineSettings &m,
 
   const T               ct = cos(theta), st = sin(theta);
   const Eigen::Matrix3d cutter = cutter_frame(m);
-  const V3<T> r_c = Vec3(m.radial_setting * std::cos(m.cradle_angle),
-                         m.radial_setting * std::sin(m.cradle_angle), 0)
+  const V3<T>           r_c    = Vec3(m.radial_setting * std::cos(m.cradle_angle),
+                                      m.radial_setting * std::sin(m.cradle_angle), 0)
                         .cast<T>() +
                     cutter.cast<T>() * V3<T>(rho * ct, rho * st, z);
   const V3<T> n_c = cutter.cast<T>() * V3<T>(n_rho * ct, n_rho * st, n_z);
@@ -115,15 +115,15 @@ generation_chain(const Blade &blade, double s_round, const MachineSettings &m,
   if (m.generated)
     {
       const double C = m.modified_roll_2c / 2, D = m.modified_roll_6d / 6;
-      psi_1           = m.ratio_of_roll * (psi - C * psi * psi - D * psi * psi * psi);
-      const T dpsi_1  = m.ratio_of_roll * (1 - 2 * C * psi - 3 * D * psi * psi);
+      psi_1              = m.ratio_of_roll * (psi - C * psi * psi - D * psi * psi * psi);
+      const T     dpsi_1 = m.ratio_of_roll * (1 - 2 * C * psi - 3 * D * psi * psi);
       const V3<T> v_1(-dpsi_1 * r_b.y(), dpsi_1 * r_b.x(), T(0)); // blank material velocity
-      out.meshing     = n_b.dot(v_b - v_1);
+      out.meshing = n_b.dot(v_b - v_1);
     }
   else
     out.meshing = psi * mean_cone_distance;
-  out.axial  = r_b.z();
-  out.radius = sqrt(r_b.x() * r_b.x() + r_b.y() * r_b.y());
+  out.axial     = r_b.z();
+  out.radius    = sqrt(r_b.x() * r_b.x() + r_b.y() * r_b.y());
   const T angle = rotation - psi_1;
   const T ca1 = cos(angle), sa1 = sin(angle);
   out.position = rotate_z<T>(r_b, ca1, sa1);
@@ -158,7 +158,7 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
         blade.angle < pi / 2))
     throw InputError("generated bevel flank: a blade needs a positive radius, slope +1 or -1 and "
                      "an angle in (-90, 90) deg");
-  const double g = machine.root_angle;
+  const double g          = machine.root_angle;
   machine_to_blank.row(0) = Vec3(std::sin(g), 0, -std::cos(g));
   machine_to_blank.row(1) = Vec3(0, 1, 0);
   machine_to_blank.row(2) = Vec3(std::cos(g), 0, std::sin(g));
@@ -176,12 +176,12 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
   // A_m sin gamma, axial A_m cos gamma), in the machine at cradle angle 0: the blade point
   // nearest to it.
   const double Am = blank.mean_cone_distance;
-  const Vec3   P  = apex + machine_to_blank.transpose() *
-                          Vec3(Am * std::sin(blank.pitch_angle), 0, Am * std::cos(blank.pitch_angle));
+  const Vec3   P  = apex + machine_to_blank.transpose() * Vec3(Am * std::sin(blank.pitch_angle), 0,
+                                                               Am * std::cos(blank.pitch_angle));
   const Vec3   Pc = cutter_frame(machine).transpose() *
                   (P - Vec3(machine.radial_setting * std::cos(machine.cradle_angle),
                             machine.radial_setting * std::sin(machine.cradle_angle), 0));
-  const double ca = std::cos(blade.angle), sa = std::sin(blade.angle);
+  const double    ca = std::cos(blade.angle), sa = std::sin(blade.angle);
   Eigen::Vector3d q0(ca * Pc.z() - blade.slope * sa * (Pc.head<2>().norm() - blade.pitch_radius),
                      std::atan2(Pc.y(), Pc.x()), 0);
   int             it;
@@ -200,7 +200,7 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
       Eigen::Vector3d q = q0;
       if (!follow(0, 0, q0, 0, v, q))
         solve(0, v, q, it); // throws: the pitch line itself is not generated
-      double good = 0, bad = NAN;
+      double          good = 0, bad = NAN;
       Eigen::Vector3d qg = q;
       for (int k = 1; k <= 32 && std::isnan(bad); ++k)
         {
@@ -238,7 +238,7 @@ GeneratedFlank::GeneratedFlank(const BevelBlank &b, const Blade &bl, const Machi
     return Vec2(d.u_min + (d.u_max - d.u_min) * i / (guess_nu - 1),
                 d.v_min + (d.v_max - d.v_min) * j / (guess_nv - 1));
   };
-  const int jm = guess_nv / 2;
+  const int jm    = guess_nv / 2;
   auto      reach = [&](const Guess &from, const Vec2 &p) {
     Eigen::Vector3d q = from.q;
     if (!follow(from.u, from.v, from.q, p.x(), p.y(), q))
@@ -301,7 +301,7 @@ GeneratedFlank::newton(double u, double v, Eigen::Vector3d &q, int &iterations) 
           variable(q[0], 0), variable(q[1], 1), variable(q[2], 2));
       const Eigen::Vector3d F(c.meshing.value(), c.axial.value() - target.x(),
                               c.radius.value() - target.y());
-      Eigen::Matrix3d J;
+      Eigen::Matrix3d       J;
       J.row(0) = c.meshing.derivatives().transpose();
       J.row(1) = c.axial.derivatives().transpose();
       J.row(2) = c.radius.derivatives().transpose();
@@ -324,9 +324,9 @@ GeneratedFlank::Generation
 GeneratedFlank::generation(double u, double v) const
 {
   // nearest solved guess
-  std::size_t best = 0;
-  double      d2   = HUGE_VAL;
-  const FlankDomain d = domain();
+  std::size_t       best = 0;
+  double            d2   = HUGE_VAL;
+  const FlankDomain d    = domain();
   for (std::size_t k = 0; k < guesses.size(); ++k)
     {
       const double du = (guesses[k].u - u) / (d.u_max - d.u_min),
@@ -334,12 +334,13 @@ GeneratedFlank::generation(double u, double v) const
       if (du * du + dv * dv < d2)
         d2 = du * du + dv * dv, best = k;
     }
-  Generation g;
+  Generation            g;
   const Eigen::Vector3d q = solve(u, v, guesses[best].q, g.iterations);
   g.s = q[0], g.theta = q[1], g.psi_c = q[2];
-  g.meshing_residual = generation_chain<double>(blade, s_round, machine, machine_to_blank, apex, rotation,
-                                                blank.mean_cone_distance, q[0], q[1], q[2])
-                           .meshing;
+  g.meshing_residual =
+      generation_chain<double>(blade, s_round, machine, machine_to_blank, apex, rotation,
+                               blank.mean_cone_distance, q[0], q[1], q[2])
+          .meshing;
   return g;
 }
 
@@ -347,10 +348,9 @@ FlankPoint
 GeneratedFlank::evaluate(double u, double v) const
 {
   const Generation      g = generation(u, v);
-  const ChainValues<AD> c =
-      generation_chain<AD>(blade, s_round, machine, machine_to_blank, apex, rotation,
-                           blank.mean_cone_distance, variable(g.s, 0), variable(g.theta, 1),
-                           variable(g.psi_c, 2));
+  const ChainValues<AD> c = generation_chain<AD>(
+      blade, s_round, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance,
+      variable(g.s, 0), variable(g.theta, 1), variable(g.psi_c, 2));
   Eigen::Matrix3d J, dr;
   J.row(0) = c.meshing.derivatives().transpose();
   J.row(1) = c.axial.derivatives().transpose();
@@ -362,7 +362,7 @@ GeneratedFlank::evaluate(double u, double v) const
   const double          sg = std::sin(blank.pitch_angle), cg = std::cos(blank.pitch_angle);
   const Eigen::Vector3d dq_du = lu.solve(Eigen::Vector3d(0, -sg, cg));
   const Eigen::Vector3d dq_dv = lu.solve(Eigen::Vector3d(0, cg, sg));
-  FlankPoint p;
+  FlankPoint            p;
   for (int k = 0; k < 3; ++k)
     {
       p.position[k] = c.position[k].value();
@@ -376,8 +376,9 @@ GeneratedFlank::evaluate(double u, double v) const
 FlankPoint
 GeneratedFlank::blade_point(double s, double theta, double psi_c, double *meshing) const
 {
-  const ChainValues<double> c = generation_chain<double>(
-      blade, s_round, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance, s, theta, psi_c);
+  const ChainValues<double> c =
+      generation_chain<double>(blade, s_round, machine, machine_to_blank, apex, rotation,
+                               blank.mean_cone_distance, s, theta, psi_c);
   if (meshing)
     *meshing = c.meshing;
   FlankPoint p;
@@ -396,15 +397,15 @@ GeneratedFlank::fillet_point(double t, double v) const
     throw InputError("generated bevel flank: fillet point outside t in [0, 1], |A - A_m| <= F/2");
   // Start at the working flank's lower edge and march along the blade: (theta, psi_c) solve the
   // equation of meshing and the cone distance A = A_m + v at the blade parameter s(t).
-  const Generation g0    = generation(domain().u_min, v);
+  const Generation g0 = generation(domain().u_min, v);
   double rj, zj, nrj, nzj; // the rounding turns the normal from the blade's at s_round to the axis
   blade_meridian<double>(blade, s_round, s_round, rj, zj, nrj, nzj);
   const double s_end = s_round + blade.edge_radius * (pi / 2 - std::atan2(nzj, blade.slope * nrj));
-  const double     cg = std::cos(blank.pitch_angle), sg = std::sin(blank.pitch_angle);
-  const double     A  = blank.mean_cone_distance + v;
-  Eigen::Vector2d  q(g0.theta, g0.psi_c);
-  const int        steps = std::max(1, int(std::ceil(t * 16)));
-  FilletPoint      out;
+  const double cg = std::cos(blank.pitch_angle), sg = std::sin(blank.pitch_angle);
+  const double A = blank.mean_cone_distance + v;
+  Eigen::Vector2d q(g0.theta, g0.psi_c);
+  const int       steps = std::max(1, int(std::ceil(t * 16)));
+  FilletPoint     out;
   for (int k = 1; k <= steps; ++k)
     {
       out.s          = g0.s + (s_end - g0.s) * t * k / steps;
@@ -412,8 +413,8 @@ GeneratedFlank::fillet_point(double t, double v) const
       for (int it = 0; it < 30 && !converged; ++it)
         {
           const ChainValues<AD> c = generation_chain<AD>(
-              blade, s_round, machine, machine_to_blank, apex, rotation,
-              blank.mean_cone_distance, AD(out.s, Eigen::Vector3d::Zero()), variable(q[0], 1), variable(q[1], 2));
+              blade, s_round, machine, machine_to_blank, apex, rotation, blank.mean_cone_distance,
+              AD(out.s, Eigen::Vector3d::Zero()), variable(q[0], 1), variable(q[1], 2));
           const AD        a = c.axial * cg + c.radius * sg;
           Eigen::Vector2d F(c.meshing.value(), a.value() - A);
           Eigen::Matrix2d J;

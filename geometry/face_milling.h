@@ -30,7 +30,7 @@
 // h from the root cone to the face cone, A from the toe to the heel.
 #pragma once
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <Eigen/Geometry>
 
@@ -53,7 +53,7 @@ struct Blade
   /// Parabolic blade: the blade is displaced toward the work by curvature (s - s0)^2 along its
   /// normal (removing work material toward tip and root), s the distance along the blade from the
   /// pitch plane toward the tip [1/m]; 0: straight.
-  double curvature = 0;
+  double curvature     = 0;
   double parabola_apex = 0; ///< s0 [m]
   /// Edge radius of the blade tip [m]: the rounded tip cuts the root fillet; the working flank
   /// ends where the blade's straight (or parabolic) part meets the rounding.
@@ -63,32 +63,32 @@ struct Blade
 /// Settings of the generating machine for one flank side.
 struct MachineSettings
 {
-  double radial_setting = 0;         ///< S_r [m]
-  double cradle_angle   = 0;         ///< q [rad]; its sign sets the hand
-  double root_angle     = 0;         ///< gamma_m, machine root angle [rad]
+  double radial_setting = 0; ///< S_r [m]
+  double cradle_angle   = 0; ///< q [rad]; its sign sets the hand
+  double root_angle     = 0; ///< gamma_m, machine root angle [rad]
   /// Cutter tilt i: the cutter axis leans by i from the cradle axis, toward the direction at
   /// angle q + j (swivel j) in the cradle plane [rad]; 0: axis parallel to the cradle axis.
-  double tilt   = 0;
-  double swivel = 0;
-  double sliding_base   = 0;         ///< Delta X_B [m]
-  double machine_centre_to_back = 0; ///< Delta X_D [m]
-  double blank_offset   = 0;         ///< E_m [m]
-  double ratio_of_roll  = 1;         ///< R_a = d psi_1 / d psi_c at psi_c = 0
-  double modified_roll_2c = 0;       ///< 2C: psi_1 = R_a (psi_c - C psi_c^2 - D psi_c^3)
-  double modified_roll_6d = 0;       ///< 6D
-  bool   generated = true;           ///< false: formate (no roll; the flank is the blade cone)
+  double tilt                   = 0;
+  double swivel                 = 0;
+  double sliding_base           = 0;    ///< Delta X_B [m]
+  double machine_centre_to_back = 0;    ///< Delta X_D [m]
+  double blank_offset           = 0;    ///< E_m [m]
+  double ratio_of_roll          = 1;    ///< R_a = d psi_1 / d psi_c at psi_c = 0
+  double modified_roll_2c       = 0;    ///< 2C: psi_1 = R_a (psi_c - C psi_c^2 - D psi_c^3)
+  double modified_roll_6d       = 0;    ///< 6D
+  bool   generated              = true; ///< false: formate (no roll; the flank is the blade cone)
 };
 
 /// The blank of one member, in its own frame (apex at the origin, axis +z). Uniform depth: root
 /// and face cones parallel to the pitch cone.
 struct BevelBlank
 {
-  int    teeth               = 0;
-  double pitch_angle         = 0; ///< gamma [rad]
-  double mean_cone_distance  = 0; ///< A_m [m]
-  double face_width          = 0; ///< F [m]: toe at A_m - F/2, heel at A_m + F/2
-  double addendum            = 0; ///< h_a at the mean point [m]
-  double dedendum            = 0; ///< h_f [m]
+  int    teeth              = 0;
+  double pitch_angle        = 0; ///< gamma [rad]
+  double mean_cone_distance = 0; ///< A_m [m]
+  double face_width         = 0; ///< F [m]: toe at A_m - F/2, heel at A_m + F/2
+  double addendum           = 0; ///< h_a at the mean point [m]
+  double dedendum           = 0; ///< h_f [m]
 
   /// Axial position and radius of the point at cone distance A and height h above the pitch cone.
   Vec2
@@ -117,8 +117,9 @@ public:
   /// The generating motion that produces the flank point at (u, v).
   struct Generation
   {
-    double s = 0, theta = 0, psi_c = 0; ///< along the blade from the pitch plane, cutter angle, cradle
-    double meshing_residual = 0;        ///< n . v at the solution [m per rad of cradle]
+    double s = 0, theta = 0,
+           psi_c            = 0; ///< along the blade from the pitch plane, cutter angle, cradle
+    double meshing_residual = 0; ///< n . v at the solution [m per rad of cradle]
     int    iterations       = 0;
   };
   Generation
@@ -135,7 +136,7 @@ public:
   /// flank. Needs an edge radius > 0.
   struct FilletPoint
   {
-    Vec3   position, normal;      ///< flank frame; normal out of the material
+    Vec3   position, normal;     ///< flank frame; normal out of the material
     double height           = 0; ///< h of the point's axial-plane projection
     double s                = 0; ///< blade parameter (arc length beyond the rounding's start)
     double meshing_residual = 0;
@@ -162,7 +163,7 @@ public:
 private:
   struct Guess
   {
-    double u, v;
+    double          u, v;
     Eigen::Vector3d q;
   };
   /// Newton on (meshing, axial position, radius) for (s, theta, psi_c) from q; false if it fails.
@@ -177,16 +178,16 @@ private:
   follow(double u0, double v0, const Eigen::Vector3d &q0, double u, double v, Eigen::Vector3d &q,
          int depth = 0) const;
 
-  BevelBlank           blank;
-  Blade                blade;
-  MachineSettings      machine;
-  double               rotation;
-  Eigen::Matrix3d      machine_to_blank;  ///< rows x_1, y_1, z_1 in S_m
-  Vec3                 apex;              ///< O_1 in S_m
-  double               form_height = 0;   ///< lowest h of the working flank (domain u_min)
-  double               s_round     = 0;   ///< blade parameter where the tip rounding starts
-  bool                 undercut    = false;
-  std::vector<Guess>   guesses;           ///< solved grid for first guesses
-  int                  guess_nu = 0, guess_nv = 0;
+  BevelBlank         blank;
+  Blade              blade;
+  MachineSettings    machine;
+  double             rotation;
+  Eigen::Matrix3d    machine_to_blank; ///< rows x_1, y_1, z_1 in S_m
+  Vec3               apex;             ///< O_1 in S_m
+  double             form_height = 0;  ///< lowest h of the working flank (domain u_min)
+  double             s_round     = 0;  ///< blade parameter where the tip rounding starts
+  bool               undercut    = false;
+  std::vector<Guess> guesses; ///< solved grid for first guesses
+  int                guess_nu = 0, guess_nv = 0;
 };
 } // namespace gearkit

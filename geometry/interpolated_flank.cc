@@ -1,4 +1,4 @@
-#include "interpolated_flank.h"
+#include "geometry/interpolated_flank.h"
 
 #include <Eigen/Geometry>
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>

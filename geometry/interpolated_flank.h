@@ -9,7 +9,7 @@
 // patch of its four corners, which is that same piecewise-bicubic C1 spline, evaluated in O(1).
 #pragma once
 
-#include "measured_flank.h"
+#include "geometry/measured_flank.h"
 
 #include <Eigen/Core>
 

@@ -1,4 +1,4 @@
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
 
 #include <Eigen/Geometry>
 

@@ -6,9 +6,9 @@
 // the section z = 0; tooth k nominally at polar angle 2 pi k / z. All quantities SI (m, rad, kg).
 #pragma once
 
-#include "mass_properties.h"
-#include "modifications.h"
-#include "types.h"
+#include "geometry/mass_properties.h"
+#include "geometry/modifications.h"
+#include "geometry/types.h"
 
 #include <memory>
 #include <string>

@@ -1,7 +1,7 @@
 // Mass properties of prismatic gear bodies from their transverse outline.
 #pragma once
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "measured_flank.h"
+#include "geometry/measured_flank.h"
 
-#include "member_flanks.h"
+#include "geometry/member_flanks.h"
 
 #include <algorithm>
 #include <array>

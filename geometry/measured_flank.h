@@ -7,7 +7,7 @@
 // centred on +x in the section z = 0, tooth k nominally at the polar angle 2 pi k / z). SI units.
 #pragma once
 
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
 
 #include <cstdint>
 #include <functional>

@@ -1,6 +1,6 @@
-#include "member_flanks.h"
+#include "geometry/member_flanks.h"
 
-#include "point_cloud.h"
+#include "geometry/point_cloud.h"
 
 #include <Eigen/Geometry>
 

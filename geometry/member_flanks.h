@@ -4,8 +4,8 @@
 // sample of each flank in the rotation-invariant (r, z) coordinates).
 #pragma once
 
-#include "interpolated_flank.h"
-#include "involute_gear.h"
+#include "geometry/interpolated_flank.h"
+#include "geometry/involute_gear.h"
 
 #include <map>
 #include <memory>

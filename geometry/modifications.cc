@@ -1,6 +1,6 @@
-#include "modifications.h"
+#include "geometry/modifications.h"
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <cmath>
 #include <sstream>

@@ -1,21 +1,9 @@
-#include "types.h"
+#include "geometry/types.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace gearkit
 {
-void
-require_value(bool ok, const std::string &context, const std::string &parameter, double value,
-              const std::string &allowed)
-{
-  if (ok)
-    return;
-  std::ostringstream msg;
-  msg << context << ": " << parameter << " = " << value << " is not allowed; expected " << allowed;
-  throw InputError(msg.str());
-}
-
 std::pair<Vec3, Vec3>
 Flank::normal_derivatives(double u, double v) const
 {

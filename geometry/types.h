@@ -1,33 +1,12 @@
-// Plain types shared by every stage: vectors, flank identification, the flank surface interface.
+// Flank identification and the flank surface interface (vectors and errors: base/types.h).
 #pragma once
 
-#include <Eigen/Core>
+#include "base/types.h"
 
-#include <stdexcept>
-#include <string>
+#include <utility>
 
 namespace gearkit
 {
-using Vec2 = Eigen::Vector2d;
-using Vec3 = Eigen::Vector3d;
-
-constexpr double pi = 3.14159265358979323846;
-
-/// Thrown for user input that cannot be used (a parameter out of range, a malformed file).
-/// The message names the parameter or file and what is allowed; the driver prints it and exits
-/// non-zero.
-class InputError : public std::runtime_error
-{
-public:
-  using std::runtime_error::runtime_error;
-};
-
-/// Throws InputError("<context>: <parameter> = <value> is not allowed; expected <allowed>")
-/// unless ok: the one form of a bad-parameter message.
-void
-require_value(bool ok, const std::string &context, const std::string &parameter, double value,
-              const std::string &allowed);
-
 /// Which flank of a tooth. Convention (both members of a pair, each in its own frame with its
 /// axis along +z): the drive flank is the one whose outward normal points in the +theta direction.
 /// The driver rotates in +theta and pushes with its drive flank; the driven member rotates in

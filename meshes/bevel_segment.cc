@@ -1,6 +1,6 @@
-#include "bevel_segment.h"
+#include "meshes/bevel_segment.h"
 
-#include "gmsh_session.h"
+#include "meshes/gmsh_session.h"
 
 #include <gmsh.h>
 

@@ -21,8 +21,8 @@
 // by Green's theorem along finely sampled exact boundaries, Gauss-Legendre over A.
 #pragma once
 
-#include "bevel_gear.h"
-#include "tooth_segment.h"
+#include "geometry/bevel_gear.h"
+#include "meshes/tooth_segment.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
-#include "box.h"
+#include "meshes/box.h"
 
-#include "gmsh_session.h"
+#include "meshes/gmsh_session.h"
 
 #include <gmsh.h>
 
@@ -31,12 +31,12 @@ write_box_mesh(const Vec3 &size, int nx, int ny, int nz, const std::string &path
     geo::extrude({{2, surface}}, 0, 0, size.z(), out, {nz}, {}, true);
     geo::synchronize();
     // lateral surfaces follow the loop: y = 0, x = Lx, y = Ly, x = 0
-    const std::pair<int, const char *> groups[] = {
-        {out[5].second, "x0"}, {out[3].second, "x1"}, {out[2].second, "y0"},
-        {out[4].second, "y1"}, {surface, "z0"},       {out[0].second, "z1"}};
+    const std::pair<int, const char *> groups[] = {{out[5].second, "x0"}, {out[3].second, "x1"},
+                                                   {out[2].second, "y0"}, {out[4].second, "y1"},
+                                                   {surface, "z0"},       {out[0].second, "z1"}};
     for (int id = 1; id <= 6; ++id)
-      gmsh::model::setPhysicalName(
-          2, gmsh::model::addPhysicalGroup(2, {groups[id - 1].first}, id), groups[id - 1].second);
+      gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {groups[id - 1].first}, id),
+                                   groups[id - 1].second);
     gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {out[1].second}, 1), "body");
     gmsh::model::mesh::generate(3);
     require_hexahedra("box mesh");

@@ -2,7 +2,7 @@
 // Boundary ids: 1 x = 0, 2 x = Lx, 3 y = 0, 4 y = Ly, 5 z = 0, 6 z = Lz; volume 1 "body".
 #pragma once
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <string>
 

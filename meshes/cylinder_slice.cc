@@ -1,7 +1,7 @@
-#include "cylinder_slice.h"
+#include "meshes/cylinder_slice.h"
 
-#include "gmsh_session.h"
-#include "types.h"
+#include "geometry/types.h"
+#include "meshes/gmsh_session.h"
 
 #include <gmsh.h>
 
@@ -15,7 +15,8 @@ CylinderSliceInfo
 write_cylinder_slice_mesh(const CylinderSliceOptions &o, const std::string &path)
 {
   if (!(o.radius > 0 && o.contact_size > 0 && o.far_size >= o.contact_size &&
-        o.grading_distance > 0 && o.fine_distance >= 0 && o.thickness > 0 && o.contact_size < o.radius))
+        o.grading_distance > 0 && o.fine_distance >= 0 && o.thickness > 0 &&
+        o.contact_size < o.radius))
     throw InputError("cylinder slice mesh: needs radius, sizes, grading distance and thickness "
                      "> 0, contact size <= far size and below the radius");
   CylinderSliceInfo info;
@@ -32,7 +33,7 @@ write_cylinder_slice_mesh(const CylinderSliceOptions &o, const std::string &path
     const int diameter = geo::addLine(right, left);
     const int loop     = geo::addCurveLoop(o.upper ? std::vector<int>{a1, a2, diameter}
                                                    : std::vector<int>{-diameter, -a2, -a1});
-    const int surface = geo::addPlaneSurface({loop});
+    const int surface  = geo::addPlaneSurface({loop});
     geo::mesh::setRecombine(2, surface);
     gmsh::vectorpair out;
     geo::extrude({{2, surface}}, 0, 0, o.thickness, out, {1}, {}, true);
@@ -55,10 +56,10 @@ write_cylinder_slice_mesh(const CylinderSliceOptions &o, const std::string &path
     gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1);
     gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);
     // The subdivision splits the single layer too; the slice stays plane strain with rollers.
-    const int top = out[0].second, volume = out[1].second;
+    const int              top = out[0].second, volume = out[1].second;
     const std::vector<int> lateral{out[2].second, out[3].second, out[4].second};
-    const int arc_a = o.upper ? lateral[0] : lateral[2], arc_b = lateral[1];
-    const int cut   = o.upper ? lateral[2] : lateral[0];
+    const int              arc_a = o.upper ? lateral[0] : lateral[2], arc_b = lateral[1];
+    const int              cut = o.upper ? lateral[2] : lateral[0];
     auto group = [](int dim, const std::vector<int> &tags, int id, const char *name) {
       gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, tags, id), name);
     };
@@ -73,9 +74,9 @@ write_cylinder_slice_mesh(const CylinderSliceOptions &o, const std::string &path
   });
   std::ostringstream json;
   json.precision(12);
-  json << "{\n  \"gear\": \"cylinder R = " << o.radius * 1e3 << " mm\",\n  \"analytic_volume\": "
-       << info.analytic_volume << ",\n  \"hexahedra\": " << info.hexahedra
-       << ",\n  \"nodes\": " << info.nodes
+  json << "{\n  \"gear\": \"cylinder R = " << o.radius * 1e3
+       << " mm\",\n  \"analytic_volume\": " << info.analytic_volume
+       << ",\n  \"hexahedra\": " << info.hexahedra << ",\n  \"nodes\": " << info.nodes
        << ",\n  \"physical_surfaces\": {\"contact\": 1, \"cut\": 2, \"front\": 3, \"back\": 4},"
        << "\n  \"physical_volumes\": {\"body\": 1}\n}\n";
   write_text_atomically(path + ".json", json.str());

@@ -20,13 +20,13 @@ constexpr int contact = 1, cut = 2, front = 3, back = 4;
 
 struct CylinderSliceOptions
 {
-  double radius       = 10e-3;  ///< R [m]
-  bool   upper        = true;   ///< body above the contact plane (centre at +R) or below
-  double contact_size = 20e-6;  ///< element size at the contact point [m]
-  double far_size     = 1e-3;   ///< element size far from it [m]
+  double radius           = 10e-3;  ///< R [m]
+  bool   upper            = true;   ///< body above the contact plane (centre at +R) or below
+  double contact_size     = 20e-6;  ///< element size at the contact point [m]
+  double far_size         = 1e-3;   ///< element size far from it [m]
   double fine_distance    = 0.5e-3; ///< the contact size holds within this distance [m]
   double grading_distance = 3e-3;   ///< beyond it the size grows to the far size over this [m]
-  double thickness    = 20e-6;  ///< slice thickness [m] (one element layer)
+  double thickness        = 20e-6;  ///< slice thickness [m] (one element layer)
 };
 
 struct CylinderSliceInfo

@@ -1,6 +1,6 @@
-#include "gmsh_session.h"
+#include "meshes/gmsh_session.h"
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <gmsh.h>
 
@@ -17,10 +17,7 @@ GmshSession::GmshSession()
   gmsh::option::setNumber("General.Verbosity", 1);
 }
 
-GmshSession::~GmshSession()
-{
-  gmsh::finalize();
-}
+GmshSession::~GmshSession() { gmsh::finalize(); }
 
 void
 rethrow_gmsh_error(const std::string &what)

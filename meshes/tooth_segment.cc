@@ -1,7 +1,7 @@
-#include "tooth_segment.h"
+#include "meshes/tooth_segment.h"
 
-#include "gmsh_session.h"
-#include "mass_properties.h"
+#include "geometry/mass_properties.h"
+#include "meshes/gmsh_session.h"
 
 #include <gmsh.h>
 

@@ -14,7 +14,7 @@
 // (for scripts/check_mesh.py).
 #pragma once
 
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
 
 #include <string>
 #include <vector>
@@ -36,21 +36,21 @@ name(int id);
 
 struct SegmentMeshOptions
 {
-  int    teeth         = 3; ///< teeth in the segment (odd, >= 1, < number of teeth)
-  int    central_tooth = 0; ///< member tooth in the middle of the segment
+  int teeth         = 3; ///< teeth in the segment (odd, >= 1, < number of teeth)
+  int central_tooth = 0; ///< member tooth in the middle of the segment
   /// Inner radius of the rim [m]: 0 = the bore if the gear has one, else a shaft seat
   /// 3.5 m_n below the root circle (ISO 6336 rim thickness).
   double rim_inner_radius = 0;
   /// Spiral bevel segments (bevel_segment.h): rim thickness below the root cone [m]; 0 = 3.5 m.
   double rim_thickness = 0;
-  double flank_size       = 0; ///< element size at the flanks and fillets [m]; 0 = m_n / 5
+  double flank_size    = 0; ///< element size at the flanks and fillets [m]; 0 = m_n / 5
   /// Element size at the fillets and the flanks of the side other than `fine_side` [m]; 0 = the
   /// flank size. Only the loaded flanks need the fine elements for the compliance.
-  double    other_size = 0;
-  FlankSide fine_side  = FlankSide::drive;
-  double far_size         = 0; ///< element size far from them [m]; 0 = m_n
-  int    face_layers      = 0; ///< elements over the face width; 0 = b / (2 flank_size)
-  int    curve_points     = 40; ///< spline points per fillet and per involute
+  double    other_size   = 0;
+  FlankSide fine_side    = FlankSide::drive;
+  double    far_size     = 0;  ///< element size far from them [m]; 0 = m_n
+  int       face_layers  = 0;  ///< elements over the face width; 0 = b / (2 flank_size)
+  int       curve_points = 40; ///< spline points per fillet and per involute
   /// Local refinement (spur segments: the contact lines of one mesh position run along z):
   /// element size `refine_size` within `refine_radius` of these transverse-section points,
   /// growing by at most 1/4 of the distance beyond it up to the flank size.
@@ -60,10 +60,10 @@ struct SegmentMeshOptions
 
 struct SegmentMeshInfo
 {
-  std::size_t hexahedra = 0, nodes = 0;
-  double      analytic_volume = 0;        ///< nominal segment volume [m^3]
-  double      rim_inner_radius = 0;       ///< the one used [m]
-  std::vector<int> member_teeth;          ///< member tooth of each segment tooth
+  std::size_t      hexahedra = 0, nodes = 0;
+  double           analytic_volume  = 0; ///< nominal segment volume [m^3]
+  double           rim_inner_radius = 0; ///< the one used [m]
+  std::vector<int> member_teeth;         ///< member tooth of each segment tooth
 };
 
 /// The .json sidecar of a segment mesh (for scripts/check_mesh.py): the member's name, the

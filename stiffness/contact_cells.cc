@@ -1,4 +1,4 @@
-#include "contact_cells.h"
+#include "stiffness/contact_cells.h"
 
 #include <Eigen/Dense>
 

@@ -5,7 +5,7 @@
 // (from the TCA's touch angle at that pinion point) and its moment arm about the pinion axis.
 #pragma once
 
-#include "unloaded_tca.h"
+#include "tca/unloaded_tca.h"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "contact_solver.h"
+#include "stiffness/contact_solver.h"
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <Eigen/Cholesky>
 
@@ -20,7 +20,7 @@ solve_contact(const ContactProblem &p)
     throw InputError("contact solver: the load must be >= 0, the levers > 0 and all data finite");
 
   ContactSolution s;
-  s.force = Eigen::VectorXd::Zero(n);
+  s.force                           = Eigen::VectorXd::Zero(n);
   const Eigen::VectorXd first_touch = p.gap.cwiseQuotient(p.lever);
   Eigen::Index          first;
   s.approach = first_touch.minCoeff(&first);
@@ -28,7 +28,7 @@ solve_contact(const ContactProblem &p)
     return s;
 
   std::vector<char> active(n, 0);
-  active[first] = 1;
+  active[first]      = 1;
   const double scale = std::max(p.gap.cwiseAbs().maxCoeff(), 1e-9);
   for (int it = 0; it < 4 * n + 50; ++it)
     {
@@ -54,7 +54,7 @@ solve_contact(const ContactProblem &p)
       s.force.setZero();
       for (Eigen::Index a = 0; a < m; ++a)
         s.force[A[a]] = FA[a];
-      s.iterations = it;
+      s.iterations             = it;
       const bool one_at_a_time = it > 2 * n; // cycling: change one cell per iteration
 
       // Tensile cells leave.
@@ -70,7 +70,7 @@ solve_contact(const ContactProblem &p)
           continue;
         }
       // Penetrating cells join.
-      const Eigen::VectorXd h = s.approach * p.lever - p.gap - p.compliance * s.force;
+      const Eigen::VectorXd h       = s.approach * p.lever - p.gap - p.compliance * s.force;
       Eigen::Index          deepest = -1;
       for (Eigen::Index j = 0; j < n; ++j)
         if (!active[j] && h[j] > 1e-12 * scale && (deepest < 0 || h[j] > h[deepest]))
@@ -89,8 +89,8 @@ solve_contact(const ContactProblem &p)
           active[j] = 1;
     }
   std::ostringstream msg;
-  msg << "contact solver: the active set did not settle after " << 4 * n + 50
-      << " iterations (" << n << " cells)";
+  msg << "contact solver: the active set did not settle after " << 4 * n + 50 << " iterations ("
+      << n << " cells)";
   throw InputError(msg.str());
 }
 } // namespace gearkit

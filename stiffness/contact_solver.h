@@ -1,8 +1,8 @@
 // Frictionless contact of discretised surfaces under a prescribed load, the small linear
 // complementarity problem the fast (compliance) mode solves at every mesh position:
 //
-//   w = C F,   w_j = lambda_j delta - g_j where F_j > 0,   w_j >= lambda_j delta - g_j where F_j = 0,
-//   F_j >= 0,  sum_j lambda_j F_j = load.
+//   w = C F,   w_j = lambda_j delta - g_j where F_j > 0,   w_j >= lambda_j delta - g_j where F_j =
+//   0, F_j >= 0,  sum_j lambda_j F_j = load.
 //
 // F_j: normal force on cell j [N]; C: compliance (normal approach of both surfaces at j per unit
 // force at i) [m/N], symmetric positive definite; g_j: unloaded normal gap [m]; delta: rigid
@@ -24,11 +24,11 @@ struct ContactProblem
 
 struct ContactSolution
 {
-  Eigen::VectorXd force;              ///< F [N]
-  double          approach    = 0;   ///< delta
-  int             active      = 0;   ///< cells in contact
-  int             iterations  = 0;   ///< active-set changes
-  double          penetration = 0;   ///< largest violation of w >= lambda delta - g [m]
+  Eigen::VectorXd force;           ///< F [N]
+  double          approach    = 0; ///< delta
+  int             active      = 0; ///< cells in contact
+  int             iterations  = 0; ///< active-set changes
+  double          penetration = 0; ///< largest violation of w >= lambda delta - g [m]
 };
 
 /// Active-set solution (Cholesky of the active block, the approach from the load balance);

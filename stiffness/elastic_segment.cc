@@ -1,4 +1,4 @@
-#include "elastic_segment.h"
+#include "stiffness/elastic_segment.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -25,13 +25,12 @@
 #include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <petscksp.h>
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <petscksp.h>
 #include <sstream>
 
 namespace gearkit
@@ -62,20 +61,22 @@ public:
       : DataPostprocessorScalar<3>("von_mises_stress", update_gradients)
       , lambda(lambda)
       , mu(mu)
-  {}
+  {
+  }
   void
   evaluate_vector_field(const DataPostprocessorInputs::Vector<3> &in,
-                        std::vector<Vector<double>> &out) const override
+                        std::vector<Vector<double>>              &out) const override
   {
     for (std::size_t q = 0; q < in.solution_gradients.size(); ++q)
       {
         Tensor<2, 3> grad;
         for (unsigned c = 0; c < 3; ++c)
           grad[c] = in.solution_gradients[q][c];
-        const SymmetricTensor<2, 3> eps   = symmetrize(grad);
-        const SymmetricTensor<2, 3> sigma = lambda * trace(eps) * unit_symmetric_tensor<3>() + 2 * mu * eps;
-        const SymmetricTensor<2, 3> dev   = deviator(sigma);
-        out[q](0) = std::sqrt(1.5 * (dev * dev));
+        const SymmetricTensor<2, 3> eps = symmetrize(grad);
+        const SymmetricTensor<2, 3> sigma =
+            lambda * trace(eps) * unit_symmetric_tensor<3>() + 2 * mu * eps;
+        const SymmetricTensor<2, 3> dev = deviator(sigma);
+        out[q](0)                       = std::sqrt(1.5 * (dev * dev));
       }
   }
 
@@ -86,33 +87,33 @@ private:
 
 struct ElasticSegment::Impl
 {
-  MPI_Comm                                  comm;
-  ElasticSegmentOptions                     options;
-  parallel::distributed::Triangulation<3>   tria;
-  FESystem<3>                               fe;
-  DoFHandler<3>                             dofs;
-  MappingQ1<3>                              mapping;
-  std::unique_ptr<GridTools::Cache<3>>      cache_ptr; ///< cell search (R-tree) for probes
-  IndexSet                                  owned, relevant;
-  AffineConstraints<double>                 constraints;
-  PETScWrappers::MPI::SparseMatrix          K;
-  KSP                                       ksp = nullptr;
-  double                                    factor_seconds = 0;
-  double                                    lambda = 0, mu = 0;
+  MPI_Comm                                comm;
+  ElasticSegmentOptions                   options;
+  parallel::distributed::Triangulation<3> tria;
+  FESystem<3>                             fe;
+  DoFHandler<3>                           dofs;
+  MappingQ1<3>                            mapping;
+  std::unique_ptr<GridTools::Cache<3>>    cache_ptr; ///< cell search (R-tree) for probes
+  IndexSet                                owned, relevant;
+  AffineConstraints<double>               constraints;
+  PETScWrappers::MPI::SparseMatrix        K;
+  KSP                                     ksp            = nullptr;
+  double                                  factor_seconds = 0;
+  double                                  lambda = 0, mu = 0;
 
   /// Boundary quadrature of the faces with a boundary id, cached for fast load assembly.
   struct FaceData
   {
-    int                                   boundary;
-    Point<3>                              centre;
-    double                                diameter;
-    std::vector<types::global_dof_index> dof_indices;
-    std::vector<Point<3>>                 q_points;
-    std::vector<double>                   JxW;
-    std::vector<std::array<double, 3>>    shape; ///< [q * dofs_per_cell + i] -> components
+    int                                          boundary;
+    Point<3>                                     centre;
+    double                                       diameter;
+    std::vector<types::global_dof_index>         dof_indices;
+    std::vector<Point<3>>                        q_points;
+    std::vector<double>                          JxW;
+    std::vector<std::array<double, 3>>           shape; ///< [q * dofs_per_cell + i] -> components
     typename DoFHandler<3>::active_cell_iterator cell;
-    unsigned                              face_no = 0;
-    std::array<Point<3>, 4>               vertices;
+    unsigned                                     face_no = 0;
+    std::array<Point<3>, 4>                      vertices;
   };
   std::vector<FaceData> faces;
   /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
@@ -123,7 +124,8 @@ struct ElasticSegment::Impl
       : comm(communicator)
       , tria(communicator)
       , fe(FE_Q<3>(degree), 3)
-  {}
+  {
+  }
 
   /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
@@ -143,13 +145,14 @@ struct ElasticSegment::Impl
   std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
   load_functionals(const std::vector<PatchLoad> &loads) const;
   Eigen::VectorXd
-  evaluate(const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
-           const PETScWrappers::MPI::Vector &u) const;
+  evaluate(
+      const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
+      const PETScWrappers::MPI::Vector &u) const;
   /// D(j, i): functional j of the displacement under load i alone.
   Eigen::MatrixXd
   responses(const std::vector<PatchLoad> &loads,
             const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
-              &functionals) const;
+                &functionals) const;
 };
 
 ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOptions &o)
@@ -162,12 +165,12 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     throw InputError("elastic segment: the material needs E > 0 and Poisson's ratio in (-1, 0.5)");
   if (!std::ifstream(file).good())
     throw InputError("elastic segment: cannot read the mesh file " + file);
-  impl          = std::make_unique<Impl>(o.degree, o.communicator);
-  Impl &m       = *impl;
-  m.options     = o;
+  impl           = std::make_unique<Impl>(o.degree, o.communicator);
+  Impl &m        = *impl;
+  m.options      = o;
   const double E = o.material.youngs_modulus, nu = o.material.poisson_ratio;
-  m.lambda      = E * nu / ((1 + nu) * (1 - 2 * nu));
-  m.mu          = E / (2 * (1 + nu));
+  m.lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+  m.mu     = E / (2 * (1 + nu));
 
   Triangulation<3> coarse;
   {
@@ -189,9 +192,9 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   {
     // Degenerate or inverted elements: the Jacobian at some corner not positive (relative to
     // the element's mean, so thin elements pass).
-    const FE_Q<3>   q1(1);
+    const FE_Q<3>       q1(1);
     const QTrapezoid<3> corners;
-    FEValues<3>     values(m.mapping, q1, corners, update_JxW_values);
+    FEValues<3>         values(m.mapping, q1, corners, update_JxW_values);
     for (const auto &cell : coarse.active_cell_iterators())
       {
         values.reinit(cell);
@@ -202,8 +205,8 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
           {
             std::ostringstream msg;
             msg << "elastic segment: " << file << " has a degenerate or inverted hexahedron (cell "
-                << cell->index() << " at " << cell->center() * 1e3
-                << " mm: corner Jacobian " << worst / mean * corners.size()
+                << cell->index() << " at " << cell->center() * 1e3 << " mm: corner Jacobian "
+                << worst / mean * corners.size()
                 << " of its mean); allowed: positive Jacobians at every corner";
             throw InputError(msg.str());
           }
@@ -217,11 +220,10 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   for (const auto &face : m.tria.active_face_iterators())
     if (face->at_boundary())
       present.insert(face->boundary_id());
-  present = Utilities::MPI::compute_set_union(present, m.comm);
+  present      = Utilities::MPI::compute_set_union(present, m.comm);
   auto require = [&](int id) {
     if (!present.count(types::boundary_id(id)))
-      throw InputError("elastic segment: boundary id " + std::to_string(id) + " is not in " +
-                       file);
+      throw InputError("elastic segment: boundary id " + std::to_string(id) + " is not in " + file);
   };
   if (o.clamped.empty() && o.rollers.empty())
     throw InputError("elastic segment: the body is not held (no clamped or roller boundary)");
@@ -246,8 +248,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
       ComponentMask mask(3, false);
       mask.set(component, true);
       VectorTools::interpolate_boundary_values(m.mapping, m.dofs, types::boundary_id(id),
-                                               Functions::ZeroFunction<3>(3), m.constraints,
-                                               mask);
+                                               Functions::ZeroFunction<3>(3), m.constraints, mask);
     }
   m.constraints.close();
 
@@ -258,9 +259,9 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
 
   // Assembly: sigma = lambda tr(eps) I + 2 mu eps.
   {
-    const QGauss<3> quadrature(o.degree + 1);
-    FEValues<3>     values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
-    FullMatrix<double>                   local(m.fe.n_dofs_per_cell(), m.fe.n_dofs_per_cell());
+    const QGauss<3>    quadrature(o.degree + 1);
+    FEValues<3>        values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
+    FullMatrix<double> local(m.fe.n_dofs_per_cell(), m.fe.n_dofs_per_cell());
     std::vector<types::global_dof_index> indices(m.fe.n_dofs_per_cell());
     for (const auto &cell : m.dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -273,7 +274,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   m.K.compress(VectorOperation::add);
 
   // Boundary quadrature cache for the loads.
-  const unsigned n = m.fe.n_dofs_per_cell();
+  const unsigned  n = m.fe.n_dofs_per_cell();
   const QGauss<2> face_quadrature(o.degree + 2);
   FEFaceValues<3> face_values(m.mapping, m.fe, face_quadrature,
                               update_values | update_quadrature_points | update_JxW_values);
@@ -361,10 +362,18 @@ ElasticSegment::Impl::set_rigid_body_near_null_space()
         const unsigned     c = component.at(index);
         const Tensor<1, 3> r = x - centre;
         // rotation k: component c of e_k x r
-        const double values[6] = {c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0,
-                                  c == 1 ? -r[2] : c == 2 ? r[1] : 0.0,
-                                  c == 0 ? r[2] : c == 2 ? -r[0] : 0.0,
-                                  c == 0 ? -r[1] : c == 1 ? r[0] : 0.0};
+        const double values[6] = {c == 0 ? 1.0 : 0.0,
+                                  c == 1 ? 1.0 : 0.0,
+                                  c == 2 ? 1.0 : 0.0,
+                                  c == 1   ? -r[2]
+                                  : c == 2 ? r[1]
+                                           : 0.0,
+                                  c == 0   ? r[2]
+                                  : c == 2 ? -r[0]
+                                           : 0.0,
+                                  c == 0   ? -r[1]
+                                  : c == 1 ? r[0]
+                                           : 0.0};
         for (unsigned k = 0; k < 6; ++k)
           petsc_check(VecSetValue(modes[k], PetscInt(index), values[k], INSERT_VALUES),
                       "VecSetValue");
@@ -386,8 +395,7 @@ ElasticSegment::Impl::set_rigid_body_near_null_space()
       petsc_check(VecNormalize(modes[k], nullptr), "VecNormalize");
     }
   MatNullSpace space;
-  petsc_check(MatNullSpaceCreate(comm, PETSC_FALSE, 6, modes.data(), &space),
-              "MatNullSpaceCreate");
+  petsc_check(MatNullSpaceCreate(comm, PETSC_FALSE, 6, modes.data(), &space), "MatNullSpaceCreate");
   petsc_check(MatSetNearNullSpace(K, space), "MatSetNearNullSpace");
   petsc_check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
   for (auto &mode : modes)
@@ -399,9 +407,9 @@ ElasticSegment::Impl::local_matrix(const typename DoFHandler<3>::active_cell_ite
                                    FEValues<3> &values, FullMatrix<double> &local) const
 {
   values.reinit(cell);
-  local = 0;
-  const unsigned                   n = fe.n_dofs_per_cell();
-  const FEValuesExtractors::Vector u(0);
+  local                                = 0;
+  const unsigned                     n = fe.n_dofs_per_cell();
+  const FEValuesExtractors::Vector   u(0);
   std::vector<SymmetricTensor<2, 3>> eps(n);
   for (unsigned q = 0; q < values.n_quadrature_points; ++q)
     {
@@ -447,7 +455,7 @@ ElasticSegment::contains(const std::vector<Vec3> &points) const
   // Candidates from the R-tree of the locally owned cells' bounding boxes, then the inverse
   // mapping (cheaper than a cell search, which hunts widely before it gives up on a point
   // outside the mesh).
-  namespace bgi = boost::geometry::index;
+  namespace bgi              = boost::geometry::index;
   const auto           &tree = impl->cache_ptr->get_locally_owned_cell_bounding_boxes_rtree();
   std::vector<unsigned> inside(points.size(), 0);
   for (std::size_t j = 0; j < points.size(); ++j)
@@ -493,9 +501,9 @@ ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
           !load.force.allFinite())
         throw InputError("elastic segment: a patch load needs a radius (or box half sizes) > 0, "
                          "boundary ids and a finite force");
-      const Point<3> x0 = point(load.point);
-      const double   reach = box ? load.half_size.norm() : load.radius;
-      auto in_patch = [&](const FaceData &d) {
+      const Point<3> x0       = point(load.point);
+      const double   reach    = box ? load.half_size.norm() : load.radius;
+      auto           in_patch = [&](const FaceData &d) {
         return load.boundaries.count(d.boundary) && d.centre.distance(x0) <= reach + d.diameter;
       };
       auto inside = [&](const Point<3> &q) {
@@ -532,8 +540,8 @@ ElasticSegment::Impl::assemble_loads(const std::vector<PatchLoad> &loads) const
                   a += v.JxW(q);
                   if (local)
                     for (unsigned i = 0; i < n; ++i)
-                      (*local)(i) += v.shape_value(i, q) *
-                                     t[fe.system_to_component_index(i).first] * v.JxW(q);
+                      (*local)(i) +=
+                          v.shape_value(i, q) * t[fe.system_to_component_index(i).first] * v.JxW(q);
                 }
           }
         return a;
@@ -584,9 +592,9 @@ ElasticSegment::Impl::solve(const PETScWrappers::MPI::Vector &rhs) const
 std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
 ElasticSegment::Impl::probe_functionals(const std::vector<Probe> &probes) const
 {
-  const unsigned rank = Utilities::MPI::this_mpi_process(comm);
+  const unsigned             rank  = Utilities::MPI::this_mpi_process(comm);
   const GridTools::Cache<3> &cache = *cache_ptr;
-  std::vector<unsigned> claim(probes.size(), std::numeric_limits<unsigned>::max());
+  std::vector<unsigned>      claim(probes.size(), std::numeric_limits<unsigned>::max());
   std::vector<std::pair<typename DoFHandler<3>::active_cell_iterator, Point<3>>> found(
       probes.size());
   for (std::size_t j = 0; j < probes.size(); ++j)
@@ -662,7 +670,7 @@ ElasticSegment::Impl::load_functionals(const std::vector<PatchLoad> &loads) cons
 
 Eigen::MatrixXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads,
-                         const std::vector<Probe> &probes) const
+                         const std::vector<Probe>     &probes) const
 {
   return impl->responses(loads, impl->probe_functionals(probes));
 }
@@ -678,9 +686,9 @@ Eigen::MatrixXd
 ElasticSegment::Impl::responses(
     const std::vector<PatchLoad> &loads,
     const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
-      &functionals) const
+        &functionals) const
 {
-  const Impl &m = *this;
+  const Impl     &m = *this;
   Eigen::MatrixXd D(functionals.size(), loads.size());
   // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
   // factorisation does a block solve; an iterative run-time choice solves column by column).
@@ -689,16 +697,17 @@ ElasticSegment::Impl::responses(
     {
       const PetscInt cols = PetscInt(std::min<std::size_t>(block, loads.size() - first));
       Mat            B, X;
-      petsc_check(MatCreateDense(m.comm, local, PETSC_DECIDE, PetscInt(m.dofs.n_dofs()), cols,
-                                 nullptr, &B),
-                  "MatCreateDense");
+      petsc_check(
+          MatCreateDense(m.comm, local, PETSC_DECIDE, PetscInt(m.dofs.n_dofs()), cols, nullptr, &B),
+          "MatCreateDense");
       for (PetscInt c = 0; c < cols; ++c)
         {
           const PETScWrappers::MPI::Vector f = m.assemble_loads({loads[first + c]});
           Vec                              column;
           petsc_check(MatDenseGetColumnVecWrite(B, c, &column), "MatDenseGetColumnVecWrite");
           petsc_check(VecCopy(f, column), "VecCopy");
-          petsc_check(MatDenseRestoreColumnVecWrite(B, c, &column), "MatDenseRestoreColumnVecWrite");
+          petsc_check(MatDenseRestoreColumnVecWrite(B, c, &column),
+                      "MatDenseRestoreColumnVecWrite");
         }
       petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
       petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
@@ -713,7 +722,7 @@ ElasticSegment::Impl::responses(
           petsc_check(MatDenseRestoreColumnVecRead(X, c, &column), "MatDenseRestoreColumnVecRead");
           m.constraints.distribute(x);
           PETScWrappers::MPI::Vector ghosted(m.owned, m.relevant, m.comm);
-          ghosted = x;
+          ghosted                        = x;
           D.col(Eigen::Index(first + c)) = m.evaluate(functionals, ghosted);
         }
       MatDestroy(&B);
@@ -733,13 +742,14 @@ ElasticSegment::response(const std::vector<PatchLoad> &loads, const std::vector<
     {
       // Reactions: the internal forces K u of the unconstrained element matrices, summed over
       // the held degrees of freedom by component (no load acts there).
-      const QGauss<3> quadrature(m.options.degree + 1);
-      FEValues<3>     values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
-      const unsigned  n = m.fe.n_dofs_per_cell();
-      FullMatrix<double>                   local(n, n);
-      Vector<double>                       ul(n), rl(n);
+      const QGauss<3>    quadrature(m.options.degree + 1);
+      FEValues<3>        values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
+      const unsigned     n = m.fe.n_dofs_per_cell();
+      FullMatrix<double> local(n, n);
+      Vector<double>     ul(n), rl(n);
       std::vector<types::global_dof_index> indices(n);
-      std::map<types::global_dof_index, std::pair<unsigned, double>> held; // dof -> (component, force)
+      std::map<types::global_dof_index, std::pair<unsigned, double>>
+          held; // dof -> (component, force)
       for (const auto &cell : m.dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -781,8 +791,8 @@ ElasticSegment::write_vtu(const std::vector<PatchLoad> &loads, const std::string
   out.attach_dof_handler(m.dofs);
   std::vector<DataComponentInterpretation::DataComponentInterpretation> kind(
       3, DataComponentInterpretation::component_is_part_of_vector);
-  out.add_data_vector(u, std::vector<std::string>(3, "displacement"),
-                      DataOut<3>::type_dof_data, kind);
+  out.add_data_vector(u, std::vector<std::string>(3, "displacement"), DataOut<3>::type_dof_data,
+                      kind);
   const VonMises von_mises(m.lambda, m.mu);
   out.add_data_vector(u, von_mises);
   out.build_patches(m.mapping, m.options.degree);

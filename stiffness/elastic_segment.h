@@ -9,13 +9,13 @@
 // gamg" replaces the direct factorisation by an iterative solve.
 #pragma once
 
-#include "half_space.h"
-#include "types.h"
+#include "geometry/types.h"
+#include "stiffness/half_space.h"
 
 #include <Eigen/Core>
-#include <mpi.h>
 
 #include <memory>
+#include <mpi.h>
 #include <set>
 #include <string>
 #include <vector>
@@ -24,10 +24,10 @@ namespace gearkit
 {
 struct ElasticSegmentOptions
 {
-  unsigned      degree = 1;          ///< FE_Q degree (1 or 2)
-  unsigned      refinements = 0;     ///< global refinements of the gmsh mesh
+  unsigned      degree      = 1; ///< FE_Q degree (1 or 2)
+  unsigned      refinements = 0; ///< global refinements of the gmsh mesh
   Material      material;
-  std::set<int> clamped;             ///< boundary ids held fixed (all components)
+  std::set<int> clamped; ///< boundary ids held fixed (all components)
   /// (boundary id, component): one displacement component held (rollers, symmetry, plane strain)
   std::vector<std::pair<int, int>> rollers;
   /// The processes that share the body (MPI_COMM_SELF: this process alone).
@@ -39,8 +39,8 @@ struct ElasticSegmentOptions
 /// about `point` along the rows of `axes`, orthonormal); the total applied equals F exactly.
 struct PatchLoad
 {
-  Vec3            point = Vec3::Zero();
-  Vec3            force = Vec3::Zero();
+  Vec3            point  = Vec3::Zero();
+  Vec3            force  = Vec3::Zero();
   double          radius = 0;
   std::set<int>   boundaries;
   Vec3            half_size = Vec3::Zero();

@@ -1,4 +1,4 @@
-#include "flank_compliance.h"
+#include "stiffness/flank_compliance.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 // pair by the contact solver). Interpolated bilinearly in both points' flank parameters.
 #pragma once
 
-#include "half_space.h"
-#include "member_flanks.h"
+#include "geometry/member_flanks.h"
+#include "stiffness/half_space.h"
 
 #include <Eigen/Core>
 
@@ -18,11 +18,11 @@ namespace gearkit
 {
 struct FlankGridSpec
 {
-  std::vector<int> teeth;           ///< member teeth that can carry load
-  FlankSide        side = FlankSide::drive;
-  int              n_u  = 7;        ///< grid points over the profile (u)
-  int              n_v  = 7;        ///< grid points over the face (v)
-  double           margin = 0.02;   ///< grid kept this fraction of each range inside the flank
+  std::vector<int> teeth; ///< member teeth that can carry load
+  FlankSide        side   = FlankSide::drive;
+  int              n_u    = 7;    ///< grid points over the profile (u)
+  int              n_v    = 7;    ///< grid points over the face (v)
+  double           margin = 0.02; ///< grid kept this fraction of each range inside the flank
 };
 
 class FlankCompliance
@@ -70,11 +70,11 @@ private:
   Weights
   weights(int tooth, double u, double v) const;
 
-  FlankGridSpec      spec;
-  std::vector<Point> grid;
+  FlankGridSpec       spec;
+  std::vector<Point>  grid;
   std::vector<double> us, vs; ///< per tooth: grid parameters (same domain for every tooth)
   std::vector<std::pair<double, double>> u_range, v_range; ///< per tooth entry
-  Eigen::MatrixXd    S;
+  Eigen::MatrixXd                        S;
 };
 
 /// A unit normal load on a grid point of a tooth: the force points into the material.

@@ -1,4 +1,4 @@
-#include "half_space.h"
+#include "stiffness/half_space.h"
 
 #include <cmath>
 
@@ -33,8 +33,8 @@ double
 rectangle_displacement(double x, double y, double a, double b, double force, double modulus)
 {
   // u = p / (pi E*) * integral over the rectangle of dA / r, p = F / (4 a b).
-  const double integral = corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) +
-                          corner(x - a, y - b);
+  const double integral =
+      corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) + corner(x - a, y - b);
   return force / (4 * a * b) / (pi * modulus) * integral;
 }
 

@@ -1,8 +1,8 @@
-#include "hertz_reference.h"
+#include "stiffness/hertz_reference.h"
 
-#include "contact_solver.h"
-#include "cylinder_slice.h"
-#include "elastic_segment.h"
+#include "meshes/cylinder_slice.h"
+#include "stiffness/contact_solver.h"
+#include "stiffness/elastic_segment.h"
 
 #include <Eigen/Dense>
 
@@ -30,8 +30,8 @@ solve_hertz_reference(const HertzCase &c, const std::string &dir)
   r.exact_peak_pressure = 2 * q / (pi * c.half_width);
   r.cells               = n;
 
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
-  Eigen::VectorXd gap(n);
+  Eigen::MatrixXd     C = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd     gap(n);
   std::vector<double> x(n);
   for (int j = 0; j < n; ++j)
     {
@@ -65,7 +65,10 @@ solve_hertz_reference(const HertzCase &c, const std::string &dir)
       for (int j = 0; j < n; ++j)
         {
           const double y = s * (mo.radius - std::sqrt(mo.radius * mo.radius - x[j] * x[j]));
-          loads.push_back({Vec3(x[j], y, t / 2), Vec3(0, s, 0), 0, {cylinder_boundary::contact},
+          loads.push_back({Vec3(x[j], y, t / 2),
+                           Vec3(0, s, 0),
+                           0,
+                           {cylinder_boundary::contact},
                            Vec3(dx / 2, mo.radius, t)});
           // a hair inside: the straight element faces cut the circle's arcs
           probes.push_back({Vec3(x[j], y + s * 1e-3 * c.element_size, t / 2), Vec3(0, s, 0)});
@@ -73,17 +76,17 @@ solve_hertz_reference(const HertzCase &c, const std::string &dir)
       C += body.response(loads, probes);
     }
   ContactProblem p;
-  p.compliance = (C + C.transpose()) / 2;
-  p.gap        = gap;
-  p.lever      = Eigen::VectorXd::Ones(n);
-  p.load       = r.applied_force;
+  p.compliance            = (C + C.transpose()) / 2;
+  p.gap                   = gap;
+  p.lever                 = Eigen::VectorXd::Ones(n);
+  p.load                  = r.applied_force;
   const ContactSolution s = solve_contact(p);
-  r.total_force  = s.force.sum();
-  r.active_cells = s.active;
+  r.total_force           = s.force.sum();
+  r.active_cells          = s.active;
 
   // Fit p^2 = p0^2 - (p0^2 / a^2) x^2 over the active cells away from the edge of contact.
   std::vector<std::pair<double, double>> pts;
-  double pmax = 0;
+  double                                 pmax = 0;
   for (int j = 0; j < n; ++j)
     pmax = std::max(pmax, s.force[j] / (dx * t));
   for (int j = 0; j < n; ++j)
@@ -97,8 +100,8 @@ solve_hertz_reference(const HertzCase &c, const std::string &dir)
   for (std::size_t k = 0; k < pts.size(); ++k)
     A(k, 0) = 1, A(k, 1) = pts[k].first, b[k] = pts[k].second;
   const Eigen::Vector2d fit = A.colPivHouseholderQr().solve(b);
-  r.peak_pressure = std::sqrt(fit[0]);
-  r.half_width    = std::sqrt(-fit[0] / fit[1]);
+  r.peak_pressure           = std::sqrt(fit[0]);
+  r.half_width              = std::sqrt(-fit[0] / fit[1]);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -5,7 +5,7 @@
 // contact path against the exact solution (reference-data.md section 5).
 #pragma once
 
-#include "half_space.h"
+#include "stiffness/half_space.h"
 
 #include <string>
 
@@ -18,18 +18,18 @@ struct HertzCase
   double   half_width   = 0.2e-3; ///< the exact Hertz half-width a sets the load [m]
   double   element_size = 25e-6;  ///< at the contact line [m]
   int      degree       = 2;
-  double   cell_size    = 0;      ///< strip width [m]; 0: the element size
-  double   zone         = 1.5;    ///< cells cover |x| <= zone a
+  double   cell_size    = 0;   ///< strip width [m]; 0: the element size
+  double   zone         = 1.5; ///< cells cover |x| <= zone a
 };
 
 struct HertzResult
 {
-  double applied_force = 0, total_force = 0;   ///< per slice [N]
-  double half_width = 0, peak_pressure = 0;    ///< fitted p^2 = p0^2 (1 - x^2 / a^2) [m, Pa]
-  double exact_peak_pressure = 0;              ///< 2 q / (pi a) [Pa]
-  int    active_cells = 0, cells = 0;
-  std::size_t dofs = 0;                        ///< both bodies
-  double seconds = 0;
+  double      applied_force = 0, total_force = 0; ///< per slice [N]
+  double      half_width = 0, peak_pressure = 0;  ///< fitted p^2 = p0^2 (1 - x^2 / a^2) [m, Pa]
+  double      exact_peak_pressure = 0;            ///< 2 q / (pi a) [Pa]
+  int         active_cells = 0, cells = 0;
+  std::size_t dofs    = 0; ///< both bodies
+  double      seconds = 0;
 };
 
 /// Meshes both slices into `work_directory` and solves. Throws InputError for bad sizes.

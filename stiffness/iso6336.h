@@ -7,24 +7,24 @@ namespace gearkit
 {
 struct IsoMeshStiffness
 {
-  double q_prime      = 0; ///< minimum flexibility q' [mm um / N]
-  double c_th         = 0; ///< theoretical single stiffness c'_th = 1 / q' [N/(mm um)]
-  double c_prime      = 0; ///< single stiffness c' = c'_th C_M C_R C_B cos(beta)
+  double q_prime       = 0; ///< minimum flexibility q' [mm um / N]
+  double c_th          = 0; ///< theoretical single stiffness c'_th = 1 / q' [N/(mm um)]
+  double c_prime       = 0; ///< single stiffness c' = c'_th C_M C_R C_B cos(beta)
   double c_gamma_alpha = 0; ///< c_gamma_alpha = c' (0.75 eps_alpha + 0.25)
   double c_gamma_beta  = 0; ///< c_gamma_beta = 0.85 c_gamma_alpha
 };
 
 struct IsoStiffnessInput
 {
-  double z1 = 0, z2 = 0;     ///< tooth numbers (virtual ones may be fractional)
-  double x1 = 0, x2 = 0;     ///< profile shift coefficients
-  double helix_angle      = 0; ///< beta [rad]
-  double base_helix_angle = 0; ///< beta_b [rad]
-  double pressure_angle   = 0; ///< alpha_n of the basic rack [rad]
-  double dedendum_factor  = 1.25; ///< h_fP / m_n of the basic rack
-  double transverse_contact_ratio = 0; ///< eps_alpha
-  double C_M = 0.8; ///< correction factor (solid disc gears 0.8)
-  double C_R = 1.0; ///< gear blank factor (solid: 1)
+  double z1 = 0, z2 = 0;                  ///< tooth numbers (virtual ones may be fractional)
+  double x1 = 0, x2 = 0;                  ///< profile shift coefficients
+  double helix_angle              = 0;    ///< beta [rad]
+  double base_helix_angle         = 0;    ///< beta_b [rad]
+  double pressure_angle           = 0;    ///< alpha_n of the basic rack [rad]
+  double dedendum_factor          = 1.25; ///< h_fP / m_n of the basic rack
+  double transverse_contact_ratio = 0;    ///< eps_alpha
+  double C_M                      = 0.8;  ///< correction factor (solid disc gears 0.8)
+  double C_R                      = 1.0;  ///< gear blank factor (solid: 1)
 };
 
 /// ISO 6336-1 method B; throws InputError outside the standard's range (z >= 5, x in

@@ -1,6 +1,6 @@
-#include "loaded_contact.h"
+#include "stiffness/loaded_contact.h"
 
-#include "contact_solver.h"
+#include "stiffness/contact_solver.h"
 
 #include <algorithm>
 #include <sstream>
@@ -61,8 +61,8 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
           std::ostringstream msg;
           msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and "
               << torque << " N m the contact spreads beyond a cell zone of gap band "
-              << o.cells.gap_band * 1e6 << " um (pinion tooth " << c.pinion_tooth
-              << ", gear tooth " << c.gear_tooth << ", pinion point z = " << c.position.z() * 1e3
+              << o.cells.gap_band * 1e6 << " um (pinion tooth " << c.pinion_tooth << ", gear tooth "
+              << c.gear_tooth << ", pinion point z = " << c.position.z() * 1e3
               << " mm, r = " << c.position.head<2>().norm() * 1e3 << " mm, "
               << r.force[r.zone_edge_cell] << " N of " << r.normal_force
               << " N); check the load and the compliances, or raise the gap band (scene: "
@@ -136,11 +136,11 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
         (out.zone_edge_cell < 0 || s.force[i] > s.force[out.zone_edge_cell]))
       out.zone_edge_cell = int(i);
   out.zone_edge_reached = out.zone_edge_cell >= 0;
-  const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
-  out.force         = s.force;
-  out.active_cells  = s.active;
-  out.iterations    = s.iterations;
-  out.eL            = out.e0 + sign * s.approach;
+  const double sign     = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
+  out.force             = s.force;
+  out.active_cells      = s.active;
+  out.iterations        = s.iterations;
+  out.eL                = out.e0 + sign * s.approach;
   out.pair_force.assign(position.pairs.size(), 0.0);
   for (Eigen::Index i = 0; i < n; ++i)
     out.pair_force[out.cells[i].pair] += s.force[i];

@@ -5,8 +5,8 @@
 // pair, the pressure on the cells and the mesh stiffness K_m = F / (lambda (e_L - e_0)).
 #pragma once
 
-#include "contact_cells.h"
-#include "half_space.h"
+#include "stiffness/contact_cells.h"
+#include "stiffness/half_space.h"
 
 #include <Eigen/Core>
 

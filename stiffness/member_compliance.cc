@@ -1,6 +1,6 @@
-#include "member_compliance.h"
+#include "stiffness/member_compliance.h"
 
-#include "elastic_segment.h"
+#include "stiffness/elastic_segment.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -58,7 +58,7 @@ namespace
 std::vector<double>
 response_depths(const FlankCompliance &table, const ElasticSegment &body, double depth)
 {
-  constexpr int     steps = 8; // up to twice the nominal depth
+  constexpr int     steps  = 8; // up to twice the nominal depth
   const auto       &points = table.points();
   const std::size_t n      = points.size();
   std::vector<Vec3> samples;
@@ -76,8 +76,8 @@ response_depths(const FlankCompliance &table, const ElasticSegment &body, double
         {
           std::ostringstream msg;
           msg << "member compliance: the tooth at the flank point ("
-              << points[i].position.transpose() * 1e3 << ") mm is thinner than "
-              << depth / 4 * 1e3 << " mm along its normal; use smaller flank elements";
+              << points[i].position.transpose() * 1e3 << ") mm is thinner than " << depth / 4 * 1e3
+              << " mm along its normal; use smaller flank elements";
           throw InputError(msg.str());
         }
       in[i] = depth * k / 4.0;
@@ -190,10 +190,10 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
 
   t0 = std::chrono::steady_clock::now();
   ElasticSegmentOptions eo;
-  eo.degree   = o.degree;
-  eo.material = o.material;
+  eo.degree       = o.degree;
+  eo.material     = o.material;
   eo.communicator = o.communicator;
-  eo.clamped  = {boundary::bore};
+  eo.clamped      = {boundary::bore};
   if (o.hold_cuts)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
   const ElasticSegment body(mesh_file, eo);
@@ -217,9 +217,9 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
     return body.response(patches, probes);
   };
   const std::vector<double> depths = response_depths(table, body, out.depth);
-  out.min_depth      = *std::min_element(depths.begin(), depths.end());
-  out.shallow_points = std::size_t(
-      std::count_if(depths.begin(), depths.end(), [&](double d) { return d < out.depth; }));
+  out.min_depth                    = *std::min_element(depths.begin(), depths.end());
+  out.shallow_points               = std::size_t(
+                    std::count_if(depths.begin(), depths.end(), [&](double d) { return d < out.depth; }));
   fill_structural_compliance(table, solve, depths, o.material, out.patch_radius);
   out.solve_seconds = seconds_since(t0);
   return table;

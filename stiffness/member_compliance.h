@@ -5,30 +5,29 @@
 // through the tooth) with the half-space part taken out (flank_compliance.h).
 #pragma once
 
-#include "bevel_segment.h"
-#include "flank_compliance.h"
-#include "tooth_segment.h"
-#include "unloaded_tca.h"
-
-#include <mpi.h>
+#include "meshes/bevel_segment.h"
+#include "meshes/tooth_segment.h"
+#include "stiffness/flank_compliance.h"
+#include "tca/unloaded_tca.h"
 
 #include <functional>
+#include <mpi.h>
 #include <string>
 
 namespace gearkit
 {
 struct MemberComplianceOptions
 {
-  SegmentMeshOptions mesh;            ///< segment: teeth, central tooth, element sizes
-  unsigned           degree = 2;      ///< FE_Q degree
+  SegmentMeshOptions mesh;       ///< segment: teeth, central tooth, element sizes
+  unsigned           degree = 2; ///< FE_Q degree
   Material           material;
   FlankSide          side = FlankSide::drive;
-  std::vector<int>   loaded_teeth;    ///< member teeth with load grids; empty: the segment's
-  int                n_u = 9, n_v = 7; ///< grid over profile and face
-  double             depth_elements = 3; ///< response depth in flank element sizes
-  double             patch_elements = 1; ///< patch load radius in flank element sizes
-  bool               hold_cuts = true;   ///< radial cut faces held (else free; the bore always)
-  std::string        work_directory;  ///< where the segment mesh is written
+  std::vector<int>   loaded_teeth;          ///< member teeth with load grids; empty: the segment's
+  int                n_u = 9, n_v = 7;      ///< grid over profile and face
+  double             depth_elements = 3;    ///< response depth in flank element sizes
+  double             patch_elements = 1;    ///< patch load radius in flank element sizes
+  bool               hold_cuts      = true; ///< radial cut faces held (else free; the bore always)
+  std::string        work_directory;        ///< where the segment mesh is written
   /// The processes that share the finite elements: the first meshes the segment (gmsh), all
   /// solve it together; every process receives the whole table.
   MPI_Comm communicator = MPI_COMM_WORLD;
@@ -37,7 +36,7 @@ struct MemberComplianceOptions
 struct MemberComplianceInfo
 {
   std::size_t hexahedra = 0, dofs = 0;
-  double      depth = 0, patch_radius = 0;  ///< [m]
+  double      depth = 0, patch_radius = 0; ///< [m]
   /// Grid points whose response depth was limited to half the chord through the tooth along
   /// their response direction (near a thin tip the nominal depth would leave the tooth), and
   /// the smallest depth used [m].
@@ -78,12 +77,12 @@ member_compliance(const MemberFlanks &flanks, const std::string &name, const Seg
 FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &options,
-                           MemberComplianceInfo *info = nullptr);
+                           MemberComplianceInfo          *info = nullptr);
 
 /// On a spiral bevel segment (bevel_segment.h; flank size default m_mn / 5, `module` = m_mn);
 /// `name` names the mesh file.
 FlankCompliance
 bevel_member_compliance(const BevelMemberFlanks &flanks, const std::string &name, double module,
                         const MemberComplianceOptions &options,
-                        MemberComplianceInfo *info = nullptr);
+                        MemberComplianceInfo          *info = nullptr);
 } // namespace gearkit

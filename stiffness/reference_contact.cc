@@ -1,6 +1,6 @@
-#include "reference_contact.h"
+#include "stiffness/reference_contact.h"
 
-#include "elastic_segment.h"
+#include "stiffness/elastic_segment.h"
 
 #include <algorithm>
 #include <chrono>
@@ -142,7 +142,7 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
       // graded quadrilaterals at the root)
       const double flank_size = o.flank_size > 0 ? o.flank_size : g.data().normal_module / 5;
       mesh.refine_size        = std::min(ds / o.elements_per_cell, flank_size);
-      mesh.refine_radius = reach;
+      mesh.refine_radius      = reach;
       mesh.face_layers =
           std::max(2, int(std::lround(g.data().face_width / dt)) * o.layers_per_cell);
       const std::string file =
@@ -162,7 +162,7 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
       eo.degree       = o.degree;
       eo.communicator = o.communicator;
       eo.material     = is_pinion ? o.cells.pinion_material : o.cells.gear_material;
-      eo.clamped  = {boundary::bore};
+      eo.clamped      = {boundary::bore};
       if (o.hold_cuts)
         eo.clamped.insert({boundary::cut_start, boundary::cut_end});
       bodies.push_back(std::make_unique<ElasticSegment>(file, eo));

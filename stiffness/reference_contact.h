@@ -14,8 +14,8 @@
 // section carries the refinement).
 #pragma once
 
-#include "loaded_contact.h"
-#include "member_compliance.h"
+#include "stiffness/loaded_contact.h"
+#include "stiffness/member_compliance.h"
 
 #include <string>
 #include <vector>
@@ -35,7 +35,7 @@ struct ReferenceContactOptions
   double      flank_size = 0, far_size = 0; ///< segment sizes away from the contact [m]; 0: m/5, m
   int         layers_per_cell = 1;          ///< face layers per cell along the contact line
   std::string work_directory;               ///< meshes are written here
-  std::string vtu_prefix; ///< non-empty: <prefix>_torque<k>_{pinion,gear}.vtu
+  std::string vtu_prefix;                   ///< non-empty: <prefix>_torque<k>_{pinion,gear}.vtu
   /// The processes that share the finite elements (the first meshes).
   MPI_Comm communicator = MPI_COMM_WORLD;
 };

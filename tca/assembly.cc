@@ -1,4 +1,4 @@
-#include "assembly.h"
+#include "tca/assembly.h"
 
 #include <cmath>
 

@@ -4,7 +4,7 @@
 // that a gear tooth space faces pinion tooth 0 at zero rotation.
 #pragma once
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <Eigen/Geometry>
 
@@ -17,7 +17,7 @@ namespace gearkit
 struct Misalignment
 {
   /// Gear axis moved along the common perpendicular of the axes (global y) [m].
-  double offset = 0;
+  double offset                = 0;
   double centre_distance_error = 0; ///< added to the nominal centre distance [m]
   /// Gear axis turned about the line of centres (x): crossing axes, the deviation of parallelism
   /// out of the plane of the axes (f_Sigma_beta).
@@ -40,8 +40,7 @@ public:
   /// to the pinion's in the x-z plane; the pitch cones touch along the element at the pinion's
   /// pitch angle on the +x side, where pinion tooth 0 and a gear tooth space face each other.
   static Assembly
-  bevel(double shaft_angle, double pinion_pitch_angle, int gear_teeth,
-        const Misalignment &m = {});
+  bevel(double shaft_angle, double pinion_pitch_angle, int gear_teeth, const Misalignment &m = {});
 
   /// Global position of a pinion-frame point at pinion rotation phi.
   Vec3

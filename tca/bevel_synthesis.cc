@@ -1,4 +1,4 @@
-#include "bevel_synthesis.h"
+#include "tca/bevel_synthesis.h"
 
 #include <cmath>
 #include <sstream>
@@ -42,8 +42,8 @@ synthesise_modified_roll(const BevelPairDesign &d, PinionMismatch m, double ampl
     return bevel_transmission_error_amplitude(d, t, positions) - amplitude;
   };
   auto inside = [&](double c2) {
-    PinionMismatch t   = m;
-    t.modified_roll_2c = c2;
+    PinionMismatch t        = m;
+    t.modified_roll_2c      = c2;
     const BevelPairFlanks f = bevel_pair_flanks(d, t);
     TcaOptions            o;
     o.positions_per_mesh = positions;
@@ -69,8 +69,8 @@ synthesise_modified_roll(const BevelPairDesign &d, PinionMismatch m, double ampl
     {
       std::ostringstream msg;
       msg << "modified-roll synthesis: a transmission error of " << amplitude
-          << " rad cannot be reached with the contact inside the flanks (reached "
-          << f1 + amplitude << " rad at 2C = " << x1 << ")";
+          << " rad cannot be reached with the contact inside the flanks (reached " << f1 + amplitude
+          << " rad at 2C = " << x1 << ")";
       throw InputError(msg.str());
     }
   return m;

@@ -3,8 +3,8 @@
 // found by the secant method on 2C with the unloaded TCA in the loop.
 #pragma once
 
-#include "bevel_gear.h"
-#include "unloaded_tca.h"
+#include "geometry/bevel_gear.h"
+#include "tca/unloaded_tca.h"
 
 namespace gearkit
 {

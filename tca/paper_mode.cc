@@ -1,6 +1,6 @@
-#include "paper_mode.h"
+#include "tca/paper_mode.h"
 
-#include "point_cloud.h"
+#include "geometry/point_cloud.h"
 
 #include <Eigen/Geometry>
 
@@ -23,9 +23,9 @@ mod(int a, int n)
 /// parameters of each point (for the normals of the contact tables).
 struct Cloud
 {
-  const Flank       *flank = nullptr;
-  PointCloud<3>      points;
-  std::vector<Vec2>  uv;
+  const Flank      *flank = nullptr;
+  PointCloud<3>     points;
+  std::vector<Vec2> uv;
 };
 
 std::unique_ptr<Cloud>
@@ -66,8 +66,10 @@ on_edge(const Flank &flank, const Vec2 &uv)
 {
   const FlankDomain d   = flank.domain();
   const double      tol = 1e-9;
-  return uv.x() - d.u_min < tol * (d.u_max - d.u_min) || d.u_max - uv.x() < tol * (d.u_max - d.u_min) ||
-         uv.y() - d.v_min < tol * (d.v_max - d.v_min) || d.v_max - uv.y() < tol * (d.v_max - d.v_min);
+  return uv.x() - d.u_min < tol * (d.u_max - d.u_min) ||
+         d.u_max - uv.x() < tol * (d.u_max - d.u_min) ||
+         uv.y() - d.v_min < tol * (d.v_max - d.v_min) ||
+         d.v_max - uv.y() < tol * (d.v_max - d.v_min);
 }
 
 /// One tooth pair in mesh: the pinion cloud, its points in the gear's unrotated frame, the gear
@@ -83,7 +85,7 @@ struct MeshingPair
 /// point indices.
 struct Closest
 {
-  double      d2 = HUGE_VAL;
+  double      d2     = HUGE_VAL;
   std::size_t pinion = 0, gear = 0;
 };
 
@@ -115,9 +117,9 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, const Assem
 {
   if (o.spacing <= 0 || o.rotation_step <= 0 || o.positions_per_mesh < 1 || o.mesh_cycles < 1)
     throw InputError("paper mode: spacing, rotation step, positions and cycles must be > 0");
-  const int      z1 = pinion.teeth(), z2 = gear.teeth();
-  const double   ratio = double(z1) / z2;
-  const bool     drive = o.side == FlankSide::drive;
+  const int    z1 = pinion.teeth(), z2 = gear.teeth();
+  const double ratio = double(z1) / z2;
+  const bool   drive = o.side == FlankSide::drive;
 
   PaperModeResult result;
   result.tca.mesh_angle = 2 * pi / z1;
@@ -193,8 +195,9 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, const Assem
       // first step is found here by bisection over the step count (the distance falls
       // monotonically as the members approach), after bracketing from the previous solution:
       // log2 of the steps instead of all of them, with the identical result.
-      double apart = std::isnan(previous) ? ratio * phi
-                                          : previous + ratio * result.tca.mesh_angle / o.positions_per_mesh;
+      double apart = std::isnan(previous)
+                         ? ratio * phi
+                         : previous + ratio * result.tca.mesh_angle / o.positions_per_mesh;
       for (double step = o.rotation_step; min_distance(apart) <= E; step *= 2)
         apart += s * step;
       double touching = apart;
@@ -211,20 +214,20 @@ paper_mode_ste(const MemberFlanks &pinion, const MemberFlanks &gear, const Assem
 
       // The tables at the position found: closest points of every pair.
       TcaPosition pos;
-      pos.pinion_angle       = phi;
-      pos.gear_angle         = psi;
-      pos.transmission_error = phi - psi / ratio;
+      pos.pinion_angle           = phi;
+      pos.gear_angle             = psi;
+      pos.transmission_error     = phi - psi / ratio;
       const Eigen::Matrix3d R    = Eigen::AngleAxisd(psi, Vec3::UnitZ()).toRotationMatrix();
       const Vec3            axis = assembly.gear_axis();
       for (const MeshingPair &pair : pairs)
         {
           const Closest cl = closest(pair, R, result.queries);
           PairContact   c;
-          c.pinion_tooth       = pair.pinion_tooth;
-          c.gear_tooth         = pair.gear_tooth;
-          c.found              = true;
-          const Vec2 &uv1      = pair.pinion->uv[cl.pinion];
-          const Vec2 &uv2      = pair.gear->uv[cl.gear];
+          c.pinion_tooth  = pair.pinion_tooth;
+          c.gear_tooth    = pair.gear_tooth;
+          c.found         = true;
+          const Vec2 &uv1 = pair.pinion->uv[cl.pinion];
+          const Vec2 &uv2 = pair.gear->uv[cl.gear];
           c.u1 = uv1.x(), c.v1 = uv1.y(), c.u2 = uv2.x(), c.v2 = uv2.y();
           c.edge       = on_edge(*pair.pinion->flank, uv1) || on_edge(*pair.gear->flank, uv2);
           c.separation = std::sqrt(cl.d2);

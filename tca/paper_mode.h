@@ -8,7 +8,7 @@
 // Nearest-point queries use nanoflann KD-trees of the driven flanks' clouds.
 #pragma once
 
-#include "unloaded_tca.h"
+#include "tca/unloaded_tca.h"
 
 #include <functional>
 #include <vector>
@@ -17,15 +17,15 @@ namespace gearkit
 {
 struct PaperModeOptions
 {
-  FlankSide side               = FlankSide::drive;
-  double    spacing            = 20e-6; ///< target point spacing a = b on the flanks [m]
-  double    rotation_step      = 1e-6;  ///< driven-member rotation step theta [rad]
+  FlankSide side          = FlankSide::drive;
+  double    spacing       = 20e-6; ///< target point spacing a = b on the flanks [m]
+  double    rotation_step = 1e-6;  ///< driven-member rotation step theta [rad]
   /// Contact tolerance E [m]; 0 = the smallest admissible, sqrt((a/2)^2 + (b/2)^2 + l^2). A
   /// smaller E is refused (clouds could pass through each other between points).
-  double tolerance = 0;
-  int       positions_per_mesh = 50;
-  int       mesh_cycles        = 1;
-  double    start_angle        = 0;
+  double                tolerance          = 0;
+  int                   positions_per_mesh = 50;
+  int                   mesh_cycles        = 1;
+  double                start_angle        = 0;
   std::function<void()> on_position; ///< called after each position (progress)
 };
 
@@ -36,7 +36,7 @@ struct PaperModeResult
   /// the closest points of the clouds (contact point on the pinion cloud, parameters, normals and
   /// moment arms of the flanks there; separation = cloud distance, touching if within E).
   TcaResult           tca;
-  std::vector<double> seed_ste;  ///< the seed's STE, relative to the first position [rad]
+  std::vector<double> seed_ste;      ///< the seed's STE, relative to the first position [rad]
   double              tolerance = 0; ///< E [m]
   std::size_t         points    = 0; ///< points in all clouds built
   std::size_t         queries   = 0; ///< nearest-point queries made

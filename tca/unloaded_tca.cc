@@ -1,7 +1,7 @@
-#include "unloaded_tca.h"
+#include "tca/unloaded_tca.h"
 
-#include <Eigen/LU>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -329,9 +329,9 @@ namespace
 Eigen::Matrix3d
 shape_operator(const Flank &f, double u, double v, const std::function<Vec3(const Vec3 &)> &turn)
 {
-  const FlankPoint                      p      = f.evaluate(u, v);
-  const auto [n_u, n_v]                        = f.normal_derivatives(u, v);
-  Eigen::Matrix<double, 3, 2>           W, N;
+  const FlankPoint p    = f.evaluate(u, v);
+  const auto [n_u, n_v] = f.normal_derivatives(u, v);
+  Eigen::Matrix<double, 3, 2> W, N;
   W.col(0) = turn(p.d_du), W.col(1) = turn(p.d_dv);
   N.col(0) = turn(n_u), N.col(1) = turn(n_v);
   return -N * (W.transpose() * W).inverse() * W.transpose();
@@ -349,8 +349,8 @@ set_relative_curvature(PairContact &c, const Assembly &assembly, const Flank &pi
     return assembly.gear_vector_to_global(x, psi);
   });
   // Gap along n_p between the surfaces: -(L_p + L_g)/2, L the normal-curvature forms.
-  const Vec3 n  = c.normal_pinion;
-  const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  const Vec3                  n  = c.normal_pinion;
+  const Vec3                  e1 = n.unitOrthogonal(), e2 = n.cross(e1);
   Eigen::Matrix<double, 3, 2> E;
   E.col(0) = e1, E.col(1) = e2;
   Eigen::Matrix2d B = -E.transpose() * (Sp + Sg) * E;

@@ -10,8 +10,8 @@
 // perfect involutes on the zero-backlash centre distance.
 #pragma once
 
-#include "assembly.h"
-#include "member_flanks.h"
+#include "geometry/member_flanks.h"
+#include "tca/assembly.h"
 
 #include <memory>
 #include <vector>

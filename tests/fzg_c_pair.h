@@ -2,7 +2,7 @@
 // b 14 mm), optionally helical, unmodified; shared by the TCA tests and benchmarks.
 #pragma once
 
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
 
 #include <utility>
 

@@ -1,7 +1,6 @@
 // GoogleTest main for the suites that reach MPI and PETSc (stiffness, driver): initialised once
 // per process (also when run under mpirun); only rank 0 prints.
 #include <deal.II/base/mpi.h>
-
 #include <gtest/gtest.h>
 
 int

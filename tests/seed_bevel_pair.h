@@ -3,7 +3,7 @@
 // blade edge radius 0.2 m_mn), conjugate cuts; shared by the mesh and stiffness tests.
 #pragma once
 
-#include "bevel_gear.h"
+#include "geometry/bevel_gear.h"
 
 namespace gearkit::test_data
 {

@@ -1,11 +1,11 @@
 // The driver end to end: scene reading, the stage graph and its cache, the result file, and the
 // handling of bad input (clear message, non-zero exit, no result file).
-#include "../malformed_cmm.h"
-#include "../temp_directory_test.h"
-#include "driver.h"
-#include "h5_file.h"
-#include "measured_flank.h"
-#include "stages.h"
+#include "driver/driver.h"
+#include "driver/h5_file.h"
+#include "driver/stages.h"
+#include "geometry/measured_flank.h"
+#include "tests/malformed_cmm.h"
+#include "tests/temp_directory_test.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // and load on torsional shafts. Constant tables unless a transmission-error harmonic is given.
 #pragma once
 
-#include "pair_model.h"
+#include "dynamics/pair_model.h"
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>

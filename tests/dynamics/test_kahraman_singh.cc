@@ -2,8 +2,8 @@
 // to pure torsion (supports held, no motor and load DOFs, mesh damping always on) against the
 // nondimensional single-DOF oscillator with clearance integrated independently (Boost.Odeint,
 // Dormand-Prince), swept up and down in the mesh frequency with continuation.
-#include "pair_fixture.h"
-#include "sweep.h"
+#include "dynamics/sweep.h"
+#include "tests/dynamics/pair_fixture.h"
 
 #include <boost/numeric/odeint.hpp>
 #include <gtest/gtest.h>

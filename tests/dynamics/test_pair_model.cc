@@ -1,9 +1,9 @@
 // The 14-DOF pair model: static equilibrium against the moment arms, energy conservation of the
 // undamped model, a linear forced response against the frequency-domain solution, modes, and
 // bad input refused.
-#include "integrators.h"
-#include "modes.h"
-#include "pair_fixture.h"
+#include "dynamics/integrators.h"
+#include "dynamics/modes.h"
+#include "tests/dynamics/pair_fixture.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Stress: zero and very large backlash, near-zero and very large support-to-mesh stiffness
 // ratios, high speed with many impacts: finite results from both integrators (or a clear
 // InputError naming CVODE's failure), never a silent NaN.
-#include "pair_fixture.h"
-#include "sweep.h"
+#include "dynamics/sweep.h"
+#include "tests/dynamics/pair_fixture.h"
 
 #include <gtest/gtest.h>
 

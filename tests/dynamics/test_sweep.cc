@@ -1,9 +1,9 @@
 // Mesh tables over several mesh cycles (measured flanks), makima interpolation, the sweep's DTE
 // spectrum against the frequency-domain solution (one and three mesh cycles per excitation
 // period), time series kept, and sweeps in parallel and in blocks against one sequential sweep.
-#include "modes.h"
-#include "pair_fixture.h"
-#include "sweep.h"
+#include "dynamics/modes.h"
+#include "dynamics/sweep.h"
+#include "tests/dynamics/pair_fixture.h"
 
 #include <gtest/gtest.h>
 

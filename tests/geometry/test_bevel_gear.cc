@@ -1,7 +1,7 @@
 // Spiral bevel blanks, nominal machine settings (reference-data.md section 7) and face-milled
 // flanks generated on the cradle: the equation of meshing, envelope tangency, formate flanks on
 // the cutter cone, hand of spiral.
-#include "bevel_gear.h"
+#include "geometry/bevel_gear.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ constexpr double deg = pi / 180;
 TEST(BevelGear, NominalSettingsWorkedExample)
 {
   // reference-data.md section 7: N 12/36, m_et 6 mm, F 25.4 mm, beta_m 35 deg, r_c 76.2 mm.
-  BevelPairDesign d; // the defaults are this example
+  BevelPairDesign         d; // the defaults are this example
   const BevelPairGeometry g = bevel_geometry(d);
   EXPECT_NEAR(g.pitch_angle_pinion / deg, 18.4349, 5e-5);
   EXPECT_NEAR(g.pitch_angle_gear / deg, 71.5651, 5e-5);
@@ -77,9 +77,9 @@ TEST(GeneratedFlank, DerivativesMatchFiniteDifferences)
   const double         h = 1e-6;
   for (auto [u, v] : {std::pair{0.0, 0.0}, {2e-3, -8e-3}, {-1.5e-3, 10e-3}}) // inside the domain
     {
-      const FlankPoint p   = f.evaluate(u, v);
-      const Vec3       fdu = (f.evaluate(u + h, v).position - f.evaluate(u - h, v).position) / (2 * h);
-      const Vec3       fdv = (f.evaluate(u, v + h).position - f.evaluate(u, v - h).position) / (2 * h);
+      const FlankPoint p = f.evaluate(u, v);
+      const Vec3 fdu = (f.evaluate(u + h, v).position - f.evaluate(u - h, v).position) / (2 * h);
+      const Vec3 fdv = (f.evaluate(u, v + h).position - f.evaluate(u, v - h).position) / (2 * h);
       EXPECT_LT((p.d_du - fdu).norm(), 1e-8 * p.d_du.norm()) << u << " " << v;
       EXPECT_LT((p.d_dv - fdv).norm(), 1e-8 * p.d_dv.norm()) << u << " " << v;
     }
@@ -122,10 +122,10 @@ TEST(BevelMemberFlanks, HandOfSpiralAndToothPlacement)
   for (Hand hand : {Hand::right, Hand::left})
     {
       BevelPairDesign d;
-      d.pinion_hand             = hand;
-      const auto [pc, gc]       = conjugate_cuts(d);
+      d.pinion_hand       = hand;
+      const auto [pc, gc] = conjugate_cuts(d);
       const BevelMemberFlanks p(pc), g(gc);
-      auto turn = [](const BevelMemberFlanks &m) {
+      auto                    turn = [](const BevelMemberFlanks &m) {
         const GeneratedFlank &f = m.tooth_flank(FlankSide::drive);
         const Vec3 toe = f.evaluate(0, -0.01).position, heel = f.evaluate(0, 0.01).position;
         return std::atan2(heel.y(), heel.x()) - std::atan2(toe.y(), toe.x());
@@ -158,14 +158,14 @@ TEST(GeneratedFlank, EdgeRadiusShortensTheWorkingFlank)
   // the straight blade meets the rounding, s = (h_f - r_e (1 - sin a)) / cos a.
   BevelPairDesign d;
   d.pinion_teeth = 55, d.gear_teeth = 47, d.module = 3e-3, d.face_width = 19e-3;
-  auto [pinion, gear]      = conjugate_cuts(d);
+  auto [pinion, gear] = conjugate_cuts(d);
   const GeneratedFlank sharp(gear.blank, gear.outside_blade, gear.outside_machine);
   gear.outside_blade.edge_radius = 0.6e-3;
   const GeneratedFlank round(gear.blank, gear.outside_blade, gear.outside_machine);
   EXPECT_GT(round.domain().u_min, sharp.domain().u_min + 0.1e-3);
-  const Blade &b     = gear.outside_blade;
-  const double s_end = (gear.blank.dedendum - b.edge_radius * (1 - std::sin(b.angle))) /
-                       std::cos(b.angle);
+  const Blade &b = gear.outside_blade;
+  const double s_end =
+      (gear.blank.dedendum - b.edge_radius * (1 - std::sin(b.angle))) / std::cos(b.angle);
   // at the domain's lower edge (2 % of the depth above the limit) the blade point is just short
   // of the rounding everywhere along the face
   for (double v : {-9e-3, 0.0, 9e-3})
@@ -189,11 +189,11 @@ TEST(GeneratedFlank, RootFilletFromTheEdgeRadius)
   for (BevelMemberCut *cut : {&pinion, &gear})
     for (bool outside : {true, false})
       {
-        Blade &b      = outside ? cut->outside_blade : cut->inside_blade;
-        b.edge_radius = 0.6e-3;
+        Blade &b                 = outside ? cut->outside_blade : cut->inside_blade;
+        b.edge_radius            = 0.6e-3;
         const MachineSettings &m = outside ? cut->outside_machine : cut->inside_machine;
         const GeneratedFlank   f(cut->blank, b, m);
-        const BevelBlank      &k = cut->blank;
+        const BevelBlank      &k  = cut->blank;
         const double           sg = std::sin(k.pitch_angle), cg = std::cos(k.pitch_angle);
         for (double v : {-9e-3, 0.0, 9e-3})
           {
@@ -216,11 +216,12 @@ TEST(GeneratedFlank, RootFilletFromTheEdgeRadius)
             const Vec3 n_root = -sg * Vec3::UnitZ() + cg * radial;
             EXPECT_NEAR(f1.normal.dot(n_root), 1, 1e-8) << v;
             // the cone distance is the one asked for
-            const double A = f1.position.z() * cg + Vec2(f1.position.x(), f1.position.y()).norm() * sg;
+            const double A =
+                f1.position.z() * cg + Vec2(f1.position.x(), f1.position.y()).norm() * sg;
             EXPECT_NEAR(A, k.mean_cone_distance + v, 1e-10);
           }
       }
-  BevelMemberCut sharp = conjugate_cuts(d).second;
+  BevelMemberCut       sharp = conjugate_cuts(d).second;
   const GeneratedFlank f(sharp.blank, sharp.outside_blade, sharp.outside_machine);
   EXPECT_THROW(f.fillet_point(0.5, 0), InputError);
 }

@@ -1,6 +1,6 @@
 // Interpolated measured flanks: a 4th-order scheme, checked by its convergence rate on an
 // involute flank sampled by a virtual CMM.
-#include "interpolated_flank.h"
+#include "geometry/interpolated_flank.h"
 
 #include <gtest/gtest.h>
 

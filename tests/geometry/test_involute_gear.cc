@@ -1,7 +1,7 @@
 // Involute gear geometry against exact values (ISO 21771 formulas, generation kinematics, and
 // independent integrations). Tolerances: 1e-12 relative where both sides are closed-form double
 // arithmetic of a few dozen operations; looser ones are justified where they appear.
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
 
 #include <gtest/gtest.h>
 

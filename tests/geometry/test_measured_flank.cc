@@ -1,7 +1,7 @@
 // Measured flanks: the virtual CMM, CMM and topography files (round trips, every class of
 // malformed input, fuzzing, atomic writes), topography to points, and the synthesiser.
-#include "../malformed_cmm.h"
-#include "measured_flank.h"
+#include "geometry/measured_flank.h"
+#include "tests/malformed_cmm.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // First guesses of member flanks: the nanoflann query against brute force over the same samples
 // (random queries, fixed seed), and measured members standing in for unmeasured teeth.
-#include "member_flanks.h"
+#include "geometry/member_flanks.h"
 
 #include <gtest/gtest.h>
 

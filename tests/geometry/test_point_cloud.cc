@@ -1,6 +1,6 @@
 // The nanoflann point cloud behind every nearest-point query (flank guesses, paper-mode clouds)
 // against brute force on random clouds (fixed seed), clustered and uniform, 2-D and 3-D.
-#include "point_cloud.h"
+#include "geometry/point_cloud.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@ check_against_brute_force(std::size_t n_points, double cluster, unsigned seed)
   std::mt19937_64                        rng(seed);
   std::uniform_real_distribution<double> uniform(-1, 1);
   std::normal_distribution<double>       normal(0, cluster);
-  auto random_point = [&] {
+  auto                                   random_point = [&] {
     Point p;
     for (int d = 0; d < dim; ++d)
       p[d] = uniform(rng);
@@ -43,7 +43,8 @@ check_against_brute_force(std::size_t n_points, double cluster, unsigned seed)
   cloud.build();
   for (int q = 0; q < 2000; ++q)
     {
-      const Point query = q % 2 ? random_point() : Point(cloud.points[q % n_points] + 1e-3 * random_point());
+      const Point query =
+          q % 2 ? random_point() : Point(cloud.points[q % n_points] + 1e-3 * random_point());
       std::size_t best = 0;
       double      d2   = HUGE_VAL;
       for (std::size_t i = 0; i < cloud.points.size(); ++i)
@@ -66,7 +67,4 @@ TEST(PointCloud, NearestMatchesBruteForceIn3D)
   check_against_brute_force<3>(3, 1e-2, 2); // tiny cloud
 }
 
-TEST(PointCloud, NearestMatchesBruteForceIn2D)
-{
-  check_against_brute_force<2>(5000, 1e-3, 3);
-}
+TEST(PointCloud, NearestMatchesBruteForceIn2D) { check_against_brute_force<2>(5000, 1e-3, 3); }

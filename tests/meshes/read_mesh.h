@@ -2,7 +2,7 @@
 // writers' bookkeeping), and the trilinear hexahedron's volume and corner Jacobians.
 #pragma once
 
-#include "types.h"
+#include "geometry/types.h"
 
 #include <Eigen/Dense>
 #include <gmsh.h>
@@ -20,9 +20,9 @@ struct MeshFile
 {
   std::map<int, std::vector<std::size_t>> group_nodes; ///< physical surface id -> node tags
   std::map<int, std::vector<std::array<std::size_t, 4>>> group_quads; ///< id -> quadrilaterals
-  std::map<std::size_t, Vec3>             nodes;
-  std::vector<std::array<std::size_t, 8>> hexahedra;
-  std::set<int>                           other_element_types;
+  std::map<std::size_t, Vec3>                            nodes;
+  std::vector<std::array<std::size_t, 8>>                hexahedra;
+  std::set<int>                                          other_element_types;
 };
 
 /// Reads the mesh back through gmsh (a second, independent path from the writer's bookkeeping).

@@ -2,10 +2,10 @@
 // against the segment volume integrated from the exact surfaces, every physical group present,
 // flank groups whose area is the working flank's (integrated from the flank parametrisation)
 // and whose nodes lie on the flank, and bad options refused.
-#include "../seed_bevel_pair.h"
-#include "../temp_directory_test.h"
-#include "bevel_segment.h"
-#include "read_mesh.h"
+#include "meshes/bevel_segment.h"
+#include "tests/meshes/read_mesh.h"
+#include "tests/seed_bevel_pair.h"
+#include "tests/temp_directory_test.h"
 
 #include <cstdlib>
 
@@ -21,20 +21,22 @@ class BevelSegmentMesh : public test_data::TempDirectoryTest
 double
 flank_area(const Flank &f)
 {
-  const FlankDomain d     = f.domain();
-  const double      x[2]  = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
-  const int         n     = 24;
-  const double      du    = (d.u_max - d.u_min) / n, dv = (d.v_max - d.v_min) / n;
-  double            area  = 0;
-  const double      e     = 1e-7;
+  const FlankDomain d    = f.domain();
+  const double      x[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  const int         n    = 24;
+  const double      du = (d.u_max - d.u_min) / n, dv = (d.v_max - d.v_min) / n;
+  double            area = 0;
+  const double      e    = 1e-7;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (double a : x)
         for (double b : x)
           {
             const double u = d.u_min + (i + a) * du, v = d.v_min + (j + b) * dv;
-            const Vec3   xu = (f.evaluate(u + e, v).position - f.evaluate(u - e, v).position) / (2 * e);
-            const Vec3   xv = (f.evaluate(u, v + e).position - f.evaluate(u, v - e).position) / (2 * e);
+            const Vec3   xu =
+                (f.evaluate(u + e, v).position - f.evaluate(u - e, v).position) / (2 * e);
+            const Vec3 xv =
+                (f.evaluate(u, v + e).position - f.evaluate(u, v - e).position) / (2 * e);
             area += xu.cross(xv).norm() * du * dv / 4;
           }
   return area;
@@ -45,10 +47,10 @@ TEST_F(BevelSegmentMesh, HexahedraVolumeGroupsAndFlanks)
 {
   // Sample meshes for scripts/check_mesh.py as in tooth segments (the seed pair's pinion and
   // gear, three teeth each).
-  const char       *env = std::getenv("GEARKIT_MESH_CHECK_DIR");
-  const std::string out = env ? env : dir.string();
-  const auto        design = test_data::seed_bevel_design();
-  const double      module = bevel_geometry(design).mean_normal_module;
+  const char       *env             = std::getenv("GEARKIT_MESH_CHECK_DIR");
+  const std::string out             = env ? env : dir.string();
+  const auto        design          = test_data::seed_bevel_design();
+  const double      module          = bevel_geometry(design).mean_normal_module;
   const auto [pinion_cut, gear_cut] = conjugate_cuts(design);
   for (const bool is_pinion : {true, false})
     {
@@ -56,9 +58,11 @@ TEST_F(BevelSegmentMesh, HexahedraVolumeGroupsAndFlanks)
       SegmentMeshOptions      o;
       o.teeth         = 3;
       o.central_tooth = is_pinion ? 0 : 46; // the gear's segment wraps around tooth 0
-      const std::string     path = out + (is_pinion ? "/seed_bevel_pinion.msh" : "/seed_bevel_gear.msh");
+      const std::string path =
+          out + (is_pinion ? "/seed_bevel_pinion.msh" : "/seed_bevel_gear.msh");
       const SegmentMeshInfo info = write_bevel_segment_mesh(member, module, o, path);
-      EXPECT_EQ(info.member_teeth, (is_pinion ? std::vector<int>{54, 0, 1} : std::vector<int>{45, 46, 0}));
+      EXPECT_EQ(info.member_teeth,
+                (is_pinion ? std::vector<int>{54, 0, 1} : std::vector<int>{45, 46, 0}));
 
       test_data::MeshFile m = test_data::read(path);
       EXPECT_TRUE(m.other_element_types.empty());
@@ -85,20 +89,21 @@ TEST_F(BevelSegmentMesh, HexahedraVolumeGroupsAndFlanks)
       for (int i = 0; i < 3; ++i)
         for (FlankSide side : {FlankSide::drive, FlankSide::coast})
           {
-            const int   id = boundary::flank(i, side);
+            const int   id    = boundary::flank(i, side);
             const auto &nodes = m.group_nodes[id];
             ASSERT_FALSE(nodes.empty()) << boundary::name(id);
-            const Flank &f = member.flank(info.member_teeth[i], side);
+            const Flank &f     = member.flank(info.member_teeth[i], side);
             double       worst = 0;
             for (std::size_t k = 0; k < nodes.size(); k += 7)
               {
                 const Vec3 x = m.nodes.at(nodes[k]);
                 // (u, v) from the rotational projection: u = h, v = A - A_m
-                const BevelBlank &b = member.tooth_flank(side).blank_data();
-                const double ax = x.z(), r = std::hypot(x.x(), x.y());
-                const double A  = ax * std::cos(b.pitch_angle) + r * std::sin(b.pitch_angle);
-                const double h  = -ax * std::sin(b.pitch_angle) + r * std::cos(b.pitch_angle);
-                worst = std::max(worst, (f.evaluate(h, A - b.mean_cone_distance).position - x).norm());
+                const BevelBlank &b  = member.tooth_flank(side).blank_data();
+                const double      ax = x.z(), r = std::hypot(x.x(), x.y());
+                const double      A = ax * std::cos(b.pitch_angle) + r * std::sin(b.pitch_angle);
+                const double      h = -ax * std::sin(b.pitch_angle) + r * std::cos(b.pitch_angle);
+                worst =
+                    std::max(worst, (f.evaluate(h, A - b.mean_cone_distance).position - x).norm());
               }
             EXPECT_LT(worst, 1e-9) << boundary::name(id);
             if (i == 1)
@@ -118,7 +123,7 @@ TEST_F(BevelSegmentMesh, HexahedraVolumeGroupsAndFlanks)
 
 TEST_F(BevelSegmentMesh, BadOptionsAreRejected)
 {
-  const auto design = test_data::seed_bevel_design();
+  const auto              design = test_data::seed_bevel_design();
   const BevelMemberFlanks member(conjugate_cuts(design).first);
   const std::string       path = (dir / "bad.msh").string();
   SegmentMeshOptions      o;
@@ -131,7 +136,8 @@ TEST_F(BevelSegmentMesh, BadOptionsAreRejected)
   auto sharp        = design;
   sharp.edge_radius = 0; // no fillet to close the tooth
   o.rim_thickness   = 0;
-  EXPECT_THROW(write_bevel_segment_mesh(BevelMemberFlanks(conjugate_cuts(sharp).first), 2e-3, o, path),
-               InputError);
+  EXPECT_THROW(
+      write_bevel_segment_mesh(BevelMemberFlanks(conjugate_cuts(sharp).first), 2e-3, o, path),
+      InputError);
   EXPECT_FALSE(std::filesystem::exists(path));
 }

@@ -1,11 +1,11 @@
 // Tooth-segment meshes: all hexahedra with positive Jacobians at every corner, the volume of the
 // nominal segment, every physical group present, and the flank groups' nodes on the exact
 // involute flank (which also checks the helix twist's sense against the flank surfaces).
-#include "../fzg_c_pair.h"
-#include "../temp_directory_test.h"
-#include "cylinder_slice.h"
-#include "read_mesh.h"
-#include "tooth_segment.h"
+#include "meshes/cylinder_slice.h"
+#include "meshes/tooth_segment.h"
+#include "tests/fzg_c_pair.h"
+#include "tests/meshes/read_mesh.h"
+#include "tests/temp_directory_test.h"
 
 #include <Eigen/Dense>
 #include <gmsh.h>

@@ -2,12 +2,11 @@
 // tension reproduced exactly, reactions), a cantilever against Timoshenko beam theory, the
 // Boussinesq near field below a concentrated load, factorisation reuse, and bad input. The same
 // tests run on two MPI processes (CTest stiffness_mpi_np2) with the same tolerances.
-#include "box.h"
-#include "elastic_segment.h"
+#include "meshes/box.h"
+#include "stiffness/elastic_segment.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
-
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -37,7 +36,7 @@ const Material steel{210e9, 0.3};
 TEST(ElasticSegment, PatchTestUniformTension)
 {
   const Vec3        L(20e-3, 10e-3, 8e-3);
-  const std::string mesh = box("patch", L, 4, 2, 2);
+  const std::string mesh  = box("patch", L, 4, 2, 2);
   const double      sigma = 50e6, E = steel.youngs_modulus, nu = steel.poisson_ratio;
   for (unsigned degree : {1u, 2u})
     {
@@ -47,7 +46,8 @@ TEST(ElasticSegment, PatchTestUniformTension)
       o.rollers  = {{1, 0}, {3, 1}, {5, 2}};
       const ElasticSegment body(mesh, o);
       // the whole face x = Lx: a patch wider than the face is a uniform traction
-      const PatchLoad load{Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(sigma * L.y() * L.z(), 0, 0), 1.0, {2}};
+      const PatchLoad load{
+          Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(sigma * L.y() * L.z(), 0, 0), 1.0, {2}};
       std::vector<Probe> probes;
       for (const Vec3 x : {Vec3(3e-3, 2e-3, 1e-3), Vec3(17e-3, 9e-3, 7.5e-3), L})
         for (int c = 0; c < 3; ++c)
@@ -70,8 +70,8 @@ TEST(ElasticSegment, CantileverAgainstTimoshenko)
 {
   // 100 x 10 x 10 mm steel beam clamped at x = 0, shear force P on the end face: tip deflection
   // P L^3 / (3 E I) + P L / (kappa G A), kappa = 5/6 (rectangle).
-  const Vec3        L(100e-3, 10e-3, 10e-3);
-  const std::string mesh = box("cantilever", L, 20, 2, 2);
+  const Vec3            L(100e-3, 10e-3, 10e-3);
+  const std::string     mesh = box("cantilever", L, 20, 2, 2);
   ElasticSegmentOptions o;
   o.degree   = 2;
   o.material = steel;
@@ -79,9 +79,9 @@ TEST(ElasticSegment, CantileverAgainstTimoshenko)
   const ElasticSegment body(mesh, o);
   const double         P = 1000, E = steel.youngs_modulus, G = E / (2 * (1 + steel.poisson_ratio));
   const double         I = L.y() * std::pow(L.z(), 3) / 12, A = L.y() * L.z();
-  const double expected = P * std::pow(L.x(), 3) / (3 * E * I) + P * L.x() / (5.0 / 6 * G * A);
+  const double    expected = P * std::pow(L.x(), 3) / (3 * E * I) + P * L.x() / (5.0 / 6 * G * A);
   const PatchLoad load{Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(0, 0, -P), 1.0, {2}};
-  Vec3 reaction;
+  Vec3            reaction;
   const Eigen::VectorXd w =
       body.response({load}, {{Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(0, 0, -1)}}, &reaction);
   EXPECT_NEAR(w[0] / expected, 1, 0.02);
@@ -96,26 +96,26 @@ TEST(ElasticSegment, BoussinesqNearFieldAndFactorisationReuse)
   // half-space (the block's finite size adds a smooth part that cancels in differences to first
   // order). This is what the fast mode relies on: the elements resolve the Boussinesq field a
   // few elements below the load, not at it.
-  const Vec3        L(40e-3, 40e-3, 40e-3);
-  const std::string mesh = box("block", L, 12, 12, 12);
+  const Vec3            L(40e-3, 40e-3, 40e-3);
+  const std::string     mesh = box("block", L, 12, 12, 12);
   ElasticSegmentOptions o;
-  o.degree      = 2;
-  o.material    = steel;
-  o.clamped     = {5};
-  dealii::Timer timer;
-  const ElasticSegment body(mesh, o);
-  const double         F = 1000, radius = 2e-3;
-  const Vec3           top(L.x() / 2, L.y() / 2, L.z());
-  std::vector<Probe>   probes;
+  o.degree   = 2;
+  o.material = steel;
+  o.clamped  = {5};
+  dealii::Timer             timer;
+  const ElasticSegment      body(mesh, o);
+  const double              F = 1000, radius = 2e-3;
+  const Vec3                top(L.x() / 2, L.y() / 2, L.z());
+  std::vector<Probe>        probes;
   const std::vector<double> depths{6.5e-3, 10e-3, 13.5e-3};
   for (double d : depths)
     probes.push_back({top - d * Vec3::UnitZ(), -Vec3::UnitZ()});
   std::vector<PatchLoad> loads;
   for (int k = 0; k < 5; ++k) // the same load five times: five solves on one factorisation
     loads.push_back({top, Vec3(0, 0, -F), radius, {6}});
-  const double          t_factor = body.factorisation_seconds();
+  const double t_factor = body.factorisation_seconds();
   timer.restart();
-  const Eigen::MatrixXd D = body.response(loads, probes);
+  const Eigen::MatrixXd D        = body.response(loads, probes);
   const double          t_solves = timer.wall_time();
   for (int k = 1; k < 5; ++k)
     EXPECT_NEAR((D.col(k) - D.col(0)).norm(), 0, 1e-14);
@@ -146,7 +146,7 @@ TEST(ElasticSegment, BadInputIsRefused)
   ElasticSegmentOptions o;
   o.clamped = {1};
   EXPECT_THROW(ElasticSegment("/nonexistent/mesh.msh", o), InputError);
-  const std::string mesh = box("bad", Vec3(1e-2, 1e-2, 1e-2), 1, 1, 1);
+  const std::string mesh   = box("bad", Vec3(1e-2, 1e-2, 1e-2), 1, 1, 1);
   o.material.poisson_ratio = 0.5;
   EXPECT_THROW(ElasticSegment(mesh, o), InputError);
   o.material.poisson_ratio = 0.3;
@@ -172,7 +172,8 @@ TEST(ElasticSegment, BadInputIsRefused)
           (std::filesystem::temp_directory_path() / "gearkit-elastic-flat.msh").string();
       std::ofstream(flat) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n"
                              "2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 "
-                          << top << "\n$EndNodes\n$Elements\n2\n1 3 2 1 1 1 2 3 4\n"
+                          << top
+                          << "\n$EndNodes\n$Elements\n2\n1 3 2 1 1 1 2 3 4\n"
                              "2 5 2 1 1 1 2 3 4 5 6 7 8\n$EndElements\n";
       try
         {
@@ -195,7 +196,7 @@ TEST(ElasticSegment, SolverFromTheRunTimeOptions)
   ElasticSegmentOptions o;
   o.clamped = {1};
   const ElasticSegment body(box("solver", Vec3(1e-2, 1e-2, 1e-2), 2, 2, 2), o);
-  const char *expected = std::getenv("GEARKIT_EXPECT_SOLVER");
+  const char          *expected = std::getenv("GEARKIT_EXPECT_SOLVER");
   EXPECT_EQ(body.solver(), expected ? expected : "preonly/cholesky");
 }
 
@@ -212,8 +213,8 @@ TEST(ElasticSegment, ContainsExactlyThePointsOfTheBody)
   for (int axis = 0; axis < 3; ++axis)
     for (double at : {-1e-6, 1e-6, size[axis] - 1e-6, size[axis] + 1e-6})
       {
-        Vec3 x     = size / 2;
-        x[axis]    = at;
+        Vec3 x  = size / 2;
+        x[axis] = at;
         points.push_back(x);
         expected.push_back(at > 0 && at < size[axis]);
       }

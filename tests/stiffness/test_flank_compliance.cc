@@ -1,8 +1,8 @@
 // The flank compliance table: bilinear interpolation is exact on bilinear data, teeth outside
 // the grid are refused, and a member that behaves like a half-space leaves no structural part.
-#include "../seed_bevel_pair.h"
-#include "../fzg_c_pair.h"
-#include "flank_compliance.h"
+#include "stiffness/flank_compliance.h"
+#include "tests/fzg_c_pair.h"
+#include "tests/seed_bevel_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -40,8 +40,8 @@ TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
   // depths per point: the subtraction matches the half-space response wherever it is read.
   for (double helix : {0.0, 0.35})
     {
-      InvoluteGearData data = test_data::fzg_c_pair().first;
-      data.helix_angle      = helix;
+      InvoluteGearData data           = test_data::fzg_c_pair().first;
+      data.helix_angle                = helix;
       const auto                 gear = InvoluteGear::create(data);
       const InvoluteMemberFlanks flanks(gear);
       FlankGridSpec              spec;
@@ -70,8 +70,7 @@ TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
       EXPECT_LT(table.matrix().cwiseAbs().maxCoeff(), 1e-25) << helix;
       // each response lies its depth below its own tangent plane
       for (std::size_t i = 0; i < table.points().size(); ++i)
-        EXPECT_NEAR(-response_offset(table.points()[i]).dot(table.points()[i].normal), 1.0,
-                    1e-12);
+        EXPECT_NEAR(-response_offset(table.points()[i]).dot(table.points()[i].normal), 1.0, 1e-12);
     }
 }
 
@@ -113,7 +112,7 @@ TEST(FlankCompliance, SpiralBevelResponsesReadAcrossTheConeElement)
   spec.teeth = {0, 7};
   spec.n_u = 5, spec.n_v = 6;
   const FlankCompliance table(member, spec);
-  const double gamma = member.tooth_flank(FlankSide::drive).blank_data().pitch_angle;
+  const double          gamma = member.tooth_flank(FlankSide::drive).blank_data().pitch_angle;
   for (const FlankCompliance::Point &p : table.points())
     {
       const Vec3 offset = response_offset(p);

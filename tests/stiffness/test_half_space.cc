@@ -1,10 +1,10 @@
 // Half-space influence functions and the contact solver against exact Hertz solutions: point
 // contact (approach, contact radius, peak pressure) and the FZG C14 line contact at the pitch
 // point (reference-data.md section 5).
-#include "../fzg_c_pair.h"
-#include "contact_solver.h"
-#include "half_space.h"
-#include "involute_gear.h"
+#include "geometry/involute_gear.h"
+#include "stiffness/contact_solver.h"
+#include "stiffness/half_space.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ TEST(HalfSpace, RectangleAgainstQuadratureAndFarField)
   // outside the rectangle: brute-force midpoint quadrature of p / (pi E) integral of dA / r
   for (const auto &[x, y] : {std::pair{1.3e-3, 0.2e-3}, std::pair{-0.5e-3, 1.6e-3}})
     {
-      const int n = 800;
+      const int n   = 800;
       double    sum = 0;
       for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j)
@@ -88,11 +88,13 @@ grid(int nx, double x0, double x1, int ny, double y0, double y1)
 
 TEST(ContactSolver, HertzPointContact)
 {
-  // Sphere R on a flat, both steel: a = (3 P R / 4 E*)^(1/3), delta = a^2 / R, p0 = 3 P / (2 pi a^2).
+  // Sphere R on a flat, both steel: a = (3 P R / 4 E*)^(1/3), delta = a^2 / R, p0 = 3 P / (2 pi
+  // a^2).
   const Material steel{210e9, 0.3};
   const double   Es = contact_modulus(steel, steel), R = 20e-3, P = 500;
-  const double   a = std::cbrt(3 * P * R / (4 * Es)), delta = a * a / R, p0 = 3 * P / (2 * pi * a * a);
-  const Grid     g = grid(31, -1.55 * a, 1.55 * a, 31, -1.55 * a, 1.55 * a);
+  const double   a = std::cbrt(3 * P * R / (4 * Es)), delta = a * a / R,
+               p0         = 3 * P / (2 * pi * a * a);
+  const Grid            g = grid(31, -1.55 * a, 1.55 * a, 31, -1.55 * a, 1.55 * a);
   const ContactSolution s = solve_contact(
       half_space_problem(g, Es, P, [&](double x, double y) { return (x * x + y * y) / (2 * R); }));
   EXPECT_NEAR(s.force.sum(), P, 1e-9 * P);
@@ -112,9 +114,9 @@ TEST(ContactSolver, HertzLineContactFzgC14PitchPoint)
   // does not satisfy the listed formulas with the listed F and p0.
   const auto [pd, gd] = test_data::fzg_c_pair();
   const auto   pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-  const double alpha  = working_pressure_angle(*pinion, *gear);
+  const double alpha = working_pressure_angle(*pinion, *gear);
   const double R1 = pinion->base_radius * std::tan(alpha), R2 = gear->base_radius * std::tan(alpha);
-  const double R  = 1 / (1 / R1 + 1 / R2);
+  const double R = 1 / (1 / R1 + 1 / R2);
   const Material steel{206e9, 0.3};
   const double   Es = contact_modulus(steel, steel), F = 5912, L = 14e-3;
   auto half_width = [&](double q) { return std::sqrt(4 * q * R / (pi * Es)); }; // q: load / length
@@ -125,10 +127,10 @@ TEST(ContactSolver, HertzLineContactFzgC14PitchPoint)
   // Finite-length line contact on the half-space: the square ends carry more than the mean (the
   // half-space has no end), and in the middle of the face the strip is Hertzian for its own
   // load per length q: peak 2 q / (pi a(q)), width 2 a(q).
-  const double a = half_width(F / L);
-  const Grid   g = grid(24, -1.2 * a, 1.2 * a, 28, -L / 2, L / 2);
-  const ContactSolution s =
-      solve_contact(half_space_problem(g, Es, F, [&](double x, double) { return x * x / (2 * R); }));
+  const double          a = half_width(F / L);
+  const Grid            g = grid(24, -1.2 * a, 1.2 * a, 28, -L / 2, L / 2);
+  const ContactSolution s = solve_contact(
+      half_space_problem(g, Es, F, [&](double x, double) { return x * x / (2 * R); }));
   EXPECT_NEAR(s.force.sum(), F, 1e-9 * F);
   auto strip = [&](int j, double &q, double &p, int &cells) {
     q = p = 0, cells = 0;
@@ -151,10 +153,10 @@ TEST(ContactSolver, HertzLineContactFzgC14PitchPoint)
 TEST(ContactSolver, ZeroLoadAndBadInput)
 {
   ContactProblem p;
-  p.compliance = Eigen::MatrixXd::Identity(3, 3) * 1e-9;
-  p.gap        = Eigen::Vector3d(2e-6, 1e-6, 3e-6);
-  p.lever      = Eigen::Vector3d(1, 0.5, 1);
-  p.load       = 0;
+  p.compliance            = Eigen::MatrixXd::Identity(3, 3) * 1e-9;
+  p.gap                   = Eigen::Vector3d(2e-6, 1e-6, 3e-6);
+  p.lever                 = Eigen::Vector3d(1, 0.5, 1);
+  p.load                  = 0;
   const ContactSolution s = solve_contact(p);
   EXPECT_EQ(s.force.norm(), 0);
   EXPECT_NEAR(s.approach, 2e-6, 1e-18); // first touch: min g / lambda

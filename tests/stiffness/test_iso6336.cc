@@ -1,6 +1,6 @@
 // ISO 6336-1 method B against the ISO/TR 6336-30 example (reference-data.md section 3).
-#include "involute_gear.h"
-#include "iso6336.h"
+#include "geometry/involute_gear.h"
+#include "stiffness/iso6336.h"
 
 #include <gtest/gtest.h>
 
@@ -15,13 +15,13 @@ TEST(Iso6336, TechnicalReportExample)
   // h_fP = 1.4 m_n (C_B = 0.9, which the c' above needs) and eps_alpha = 1.549.
   IsoStiffnessInput in;
   in.z1 = 17, in.z2 = 103, in.x1 = 0.145, in.x2 = 0;
-  in.helix_angle      = 15.8 * pi / 180;
-  in.pressure_angle   = 20 * pi / 180;
-  const double alpha_t = std::atan(std::tan(in.pressure_angle) / std::cos(in.helix_angle));
-  in.base_helix_angle = std::atan(std::tan(in.helix_angle) * std::cos(alpha_t));
-  in.dedendum_factor  = 1.4;
+  in.helix_angle              = 15.8 * pi / 180;
+  in.pressure_angle           = 20 * pi / 180;
+  const double alpha_t        = std::atan(std::tan(in.pressure_angle) / std::cos(in.helix_angle));
+  in.base_helix_angle         = std::atan(std::tan(in.helix_angle) * std::cos(alpha_t));
+  in.dedendum_factor          = 1.4;
   in.transverse_contact_ratio = (17.465 / 12.370 - 0.25) / 0.75;
-  const IsoMeshStiffness s = iso6336_mesh_stiffness(in);
+  const IsoMeshStiffness s    = iso6336_mesh_stiffness(in);
   EXPECT_NEAR(s.c_th, 17.856, 0.001);
   EXPECT_NEAR(s.c_prime, 12.370, 0.001);
   EXPECT_NEAR(s.c_gamma_alpha, 17.465, 0.002);

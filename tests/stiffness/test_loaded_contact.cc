@@ -1,8 +1,8 @@
 // Loaded contact on the cells of a spur pair: the torque balance, the Hertz strip at the pitch
 // point, a structural compliance that adds exactly T (c_p + c_g) / lambda^2 to the loaded TE, load
 // sharing by two pairs, and zero load.
-#include "../fzg_c_pair.h"
-#include "loaded_contact.h"
+#include "stiffness/loaded_contact.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -210,11 +210,11 @@ TEST(LoadedContact, MisalignedPairLoadsOneEndOfTheFace)
       *end_side = pos.pairs[pos.leading].position.z() > 0 ? 1 : -1;
     LoadedContactOptions o;
     o.pinion_material = o.gear_material = {206e9, 0.3};
-    const double T = 5912 * s.pinion->base_radius;
+    const double T                      = 5912 * s.pinion->base_radius;
     // a tooth compliance (both members) of the order of the FE's: the contact can spread
     const StructuralCompliance tooth = [](const ContactCell &a, const ContactCell &b) {
       return a.pair == b.pair ? 4e-10 * std::exp(-std::abs(a.position.z() - b.position.z()) / 5e-3)
-                              : 0.0;
+                                  : 0.0;
     };
     return loaded_contact(tca, pos, T, o, tooth, tooth);
   };
@@ -231,7 +231,7 @@ TEST(LoadedContact, MisalignedPairLoadsOneEndOfTheFace)
         const ContactCell &c = r.cells[i];
         z_centre += c.position.z() * r.force[Eigen::Index(i)] / r.normal_force;
         z_min = std::min(z_min, c.position.z()), z_max = std::max(z_max, c.position.z());
-        peak  = std::max(peak, r.force[Eigen::Index(i)] / (c.ds * c.dt));
+        peak = std::max(peak, r.force[Eigen::Index(i)] / (c.ds * c.dt));
       }
   for (std::size_t i = 0; i < aligned.cells.size(); ++i)
     peak_aligned = std::max(peak_aligned, aligned.force[Eigen::Index(i)] /

@@ -1,12 +1,11 @@
 // The fast mode's finite-element compliance shared by MPI processes: the table (and the mesh
 // stiffness it gives) equal to that of one process alone. Run by CTest with mpirun -np 2
 // (stiffness_mpi_np2) and on one process.
-#include "../fzg_c_pair.h"
-#include "loaded_contact.h"
-#include "member_compliance.h"
+#include "stiffness/loaded_contact.h"
+#include "stiffness/member_compliance.h"
+#include "tests/fzg_c_pair.h"
 
 #include <deal.II/base/mpi.h>
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -15,10 +14,10 @@ using namespace gearkit;
 
 TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
 {
-  const auto [pd, gd] = test_data::fzg_c_pair();
-  const auto pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-  const auto pf = std::make_shared<InvoluteMemberFlanks>(pinion);
-  const auto gf = std::make_shared<InvoluteMemberFlanks>(gear);
+  const auto [pd, gd]      = test_data::fzg_c_pair();
+  const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+  const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
+  const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
   const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
   const TcaPosition at       = tca.at(0);
   const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
@@ -40,7 +39,7 @@ TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
     std::filesystem::create_directories(dir);
     return involute_member_compliance(g, f, o);
   };
-  const std::string base = std::filesystem::temp_directory_path() / "gearkit-test-member-mpi";
+  const std::string base   = std::filesystem::temp_directory_path() / "gearkit-test-member-mpi";
   const std::string shared = base + "-np" + std::to_string(size);
   const std::string alone  = base + "-alone" + std::to_string(rank) + "of" + std::to_string(size);
   const FlankCompliance p_all = member(*pinion, *pf, segments.first, MPI_COMM_WORLD, shared);

@@ -3,9 +3,9 @@
 // torque balance, the Hertz strip in the middle of the face (reference-data.md section 5: the
 // finite elements give the contact pressure themselves here), the fast mode on the same
 // segments, several torques from one factorisation, zero load and bad input.
-#include "../fzg_c_pair.h"
-#include "member_compliance.h"
-#include "reference_contact.h"
+#include "stiffness/member_compliance.h"
+#include "stiffness/reference_contact.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,10 @@
 // Unloaded TCA of face-milled spiral bevel pairs (reference-data.md section 7): the crown-gear
 // test (both members cut by complementary flanks of one plane generating gear: conjugate, line
 // contact, zero transmission error) on the seed pair's blank (section 1).
-#include "bevel_synthesis.h"
-#include "paper_mode.h"
+#include "tca/bevel_synthesis.h"
+#include "tca/paper_mode.h"
 
 #include <Eigen/QR>
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,8 +63,8 @@ TEST(BevelTca, CutterRadiusMismatchLocalisesTheContact)
   o.positions_per_mesh = 24;
   for (FlankSide side : {FlankSide::drive, FlankSide::coast}) // concave and convex pinion flank
     {
-      o.side            = side;
-      const TcaResult r = UnloadedTca(f.pinion, f.gear, f.assembly, o).run();
+      o.side             = side;
+      const TcaResult r  = UnloadedTca(f.pinion, f.gear, f.assembly, o).run();
       double          lo = HUGE_VAL, hi = -HUGE_VAL;
       for (const TcaPosition &p : r.positions)
         {
@@ -88,9 +87,9 @@ TEST(BevelTca, ModifiedRollGivesTheRequestedParabolicTransmissionError)
   // 2 % (the secant stops at 0.1 %), and each pair's TE is a parabola: a least-squares parabola
   // through the positions of one pair leaves < 2 % of the amplitude.
   PinionMismatch m;
-  m.cutter_radius          = 2e-3;
-  const double       target = 3.72e-5;
-  const PinionMismatch s    = synthesise_modified_roll(seed_design(), m, target);
+  m.cutter_radius             = 2e-3;
+  const double         target = 3.72e-5;
+  const PinionMismatch s      = synthesise_modified_roll(seed_design(), m, target);
   EXPECT_NE(s.modified_roll_2c, 0);
   const auto f = bevel_pair_flanks(seed_design(), s);
   TcaOptions o;
@@ -143,13 +142,12 @@ TEST(BevelDiscretePoint, SeedPairFrom261PointFlanksWithinOnePercent)
   // points within its resolution E (over the smallest moment arm about the gear axis).
   const BevelPairFlanks f = bevel_pair_flanks(seed_design(), seed_mismatch());
   TcaOptions            o;
-  o.positions_per_mesh  = 24;
-  const TcaResult exact = UnloadedTca(f.pinion, f.gear, f.assembly, o).run();
-  auto measure = [](const BevelMemberFlanks &m, const std::string &name) {
+  o.positions_per_mesh    = 24;
+  const TcaResult exact   = UnloadedTca(f.pinion, f.gear, f.assembly, o).run();
+  auto            measure = [](const BevelMemberFlanks &m, const std::string &name) {
     return std::make_shared<MeasuredMemberFlanks>(
-        virtual_cmm(name, m.teeth(), [&](int k, FlankSide side) {
-          return sample_flank(m.flank(k, side), 9, 29);
-        }));
+        virtual_cmm(name, m.teeth(),
+                               [&](int k, FlankSide side) { return sample_flank(m.flank(k, side), 9, 29); }));
   };
   const auto      mp       = measure(*f.pinion, "pinion");
   const auto      mg       = measure(*f.gear, "gear");
@@ -160,17 +158,17 @@ TEST(BevelDiscretePoint, SeedPairFrom261PointFlanksWithinOnePercent)
       const TcaPosition &x = exact.positions[i];
       lo                   = std::min(lo, x.transmission_error);
       hi                   = std::max(hi, x.transmission_error);
-      worst = std::max(worst, std::abs(discrete.positions[i].transmission_error -
-                                       x.transmission_error));
-      arm   = std::min(arm, std::abs(x.pairs[x.leading].lambda_gear.dot(f.assembly.gear_axis())));
+      worst                = std::max(worst,
+                                      std::abs(discrete.positions[i].transmission_error - x.transmission_error));
+      arm = std::min(arm, std::abs(x.pairs[x.leading].lambda_gear.dot(f.assembly.gear_axis())));
     }
   EXPECT_NEAR(hi - lo, 3.72e-5, 0.02 * 3.72e-5);
   EXPECT_LT(worst, 0.01 * (hi - lo)) << worst;
 
   PaperModeOptions po;
-  po.spacing              = 200e-6;
-  po.positions_per_mesh   = 4;
-  const PaperModeResult r = paper_mode_ste(*mp, *mg, f.assembly, po);
+  po.spacing                    = 200e-6;
+  po.positions_per_mesh         = 4;
+  const PaperModeResult r       = paper_mode_ste(*mp, *mg, f.assembly, po);
   const double          z_ratio = 47.0 / 55;
   for (int i = 0; i < 4; ++i)
     EXPECT_NEAR(r.tca.positions[i].transmission_error, exact.positions[6 * i].transmission_error,
@@ -183,7 +181,7 @@ namespace
 struct Bearing
 {
   double peak_to_peak = 0, mean_error = 0, mean_face = 0; // [rad], [rad], mean v of the contact [m]
-  int    edges        = 0;
+  int    edges = 0;
 };
 
 Bearing
@@ -227,8 +225,8 @@ TEST(BevelTca, MisalignmentsShiftTheBearingAndThePredesignedParabolaAbsorbsThem)
       minus.pinion_axial_shift = -plus.pinion_axial_shift;
       minus.gear_axial_shift   = -plus.gear_axial_shift;
       minus.intersecting_angle = -plus.intersecting_angle;
-      const Bearing p = bearing(seed_design(), seed_mismatch(), plus);
-      const Bearing m = bearing(seed_design(), seed_mismatch(), minus);
+      const Bearing p          = bearing(seed_design(), seed_mismatch(), plus);
+      const Bearing m          = bearing(seed_design(), seed_mismatch(), minus);
       for (const Bearing *b : {&p, &m})
         {
           EXPECT_GT(b->peak_to_peak, 0.8 * aligned.peak_to_peak) << name;
@@ -261,7 +259,7 @@ TEST(BevelTca, StressSpiralAnglesToothCountsAndLargeMisalignments)
       EXPECT_LT(bearing(d, {}, {}).peak_to_peak, 1e-10) << z1;
     }
   Misalignment far;
-  far.offset = 0.5e-3;
+  far.offset      = 0.5e-3;
   const Bearing b = bearing(seed_design(), seed_mismatch(), far);
   EXPECT_EQ(b.edges, 12);
   Misalignment apart;
@@ -309,8 +307,8 @@ TEST(BevelTca, ParabolicBladeNarrowsTheBearing)
   TcaOptions     o;
   o.positions_per_mesh = 2;
   auto axes            = [&](double curvature) {
-    m.blade_curvature  = curvature;
-    const auto      f  = bevel_pair_flanks(seed_design(), m);
+    m.blade_curvature   = curvature;
+    const auto        f = bevel_pair_flanks(seed_design(), m);
     const TcaPosition p = UnloadedTca(f.pinion, f.gear, f.assembly, o).at(0);
     return contact_ellipse(p.pairs[p.leading], 6.32e-6);
   };
@@ -329,8 +327,8 @@ TEST(BevelTca, FormateGearWithConjugatePinion)
   const auto [pc, gc] = formate_cuts(seed_design());
   EXPECT_FALSE(gc.outside_machine.generated);
   EXPECT_GT(pc.outside_machine.tilt, 0.5); // 90 deg - gamma_2 = 49.5 deg
-  const auto P = std::make_shared<BevelMemberFlanks>(pc);
-  const auto G = std::make_shared<BevelMemberFlanks>(gc);
+  const auto     P = std::make_shared<BevelMemberFlanks>(pc);
+  const auto     G = std::make_shared<BevelMemberFlanks>(gc);
   const Assembly a = Assembly::bevel(pi / 2, bevel_geometry(seed_design()).pitch_angle_pinion, 47);
   for (FlankSide side : {FlankSide::drive, FlankSide::coast})
     {

@@ -1,9 +1,9 @@
 // Fast discrete-point STE: the same contact analysis on flanks interpolated from 9 x 29 measured
 // points (a virtual CMM of the theoretical flanks), against classical TCA on the exact flanks.
-#include "../fzg_c_pair.h"
-#include "harmonics.h"
-#include "paper_mode.h"
-#include "unloaded_tca.h"
+#include "base/spectrum.h"
+#include "tca/paper_mode.h"
+#include "tca/unloaded_tca.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -31,8 +31,8 @@ modified_pair(bool tip_relief)
 
 struct Comparison
 {
-  double worst = 0;          ///< largest |e_discrete - e_classical| [rad]
-  double peak_to_peak = 0;   ///< of e_classical
+  double worst          = 0; ///< largest |e_discrete - e_classical| [rad]
+  double peak_to_peak   = 0; ///< of e_classical
   double worst_harmonic = 0; ///< largest difference of the mesh-order amplitudes 1..20 [rad]
 };
 
@@ -60,7 +60,7 @@ discrete_against_classical(bool tip_relief, int n_profile, int n_face)
       const double e = exact.positions[i].transmission_error;
       lo             = std::min(lo, e);
       hi             = std::max(hi, e);
-      c.worst = std::max(c.worst, std::abs(discrete.positions[i].transmission_error - e));
+      c.worst        = std::max(c.worst, std::abs(discrete.positions[i].transmission_error - e));
       ex.push_back(e), di.push_back(discrete.positions[i].transmission_error);
     }
   c.peak_to_peak               = hi - lo;
@@ -115,23 +115,23 @@ TEST(DiscretePoint, SynthesisedMeasuredPairThroughBothModes)
   // the largest normal deviation of the two flanks (over the base radius) of the theory. Paper
   // mode at a practical spacing runs on the same points and lands within its own resolution
   // (2 E / r_b2 in gear angle) of the fast mode: the measured detail is below what it resolves.
-  const auto [p, g] = modified_pair(true);
-  const double a    = working_centre_distance(*p, *g);
+  const auto [p, g]  = modified_pair(true);
+  const double     a = working_centre_distance(*p, *g);
   SynthesisOptions s;
-  s.seed                = 7;
-  s.noise               = 1e-6;
-  s.waviness_amplitude  = 0.5e-6;
-  s.waviness_wavelength = 1.5e-3;
-  s.pitch_error         = 0;
+  s.seed                  = 7;
+  s.noise                 = 1e-6;
+  s.waviness_amplitude    = 0.5e-6;
+  s.waviness_wavelength   = 1.5e-3;
+  s.pitch_error           = 0;
   const MeasuredMember tp = virtual_cmm(*p, "pinion"), tg = virtual_cmm(*g, "gear");
-  const auto mp = std::make_shared<MeasuredMemberFlanks>(synthesise_measured(tp, s));
-  s.seed        = 8;
-  const auto mg = std::make_shared<MeasuredMemberFlanks>(synthesise_measured(tg, s));
+  const auto           mp = std::make_shared<MeasuredMemberFlanks>(synthesise_measured(tp, s));
+  s.seed                  = 8;
+  const auto mg           = std::make_shared<MeasuredMemberFlanks>(synthesise_measured(tg, s));
   TcaOptions o;
-  o.positions_per_mesh = 60;
-  o.mesh_cycles        = 2;
-  const TcaResult theory   = UnloadedTca(p, g, a, {}, o).run();
-  const TcaResult measured = UnloadedTca(mp, mg, a, {}, o).run();
+  o.positions_per_mesh         = 60;
+  o.mesh_cycles                = 2;
+  const TcaResult     theory   = UnloadedTca(p, g, a, {}, o).run();
+  const TcaResult     measured = UnloadedTca(mp, mg, a, {}, o).run();
   std::vector<double> et, em;
   double              worst = 0;
   for (std::size_t i = 0; i < theory.positions.size(); ++i)
@@ -140,7 +140,8 @@ TEST(DiscretePoint, SynthesisedMeasuredPairThroughBothModes)
       em.push_back(measured.positions[i].transmission_error);
       worst = std::max(worst, std::abs(em.back() - et.back()));
     }
-  const std::vector<double> ht = mesh_order_amplitudes(et, 2, 20), hm = mesh_order_amplitudes(em, 2, 20);
+  const std::vector<double> ht = mesh_order_amplitudes(et, 2, 20),
+                            hm = mesh_order_amplitudes(em, 2, 20);
   double high_t = 0, high_m = 0;
   for (int m = 4; m <= 20; ++m)
     high_t += ht[m], high_m += hm[m];
@@ -150,9 +151,9 @@ TEST(DiscretePoint, SynthesisedMeasuredPairThroughBothModes)
   EXPECT_GT(worst, 0.1e-6 / p->base_radius) << worst; // and the measurement shows at all
 
   PaperModeOptions po;
-  po.spacing              = 200e-6;
-  po.positions_per_mesh   = 4;
-  const PaperModeResult r = paper_mode_ste(*mp, *mg, a, {}, po);
+  po.spacing                  = 200e-6;
+  po.positions_per_mesh       = 4;
+  const PaperModeResult r     = paper_mode_ste(*mp, *mg, a, {}, po);
   const double          bound = 2 * r.tolerance / g->base_radius * 24 / 16;
   for (int i = 0; i < 4; ++i)
     EXPECT_NEAR(r.tca.positions[i].transmission_error,

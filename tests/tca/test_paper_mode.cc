@@ -1,8 +1,8 @@
 // The seed's literal discrete-point method (paper mode) against classical TCA: its error is set by
 // the contact tolerance E and shrinks with the point spacing.
-#include "../fzg_c_pair.h"
-#include "paper_mode.h"
-#include "unloaded_tca.h"
+#include "tca/paper_mode.h"
+#include "tca/unloaded_tca.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Unloaded TCA of involute pairs against the exact relations of reference-data.md section 6.
-#include "../fzg_c_pair.h"
-#include "unloaded_tca.h"
+#include "tca/unloaded_tca.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -285,13 +285,13 @@ TEST(UnloadedTca, CoastFlanksCloseTheBacklashFromTheOtherSide)
   const double a  = s.a_w + 0.1e-3;
   const double ca = (s.pinion->base_radius + s.gear->base_radius) / a;
   const double r1 = s.pinion->base_radius / ca, r2 = s.gear->base_radius / ca;
-  const double j  = 2 * pi * r1 / 16 - s.pinion->tooth_thickness(r1) - s.gear->tooth_thickness(r2);
+  const double j = 2 * pi * r1 / 16 - s.pinion->tooth_thickness(r1) - s.gear->tooth_thickness(r2);
   const TcaResult coast = UnloadedTca(s.pinion, s.gear, a, {}, o).run();
   o.side                = FlankSide::drive;
   const TcaResult drive = UnloadedTca(s.pinion, s.gear, a, {}, o).run();
   EXPECT_LT(peak_to_peak(coast), 1e-9);
-  EXPECT_NEAR(drive.positions[0].transmission_error - coast.positions[0].transmission_error,
-              j / r1, 1e-9);
+  EXPECT_NEAR(drive.positions[0].transmission_error - coast.positions[0].transmission_error, j / r1,
+              1e-9);
   EXPECT_NEAR(coast.positions[0].transmission_error, -j / (2 * r1), 1e-9);
 
   auto d                  = c_pair();
@@ -312,17 +312,17 @@ TEST(UnloadedTca, RelativeCurvaturesOfACrownedSpurPair)
   // curvature is 1/rho_1 + 1/rho_2 across (involute radii of curvature = roll lengths) and
   // 8 C_beta / b^2 along the face; the contact ellipse at approach delta has the semi-axes
   // sqrt(2 delta / k).
-  auto d                                  = c_pair();
+  auto d                                    = c_pair();
   d.first.drive_modifications.lead_crowning = 5e-6;
-  const Pair  s                           = make(d);
+  const Pair  s                             = make(d);
   UnloadedTca tca(s.pinion, s.gear, s.a_w);
   for (double phi : {0.0, 0.05, -0.1})
     {
       const TcaPosition  p = tca.at(phi);
       const PairContact &c = p.pairs[p.leading];
       ASSERT_NEAR(c.v1, 0, 1e-9);
-      const double rho1 = std::sqrt(c.position.head<2>().squaredNorm() -
-                                    std::pow(s.pinion->base_radius, 2));
+      const double rho1 =
+          std::sqrt(c.position.head<2>().squaredNorm() - std::pow(s.pinion->base_radius, 2));
       const double rho2 = std::sqrt((c.position - Vec3(s.a_w, 0, 0)).head<2>().squaredNorm() -
                                     std::pow(s.gear->base_radius, 2));
       const double lead = 8 * 5e-6 / std::pow(14e-3, 2);

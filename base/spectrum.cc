@@ -1,6 +1,6 @@
-#include "harmonics.h"
+#include "base/spectrum.h"
 
-#include "types.h"
+#include "base/types.h"
 
 #include <fftw3.h>
 

@@ -1,6 +1,6 @@
 // Mesh-order amplitudes against a signal built from known harmonics.
-#include "harmonics.h"
-#include "types.h"
+#include "base/spectrum.h"
+#include "base/types.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,31 @@
+// What every library shares: small vectors, pi, and the one error type for unusable input
+// (with the one form of its message). No gear knowledge here.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <stdexcept>
+#include <string>
+
+namespace gearkit
+{
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+constexpr double pi = 3.14159265358979323846;
+
+/// Thrown for user input that cannot be used (a parameter out of range, a malformed file).
+/// The message names the parameter or file and what is allowed; the driver prints it and exits
+/// non-zero.
+class InputError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws InputError("<context>: <parameter> = <value> is not allowed; expected <allowed>")
+/// unless ok: the one form of a bad-parameter message.
+void
+require_value(bool ok, const std::string &context, const std::string &parameter, double value,
+              const std::string &allowed);
+} // namespace gearkit

@@ -1,5 +1,12 @@
 // The scene file: a deal.II ParameterHandler input with one subsection per stage, turned into
 // plain data for the stage libraries (which never see a ParameterHandler).
+//
+// Every section is a struct that declares its parameters, parses them and checks them, side by
+// side in one source file (deal.II step-44 style): scene_flanks.cc (Flanks/<pair>),
+// scene_measured.cc, scene_tca.cc, scene_stiffness.cc (Finite elements, Loaded contact),
+// scene_dynamics.cc. declare() runs with the ParameterHandler inside the section's subsection,
+// parse() likewise, check() afterwards with the rest of the scene at hand: every check that the
+// scene alone allows runs when the scene is read, before any stage.
 #pragma once
 
 #include "dynamics/integrators.h"
@@ -10,12 +17,21 @@
 #include "tca/paper_mode.h"
 #include "tca/unloaded_tca.h"
 
+#include <iosfwd>
 #include <map>
 #include <string>
 #include <vector>
 
+namespace dealii
+{
+class ParameterHandler;
+}
+
 namespace gearkit
 {
+using dealii::ParameterHandler;
+struct Scene;
+
 enum class PairType
 {
   involute,    ///< spur or helical, parallel axes (pinion, gear)
@@ -36,6 +52,14 @@ struct PairScene
   /// Spiral bevel: predesigned transmission error amplitude [rad] the modified roll is
   /// synthesised for (flanks stage); 0 = use mismatch.modified_roll_2c as given.
   double transmission_error_amplitude = 0;
+
+  static void
+  declare(ParameterHandler &prm);
+  void
+  parse(ParameterHandler &prm);
+  /// Both members build and mesh with each other; modifications fit on the teeth.
+  void
+  check() const;
 };
 
 /// Tooth counts (z1, z2) of a pair of either type.
@@ -63,13 +87,23 @@ struct MeasuredScene
   int              profile_points = 9, face_points = 29;
   double           edge_margin = 0; ///< fraction of each parameter range left out at the edges
   std::vector<int> pinion_teeth, gear_teeth; ///< teeth to measure (empty = all)
-  unsigned long    seed                = 1;
-  double           form_error          = 0;
-  double           waviness_amplitude  = 0;
-  double           waviness_wavelength = 0;
-  double           roughness           = 0;
-  double           noise               = 0;
-  double           pitch_error         = 0;
+  /// Files: every point within this distance of its nominal flank [m] (plausibility).
+  double        nominal_tolerance   = 100e-6;
+  unsigned long seed                = 1;
+  double        form_error          = 0;
+  double        waviness_amplitude  = 0;
+  double        waviness_wavelength = 0;
+  double        roughness           = 0;
+  double        noise               = 0;
+  double        pitch_error         = 0;
+
+  static void
+  declare(ParameterHandler &prm);
+  /// File names relative to the scene's folder.
+  void
+  parse(ParameterHandler &prm, const std::string &scene_directory);
+  void
+  check(const PairScene &pair) const;
 };
 
 /// Unloaded tooth contact analysis of a pair.
@@ -89,6 +123,16 @@ struct TcaScene
   /// Analyse the whole hunting-tooth cycle (lcm(z1, z2) mesh cycles) and report the spectrum in
   /// pinion shaft orders (per-tooth errors give shaft orders and mesh sidebands).
   bool hunting = false;
+
+  static void
+  declare(ParameterHandler &prm);
+  void
+  parse(ParameterHandler &prm);
+  /// Completes the options that follow from the pair (the hunting cycle's mesh cycles, the
+  /// paper mode's copy of the positions) and checks the assembly: a centre distance at which the
+  /// teeth would overlap, or not reach each other, is refused.
+  void
+  complete_and_check(const PairScene &pair, const MeasuredScene &measured_flanks);
 };
 
 /// Finite-element compliance of a pair's members (stage "compliance").
@@ -103,6 +147,13 @@ struct FeScene
   double   depth         = 3; ///< response depth in flank element sizes
   int      n_u = 9, n_v = 7;  ///< load grid per flank
   Material material;          ///< both members
+
+  static void
+  declare(ParameterHandler &prm);
+  void
+  parse(ParameterHandler &prm);
+  void
+  check(const PairScene &pair) const;
 };
 
 /// Loaded contact over the mesh cycle (stage "stiffness").
@@ -115,6 +166,13 @@ struct LoadedScene
   /// Positions (indices into the mesh cycle) solved again in reference mode, with VTU files.
   std::vector<int> reference_positions;
   double           reference_elements_per_cell = 0.5;
+
+  static void
+  declare(ParameterHandler &prm);
+  void
+  parse(ParameterHandler &prm);
+  void
+  check(const PairScene &pair, const MeasuredScene &measured) const;
 };
 
 /// 14-DOF pair dynamics (stage "dynamics"): the model's parameters and the speed sweep.
@@ -144,6 +202,13 @@ struct DynamicsScene
   /// Each sweep in this many blocks of speeds (run in parallel on threads and MPI processes),
   /// each but the first started this many speeds early.
   int sweep_blocks = 1, warmup_speeds = 3;
+
+  static void
+  declare(ParameterHandler &prm);
+  void
+  parse(ParameterHandler &prm);
+  void
+  check(const PairScene &pair, const TcaScene &tca) const;
 };
 
 struct Scene
@@ -160,6 +225,10 @@ struct Scene
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
   std::map<std::string, std::string> sections;
+
+  /// Section "Scene": name, outputs, pairs.
+  static void
+  declare(ParameterHandler &prm);
 };
 
 /// Reads and checks a scene file. Throws InputError naming the file, line, parameter and what is

@@ -3,6 +3,7 @@
 // topography files — with their deviation from the theoretical flank where it is known.
 #include "driver/pair_members.h"
 #include "driver/stages.h"
+#include "geometry/flank_distance.h"
 #include "geometry/measured_flank.h"
 
 #include <algorithm>
@@ -109,13 +110,8 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
            {Member{"pinion", pair.pinion, *theory_members.pinion, m.pinion_file, m.pinion_teeth},
             Member{"gear", pair.gear, *theory_members.gear, m.gear_file, m.gear_teeth}})
         {
-          const int z = member.flanks.teeth();
-          for (int k : member.teeth)
-            if (k < 0 || k >= z)
-              throw InputError("Measured flanks/" + pair.name + "/" + member.name +
-                               " teeth: tooth " + std::to_string(k) + " is not in [0, " +
-                               std::to_string(z - 1) + "]");
-          MeasuredMember                   measured;
+          const int      z = member.flanks.teeth(); // tooth indices: checked at read time
+          MeasuredMember measured;
           std::vector<std::vector<double>> deviation;
           switch (m.source)
             {
@@ -140,6 +136,8 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                 throw InputError(member.file + ": teeth = " + std::to_string(measured.teeth) +
                                  ", but Flanks/" + pair.name + "/" + member.name + " has " +
                                  std::to_string(z) + " teeth");
+              check_measurement(measured, member.flanks, m.nominal_tolerance, member.file,
+                                "Measured flanks/" + pair.name + "/nominal tolerance");
               break;
             case MeasuredSource::topography_files:
               {
@@ -149,6 +147,8 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                                    "on involute flanks; for a spiral bevel pair use cmm files");
                 const TopographyMember t = read_topography_file(member.file);
                 measured = topography_to_points(*InvoluteGear::create(member.data), t);
+                check_measurement(measured, member.flanks, m.nominal_tolerance, member.file,
+                                  "Measured flanks/" + pair.name + "/nominal tolerance");
                 for (const FlankTopography &f : t.flanks)
                   deviation.push_back(f.deviations);
                 break;

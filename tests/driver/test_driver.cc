@@ -401,12 +401,13 @@ TEST_F(DriverTest, TcaParametersRerunOnlyTheSteStage)
   const H5File f = H5File::open((dir / "out/small/results.h5").string());
   for (double e : f.root().group("ste/p1").read_doubles("transmission_error"))
     EXPECT_LT(std::abs(e), 1e-9);
-  // a centre distance at which the gears cannot touch is refused, without results
+  // a centre distance at which the gears cannot touch is refused when the scene is read
   fs::remove_all(dir / "out");
   scene(std::regex_replace(with_ste, std::regex("set mesh cycles = 1"),
                            "set mesh cycles = 1\n    set centre distance = 200"));
   EXPECT_EQ(run({file}), 1);
-  EXPECT_NE(err.str().find("no tooth pair"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("do not reach each other"), std::string::npos) << err.str();
+  EXPECT_EQ(out.str().find("stage "), std::string::npos) << "refused before any stage";
   EXPECT_FALSE(fs::exists(dir / "out/small/results.h5"));
 }
 

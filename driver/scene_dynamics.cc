@@ -1,0 +1,167 @@
+// Section Dynamics/<pair>: the 14-DOF model's parameters (supports, shafts, backlash, damping),
+// its excitation (mesh stiffness, transmission error) and the speed sweep.
+#include "driver/scene.h"
+#include "driver/scene_parameters.h"
+
+#include <algorithm>
+
+namespace gearkit
+{
+void
+DynamicsScene::declare(ParameterHandler &prm)
+{
+  prm.declare_entry("mesh stiffness source", "finite elements",
+                    Patterns::Selection("finite elements|constant"),
+                    "finite elements: K_m over the mesh cycle from the stiffness stage (the "
+                    "torque nearest the pinion torque below); constant: the value below.");
+  prm.declare_entry("mesh stiffness", "300", Patterns::Double(0),
+                    "[N/um] Mean K_m when the source is constant.");
+  prm.declare_entry("mesh stiffness variation", "0", Patterns::Double(0, 0.9),
+                    "Fraction of the mean by which a constant-source K_m varies over the mesh "
+                    "cycle (first mesh order, K_m (1 - v cos 2 pi phase)).");
+  prm.declare_entry("transmission error source", "tca", Patterns::Selection("tca|analytic"),
+                    "tca: E_t = lambda_pz e_0 over the mesh cycle from the unloaded TCA; "
+                    "analytic: E_t = amplitude sin(2 pi phase) (the TCA still gives the normals "
+                    "and moment arms).");
+  prm.declare_entry("transmission error amplitude", "0", Patterns::Double(0),
+                    "[um] Of the analytic E_t, as displacement along the line of action.");
+  prm.declare_entry("pinion torque", "100", Patterns::Double(0),
+                    "[N m] Motor torque on the pinion; the load torque balances it through the "
+                    "mean moment arms.");
+  prm.declare_entry("motor", "speed controlled", Patterns::Selection("speed controlled|torque"),
+                    "speed controlled: the motor turns at the sweep's speed (its torque the "
+                    "reaction); torque: a constant motor torque, the train free to drift (the "
+                    "seed's model).");
+  prm.declare_entry("motor inertia", "0.05", Patterns::Double(0), "[kg m^2] 0: no motor DOF.");
+  prm.declare_entry("load inertia", "0.1", Patterns::Double(0), "[kg m^2] 0: no load DOF.");
+  prm.declare_entry("motor shaft stiffness", "2e4", Patterns::Double(0), "[N m/rad] Motor-pinion.");
+  prm.declare_entry("load shaft stiffness", "3e4", Patterns::Double(0), "[N m/rad] Gear-load.");
+  prm.declare_entry("shaft damping", "2", Patterns::Double(0), "[N m s/rad] Both shafts.");
+  for (const char *member : {"pinion", "gear"})
+    {
+      const std::string m = member;
+      prm.declare_entry(m + " mass", "2", Patterns::Double(0), "[kg]");
+      prm.declare_entry(m + " axial inertia", "4e-3", Patterns::Double(0),
+                        "[kg m^2] About its axis.");
+      prm.declare_entry(m + " transverse inertia", "6e-3", Patterns::Double(0),
+                        "[kg m^2] About axes across it through the body point (the member "
+                        "frame's origin: the cone apex of a bevel member).");
+      prm.declare_entry(m + " bearing positions", "100, 160",
+                        Patterns::List(Patterns::Double(), 1, 4),
+                        "[mm] Radial bearings along the member's axis from its frame origin.");
+    }
+  prm.declare_entry("bearing stiffness", "500", Patterns::Double(0),
+                    "[N/um] Radial, every bearing.");
+  prm.declare_entry("axial stiffness", "300", Patterns::Double(0), "[N/um] Each member.");
+  prm.declare_entry("bearing damping", "500", Patterns::Double(0), "[N s/m] Radial and axial.");
+  prm.declare_entry("half backlash", "50", Patterns::Double(0), "[um] b_c.");
+  prm.declare_entry("mesh damping ratio", "0.05", Patterns::Double(0, 1),
+                    "zeta of c_m = 2 zeta sqrt(K_m m_e); the damping acts in contact only.");
+  prm.declare_entry("speed from", "100", Patterns::Double(0.001), "[rpm] Pinion speed.");
+  prm.declare_entry("speed to", "12000", Patterns::Double(0.001), "[rpm]");
+  prm.declare_entry("speeds", "100", Patterns::Integer(1, 100000),
+                    "Speeds of the sweep, swept up and then down.");
+  prm.declare_entry("settle cycles", "200", Patterns::Integer(0),
+                    "Most mesh cycles to settle at each speed (less when the motion repeats).");
+  prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
+  prm.declare_entry("steady tolerance", "1e-4", Patterns::Double(0),
+                    "Settled when the states at whole excitation periods repeat within this, "
+                    "relative to the static mesh deflection; 0: always settle cycles.");
+  prm.declare_entry(
+      "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
+      "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
+  prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000), "Newmark.");
+  prm.declare_entry("excitations", "theoretical",
+                    Patterns::MultipleSelection("theoretical|measured"),
+                    "Tables swept: the theoretical flanks', the measured flanks' (their TCA: "
+                    "TCA/<pair>/measured flanks = true), or both (the seed's comparison).");
+  prm.declare_entry("excitation cycles", "0", Patterns::Integer(0),
+                    "Mesh cycles of the measured flanks' TCA that form one period of their "
+                    "excitation (teeth differ, so it does not repeat with the mesh cycle); 0: "
+                    "all the TCA computed (the hunting cycle when it ran over it).");
+  prm.declare_entry("time series speeds", "", Patterns::List(Patterns::Double(0), 0),
+                    "[rpm] Keep the recorded time series at the swept speeds nearest these.");
+  prm.declare_entry("spectrum orders", "10", Patterns::Integer(1, 1000),
+                    "DTE spectrum per speed up to this mesh order.");
+  prm.declare_entry("sweep blocks", "1", Patterns::Integer(1, 100000),
+                    "Each sweep in this many blocks of consecutive speeds, run in parallel "
+                    "(threads, and MPI processes under mpirun); 1: one continuation.");
+  prm.declare_entry("warm-up speeds", "3", Patterns::Integer(0),
+                    "Speeds each block but the first starts early to regain the continuation.");
+}
+
+void
+DynamicsScene::parse(ParameterHandler &prm)
+{
+  fe_stiffness                 = prm.get("mesh stiffness source") == "finite elements";
+  mesh_stiffness               = prm.get_double("mesh stiffness") * N_per_um;
+  stiffness_variation          = prm.get_double("mesh stiffness variation");
+  torque                       = prm.get_double("pinion torque");
+  tca_transmission_error       = prm.get("transmission error source") == "tca";
+  transmission_error_amplitude = prm.get_double("transmission error amplitude") * um;
+  PairModelParameters &mp      = model;
+  mp.motor_inertia             = prm.get_double("motor inertia");
+  mp.speed_controlled_motor    = prm.get("motor") == "speed controlled";
+  mp.load_inertia              = prm.get_double("load inertia");
+  const double shaft_c         = prm.get_double("shaft damping");
+  mp.motor_shaft               = {prm.get_double("motor shaft stiffness"), shaft_c};
+  mp.load_shaft                = {prm.get_double("load shaft stiffness"), shaft_c};
+  const double kb              = prm.get_double("bearing stiffness") * N_per_um,
+               cb              = prm.get_double("bearing damping");
+  for (const char *member : {"pinion", "gear"})
+    {
+      BodyParameters   &b  = std::string(member) == "pinion" ? mp.pinion : mp.gear;
+      const std::string m  = member;
+      b.mass               = prm.get_double(m + " mass");
+      b.axial_inertia      = prm.get_double(m + " axial inertia");
+      b.transverse_inertia = prm.get_double(m + " transverse inertia");
+      b.bearings.clear();
+      for (const double x : get_doubles(prm, m + " bearing positions", mm))
+        b.bearings.push_back({x, kb, cb});
+      b.axial_stiffness = prm.get_double("axial stiffness") * N_per_um;
+      b.axial_damping   = cb;
+    }
+  mp.half_backlash        = prm.get_double("half backlash") * um;
+  mp.mesh_damping_ratio   = prm.get_double("mesh damping ratio");
+  speed_from              = from_rpm(prm.get_double("speed from"));
+  speed_to                = from_rpm(prm.get_double("speed to"));
+  speeds                  = prm.get_integer("speeds");
+  settle_cycles           = prm.get_integer("settle cycles");
+  record_cycles           = prm.get_integer("record cycles");
+  steady_tolerance        = prm.get_double("steady tolerance");
+  const std::string integ = prm.get("integrator");
+  integrator              = integ == "newmark"     ? Integrator::newmark
+                            : integ == "cvode bdf" ? Integrator::cvode_bdf
+                                                   : Integrator::cvode_adams;
+  steps_per_cycle         = prm.get_integer("steps per mesh cycle");
+  const auto excitations  = split_list(prm.get("excitations"));
+  auto       has          = [&](const char *what) {
+    return std::find(excitations.begin(), excitations.end(), what) != excitations.end();
+  };
+  theoretical       = has("theoretical");
+  measured          = has("measured");
+  excitation_cycles = prm.get_integer("excitation cycles");
+  for (const double x : get_doubles(prm, "time series speeds"))
+    series_speeds.push_back(from_rpm(x));
+  spectrum_orders = prm.get_integer("spectrum orders");
+  sweep_blocks    = prm.get_integer("sweep blocks");
+  warmup_speeds   = prm.get_integer("warm-up speeds");
+}
+
+void
+DynamicsScene::check(const PairScene &pair, const TcaScene &tca) const
+{
+  const std::string where = "Dynamics/" + pair.name + "/";
+  if (measured && !tca.measured)
+    throw InputError(where + "excitations: measured needs the measured flanks' TCA (set TCA/" +
+                     pair.name + "/measured flanks = true)");
+  if (measured && excitation_cycles > tca.options.mesh_cycles)
+    throw InputError(where + "excitation cycles: " + std::to_string(excitation_cycles) +
+                     " is more than the " + std::to_string(tca.options.mesh_cycles) +
+                     " mesh cycles the TCA computes (TCA/" + pair.name + "/mesh cycles)");
+  if (!(speed_to >= speed_from))
+    throw InputError(where + "speed to: " + std::to_string(speed_to / from_rpm(1)) +
+                     " rpm is below speed from (" + std::to_string(speed_from / from_rpm(1)) +
+                     " rpm)");
+}
+} // namespace gearkit

@@ -1,0 +1,297 @@
+// Section Flanks/<pair>: the pair's type, its involute members (Pinion, Gear: data,
+// modifications per flank side, deviations) or its spiral bevel design, declared, read and
+// checked side by side.
+#include "driver/scene.h"
+#include "driver/scene_parameters.h"
+
+#include <cmath>
+
+namespace gearkit
+{
+namespace
+{
+void
+declare_modifications(ParameterHandler &prm)
+{
+  prm.declare_entry("tip relief", "0", Patterns::Double(0), "[um] C_a, removal at the tip.");
+  prm.declare_entry("tip relief length", "0", Patterns::Double(0),
+                    "[mm] Roll length (transverse, along the line of action) from the tip over "
+                    "which the tip relief acts.");
+  prm.declare_entry("tip relief shape", "linear", Patterns::Selection("linear|parabolic"),
+                    "Shape of the tip relief.");
+  prm.declare_entry("root relief", "0", Patterns::Double(0),
+                    "[um] C_f, removal at the start of the involute (form circle).");
+  prm.declare_entry("root relief length", "0", Patterns::Double(0),
+                    "[mm] Roll length from the form circle over which the root relief acts.");
+  prm.declare_entry("root relief shape", "linear", Patterns::Selection("linear|parabolic"),
+                    "Shape of the root relief.");
+  prm.declare_entry("lead crowning", "0", Patterns::Double(0),
+                    "[um] C_beta, parabolic removal at each face end relative to the middle.");
+  prm.declare_entry("end relief", "0", Patterns::Double(0),
+                    "[um] C_I, linear removal at each face end.");
+  prm.declare_entry("end relief length", "0", Patterns::Double(0),
+                    "[mm] Axial length from each face end over which the end relief acts.");
+  prm.declare_entry("profile crowning", "0", Patterns::Double(0),
+                    "[um] C_alpha, parabolic removal at both ends of the active profile.");
+  prm.declare_entry("profile slope deviation", "0", Patterns::Double(),
+                    "[um] f_Halpha over the active profile; positive adds material at the tip.");
+  prm.declare_entry("helix slope deviation", "0", Patterns::Double(),
+                    "[um] f_Hbeta over the face width; positive adds material at the +z end.");
+  prm.declare_entry("waviness amplitude", "0", Patterns::Double(0),
+                    "[um] Amplitude of a sinusoidal profile waviness.");
+  prm.declare_entry("waviness wavelength", "0", Patterns::Double(0),
+                    "[mm] Wavelength of the profile waviness along the roll length; 0 = none.");
+  prm.declare_entry("waviness phase", "0", Patterns::Double(-360, 360),
+                    "[deg] Phase of the waviness at the form circle.");
+}
+
+ToothModifications
+get_modifications(ParameterHandler &prm)
+{
+  auto shape = [&](const char *name) {
+    return prm.get(name) == "linear" ? ReliefShape::linear : ReliefShape::parabolic;
+  };
+  ToothModifications m;
+  m.tip_relief          = prm.get_double("tip relief") * um;
+  m.tip_relief_length   = prm.get_double("tip relief length") * mm;
+  m.tip_relief_shape    = shape("tip relief shape");
+  m.root_relief         = prm.get_double("root relief") * um;
+  m.root_relief_length  = prm.get_double("root relief length") * mm;
+  m.root_relief_shape   = shape("root relief shape");
+  m.lead_crowning       = prm.get_double("lead crowning") * um;
+  m.end_relief          = prm.get_double("end relief") * um;
+  m.end_relief_length   = prm.get_double("end relief length") * mm;
+  m.profile_crowning    = prm.get_double("profile crowning") * um;
+  m.profile_slope       = prm.get_double("profile slope deviation") * um;
+  m.helix_slope         = prm.get_double("helix slope deviation") * um;
+  m.waviness_amplitude  = prm.get_double("waviness amplitude") * um;
+  m.waviness_wavelength = prm.get_double("waviness wavelength") * mm;
+  m.waviness_phase      = prm.get_double("waviness phase") * deg;
+  return m;
+}
+
+void
+declare_member(ParameterHandler &prm, const std::string &defaults_teeth)
+{
+  prm.declare_entry("number of teeth", defaults_teeth, Patterns::Integer(3, 100000),
+                    "Number of teeth z.");
+  prm.declare_entry("normal module", "3", Patterns::Double(0.01, 100), "[mm] Normal module m_n.");
+  prm.declare_entry("normal pressure angle", "20", Patterns::Double(0, 45),
+                    "[deg] Normal pressure angle alpha_n of the basic rack.");
+  prm.declare_entry("helix angle", "0", Patterns::Double(0, 60),
+                    "[deg] Helix angle beta at the reference circle (0 = spur).");
+  prm.declare_entry("hand", "right", Patterns::Selection("right|left"),
+                    "Hand of the helix (a pair of external helical gears has opposite hands).");
+  prm.declare_entry("profile shift coefficient", "0", Patterns::Double(-3, 3),
+                    "Profile shift coefficient x.");
+  prm.declare_entry("face width", "20", Patterns::Double(0, 10000), "[mm] Face width b.");
+  prm.declare_entry("addendum factor", "1", Patterns::Double(0, 3),
+                    "h_aP*: tip radius r_a = r + (h_aP* + x) m_n.");
+  prm.declare_entry("dedendum factor", "1.25", Patterns::Double(0, 3),
+                    "h_fP*: root radius r_f = r - (h_fP* - x) m_n.");
+  prm.declare_entry("root radius factor", "0.38", Patterns::Double(0, 1),
+                    "rho_fP*: tip radius of the generating rack cutter / m_n; it forms the "
+                    "trochoidal root fillet.");
+  prm.declare_entry("bore diameter", "0", Patterns::Double(0, 100000),
+                    "[mm] Bore diameter (0 = solid).");
+  prm.declare_entry("density", "7850", Patterns::Double(0, 100000),
+                    "[kg/m^3] Density of the gear body.");
+  for (const char *side : {"Drive flank modifications", "Coast flank modifications"})
+    {
+      prm.enter_subsection(side);
+      declare_modifications(prm);
+      prm.leave_subsection();
+    }
+  prm.enter_subsection("Deviations");
+  prm.declare_entry("single pitch deviations", "", Patterns::List(Patterns::Double(), 0, 100000),
+                    "[um] f_p per tooth (entry k: pitch from tooth k-1 to tooth k along the "
+                    "reference circle); empty, or one per tooth adding up to zero.");
+  prm.declare_entry("runout", "0", Patterns::Double(0),
+                    "[um] Eccentricity of the toothing relative to the axis of rotation.");
+  prm.declare_entry("runout phase", "0", Patterns::Double(-360, 360),
+                    "[deg] Direction of the runout eccentricity in the member frame.");
+  prm.declare_entry("eccentric tooth", "-1", Patterns::Integer(-1),
+                    "Index of a tooth whose flank is moved along its normal (-1 = none).");
+  prm.declare_entry("eccentric tooth flank", "drive", Patterns::Selection("drive|coast"),
+                    "Which flank of the eccentric tooth moves.");
+  prm.declare_entry("eccentric tooth offset", "0", Patterns::Double(),
+                    "[um] Normal offset of the eccentric tooth flank (positive adds material).");
+  prm.declare_entry("chipped tooth", "-1", Patterns::Integer(-1),
+                    "Index of a chipped tooth (-1 = none).");
+  prm.declare_entry("chip diameter", "0", Patterns::Double(0),
+                    "[mm] Material above this diameter is gone from the chipped tooth (the root "
+                    "diameter removes the whole tooth).");
+  prm.declare_entry("chip face fraction", "1", Patterns::Double(0, 1),
+                    "Axial extent of the chip from the -z face end, as a fraction of b.");
+  prm.leave_subsection();
+}
+
+InvoluteGearData
+get_member(ParameterHandler &prm, const std::string &name)
+{
+  InvoluteGearData d;
+  d.name                  = name;
+  d.teeth                 = prm.get_integer("number of teeth");
+  d.normal_module         = prm.get_double("normal module") * mm;
+  d.normal_pressure_angle = prm.get_double("normal pressure angle") * deg;
+  d.helix_angle           = prm.get_double("helix angle") * deg;
+  d.hand                  = prm.get("hand") == "right" ? Hand::right : Hand::left;
+  d.profile_shift         = prm.get_double("profile shift coefficient");
+  d.face_width            = prm.get_double("face width") * mm;
+  d.addendum_factor       = prm.get_double("addendum factor");
+  d.dedendum_factor       = prm.get_double("dedendum factor");
+  d.root_radius_factor    = prm.get_double("root radius factor");
+  d.bore_diameter         = prm.get_double("bore diameter") * mm;
+  d.density               = prm.get_double("density");
+  prm.enter_subsection("Drive flank modifications");
+  d.drive_modifications = get_modifications(prm);
+  prm.leave_subsection();
+  prm.enter_subsection("Coast flank modifications");
+  d.coast_modifications = get_modifications(prm);
+  prm.leave_subsection();
+  prm.enter_subsection("Deviations");
+  d.single_pitch_deviations = get_doubles(prm, "single pitch deviations", um);
+  d.runout                  = {prm.get_double("runout") * um, prm.get_double("runout phase") * deg};
+  if (const int k = prm.get_integer("eccentric tooth"); k >= 0)
+    d.eccentric_teeth.push_back(
+        {k, prm.get("eccentric tooth flank") == "drive" ? FlankSide::drive : FlankSide::coast,
+         prm.get_double("eccentric tooth offset") * um});
+  if (const int k = prm.get_integer("chipped tooth"); k >= 0)
+    d.chipped_teeth.push_back(
+        {k, prm.get_double("chip diameter") * mm / 2, prm.get_double("chip face fraction")});
+  prm.leave_subsection();
+  return d;
+}
+
+void
+declare_bevel(ParameterHandler &prm)
+{
+  prm.declare_entry("pinion teeth", "12", Patterns::Integer(3, 10000), "Pinion teeth z1.");
+  prm.declare_entry("gear teeth", "36", Patterns::Integer(3, 10000), "Gear teeth z2.");
+  prm.declare_entry("shaft angle", "90", Patterns::Double(1, 179), "[deg] Shaft angle Sigma.");
+  prm.declare_entry("module", "6", Patterns::Double(0.01, 100), "[mm] Module (see module type).");
+  prm.declare_entry("module type", "outer transverse",
+                    Patterns::Selection("outer transverse|mean normal"),
+                    "outer transverse: m_et at the heel; mean normal: m_mn at the mean point.");
+  prm.declare_entry("face width", "25.4", Patterns::Double(0, 10000), "[mm] Face width F.");
+  prm.declare_entry("mean spiral angle", "35", Patterns::Double(0, 60),
+                    "[deg] Mean spiral angle beta_m.");
+  prm.declare_entry("pressure angle", "20", Patterns::Double(0, 45),
+                    "[deg] Normal pressure angle of both sides (blade angle).");
+  prm.declare_entry("pinion hand", "left", Patterns::Selection("right|left"),
+                    "Hand of spiral of the pinion; the gear has the other.");
+  prm.declare_entry("cutter radius", "76.2", Patterns::Double(0, 10000),
+                    "[mm] Mean radius r_c of the head cutter.");
+  prm.declare_entry("pinion addendum factor", "1", Patterns::Double(0, 2),
+                    "Pinion addendum / m_mn (uniform depth: working depth 2 m_mn).");
+  prm.declare_entry("clearance factor", "0.25", Patterns::Double(0, 1), "Clearance / m_mn.");
+  prm.declare_entry("pinion thickness factor", "0.5", Patterns::Double(0, 1),
+                    "Pinion tooth thickness / normal pitch at the mean point.");
+  prm.declare_entry("blade edge radius factor", "0.2", Patterns::Double(0, 1),
+                    "Edge radius of the blade tips / m_mn: the rounding cuts the root fillet and "
+                    "ends the working flank.");
+  prm.declare_entry("pinion cutter radius change", "0", Patterns::Double(),
+                    "[mm] Mismatch: pinion blade radii against the gear's, the blades kept "
+                    "through the mean point (localises the bearing along the face).");
+  prm.declare_entry("pinion blade curvature", "0", Patterns::Double(),
+                    "[1/m] Mismatch: parabolic blade curvature of the pinion blades (profile "
+                    "crowning).");
+  prm.declare_entry("pinion modified roll 2C", "0", Patterns::Double(),
+                    "Modified roll 2C of the pinion (used when transmission error amplitude "
+                    "is 0).");
+  prm.declare_entry("pinion modified roll 6D", "0", Patterns::Double(),
+                    "Modified roll 6D of the pinion.");
+  prm.declare_entry("transmission error amplitude", "0", Patterns::Double(0),
+                    "[urad] Predesigned parabolic transmission error (peak-to-peak over a mesh "
+                    "cycle) the pinion's modified roll 2C is synthesised for; 0 = none.");
+}
+
+void
+parse_bevel(ParameterHandler &prm, PairScene &pair)
+{
+  BevelPairDesign &d            = pair.bevel;
+  d.pinion_teeth                = prm.get_integer("pinion teeth");
+  d.gear_teeth                  = prm.get_integer("gear teeth");
+  d.shaft_angle                 = prm.get_double("shaft angle") * deg;
+  d.module                      = prm.get_double("module") * mm;
+  d.module_kind                 = prm.get("module type") == "mean normal" ? BevelModule::mean_normal
+                                                                          : BevelModule::outer_transverse;
+  d.face_width                  = prm.get_double("face width") * mm;
+  d.mean_spiral_angle           = prm.get_double("mean spiral angle") * deg;
+  d.pressure_angle              = prm.get_double("pressure angle") * deg;
+  d.pinion_hand                 = prm.get("pinion hand") == "right" ? Hand::right : Hand::left;
+  d.cutter_radius               = prm.get_double("cutter radius") * mm;
+  d.pinion_addendum             = prm.get_double("pinion addendum factor");
+  d.clearance                   = prm.get_double("clearance factor");
+  d.pinion_thickness            = prm.get_double("pinion thickness factor");
+  d.edge_radius                 = prm.get_double("blade edge radius factor");
+  pair.mismatch.cutter_radius   = prm.get_double("pinion cutter radius change") * mm;
+  pair.mismatch.blade_curvature = prm.get_double("pinion blade curvature");
+  pair.mismatch.modified_roll_2c    = prm.get_double("pinion modified roll 2C");
+  pair.mismatch.modified_roll_6d    = prm.get_double("pinion modified roll 6D");
+  pair.transmission_error_amplitude = prm.get_double("transmission error amplitude") * 1e-6;
+}
+
+} // namespace
+
+void
+PairScene::declare(ParameterHandler &prm)
+{
+  prm.declare_entry("grid profile points", "9", Patterns::Integer(2, 10000),
+                    "Profile points per flank in the stored flank grids (/flanks).");
+  prm.declare_entry("grid face points", "29", Patterns::Integer(2, 10000),
+                    "Face points per flank in the stored flank grids (/flanks).");
+  prm.declare_entry("type", "involute", Patterns::Selection("involute|spiral bevel"),
+                    "involute: spur or helical pair (subsections Pinion, Gear); spiral "
+                    "bevel: face-milled spiral bevel pair (subsection Spiral bevel).");
+  in_subsection(prm, {"Pinion"}, [&] { declare_member(prm, "20"); });
+  in_subsection(prm, {"Gear"}, [&] { declare_member(prm, "40"); });
+  in_subsection(prm, {"Spiral bevel"}, [&] { declare_bevel(prm); });
+}
+
+void
+PairScene::parse(ParameterHandler &prm)
+{
+  grid_profile_points = prm.get_integer("grid profile points");
+  grid_face_points    = prm.get_integer("grid face points");
+  type = prm.get("type") == "spiral bevel" ? PairType::spiral_bevel : PairType::involute;
+  in_subsection(prm, {"Pinion"}, [&] { pinion = get_member(prm, "Flanks/" + name + "/Pinion"); });
+  in_subsection(prm, {"Gear"}, [&] { gear = get_member(prm, "Flanks/" + name + "/Gear"); });
+  in_subsection(prm, {"Spiral bevel"}, [&] { parse_bevel(prm, *this); });
+}
+
+// Both members must build (InvoluteGear checks every parameter, modifications included) and
+// mesh with each other.
+void
+PairScene::check() const
+{
+  if (type == PairType::spiral_bevel)
+    {
+      try
+        {
+          bevel_geometry(bevel);
+        }
+      catch (const InputError &e)
+        {
+          throw InputError("Flanks/" + name + "/Spiral bevel: " + e.what());
+        }
+      return;
+    }
+  InvoluteGear::create(pinion);
+  InvoluteGear::create(gear);
+  const InvoluteGearData &a = pinion, &b = gear;
+  auto                    fail = [&](const std::string &what) {
+    throw InputError("Flanks/" + name + ": pinion and gear " + what);
+  };
+  if (std::abs(a.normal_module - b.normal_module) > 1e-12)
+    fail("must have the same normal module (" + std::to_string(a.normal_module / mm) + " and " +
+         std::to_string(b.normal_module / mm) + " mm)");
+  if (std::abs(a.normal_pressure_angle - b.normal_pressure_angle) > 1e-12)
+    fail("must have the same normal pressure angle");
+  if (std::abs(a.helix_angle - b.helix_angle) > 1e-12)
+    fail("must have the same helix angle (external parallel-axis pair)");
+  if (a.helix_angle > 0 && a.hand == b.hand)
+    fail("must have opposite hands (external helical pair); both are " +
+         std::string(a.hand == Hand::right ? "right" : "left"));
+}
+} // namespace gearkit

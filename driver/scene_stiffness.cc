@@ -1,0 +1,130 @@
+// Sections Finite elements/<pair> (the members' tooth segments, elements, material) and Loaded
+// contact/<pair> (torques, positions, contact cells, reference mode).
+#include "driver/scene.h"
+#include "driver/scene_parameters.h"
+
+namespace gearkit
+{
+void
+FeScene::declare(ParameterHandler &prm)
+{
+  prm.declare_entry("segment teeth", "7", Patterns::Integer(3, 15),
+                    "Teeth in each member's finite-element segment (odd, at least the teeth that "
+                    "carry load over the mesh cycle; bore and radial cuts held). Held cuts near "
+                    "the loaded teeth stiffen them: 3 teeth overestimate K_m by ~30 %, 5 by "
+                    "~10 %, 7 by ~5 % (bench/README.md).");
+  prm.declare_entry("hold cuts", "true", Patterns::Bool(),
+                    "Hold the segment's radial cut faces (true) or leave them free (false: "
+                    "softer than the whole gear; held and free bracket it).");
+  prm.declare_entry("flank element size", "0.25", Patterns::Double(0.02, 2),
+                    "Element size at the flanks and fillets / m_n.");
+  prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
+                    "Element size toward the bore / m_n.");
+  prm.declare_entry("degree", "2", Patterns::Integer(1, 2), "Finite-element degree (FE_Q).");
+  prm.declare_entry("other element size", "0", Patterns::Double(0, 2),
+                    "[m_n] Element size at the fillets and the flanks of the unloaded side; 0 = "
+                    "the flank element size. Only the loaded flanks need fine elements: e.g. "
+                    "flank 0.1, other 0.3, response depth 2 is within 1.7 % of the reference "
+                    "mode (bench/README.md).");
+  prm.declare_entry("response depth", "3", Patterns::Double(1, 20),
+                    "Depth below the flank, in flank element sizes, where the finite elements "
+                    "are read (they resolve the Boussinesq field there); the half-space part "
+                    "above it is analytic.");
+  prm.declare_entry("profile grid points", "9", Patterns::Integer(2, 100),
+                    "Unit-load points over the profile of each loaded flank.");
+  prm.declare_entry("face grid points", "7", Patterns::Integer(2, 100),
+                    "Unit-load points over the face of each loaded flank.");
+  prm.declare_entry("Young's modulus", "206", Patterns::Double(1),
+                    "[GPa] Young's modulus of both members.");
+  prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(-0.99, 0.499),
+                    "Poisson's ratio of both members.");
+}
+
+void
+FeScene::parse(ParameterHandler &prm)
+{
+  segment_teeth = prm.get_integer("segment teeth");
+  hold_cuts     = prm.get_bool("hold cuts");
+  flank_size    = prm.get_double("flank element size");
+  far_size      = prm.get_double("far element size");
+  other_size    = prm.get_double("other element size");
+  degree        = unsigned(prm.get_integer("degree"));
+  depth         = prm.get_double("response depth");
+  n_u           = prm.get_integer("profile grid points");
+  n_v           = prm.get_integer("face grid points");
+  material      = {prm.get_double("Young's modulus") * GPa, prm.get_double("Poisson's ratio")};
+}
+
+void
+FeScene::check(const PairScene &pair) const
+{
+  const std::string where = "Finite elements/" + pair.name + "/segment teeth = ";
+  if (segment_teeth % 2 == 0)
+    throw InputError(where + std::to_string(segment_teeth) +
+                     " is not allowed; expected an odd number");
+  const int z = std::min(pair_teeth(pair).first, pair_teeth(pair).second);
+  if (segment_teeth > z)
+    throw InputError(where + std::to_string(segment_teeth) +
+                     " is not allowed; a segment has at most the teeth of the smaller member (" +
+                     std::to_string(z) + ")");
+}
+
+void
+LoadedScene::declare(ParameterHandler &prm)
+{
+  prm.declare_entry("torques", "100", Patterns::List(Patterns::Double(0), 1),
+                    "[N m] Pinion torques (one loaded analysis per torque; the compliances are "
+                    "computed once).");
+  prm.declare_entry("positions per mesh cycle", "20", Patterns::Integer(1, 10000),
+                    "Pinion positions over one mesh cycle.");
+  prm.declare_entry("cells across", "17", Patterns::Integer(1, 201),
+                    "Contact cells across each contact line (odd: a row on the line).");
+  prm.declare_entry("cells along", "24", Patterns::Integer(1, 1000),
+                    "Contact cells along each contact line.");
+  prm.declare_entry("gap band", "10", Patterns::Double(0.01),
+                    "[um] The contact zone reaches where the unloaded gap opens to this; above "
+                    "the largest elastic approach.");
+  prm.declare_entry("reference positions", "", Patterns::List(Patterns::Integer(0), 0, 1000),
+                    "Positions of the mesh cycle (0 = the first) solved again in reference mode "
+                    "(spur pairs: both members meshed for the position, finite elements alone, "
+                    "minutes per position), with VTU files of displacement and stress in "
+                    "<output>/vtu/.");
+  prm.declare_entry("reference elements per cell", "0.5", Patterns::Double(0.1, 4),
+                    "Reference mode: element size at the contact = cell width / this.");
+  prm.declare_entry("measured flanks", "false", Patterns::Bool(),
+                    "Also the loaded contact of the measured flanks (Measured flanks section), "
+                    "with the theoretical pair's compliances.");
+}
+
+void
+LoadedScene::parse(ParameterHandler &prm)
+{
+  torques                     = get_doubles(prm, "torques");
+  positions                   = prm.get_integer("positions per mesh cycle");
+  cells.cells_across          = prm.get_integer("cells across");
+  cells.cells_along           = prm.get_integer("cells along");
+  cells.gap_band              = prm.get_double("gap band") * um;
+  measured                    = prm.get_bool("measured flanks");
+  reference_positions         = get_integers(prm, "reference positions");
+  reference_elements_per_cell = prm.get_double("reference elements per cell");
+}
+
+void
+LoadedScene::check(const PairScene &pair, const MeasuredScene &measured_flanks) const
+{
+  const std::string where = "Loaded contact/" + pair.name + "/";
+  for (const int i : reference_positions)
+    if (i >= positions)
+      throw InputError(where + "reference positions: " + std::to_string(i) +
+                       " is not a position of the mesh cycle (allowed: 0 to " +
+                       std::to_string(positions - 1) + ")");
+  if (!reference_positions.empty() &&
+      (pair.type != PairType::involute || pair.pinion.helix_angle != 0))
+    throw InputError(where + "reference positions: the reference mode (both members meshed per "
+                             "position) handles spur pairs; leave it empty for helical and "
+                             "spiral bevel pairs");
+  if (measured && measured_flanks.source == MeasuredSource::none)
+    throw InputError(where + "measured flanks = true needs measured flanks: set Measured flanks/" +
+                     pair.name + "/source");
+}
+} // namespace gearkit

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 
@@ -727,4 +728,184 @@ end
         EXPECT_TRUE(std::isfinite(pp[i])) << i;
       }
   EXPECT_GT(n, 0);
+}
+
+namespace
+{
+// A CMM file's text with every point line passed through `edit(index in its block, point,
+// normal)` (coordinates as written; the normals are kept as written).
+std::string
+edit_points(const std::string &text, const std::function<void(int, Vec3 &, const Vec3 &)> &edit)
+{
+  std::istringstream in(text);
+  std::ostringstream out;
+  std::string        line;
+  int                k = -1; // point index in the current block; -1 outside the points
+  while (std::getline(in, line))
+    {
+      if (line.rfind("grid =", 0) == 0)
+        k = 0;
+      else if (line.rfind("end flank", 0) == 0)
+        k = -1;
+      else if (k >= 0 && !line.empty() && line[0] != '#')
+        {
+          std::istringstream words(line);
+          int                i, j;
+          Vec3               x, n = Vec3::Zero();
+          std::string        rest;
+          words >> i >> j >> x.x() >> x.y() >> x.z();
+          std::getline(words, rest);
+          std::istringstream(rest) >> n.x() >> n.y() >> n.z();
+          edit(k++, x, n);
+          std::ostringstream l;
+          l.precision(17);
+          l << i << " " << j << " " << x.x() << " " << x.y() << " " << x.z() << rest;
+          line = l.str();
+        }
+      out << line << "\n";
+    }
+  return out.str();
+}
+} // namespace
+
+// The corpus of bad inputs an outside review tried (issue 14): each is refused with a message
+// that names the parameter or file and what is allowed, with no stage run (scene checks) or no
+// stage after the measurement (file checks), and no result file.
+TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
+{
+  const std::string huge(25000, 'a');
+  const std::string ste =
+      std::regex_replace(small_scene, std::regex("set outputs = flanks"), "set outputs = ste");
+  const std::vector<BadScene> scene_cases = {
+      // a std::regex over these overflowed the stack
+      {"25 000-character scene name",
+       "set name    = small",
+       "set name    = " + huge,
+       {"Scene/name", "25000 characters", "1 to 64"}},
+      {"25 000-character pair name",
+       "set pairs   = p1",
+       "set pairs   = " + huge,
+       {"Scene/pairs", "25000 characters", "1 to 64"}},
+      {"a named pair without sections",
+       "set pairs   = p1",
+       "set pairs   = p1, q",
+       {"Scene/pairs", "'q'", "Flanks/q"}},
+      {"a pair named twice", "set pairs   = p1", "set pairs   = p1, p1", {"appears twice"}},
+      {"empty outputs", "set outputs = ste", "set outputs = ", {"Scene/outputs is empty"}},
+      {"module 1e300",
+       "set number of teeth = 19\n      set normal module   = 2",
+       "set number of teeth = 19\n      set normal module   = 1e300",
+       {"normal module", "1e300"}},
+      // 19/37, m 2, x = 0: a_w = 56 mm. Below it the flanks would interpenetrate (the TCA
+      // returned e_0 of -64 mrad).
+      {"centre distance below the interference limit",
+       "",
+       "subsection TCA\n  subsection p1\n    set centre distance = 55.9\n  end\nend\n",
+       {"TCA/p1/centre distance", "55.9", "overlap", "56.0"}},
+      {"centre distance error below it",
+       "",
+       "subsection TCA\n  subsection p1\n    set centre distance error = -20\n  end\nend\n",
+       {"TCA/p1/centre distance", "overlap"}},
+      {"5000 um tip relief on an m 2 tooth",
+       "",
+       "subsection Flanks\n  subsection p1\n    subsection Pinion\n      subsection Drive flank "
+       "modifications\n        set tip relief = 5000\n        set tip relief length = 1\n      "
+       "end\n    end\n  end\nend\n",
+       {"Flanks/p1/Pinion", "drive flank tip relief = 5000 um", "s_an / 2"}},
+      {"tip relief longer than the involute",
+       "",
+       "subsection Flanks\n  subsection p1\n    subsection Pinion\n      subsection Coast flank "
+       "modifications\n        set tip relief = 10\n        set tip relief length = 50\n      "
+       "end\n    end\n  end\nend\n",
+       {"Flanks/p1/Pinion", "coast flank tip relief length = 50 mm", "roll length"}},
+      {"reference mode on a helical pair",
+       "",
+       "subsection Flanks\n  subsection p1\n    subsection Pinion\n      set helix angle = 15\n"
+       "    end\n    subsection Gear\n      set helix angle = 15\n      set hand = left\n    "
+       "end\n  end\nend\nsubsection Loaded contact\n  subsection p1\n    set reference "
+       "positions = 0\n  end\nend\n",
+       {"Loaded contact/p1/reference positions", "spur pairs"}},
+      {"measured loaded contact without measured flanks",
+       "",
+       "subsection Loaded contact\n  subsection p1\n    set measured flanks = true\n  "
+       "end\nend\n",
+       {"Loaded contact/p1/measured flanks", "Measured flanks/p1/source"}},
+      {"a measured tooth the member does not have",
+       "",
+       "subsection Measured flanks\n  subsection p1\n    set source = virtual cmm\n    set "
+       "gear teeth = 37\n  end\nend\n",
+       {"Measured flanks/p1", "gear teeth", "37", "0 to 36"}},
+  };
+  for (const BadScene &c : scene_cases)
+    {
+      // a replacement, or (from empty) sections added at the end
+      const std::string text = c.from.empty()
+                                   ? ste + c.to
+                                   : std::regex_replace(ste, std::regex(c.from), c.to,
+                                                        std::regex_constants::format_first_only);
+      ASSERT_NE(text, ste) << c.what;
+      EXPECT_EQ(run({scene(text)}), 1) << c.what << "\n" << out.str();
+      for (const std::string &e : c.expected)
+        EXPECT_NE(err.str().find(e), std::string::npos) << c.what << ": " << err.str();
+      EXPECT_EQ(out.str().find("stage "), std::string::npos) << c.what << ": a stage ran";
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
+    }
+
+  // Measured files: export a perfect measurement, then break it the ways a CMM user might.
+  const std::string virtual_scene =
+      std::regex_replace(measured_scene, std::regex("set source         = synthesised"),
+                         "set source         = virtual cmm");
+  ASSERT_EQ(run({scene(virtual_scene)}), 0) << err.str();
+  std::stringstream pinion_text, gear_text;
+  pinion_text << std::ifstream(dir / "out/small/cmm/p1_pinion.cmm").rdbuf();
+  gear_text << std::ifstream(dir / "out/small/cmm/p1_gear.cmm").rdbuf();
+  ASSERT_NE(pinion_text.str().find("units = mm"), std::string::npos);
+  std::ofstream(dir / "gear.cmm") << gear_text.str();
+  const std::string from_files = std::regex_replace(
+      std::regex_replace(virtual_scene, std::regex("set source         = virtual cmm"),
+                         "set source = cmm files\n    set pinion file = pinion.cmm\n    set gear "
+                         "file = gear.cmm"),
+      std::regex("set outputs = flanks, measured"), "set outputs = ste, measured");
+  const std::string file = scene(from_files, "files.prm");
+  std::ofstream(dir / "pinion.cmm") << pinion_text.str();
+  ASSERT_EQ(run({file}), 0) << "the unbroken files are plausible: " << err.str();
+  fs::remove_all(dir / "out");
+
+  const std::string swapped = std::regex_replace(
+      std::regex_replace(std::regex_replace(pinion_text.str(), std::regex("side = drive"), "S"),
+                         std::regex("side = coast"), "side = drive"),
+      std::regex("\nS\n"), "\nside = coast\n");
+  const std::string one_point_off =
+      edit_points(pinion_text.str(), [first = true](int, Vec3 &x, const Vec3 &n) mutable {
+        if (first)
+          x += 1.0 * n; // 1 mm along the flank's normal
+        first = false;
+      });
+  const std::string metres =
+      edit_points(pinion_text.str(), [](int, Vec3 &x, const Vec3 &) { x *= 1e-3; });
+  const std::vector<BadScene> file_cases = {
+      {"drive and coast labels swapped",
+       "",
+       swapped,
+       {"pinion.cmm", "tooth 0 coast flank", "labels swapped"}},
+      {"one point 1 mm off the flank",
+       "",
+       one_point_off,
+       {"pinion.cmm", "tooth 0 drive flank, point 0", "lies 1000", "within 100 um",
+        "Measured flanks/p1/nominal tolerance"}},
+      {"mm header, coordinates in metres",
+       "",
+       metres,
+       {"pinion.cmm", "look like metres written as millimetres"}},
+  };
+  for (const BadScene &c : file_cases)
+    {
+      std::ofstream(dir / "pinion.cmm") << c.to;
+      EXPECT_EQ(run({file}), 1) << c.what << "\n" << out.str();
+      for (const std::string &e : c.expected)
+        EXPECT_NE(err.str().find(e), std::string::npos) << c.what << ": " << err.str();
+      EXPECT_EQ(out.str().find("stage ste"), std::string::npos) << c.what << ": the TCA ran";
+      EXPECT_FALSE(fs::exists(dir / "out/fromfiles/results.h5")) << c.what;
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
+    }
 }

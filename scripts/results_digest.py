@@ -4,7 +4,8 @@
 A digest holds, per numeric dataset, its shape and a few summary numbers (count of NaN, mean,
 RMS, smallest and largest finite value) to 15 significant digits; strings and attributes are
 left out, and so are run times (datasets named "seconds"). A refactoring must leave every case's
-digest where it was: tests/cases/check_digest runs this after each case.
+digest where it was: the CTest case_<name>_digest runs this after each case against
+tests/cases/digests/<name>.json (tests/CMakeLists.txt).
 
   results_digest.py write RESULTS.h5 DIGEST.json     # record (after a deliberate change)
   results_digest.py check RESULTS.h5 DIGEST.json     # compare; exit 1 naming what moved

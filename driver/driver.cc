@@ -18,36 +18,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-// FNV-1a, 64 bit: a cache key, not a security measure.
-std::uint64_t
-fnv1a(const std::string &text, std::uint64_t h = 1469598103934665603ull)
-{
-  for (unsigned char c : text)
-    {
-      h ^= c;
-      h *= 1099511628211ull;
-    }
-  return h;
-}
-
-const StageDefinition &
-definition(const std::string &name)
-{
-  for (const StageDefinition &s : stage_definitions())
-    if (s.name == name)
-      return s;
-  throw std::logic_error("unknown stage " + name);
-}
-
-std::string
-file_contents(const std::string &path)
-{
-  std::ifstream      in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Runs `work` on every process. If it throws on some, every process throws the message of the
 // first that failed: an error on one process alone (a file system failure on the first, which
 // writes) would otherwise leave the others waiting at the next collective call.
@@ -72,51 +42,6 @@ together(Work &&work)
     throw InputError(dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, error, failed));
 }
 } // namespace
-
-std::vector<std::string>
-required_stages(const std::vector<std::string> &outputs)
-{
-  Scene scene;
-  scene.outputs = outputs;
-  return required_stages(scene);
-}
-
-std::vector<std::string>
-required_stages(const Scene &scene)
-{
-  std::set<std::string>                    needed;
-  std::function<void(const std::string &)> add = [&](const std::string &stage) {
-    if (needed.insert(stage).second)
-      for (const std::string &up : upstream_of(scene, definition(stage)))
-        add(up);
-  };
-  for (const std::string &o : scene.outputs)
-    add(output_stages().at(o));
-  std::vector<std::string> order; // stage_definitions() is already in dependency order
-  for (const StageDefinition &s : stage_definitions())
-    if (needed.count(s.name))
-      order.push_back(s.name);
-  return order;
-}
-
-std::string
-stage_key(const Scene &scene, const std::string &stage)
-{
-  const StageDefinition &s    = definition(stage);
-  std::string            text = s.name + "\nversion " + std::to_string(s.version) + "\n";
-  for (const std::string &section : s.sections)
-    {
-      const auto it = scene.sections.find(section);
-      text += "[" + section + "]\n" + (it == scene.sections.end() ? "" : it->second);
-    }
-  for (const std::string &f : s.input_files(scene))
-    text += "file " + f + " " + std::to_string(fnv1a(file_contents(f))) + "\n";
-  for (const std::string &up : upstream_of(scene, s))
-    text += "upstream " + up + " " + stage_key(scene, up) + "\n";
-  std::ostringstream hex;
-  hex << std::hex << std::setw(16) << std::setfill('0') << fnv1a(text);
-  return hex.str();
-}
 
 std::string
 stage_side_directory(const H5Group &out, const std::string &suffix)
@@ -157,7 +82,7 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
   std::map<std::string, std::unique_ptr<H5File>> files;
   for (const std::string &name : required_stages(scene))
     {
-      const StageDefinition &s = definition(name);
+      const StageDefinition &s = stage_definition(name);
       StageRun               run;
       run.name         = name;
       run.cache_file   = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();

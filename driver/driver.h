@@ -2,6 +2,7 @@
 #pragma once
 
 #include "driver/scene.h"
+#include "driver/stages.h"
 
 #include <iosfwd>
 #include <string>
@@ -22,18 +23,6 @@ struct RunSummary
   std::string           results_file;
   std::vector<StageRun> stages;
 };
-
-/// The stages the requested outputs need, upstream first.
-std::vector<std::string>
-required_stages(const std::vector<std::string> &outputs);
-/// The same for a scene (stages needed only when its parameters say so included).
-std::vector<std::string>
-required_stages(const Scene &scene);
-
-/// Cache key of a stage: a hash of its version, its scene sections, its input files' contents
-/// and the keys of its upstream stages (hex string).
-std::string
-stage_key(const Scene &scene, const std::string &stage);
 
 /// Runs (or reuses) every stage the scene's outputs need and writes
 /// <output_root>/<scene name>/results.h5 atomically. Logs to `log`.

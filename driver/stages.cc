@@ -1,6 +1,16 @@
+// The stage graph in one place: every stage with its upstream stages, the scene sections and
+// input files it reads and the code it runs (which together make its cache key), and the
+// outputs a scene can ask for.
 #include "driver/stages.h"
 
+#include "driver/source_hashes.h"
+
+#include <fstream>
+#include <functional>
+#include <iomanip>
 #include <ostream>
+#include <set>
+#include <sstream>
 
 namespace gearkit
 {
@@ -24,6 +34,31 @@ Progress::step(std::size_t n)
     }
 }
 
+namespace
+{
+// FNV-1a, 64 bit: a cache key, not a security measure.
+std::uint64_t
+fnv1a(const std::string &text, std::uint64_t h = 1469598103934665603ull)
+{
+  for (unsigned char c : text)
+    {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
+  return h;
+}
+
+std::string
+file_contents(const std::string &path)
+{
+  std::ifstream      in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+} // namespace
+
 const std::vector<StageDefinition> &
 stage_definitions()
 {
@@ -32,14 +67,14 @@ stage_definitions()
        "flank geometry (involute or spiral bevel), flank grids, mass properties",
        {},
        {"Flanks"},
-       3,
+       {"base", "geometry", "tca"}, // tca: the spiral bevel's modified-roll synthesis
        [](const Scene &) { return std::vector<std::string>{}; },
        run_flanks_stage},
       {"measured",
        "measured flank point sets (virtual CMM, synthesised, or read from files)",
        {"flanks"},
        {"Measured flanks"},
-       3,
+       {"base", "geometry"},
        [](const Scene &scene) {
          std::vector<std::string> files;
          for (const auto &[pair, m] : scene.measured)
@@ -53,28 +88,28 @@ stage_definitions()
        "unloaded tooth contact analysis: static transmission error, contact path, normals",
        {"flanks", "measured"},
        {"TCA"},
-       5,
+       {"base", "geometry", "tca"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_ste_stage},
       {"compliance",
        "finite-element compliance of both members (gmsh tooth segments, deal.II + PETSc)",
        {"flanks"},
        {"Flanks", "TCA", "Finite elements"},
-       4,
+       {"base", "geometry", "tca", "meshes", "stiffness"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_compliance_stage},
       {"stiffness",
        "loaded contact over the mesh cycle: loaded TE, mesh stiffness, load sharing, pressure",
        {"flanks", "measured", "compliance"},
        {"TCA", "Loaded contact"},
-       6,
+       {"base", "geometry", "tca", "meshes", "stiffness"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_stiffness_stage},
       {"dynamics",
        "14-DOF pair dynamics: static equilibrium, modes, speed sweeps up and down",
        {"flanks", "ste"},
        {"TCA", "Measured flanks", "Dynamics"},
-       5,
+       {"base", "geometry", "tca", "dynamics"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {
@@ -85,6 +120,15 @@ stage_definitions()
        }},
   };
   return stages;
+}
+
+const StageDefinition &
+stage_definition(const std::string &name)
+{
+  for (const StageDefinition &s : stage_definitions())
+    if (s.name == name)
+      return s;
+  throw std::logic_error("unknown stage " + name);
 }
 
 std::vector<std::string>
@@ -107,4 +151,51 @@ output_stages()
                                                          {"dynamics", "dynamics"}};
   return map;
 }
+std::vector<std::string>
+required_stages(const std::vector<std::string> &outputs)
+{
+  Scene scene;
+  scene.outputs = outputs;
+  return required_stages(scene);
+}
+
+std::vector<std::string>
+required_stages(const Scene &scene)
+{
+  std::set<std::string>                    needed;
+  std::function<void(const std::string &)> add = [&](const std::string &stage) {
+    if (needed.insert(stage).second)
+      for (const std::string &up : upstream_of(scene, stage_definition(stage)))
+        add(up);
+  };
+  for (const std::string &o : scene.outputs)
+    add(output_stages().at(o));
+  std::vector<std::string> order; // stage_definitions() is already in dependency order
+  for (const StageDefinition &s : stage_definitions())
+    if (needed.count(s.name))
+      order.push_back(s.name);
+  return order;
+}
+
+std::string
+stage_key(const Scene &scene, const std::string &stage)
+{
+  const StageDefinition &s    = stage_definition(stage);
+  std::string            text = s.name + "\ncode driver " + source_hashes().at("driver") + "\n";
+  for (const std::string &folder : s.code)
+    text += "code " + folder + " " + source_hashes().at(folder) + "\n";
+  for (const std::string &section : s.sections)
+    {
+      const auto it = scene.sections.find(section);
+      text += "[" + section + "]\n" + (it == scene.sections.end() ? "" : it->second);
+    }
+  for (const std::string &f : s.input_files(scene))
+    text += "file " + f + " " + std::to_string(fnv1a(file_contents(f))) + "\n";
+  for (const std::string &up : upstream_of(scene, s))
+    text += "upstream " + up + " " + stage_key(scene, up) + "\n";
+  std::ostringstream hex;
+  hex << std::hex << std::setw(16) << std::setfill('0') << fnv1a(text);
+  return hex.str();
+}
+
 } // namespace gearkit

@@ -48,7 +48,9 @@ struct StageDefinition
   std::string              description;
   std::vector<std::string> upstream; ///< stages whose results this one needs
   std::vector<std::string> sections; ///< scene sections whose parameters enter the key
-  int                      version;  ///< bump when the stage's code changes its results
+  /// Library folders whose code the stage runs (besides driver/): their source hashes enter
+  /// the key, so changed code re-runs the stage.
+  std::vector<std::string> code;
   /// Input files whose contents enter the key (e.g. CMM files).
   std::function<std::vector<std::string>(const Scene &)>                                input_files;
   std::function<void(const Scene &, const Upstream &, const H5Group &, std::ostream &)> run;
@@ -63,6 +65,23 @@ upstream_of(const Scene &scene, const StageDefinition &stage);
 /// All stages in dependency order.
 const std::vector<StageDefinition> &
 stage_definitions();
+
+/// The definition of the stage of this name.
+const StageDefinition &
+stage_definition(const std::string &name);
+
+/// The stages the requested outputs need, upstream first.
+std::vector<std::string>
+required_stages(const std::vector<std::string> &outputs);
+/// The same for a scene (stages needed only when its parameters say so included).
+std::vector<std::string>
+required_stages(const Scene &scene);
+
+/// Cache key of a stage: a hash of its code (the sources of driver/ and of the folders in
+/// `code`), its scene sections, its input files' contents and the keys of its upstream stages
+/// (hex string).
+std::string
+stage_key(const Scene &scene, const std::string &stage);
 
 /// Output name (Scene/outputs) -> the stage that produces it.
 const std::map<std::string, std::string> &

@@ -11,7 +11,6 @@
 #include "dynamics/modes.h"
 #include "dynamics/sweep.h"
 
-#include <boost/math/interpolators/cardinal_trigonometric.hpp>
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
@@ -22,54 +21,19 @@ namespace gearkit
 {
 namespace
 {
-/// K_m at n equal phases of the mesh cycle from samples at other equal phases (periodic).
-std::vector<double>
-resample_periodic(const std::vector<double> &k, int n)
+/// The TCA's contact tables as the ste stage stored them.
+ContactTables
+contact_tables(const H5Group &ste)
 {
-  std::vector<double> out(std::size_t(n), k.front());
-  if (k.size() > 1)
-    {
-      const boost::math::interpolators::cardinal_trigonometric<std::vector<double>> f(
-          k, 0.0, 1.0 / double(k.size()));
-      for (int i = 0; i < n; ++i)
-        out[std::size_t(i)] = f(double(i) / n);
-    }
-  return out;
-}
-
-/// The tables of the first `cycles` mesh cycles (n positions each) of a TCA group (the leading
-/// pair's contact). n = pinion outward normal (the pinion pushes the gear along it) for both
-/// members; the gear's arm r_g x n is minus the TCA's (taken with the gear's own outward
-/// normal). K_m (one mesh cycle, n values) repeats over the cycles.
-MeshCycleSamples
-mesh_tables(const H5Group &ste, int n, int cycles, const Vec3 &pinion_axis,
-            const std::vector<double> &km)
-{
+  ContactTables        t;
   std::vector<hsize_t> shape;
-  const auto           np = ste.read_doubles("normal_pinion", &shape);
-  const auto           lp = ste.read_doubles("lambda_pinion"), lg = ste.read_doubles("lambda_gear");
-  const auto           e0    = ste.read_doubles("transmission_error");
-  const auto           lead  = ste.read_ints("leading");
-  const std::size_t    slots = shape[1], N = std::size_t(n * cycles);
-  if (shape[0] < N)
-    throw InputError("dynamics: the TCA has " + std::to_string(shape[0]) +
-                     " positions, fewer than " + std::to_string(cycles) + " mesh cycles of " +
-                     std::to_string(n));
-  MeshCycleSamples s;
-  s.cycles = cycles;
-  for (std::size_t i = 0; i < N; ++i)
-    {
-      const std::size_t k = (i * slots + std::size_t(std::max(lead[i], 0))) * 3;
-      const Vec3        normal(np[k], np[k + 1], np[k + 2]);
-      const Vec3        arm_p(lp[k], lp[k + 1], lp[k + 2]);
-      s.normal_pinion.push_back(normal);
-      s.normal_gear.push_back(normal);
-      s.arm_pinion.push_back(arm_p);
-      s.arm_gear.push_back(-Vec3(lg[k], lg[k + 1], lg[k + 2]));
-      s.transmission_error.push_back(arm_p.dot(pinion_axis) * e0[i]);
-      s.mesh_stiffness.push_back(km[i % std::size_t(n)]);
-    }
-  return s;
+  t.normal_pinion      = ste.read_doubles("normal_pinion", &shape);
+  t.lambda_pinion      = ste.read_doubles("lambda_pinion");
+  t.lambda_gear        = ste.read_doubles("lambda_gear");
+  t.transmission_error = ste.read_doubles("transmission_error");
+  t.leading            = ste.read_ints("leading");
+  t.positions = shape[0], t.slots = shape[1];
+  return t;
 }
 
 // A sweep point as numbers (for the MPI gather) and back.
@@ -297,13 +261,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       // K_m over the cycle: from the stiffness stage at the torque nearest the scene's
       auto stiffness = [&](bool measured) {
         if (!d.fe_stiffness)
-          {
-            std::vector<double> k;
-            for (int i = 0; i < n; ++i)
-              k.push_back(d.mesh_stiffness *
-                          (1 - d.stiffness_variation * std::cos(2 * pi * i / n)));
-            return k;
-          }
+          return varying_mesh_stiffness(d.mesh_stiffness, d.stiffness_variation, n);
         const H5Group        all     = upstream.at("stiffness")->group(pair.name);
         const bool           own     = measured && all.has("measured");
         const auto           torques = all.read_doubles("torque");
@@ -344,20 +302,19 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           const int K =
               measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles)
                        : 1;
-          MeshCycleSamples tables =
-              measured ? mesh_tables(ste.group("measured"), n, K, pinion_axis, stiffness(true))
-                       : mesh_tables(ste, n, K, pinion_axis, stiffness(false));
+          MeshCycleSamples tables = mesh_cycle_samples(
+              measured ? contact_tables(ste.group("measured")) : contact_tables(ste), n, K,
+              pinion_axis, stiffness(measured));
           if (measured) // kinks and noise: no ringing between the samples
             tables.interpolation = MeshInterpolation::makima;
           if (!d.tca_transmission_error)
             for (int i = 0; i < n * K; ++i)
               tables.transmission_error[std::size_t(i)] =
                   d.transmission_error_amplitude * std::sin(2 * pi * i / n);
-          Excitation      e{label, std::make_unique<PairModel>(p, tables), {}, d.torque, 0};
-          const MeshState m0 = e.model->mesh().mean();
-          e.TL               = e.TE * m0.lg.dot(gear_axis) / m0.lp.dot(pinion_axis);
-          e.s                = e.model->static_equilibrium(e.TL);
-          const H5Group eg   = g.group(label);
+          Excitation e{label, std::make_unique<PairModel>(p, tables), {}, d.torque, 0};
+          e.TL             = balancing_load_torque(e.model->mesh(), e.TE, pinion_axis, gear_axis);
+          e.s              = e.model->static_equilibrium(e.TL);
+          const H5Group eg = g.group(label);
           eg.write("static_mesh_force", e.s.mesh_force, "N", "F_m in the static equilibrium");
           eg.write("static_deflection", e.s.deflection, "m", "delta_D - E_t - b_c, static");
           eg.write("load_torque", e.TL, "N m", "T_L balancing the pinion torque");

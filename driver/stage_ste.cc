@@ -34,8 +34,8 @@ analyse(const UnloadedTca &tca, const TcaScene &t, int z1, Progress &progress)
 /// Writes every table of `r` to `g`; returns the peak-to-peak and mean pairs in contact for the
 /// log.
 std::pair<double, double>
-write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members,
-             const MemberFlanks &gear, int z1, const H5Group &g)
+write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, int z1,
+             const H5Group &g)
 {
   const int n = int(r.positions.size());
 
@@ -190,7 +190,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       const auto [pp, pairs] = write_tables(
           analyse(UnloadedTca(members.pinion, members.gear, members.assembly, t.options), t, z1,
                   progress),
-          t, members, *members.gear, z1, g);
+          t, members, z1, g);
       log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
           << " urad, mean pairs in contact " << pairs << "\n";
       if (!t.measured)
@@ -229,7 +229,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
           gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
                                  "interpolated from the measured points");
         }
-      const auto [mpp, mpairs] = write_tables(r, t, members, *mg, z1, gm);
+      const auto [mpp, mpairs] = write_tables(r, t, members, z1, gm);
       log << "  " << pair.name << " measured (" << (t.paper_mode ? "paper mode" : "fast")
           << "): e_0 peak-to-peak " << mpp * 1e6 << " urad, mean pairs in contact " << mpairs
           << "\n";

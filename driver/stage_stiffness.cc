@@ -141,7 +141,6 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const PairMembers  members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
       const bool    bevel = pair.type == PairType::spiral_bevel;
-      const int     z1    = members.pinion->teeth();
       const H5Group cg    = upstream.at("compliance")->group(pair.name);
 
       // The compliance tables as the compliance stage computed them.
@@ -169,82 +168,41 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
-        const int                n = lc.positions, m = int(lc.torques.size());
-        const double             mesh_angle = 2 * pi / z1;
-        std::vector<TcaPosition> positions;
-        double                   touching = 0;
-        for (int i = 0; i < n; ++i)
-          {
-            positions.push_back(t.at(tca.options.start_angle + mesh_angle * i / n));
-            touching += positions.back().touching;
-          }
-        std::size_t slots = 0;
-        for (const TcaPosition &p : positions)
-          slots = std::max(slots, p.pairs.size());
-        std::vector<int> slot_tooth;
-        for (const TcaPosition &p : positions)
-          for (std::size_t s = 0; s < slots; ++s)
-            slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
-        std::vector<double> phi, e0, eL, K, F, lever, pair_force, peak, cells_out;
-        std::size_t         max_cells = 0;
-        std::vector<std::vector<LoadedPosition>> results(m);
-        Progress                                 progress(log, "stiffness", std::size_t(n * m));
-        for (int k = 0; k < m; ++k)
-          for (int i = 0; i < n; ++i)
-            {
-              results[k].push_back(loaded_contact(t, positions[i], lc.torques[k], lo, sp, sg));
-              max_cells = std::max(max_cells, results[k].back().cells.size());
-              progress.step();
-            }
-        for (int i = 0; i < n; ++i)
-          phi.push_back(positions[i].pinion_angle), e0.push_back(positions[i].transmission_error);
-        for (int k = 0; k < m; ++k)
+        Progress               progress(log, "stiffness", lc.positions * lc.torques.size());
+        const MeshCycleContact c =
+            loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg, [&] { progress.step(); });
+        const std::size_t n = c.positions;
+        for (std::size_t k = 0; k < c.torques; ++k)
           {
             double k_mean = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
-            for (int i = 0; i < n; ++i)
+            for (std::size_t i = 0; i < n; ++i)
               {
-                const LoadedPosition &r = results[k][i];
-                eL.push_back(r.eL), K.push_back(r.mesh_stiffness), F.push_back(r.normal_force);
-                lever.push_back(r.lever);
-                for (std::size_t s = 0; s < slots; ++s)
-                  pair_force.push_back(s < r.pair_force.size() ? r.pair_force[s] : 0.0);
-                double p_max = 0;
-                for (std::size_t c = 0; c < max_cells; ++c)
-                  {
-                    const bool         used = c < r.cells.size();
-                    const ContactCell  none;
-                    const ContactCell &cell = used ? r.cells[c] : none;
-                    const double p = used ? r.force[Eigen::Index(c)] / (cell.ds * cell.dt) : 0.0;
-                    p_max          = std::max(p_max, p);
-                    // the contact pattern on the pinion flank: tooth, u, v, pressure
-                    cells_out.insert(cells_out.end(), {used ? double(cell.pinion_tooth) : -1.0,
-                                                       cell.u1, cell.v1, p});
-                  }
-                peak.push_back(p_max);
-                k_mean += r.mesh_stiffness / n;
-                de_min = std::min(de_min, r.eL - r.e0), de_max = std::max(de_max, r.eL - r.e0);
+                const double de = c.loaded_te[k * n + i] - c.unloaded_te[i];
+                k_mean += c.mesh_stiffness[k * n + i] / n;
+                de_min = std::min(de_min, de), de_max = std::max(de_max, de);
               }
             log << "  " << pair.name << label << ", " << lc.torques[k] << " N m: K_m mean "
                 << k_mean << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6
                 << " urad\n";
           }
-        const hsize_t N = n, M = m, S = slots, C = max_cells;
+        const hsize_t N = n, M = c.torques, S = c.slots, C = c.cells;
         g.write("torque", lc.torques, {M}, "N m", "pinion torques");
-        g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi");
-        g.write("transmission_error_unloaded", e0, {N}, "rad", "e_0 (pinion radians)");
-        g.write("transmission_error_loaded", eL, {M, N}, "rad",
+        g.write("pinion_angle", c.pinion_angle, {N}, "rad", "pinion rotation phi");
+        g.write("transmission_error_unloaded", c.unloaded_te, {N}, "rad", "e_0 (pinion radians)");
+        g.write("transmission_error_loaded", c.loaded_te, {M, N}, "rad",
                 "e_L per torque and position (pinion radians, gear held)");
-        g.write("mesh_stiffness", K, {M, N}, "N/m", "K_m = F / (lambda (e_L - e_0))");
-        g.write("normal_force", F, {M, N}, "N", "total normal force F");
-        g.write("lever", lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
-        g.write("pair_force", pair_force, {M, N, S}, "N",
+        g.write("mesh_stiffness", c.mesh_stiffness, {M, N}, "N/m",
+                "K_m = F / (lambda (e_L - e_0))");
+        g.write("normal_force", c.normal_force, {M, N}, "N", "total normal force F");
+        g.write("lever", c.lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
+        g.write("pair_force", c.pair_force, {M, N, S}, "N",
                 "normal force per pair slot of the unloaded TCA at the same position");
-        g.write("pinion_tooth", slot_tooth, {N, S}, "1",
+        g.write("pinion_tooth", c.slot_tooth, {N, S}, "1",
                 "pinion tooth of each pair slot (-1: empty)");
-        g.write("peak_pressure", peak, {M, N}, "Pa", "largest cell pressure");
-        g.write("contact_cells", cells_out, {M, N, C, 4}, "mixed",
+        g.write("peak_pressure", c.peak_pressure, {M, N}, "Pa", "largest cell pressure");
+        g.write("contact_cells", c.cell_pressure, {M, N, C, 4}, "mixed",
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
-        g.write("mean_pairs_in_contact", touching / n, "1",
+        g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
                 "unloaded contact ratio (eps_gamma for conjugate flanks)");
       };
 
@@ -257,10 +215,6 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
       analyse(theory, lo, g, "");
 
-      if (!lc.reference_positions.empty() && bevel)
-        throw InputError("Loaded contact/" + pair.name +
-                         "/reference positions: the reference mode (both members meshed per "
-                         "position) handles spur pairs; leave it empty for spiral bevel pairs");
       if (!lc.reference_positions.empty())
         {
           const auto pinion = InvoluteGear::create(pair.pinion);
@@ -327,53 +281,18 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         }
 
       // ISO 6336-1 method B beside it (the standard's yardstick); for spiral bevel pairs on the
-      // virtual cylindrical gears of the mean point (ISO 10300-1: z_v = z / cos delta, helix
-      // angle beta_m, normal module m_mn, addenda as cut).
-      IsoStiffnessInput iso;
-      ContactRatios     ratios;
-      double            b = 0;
+      // virtual cylindrical gears of the mean point (ISO 10300-1).
+      const IsoPair iso = bevel
+                              ? iso_pair(pair.bevel)
+                              : iso_pair(*InvoluteGear::create(pair.pinion),
+                                         *InvoluteGear::create(pair.gear), members.centre_distance);
       if (bevel)
-        {
-          const BevelPairDesign  &d  = pair.bevel;
-          const BevelPairGeometry bg = bevel_geometry(d);
-          const double            m = bg.mean_normal_module, beta = d.mean_spiral_angle;
-          const double            at  = std::atan(std::tan(d.pressure_angle) / std::cos(beta));
-          const double            zv1 = z1 / std::cos(bg.pitch_angle_pinion);
-          const double            zv2 = members.gear->teeth() / std::cos(bg.pitch_angle_gear);
-          const double r1 = zv1 * m / std::cos(beta) / 2, r2 = zv2 * m / std::cos(beta) / 2;
-          auto         path = [&](double r, double ha) {
-            return std::sqrt(std::pow(r + ha, 2) - std::pow(r * std::cos(at), 2));
-          };
-          b                 = d.face_width;
-          ratios.transverse = (path(r1, d.pinion_addendum * m) +
-                               path(r2, (2 - d.pinion_addendum) * m) - (r1 + r2) * std::sin(at)) /
-                              (pi * m * std::cos(at) / std::cos(beta));
-          ratios.overlap = b * std::sin(beta) / (pi * m);
-          iso.z1 = zv1, iso.z2 = zv2;
-          iso.x1 = d.pinion_addendum - 1, iso.x2 = 1 - d.pinion_addendum;
-          iso.helix_angle      = beta;
-          iso.base_helix_angle = std::asin(std::sin(beta) * std::cos(d.pressure_angle));
-          iso.pressure_angle   = d.pressure_angle;
-          iso.dedendum_factor  = 1 + d.clearance;
-          g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
-        }
-      else
-        {
-          const auto pinion = InvoluteGear::create(pair.pinion),
-                     gear   = InvoluteGear::create(pair.gear);
-          iso.z1 = pinion->teeth(), iso.z2 = gear->teeth();
-          iso.x1 = pair.pinion.profile_shift, iso.x2 = pair.gear.profile_shift;
-          iso.helix_angle      = pair.pinion.helix_angle;
-          iso.base_helix_angle = pinion->base_helix_angle;
-          iso.pressure_angle   = pair.pinion.normal_pressure_angle;
-          iso.dedendum_factor  = pair.pinion.dedendum_factor;
-          ratios               = contact_ratios(*pinion, *gear, members.centre_distance);
-          b                    = std::min(pair.pinion.face_width, pair.gear.face_width);
-        }
-      iso.transverse_contact_ratio = ratios.transverse;
-      g.write("transverse_contact_ratio", ratios.transverse, "1", "eps_alpha of the geometry");
-      g.write("overlap_ratio", ratios.overlap, "1", "eps_beta of the geometry");
-      const IsoMeshStiffness s = iso6336_mesh_stiffness(iso);
+        g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
+      const double b = iso.face_width;
+      g.write("transverse_contact_ratio", iso.input.transverse_contact_ratio, "1",
+              "eps_alpha of the geometry");
+      g.write("overlap_ratio", iso.overlap_ratio, "1", "eps_beta of the geometry");
+      const IsoMeshStiffness s = iso6336_mesh_stiffness(iso.input);
       g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",
               "ISO 6336-1 method B single stiffness c' times the face width");
       g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b, "N/m",

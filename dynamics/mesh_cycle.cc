@@ -164,4 +164,58 @@ MeshCycle::mean() const
       (*v[j])[k] = t[2 + 3 * j + k].mean;
   return m;
 }
+
+std::vector<double>
+resample_periodic(const std::vector<double> &values, int n, MeshInterpolation how)
+{
+  const Periodic      f(values, 1.0, how);
+  std::vector<double> out;
+  for (int i = 0; i < n; ++i)
+    out.push_back(f(double(i) / n));
+  return out;
+}
+
+std::vector<double>
+varying_mesh_stiffness(double mean, double variation, int n)
+{
+  std::vector<double> k;
+  for (int i = 0; i < n; ++i)
+    k.push_back(mean * (1 - variation * std::cos(2 * pi * i / n)));
+  return k;
+}
+
+MeshCycleSamples
+mesh_cycle_samples(const ContactTables &tca, int n, int cycles, const Vec3 &pinion_axis,
+                   const std::vector<double> &km)
+{
+  const std::size_t N = std::size_t(n * cycles);
+  if (tca.positions < N)
+    throw InputError("dynamics: the TCA has " + std::to_string(tca.positions) +
+                     " positions, fewer than " + std::to_string(cycles) + " mesh cycles of " +
+                     std::to_string(n));
+  const auto      &np = tca.normal_pinion, &lp = tca.lambda_pinion, &lg = tca.lambda_gear;
+  MeshCycleSamples s;
+  s.cycles = cycles;
+  for (std::size_t i = 0; i < N; ++i)
+    {
+      const std::size_t k = (i * tca.slots + std::size_t(std::max(tca.leading[i], 0))) * 3;
+      const Vec3        normal(np[k], np[k + 1], np[k + 2]);
+      const Vec3        arm_p(lp[k], lp[k + 1], lp[k + 2]);
+      s.normal_pinion.push_back(normal);
+      s.normal_gear.push_back(normal);
+      s.arm_pinion.push_back(arm_p);
+      s.arm_gear.push_back(-Vec3(lg[k], lg[k + 1], lg[k + 2]));
+      s.transmission_error.push_back(arm_p.dot(pinion_axis) * tca.transmission_error[i]);
+      s.mesh_stiffness.push_back(km[i % std::size_t(n)]);
+    }
+  return s;
+}
+
+double
+balancing_load_torque(const MeshCycle &mesh, double motor_torque, const Vec3 &pinion_axis,
+                      const Vec3 &gear_axis)
+{
+  const MeshState m0 = mesh.mean();
+  return motor_torque * m0.lg.dot(gear_axis) / m0.lp.dot(pinion_axis);
+}
 } // namespace gearkit

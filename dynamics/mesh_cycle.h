@@ -67,4 +67,42 @@ private:
   struct Impl;
   std::unique_ptr<Impl> impl;
 };
+
+/// A periodic table given at values.size() equal phases of one period, sampled at n equal
+/// phases by the interpolation the mesh tables use (e.g. K_m from the finite elements' positions
+/// onto the TCA's).
+std::vector<double>
+resample_periodic(const std::vector<double> &values, int n,
+                  MeshInterpolation how = MeshInterpolation::trigonometric);
+
+/// K_m (1 - variation cos 2 pi phase) at n equal phases of one mesh cycle.
+std::vector<double>
+varying_mesh_stiffness(double mean, double variation, int n);
+
+/// The unloaded contact as the TCA tabulates it, position-major: per position its pair slots
+/// (3-vectors per slot) and which slot leads.
+struct ContactTables
+{
+  std::size_t         positions = 0, slots = 0;
+  std::vector<double> normal_pinion;      ///< pinion outward normal [position][slot][xyz]
+  std::vector<double> lambda_pinion;      ///< r_p x n_p, pinion frame [position][slot][xyz] [m]
+  std::vector<double> lambda_gear;        ///< r_g x n_g with the gear's own normal [m]
+  std::vector<double> transmission_error; ///< e_0 [rad of the pinion], per position
+  std::vector<int>    leading;            ///< slot of the pair that carries the load (< 0: 0)
+};
+
+/// The mesh tables of the first `cycles` mesh cycles (n positions each) of the TCA's leading
+/// contact: n = the pinion's outward normal (the pinion pushes the gear along it) for both
+/// members, the gear's arm r_g x n minus the TCA's (taken with the gear's own normal), E_t =
+/// (lambda_p . pinion axis) e_0 along the line of action; K_m (one mesh cycle, n values)
+/// repeats over the cycles. Throws InputError when the TCA has fewer positions.
+MeshCycleSamples
+mesh_cycle_samples(const ContactTables &tca, int n, int cycles, const Vec3 &pinion_axis,
+                   const std::vector<double> &mesh_stiffness);
+
+/// The load torque that balances the motor torque through the mean moment arms of the mesh
+/// (each about its member's axis in its driven sense).
+double
+balancing_load_torque(const MeshCycle &mesh, double motor_torque, const Vec3 &pinion_axis,
+                      const Vec3 &gear_axis);
 } // namespace gearkit

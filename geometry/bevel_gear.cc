@@ -235,4 +235,32 @@ BevelMemberFlanks::rotational_parameters(const Vec3 &x) const
   const double      r = std::hypot(x.x(), x.y());
   return {-x.z() * sg + r * cg, x.z() * cg + r * sg - b.mean_cone_distance};
 }
+
+VirtualCylindricalGears
+virtual_cylindrical_gears(const BevelPairDesign &d)
+{
+  const BevelPairGeometry g = bevel_geometry(d);
+  VirtualCylindricalGears v;
+  const double            m = g.mean_normal_module, beta = d.mean_spiral_angle;
+  const double            at = std::atan(std::tan(d.pressure_angle) / std::cos(beta));
+  v.z1                       = d.pinion_teeth / std::cos(g.pitch_angle_pinion);
+  v.z2                       = d.gear_teeth / std::cos(g.pitch_angle_gear);
+  v.normal_module            = m;
+  v.helix_angle              = beta;
+  v.pressure_angle           = d.pressure_angle;
+  v.transverse_angle         = at;
+  v.r1                       = v.z1 * m / std::cos(beta) / 2;
+  v.r2                       = v.z2 * m / std::cos(beta) / 2;
+  v.addendum1                = d.pinion_addendum * m;
+  v.addendum2                = (2 - d.pinion_addendum) * m;
+  v.face_width               = d.face_width;
+  auto path                  = [&](double r, double ha) {
+    return std::sqrt(std::pow(r + ha, 2) - std::pow(r * std::cos(at), 2));
+  };
+  v.transverse_contact_ratio =
+      (path(v.r1, v.addendum1) + path(v.r2, v.addendum2) - (v.r1 + v.r2) * std::sin(at)) /
+      (pi * m * std::cos(at) / std::cos(beta));
+  v.overlap_ratio = d.face_width * std::sin(beta) / (pi * m);
+  return v;
+}
 } // namespace gearkit

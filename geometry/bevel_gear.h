@@ -59,6 +59,26 @@ bevel_geometry(const BevelPairDesign &design);
 NominalSettings
 nominal_settings(const BevelPairDesign &design);
 
+/// The virtual cylindrical gears of a bevel pair at the mean point (ISO 10300-1): tooth numbers
+/// z_v = z / cos(delta), helix angle beta_m, normal module m_mn, reference radii r_v = z_v m_mn
+/// / (2 cos beta_m), addenda as cut (h_a1 = pinion addendum factor m_mn, h_a2 = (2 - that)
+/// m_mn), and their contact ratios.
+struct VirtualCylindricalGears
+{
+  double z1 = 0, z2 = 0;               ///< virtual tooth numbers (fractional)
+  double normal_module    = 0;         ///< m_mn [m]
+  double helix_angle      = 0;         ///< beta_m [rad]
+  double pressure_angle   = 0;         ///< alpha_n [rad]
+  double transverse_angle = 0;         ///< alpha_t = atan(tan alpha_n / cos beta_m) [rad]
+  double r1 = 0, r2 = 0;               ///< reference radii [m]
+  double addendum1 = 0, addendum2 = 0; ///< [m]
+  double face_width               = 0; ///< b [m]
+  double transverse_contact_ratio = 0; ///< eps_alpha of the virtual pair
+  double overlap_ratio            = 0; ///< eps_beta = b sin beta_m / (pi m_mn)
+};
+VirtualCylindricalGears
+virtual_cylindrical_gears(const BevelPairDesign &design);
+
 /// How one member is cut: machine settings and blade for each of its two flank kinds (the
 /// outside blade cuts the concave flank, the inside blade the convex one).
 struct BevelMemberCut

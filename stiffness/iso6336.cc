@@ -2,6 +2,7 @@
 
 #include "geometry/types.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -27,5 +28,41 @@ iso6336_mesh_stiffness(const IsoStiffnessInput &in)
   s.c_gamma_alpha        = s.c_prime * (0.75 * in.transverse_contact_ratio + 0.25);
   s.c_gamma_beta         = 0.85 * s.c_gamma_alpha;
   return s;
+}
+
+IsoPair
+iso_pair(const InvoluteGear &pinion, const InvoluteGear &gear, double centre_distance)
+{
+  const ContactRatios ratios = contact_ratios(pinion, gear, centre_distance);
+  IsoPair             p;
+  IsoStiffnessInput  &iso = p.input;
+  iso.z1 = pinion.teeth(), iso.z2 = gear.teeth();
+  iso.x1 = pinion.data().profile_shift, iso.x2 = gear.data().profile_shift;
+  iso.helix_angle              = pinion.data().helix_angle;
+  iso.base_helix_angle         = pinion.base_helix_angle;
+  iso.pressure_angle           = pinion.data().normal_pressure_angle;
+  iso.dedendum_factor          = pinion.data().dedendum_factor;
+  iso.transverse_contact_ratio = ratios.transverse;
+  p.face_width                 = std::min(pinion.data().face_width, gear.data().face_width);
+  p.overlap_ratio              = ratios.overlap;
+  return p;
+}
+
+IsoPair
+iso_pair(const BevelPairDesign &d)
+{
+  const VirtualCylindricalGears v = virtual_cylindrical_gears(d);
+  IsoPair                       p;
+  IsoStiffnessInput            &iso = p.input;
+  iso.z1 = v.z1, iso.z2 = v.z2;
+  iso.x1 = d.pinion_addendum - 1, iso.x2 = 1 - d.pinion_addendum;
+  iso.helix_angle              = v.helix_angle;
+  iso.base_helix_angle         = std::asin(std::sin(v.helix_angle) * std::cos(d.pressure_angle));
+  iso.pressure_angle           = d.pressure_angle;
+  iso.dedendum_factor          = 1 + d.clearance;
+  iso.transverse_contact_ratio = v.transverse_contact_ratio;
+  p.face_width                 = v.face_width;
+  p.overlap_ratio              = v.overlap_ratio;
+  return p;
 }
 } // namespace gearkit

@@ -3,6 +3,9 @@
 // figures (reference-data.md section 3). Units as in the standard: N/(mm um).
 #pragma once
 
+#include "geometry/bevel_gear.h"
+#include "geometry/involute_gear.h"
+
 namespace gearkit
 {
 struct IsoMeshStiffness
@@ -31,4 +34,18 @@ struct IsoStiffnessInput
 /// [-0.5, 2], positive contact ratio).
 IsoMeshStiffness
 iso6336_mesh_stiffness(const IsoStiffnessInput &input);
+
+/// The standard's input for a pair with the face width and contact ratios beside it: an
+/// involute pair at centre distance a (common face width), or a bevel pair's virtual
+/// cylindrical gears (ISO 10300-1; profile shifts h_a / m_mn - 1, dedendum 1 + clearance).
+struct IsoPair
+{
+  IsoStiffnessInput input;
+  double            face_width    = 0; ///< [m]
+  double            overlap_ratio = 0; ///< eps_beta
+};
+IsoPair
+iso_pair(const InvoluteGear &pinion, const InvoluteGear &gear, double centre_distance);
+IsoPair
+iso_pair(const BevelPairDesign &design);
 } // namespace gearkit

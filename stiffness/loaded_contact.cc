@@ -150,4 +150,62 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
   out.mesh_stiffness = out.normal_force / (out.lever * s.approach);
   return out;
 }
+
+MeshCycleContact
+loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &torques,
+                     const LoadedContactOptions &lo, const StructuralCompliance &sp,
+                     const StructuralCompliance &sg, const std::function<void()> &step)
+{
+  const int                m          = int(torques.size());
+  const double             mesh_angle = 2 * pi / t.pinion_flanks().teeth();
+  std::vector<TcaPosition> positions;
+  double                   touching = 0;
+  for (int i = 0; i < n; ++i)
+    {
+      positions.push_back(t.at(t.options_data().start_angle + mesh_angle * i / n));
+      touching += positions.back().touching;
+    }
+  MeshCycleContact c;
+  c.torques = std::size_t(m), c.positions = std::size_t(n);
+  for (const TcaPosition &p : positions)
+    c.slots = std::max(c.slots, p.pairs.size());
+  for (const TcaPosition &p : positions)
+    for (std::size_t s = 0; s < c.slots; ++s)
+      c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
+  std::vector<std::vector<LoadedPosition>> results(m);
+  for (int k = 0; k < m; ++k)
+    for (int i = 0; i < n; ++i)
+      {
+        results[k].push_back(loaded_contact(t, positions[i], torques[k], lo, sp, sg));
+        c.cells = std::max(c.cells, results[k].back().cells.size());
+        if (step)
+          step();
+      }
+  for (int i = 0; i < n; ++i)
+    c.pinion_angle.push_back(positions[i].pinion_angle),
+        c.unloaded_te.push_back(positions[i].transmission_error);
+  for (int k = 0; k < m; ++k)
+    for (int i = 0; i < n; ++i)
+      {
+        const LoadedPosition &r = results[k][i];
+        c.loaded_te.push_back(r.eL), c.mesh_stiffness.push_back(r.mesh_stiffness);
+        c.normal_force.push_back(r.normal_force), c.lever.push_back(r.lever);
+        for (std::size_t s = 0; s < c.slots; ++s)
+          c.pair_force.push_back(s < r.pair_force.size() ? r.pair_force[s] : 0.0);
+        double p_max = 0;
+        for (std::size_t j = 0; j < c.cells; ++j)
+          {
+            const bool         used = j < r.cells.size();
+            const ContactCell  none;
+            const ContactCell &cell = used ? r.cells[j] : none;
+            const double       p    = used ? r.force[Eigen::Index(j)] / (cell.ds * cell.dt) : 0.0;
+            p_max                   = std::max(p_max, p);
+            c.cell_pressure.insert(c.cell_pressure.end(),
+                                   {used ? double(cell.pinion_tooth) : -1.0, cell.u1, cell.v1, p});
+          }
+        c.peak_pressure.push_back(p_max);
+      }
+  c.mean_pairs_in_contact = touching / n;
+  return c;
+}
 } // namespace gearkit

@@ -77,4 +77,29 @@ loaded_cells(const UnloadedTca &tca, const TcaPosition &position,
 LoadedPosition
 solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
                      std::vector<ContactCell> cells, const Eigen::MatrixXd &compliance);
+
+/// The loaded contact over one mesh cycle: `positions` equal steps of the pinion over 2 pi / z1
+/// from the TCA's start angle, at every torque. Tables by torque (M), position (N), pair slot of
+/// the unloaded TCA (S: the most pairs at any position) and cell (C: the most cells).
+struct MeshCycleContact
+{
+  std::size_t         torques = 0, positions = 0, slots = 0, cells = 0;
+  std::vector<double> pinion_angle;   ///< phi [N] [rad]
+  std::vector<double> unloaded_te;    ///< e_0 [N] [rad, pinion]
+  std::vector<int>    slot_tooth;     ///< pinion tooth of each slot, -1 empty [N][S]
+  std::vector<double> loaded_te;      ///< e_L [M][N] [rad, pinion]
+  std::vector<double> mesh_stiffness; ///< K_m [M][N] [N/m]
+  std::vector<double> normal_force;   ///< F [M][N] [N]
+  std::vector<double> lever;          ///< lambda [M][N] [m]
+  std::vector<double> pair_force;     ///< per slot [M][N][S] [N]
+  std::vector<double> peak_pressure;  ///< largest cell pressure [M][N] [Pa]
+  std::vector<double> cell_pressure;  ///< pinion tooth (-1 unused), u1, v1, p [M][N][C][4]
+  double              mean_pairs_in_contact = 0; ///< of the unloaded TCA (eps_gamma, conjugate)
+};
+
+/// Solves loaded_contact at every position and torque; `step` (optional) is called after each.
+MeshCycleContact
+loaded_contact_cycle(const UnloadedTca &tca, int positions, const std::vector<double> &torques,
+                     const LoadedContactOptions &options, const StructuralCompliance &pinion,
+                     const StructuralCompliance &gear, const std::function<void()> &step = {});
 } // namespace gearkit

@@ -31,6 +31,36 @@ tables(int n, int cycles, const std::vector<double> &amplitude,
 }
 } // namespace
 
+TEST(MeshCycle, ResamplesPeriodicTablesAndBalancesTheTorque)
+{
+  // A trigonometric polynomial of degree 3 given at 8 phases is resampled exactly (8 > 2 * 3)
+  // at 20 others; K_m (1 - v cos 2 pi phase) at its samples is the formula.
+  std::vector<double> k;
+  auto                f = [](double x) {
+    return 300e6 + 20e6 * std::cos(2 * pi * x) - 7e6 * std::sin(6 * pi * x);
+  };
+  for (int i = 0; i < 8; ++i)
+    k.push_back(f(i / 8.0));
+  const std::vector<double> r = resample_periodic(k, 20);
+  ASSERT_EQ(r.size(), 20u);
+  for (int i = 0; i < 20; ++i)
+    EXPECT_NEAR(r[i], f(i / 20.0), 1e-6) << i; // 1e-15 relative of 3e8 N/m
+  const std::vector<double> v = varying_mesh_stiffness(300e6, 0.1, 4);
+  EXPECT_DOUBLE_EQ(v[0], 270e6);
+  EXPECT_NEAR(v[1], 300e6, 1e-6);
+  EXPECT_DOUBLE_EQ(v[2], 330e6);
+
+  // The load torque through constant arms: T_L = T_E (lambda_g . a_g) / (lambda_p . a_p).
+  MeshCycleSamples s;
+  s.transmission_error = {0};
+  s.mesh_stiffness     = {3e8};
+  s.normal_pinion = s.normal_gear = {Vec3(0, 1, 0)};
+  s.arm_pinion                    = {Vec3(0, 0, 0.03)};
+  s.arm_gear                      = {Vec3(0, 0, 0.075)};
+  const MeshCycle mesh(s);
+  EXPECT_DOUBLE_EQ(balancing_load_torque(mesh, 100, Vec3::UnitZ(), Vec3::UnitZ()), 250);
+}
+
 TEST(MeshCycle, TablesOverSeveralCyclesAndMakima)
 {
   // a step over 3 mesh cycles (as a pitch error makes in measured e_0): both interpolants are

@@ -42,6 +42,24 @@ TEST(BevelGear, SeedPairPitchAngles)
   EXPECT_THROW(bevel_geometry(d), InputError);
 }
 
+TEST(BevelGear, VirtualCylindricalGearsOfA90DegreePair)
+{
+  // Sigma = 90 deg: cos(delta_1) = z2 / sqrt(z1^2 + z2^2), so z_v1 = z1 sqrt(z1^2 + z2^2) / z2
+  // exactly (ISO 10300-1); r_v = z_v m_mn / (2 cos beta_m); eps_beta = b sin beta_m / (pi m_mn).
+  BevelPairDesign               d; // 12/36, beta_m 35 deg
+  const VirtualCylindricalGears v = virtual_cylindrical_gears(d);
+  const double                  c = std::hypot(12.0, 36.0);
+  EXPECT_NEAR(v.z1, 12 * c / 36, 1e-12);
+  EXPECT_NEAR(v.z2, 36 * c / 12, 1e-12);
+  const double m = bevel_geometry(d).mean_normal_module;
+  EXPECT_NEAR(v.r1, v.z1 * m / (2 * std::cos(d.mean_spiral_angle)), 1e-15);
+  EXPECT_NEAR(v.overlap_ratio, d.face_width * std::sin(d.mean_spiral_angle) / (pi * m), 1e-12);
+  // addenda as cut: h_a1 + h_a2 = the working depth 2 m_mn; a contact ratio of a real pair
+  EXPECT_NEAR(v.addendum1 + v.addendum2, 2 * m, 1e-15);
+  EXPECT_GT(v.transverse_contact_ratio, 1.0);
+  EXPECT_LT(v.transverse_contact_ratio, 2.0);
+}
+
 TEST(GeneratedFlank, PointsSolveTheEquationOfMeshingAndTouchTheBlade)
 {
   const auto [pinion, gear] = conjugate_cuts(BevelPairDesign{});

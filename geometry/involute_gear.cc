@@ -169,17 +169,15 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
         " mm is below 0.2 m_n (nearly pointed tooth)");
 
   // Modifications and deviations are micrometre-sized corrections of the involute: one that
-  // removes more than half the tooth's thickness at the tip removes the tooth, and a relief
-  // longer than the involute (or than half the face) has nothing to act on. Refused before
-  // anything is computed on such a tooth.
-  const double limit = gear_checks.tip_thickness_normal / 2;
-  const double roll  = base_radius * (roll_angle_tip - roll_angle_form);
-  const auto   fits  = [&](double value) { return std::abs(value) <= limit; };
+  // removes more than half the tooth's thickness at the tip removes the tooth. Refused before
+  // anything is computed on such a tooth (their lengths: check_modifications below).
+  const double      limit = gear_checks.tip_thickness_normal / 2;
+  const auto        fits  = [&](double value) { return std::abs(value) <= limit; };
   const std::string within =
       "its size must be at most half the normal tooth thickness at the tip, s_an / 2 = " +
       str(limit * 1e6) + " um";
-  for (const auto &[side, m] :
-       {std::pair{"drive flank ", &d.drive_modifications}, {"coast flank ", &d.coast_modifications}})
+  for (const auto &[side, m] : {std::pair{"drive flank ", &d.drive_modifications},
+                                {"coast flank ", &d.coast_modifications}})
     {
       const std::string s = side;
       for (const auto &[name, value] : {std::pair{"tip relief", m->tip_relief},
@@ -191,15 +189,6 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
                                         {"helix slope deviation", m->helix_slope},
                                         {"waviness amplitude", m->waviness_amplitude}})
         require(fits(value), d, s + name, value * 1e6, "um", within);
-      for (const auto &[name, value] : {std::pair{"tip relief length", m->tip_relief_length},
-                                        {"root relief length", m->root_relief_length}})
-        require(value <= roll * (1 + 1e-12), d, s + name, value * 1e3, "mm",
-                "it must be at most the roll length of the involute from the form circle to the "
-                "tip, " +
-                    str(roll * 1e3) + " mm");
-      require(m->end_relief_length <= d.face_width / 2 * (1 + 1e-12), d, s + "end relief length",
-              m->end_relief_length * 1e3, "mm",
-              "it must be at most half the face width, " + str(d.face_width / 2 * 1e3) + " mm");
     }
   require(d.runout.eccentricity <= limit, d, "runout", d.runout.eccentricity * 1e6, "um", within);
   for (const EccentricTooth &e : d.eccentric_teeth)

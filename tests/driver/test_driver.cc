@@ -817,7 +817,7 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
        "subsection Flanks\n  subsection p1\n    subsection Pinion\n      subsection Coast flank "
        "modifications\n        set tip relief = 10\n        set tip relief length = 50\n      "
        "end\n    end\n  end\nend\n",
-       {"Flanks/p1/Pinion", "coast flank tip relief length = 50 mm", "roll length"}},
+       {"Flanks/p1/Pinion coast flank", "tip relief length = 50 mm", "active profile"}},
       {"reference mode on a helical pair",
        "",
        "subsection Flanks\n  subsection p1\n    subsection Pinion\n      set helix angle = 15\n"

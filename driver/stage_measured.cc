@@ -58,7 +58,9 @@ write_measured(const MeasuredMember &m, const std::vector<std::vector<double>> &
       for (const Vec3 &q : f.normals)
         n.insert(n.end(), q.data(), q.data() + 3);
       g.write("points", p, shape, "m",
-              "measured points [profile][face][xyz] in the member frame, profile root to tip");
+              "measured points [profile][face][xyz] in the member frame (axis z; bevel: cone "
+              "apex at the origin), profile root to tip, face -z end to +z end (bevel: toe "
+              "to heel)");
       if (!n.empty())
         g.write("normals", n, shape, "1", "unit outward normals (probe directions)");
       if (!deviation.empty() && !deviation[i].empty())

@@ -26,8 +26,7 @@ theoretical_members(const PairScene &pair, const TcaScene &t, const H5Group &fla
       return {f.pinion, f.gear, f.assembly, 0,
               g.mean_cone_distance * std::sin(g.pitch_angle_pinion)};
     }
-  const auto   pinion = InvoluteGear::create(pair.pinion);
-  const auto   gear   = InvoluteGear::create(pair.gear);
+  const auto [pinion, gear] = pair.involute_members();
   const double a =
       t.centre_distance > 0 ? t.centre_distance : working_centre_distance(*pinion, *gear);
   const int z1 = pinion->teeth(), z2 = gear->teeth();

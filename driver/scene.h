@@ -60,6 +60,10 @@ struct PairScene
   /// Both members build and mesh with each other; modifications fit on the teeth.
   void
   check() const;
+  /// The involute members, each with its start of active profile (where f_Halpha's evaluation
+  /// range starts) from the other in the design mesh (geometry: create_pair).
+  std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+  involute_members() const;
 };
 
 /// Tooth counts (z1, z2) of a pair of either type.

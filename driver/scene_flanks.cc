@@ -34,9 +34,12 @@ declare_modifications(ParameterHandler &prm)
   prm.declare_entry("profile crowning", "0", Patterns::Double(0),
                     "[um] C_alpha, parabolic removal at both ends of the active profile.");
   prm.declare_entry("profile slope deviation", "0", Patterns::Double(),
-                    "[um] f_Halpha over the active profile; positive adds material at the tip.");
+                    "[um] f_Halpha over the ISO 1328-1 profile evaluation range (from the start "
+                    "of active profile in mesh with the mate, 92 % of the active length toward "
+                    "the tip); positive adds material at the tip.");
   prm.declare_entry("helix slope deviation", "0", Patterns::Double(),
-                    "[um] f_Hbeta over the face width; positive adds material at the +z end.");
+                    "[um] f_Hbeta over the ISO 1328-1 helix evaluation range (the face width "
+                    "less min(5 % b, m_n) at each end); positive adds material at the +z end.");
   prm.declare_entry("waviness amplitude", "0", Patterns::Double(0),
                     "[um] Amplitude of a sinusoidal profile waviness.");
   prm.declare_entry("waviness wavelength", "0", Patterns::Double(0),
@@ -197,7 +200,8 @@ declare_bevel(ParameterHandler &prm)
                     "[1/m] Mismatch: parabolic blade curvature of the pinion blades (profile "
                     "crowning).");
   prm.declare_entry("pinion modified roll 2C", "0", Patterns::Double(),
-                    "Modified roll 2C of the pinion (used when transmission error amplitude "
+                    "Modified roll 2C of the pinion, expanded about the cradle roll that "
+                    "generates each flank's mean point (used when transmission error amplitude "
                     "is 0).");
   prm.declare_entry("pinion modified roll 6D", "0", Patterns::Double(),
                     "Modified roll 6D of the pinion.");
@@ -277,8 +281,7 @@ PairScene::check() const
         }
       return;
     }
-  InvoluteGear::create(pinion);
-  InvoluteGear::create(gear);
+  involute_members();
   const InvoluteGearData &a = pinion, &b = gear;
   auto                    fail = [&](const std::string &what) {
     throw InputError("Flanks/" + name + ": pinion and gear " + what);
@@ -293,5 +296,11 @@ PairScene::check() const
   if (a.helix_angle > 0 && a.hand == b.hand)
     fail("must have opposite hands (external helical pair); both are " +
          std::string(a.hand == Hand::right ? "right" : "left"));
+}
+
+std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+PairScene::involute_members() const
+{
+  return create_pair(pinion, gear);
 }
 } // namespace gearkit

@@ -112,9 +112,8 @@ TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measure
   // Parallel axes: the teeth must neither overlap (below the zero-backlash working centre
   // distance the flanks would interpenetrate: no rigid contact exists) nor miss each other
   // (the tips must reach past the other member's base circle tangents).
-  const auto   pinion = InvoluteGear::create(pair.pinion);
-  const auto   gear   = InvoluteGear::create(pair.gear);
-  const double a_w    = working_centre_distance(*pinion, *gear);
+  const auto [pinion, gear] = pair.involute_members();
+  const double a_w          = working_centre_distance(*pinion, *gear);
   const double a =
       (centre_distance > 0 ? centre_distance : a_w) + misalignment.centre_distance_error;
   const auto mm_text = [](double x) { return std::to_string(x / mm) + " mm"; };

@@ -232,8 +232,7 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
           continue;
         }
       pg.attribute("type", "involute");
-      const auto pinion = InvoluteGear::create(pair.pinion);
-      const auto gear   = InvoluteGear::create(pair.gear);
+      const auto [pinion, gear] = pair.involute_members();
       write_member(*pinion, pair.grid_profile_points, pair.grid_face_points, pg.group("pinion"),
                    log, progress);
       write_member(*gear, pair.grid_profile_points, pair.grid_face_points, pg.group("gear"), log,

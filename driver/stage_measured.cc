@@ -59,7 +59,9 @@ write_measured(const MeasuredMember &m, const std::vector<std::vector<double>> &
       for (const Vec3 &q : f.normals)
         n.insert(n.end(), q.data(), q.data() + 3);
       g.write("points", p, shape, "m",
-              "measured points [profile][face][xyz] in the member frame, profile root to tip");
+              "measured points [profile][face][xyz] in the member frame (axis z; bevel: cone "
+              "apex at the origin), profile root to tip, face -z end to +z end (bevel: toe "
+              "to heel)");
       if (!n.empty())
         g.write("normals", n, shape, "1", "unit outward normals (probe directions)");
       if (!deviation.empty() && !deviation[i].empty())
@@ -101,14 +103,13 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       struct Member
       {
         const char             *name;
-        const InvoluteGearData &data;
         const MemberFlanks     &flanks;
         const std::string      &file;
         const std::vector<int> &teeth;
       };
       for (const Member &member :
-           {Member{"pinion", pair.pinion, *theory_members.pinion, m.pinion_file, m.pinion_teeth},
-            Member{"gear", pair.gear, *theory_members.gear, m.gear_file, m.gear_teeth}})
+           {Member{"pinion", *theory_members.pinion, m.pinion_file, m.pinion_teeth},
+            Member{"gear", *theory_members.gear, m.gear_file, m.gear_teeth}})
         {
           const int      z = member.flanks.teeth(); // tooth indices: checked at read time
           MeasuredMember measured;
@@ -146,7 +147,10 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                                    "/source = topography files: topography grids are defined "
                                    "on involute flanks; for a spiral bevel pair use cmm files");
                 const TopographyMember t = read_topography_file(member.file);
-                measured = topography_to_points(*InvoluteGear::create(member.data), t);
+                measured =
+                    topography_to_points(member.name[0] == 'p' ? *pair.involute_members().first
+                                                               : *pair.involute_members().second,
+                                         t);
                 check_measurement(measured, member.flanks, m.nominal_tolerance, member.file,
                                   "Measured flanks/" + pair.name + "/nominal tolerance");
                 for (const FlankTopography &f : t.flanks)

@@ -217,8 +217,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       if (!lc.reference_positions.empty())
         {
-          const auto pinion = InvoluteGear::create(pair.pinion);
-          const auto gear   = InvoluteGear::create(pair.gear);
+          const auto [pinion, gear] = pair.involute_members();
           // Reference mode at the chosen positions on the compliance stage's segments; VTU
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
           const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
@@ -284,8 +283,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       // virtual cylindrical gears of the mean point (ISO 10300-1).
       const IsoPair iso = bevel
                               ? iso_pair(pair.bevel)
-                              : iso_pair(*InvoluteGear::create(pair.pinion),
-                                         *InvoluteGear::create(pair.gear), members.centre_distance);
+                              : iso_pair(*pair.involute_members().first,
+                                         *pair.involute_members().second, members.centre_distance);
       if (bevel)
         g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
       const double b = iso.face_width;

@@ -162,24 +162,43 @@ std::pair<BevelMemberCut, BevelMemberCut>
 mismatched_cuts(const BevelPairDesign &d, const PinionMismatch &m)
 {
   auto [pinion, gear] = conjugate_cuts(d);
-  const double Am     = bevel_geometry(d).mean_cone_distance;
+  // The mean point of each pinion flank: mean cone distance, middle of the working depth (the
+  // gear's tip reaches h = -h_a2 on the pinion, the pinion's tip is at h = +h_a1).
+  const double h_mid = 0.5 * (pinion.blank.addendum - gear.blank.addendum);
   for (auto [blade, machine] : {std::pair{&pinion.outside_blade, &pinion.outside_machine},
                                 {&pinion.inside_blade, &pinion.inside_machine}})
     {
       // The outside blade (concave flank) grows by the change, the inside blade (convex flank)
       // shrinks by it: both pinion flanks then curve less lengthwise than the gear flanks they
-      // meet need, which localises the bearing. The cutter centre moves along the line from the
-      // mean generating point P = (A_m, 0) to the centre, so the blade's pitch circle keeps
-      // passing where it did on that line.
-      const double change = blade->slope * m.cutter_radius;
-      const Vec2   C(machine->radial_setting * std::cos(machine->cradle_angle),
-                     machine->radial_setting * std::sin(machine->cradle_angle));
-      const Vec2   towards_centre = (C - Vec2(Am, 0)).normalized();
-      const Vec2   moved          = C + change * towards_centre;
-      machine->radial_setting     = moved.norm();
-      machine->cradle_angle       = std::atan2(moved.y(), moved.x());
-      machine->modified_roll_2c   = m.modified_roll_2c;
-      machine->modified_roll_6d   = m.modified_roll_6d;
+      // meet need, which localises the bearing. The changed blade cone must touch the
+      // conjugate one along the blade line that generates the flank's mean point: then that
+      // point, its normal and the equation of meshing there are unchanged, the flank passes
+      // through the mean point with the conjugate normal and the bearing is centred on it.
+      // That line lies at the cutter angle theta of the mean point's generation, i.e. along
+      // e = (cos theta, sin theta, 0) in the cutter frame: a blade radius change rho + change
+      // about a centre moved by -change e keeps every point of that line in place. (Pivoting
+      // on the line from the centre to the mean generating point (A_m, 0) of the cradle, as
+      // before, kept the blade line through the point of the blade's pitch circle on that
+      // line: about 1 mm from the mean point along the face in the seed pair.)
+      const double                     change = blade->slope * m.cutter_radius;
+      const GeneratedFlank             conjugate(pinion.blank, *blade, *machine);
+      const GeneratedFlank::Generation mean = conjugate.generation(h_mid, 0);
+      const Vec3 e = cutter_frame(*machine) * Vec3(std::cos(mean.theta), std::sin(mean.theta), 0);
+      // The centre moves in the cradle plane; a component along the cradle axis (tilted
+      // cutters only) is a sliding-base change (the blank's apex moved the other way).
+      const Vec3 moved = Vec3(machine->radial_setting * std::cos(machine->cradle_angle),
+                              machine->radial_setting * std::sin(machine->cradle_angle), 0) -
+                         change * e;
+      machine->radial_setting = moved.head<2>().norm();
+      machine->cradle_angle   = std::atan2(moved.y(), moved.x());
+      machine->sliding_base   = machine->sliding_base + moved.z();
+      // The modified roll about the roll that generates the mean point: the blank turns there
+      // at the plain ratio, so the point and its normal stay, and the parabola of transmission
+      // error has its vertex where the mean point is in contact (about cradle angle 0, the
+      // vertex and the bearing would lie apart by the mean point's roll).
+      machine->modified_roll_2c     = m.modified_roll_2c;
+      machine->modified_roll_6d     = m.modified_roll_6d;
+      machine->modified_roll_centre = mean.psi_c;
       blade->pitch_radius += change;
       blade->curvature     = m.blade_curvature;
       blade->parabola_apex = 0;

@@ -104,8 +104,11 @@ std::pair<BevelMemberCut, BevelMemberCut>
 formate_cuts(const BevelPairDesign &design);
 
 /// Pinion modifications against the conjugate cut (local synthesis in Litvin's sense): they
-/// localise the bearing contact and shape the transmission error. Each side's cutter keeps its
-/// blade through the mean point of the flank, so the mean contact point stays where it is.
+/// localise the bearing contact and shape the transmission error. A cutter radius change keeps
+/// each side's blade through the mean point of the flank (mean cone distance, middle of the
+/// working depth): the changed blade cone touches the conjugate one along the blade line that
+/// generates that point, so the flank keeps the point and its normal and the bearing is centred
+/// on it. The modified roll keeps the mean point as well.
 struct PinionMismatch
 {
   /// Change of the pinion blade radii [m]: the outside blade (concave flank) by +this, the
@@ -116,7 +119,9 @@ struct PinionMismatch
   /// Parabolic blade curvature of both pinion blades [1/m], apex at the pitch plane (profile
   /// crowning: bearing width and edge relief).
   double blade_curvature = 0;
-  /// Modified roll of the pinion (2C; 6D): a parabolic transmission error.
+  /// Modified roll of the pinion (2C; 6D): a parabolic transmission error. Expanded about the
+  /// cradle angle that generates each flank's mean point (MachineSettings::modified_roll_centre),
+  /// so the mean point stays and the parabola's vertex lies where it is in contact.
   double modified_roll_2c = 0;
   double modified_roll_6d = 0;
 };

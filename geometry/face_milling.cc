@@ -115,8 +115,9 @@ generation_chain(const Blade &blade, double s_round, const MachineSettings &m,
   if (m.generated)
     {
       const double C = m.modified_roll_2c / 2, D = m.modified_roll_6d / 6;
-      psi_1              = m.ratio_of_roll * (psi - C * psi * psi - D * psi * psi * psi);
-      const T     dpsi_1 = m.ratio_of_roll * (1 - 2 * C * psi - 3 * D * psi * psi);
+      const T      dp    = psi - m.modified_roll_centre;
+      psi_1              = m.ratio_of_roll * (psi - C * dp * dp - D * dp * dp * dp);
+      const T     dpsi_1 = m.ratio_of_roll * (1 - 2 * C * dp - 3 * D * dp * dp);
       const V3<T> v_1(-dpsi_1 * r_b.y(), dpsi_1 * r_b.x(), T(0)); // blank material velocity
       out.meshing = n_b.dot(v_b - v_1);
     }

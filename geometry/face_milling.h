@@ -16,8 +16,9 @@
 // Blank (work) frame S_1: apex at O_1, axis z_1 = a = (cos gamma_m, 0, sin gamma_m) in S_m
 // (gamma_m: machine root angle), x_1 = (sin gamma_m, 0, -cos gamma_m), y_1 = y_m. Machine
 // settings move the apex: O_1 = E_m y_m - Delta X_B z_m - Delta X_D a (blank offset, sliding base,
-// machine centre to back). The blank turns by psi_1 about a, psi_1 = R_a (psi_c - C psi_c^2 -
-// D psi_c^3) (ratio of roll R_a; modified roll 2C and 6D are the Gleason coefficients). A point
+// machine centre to back). The blank turns by psi_1 about a, psi_1 = R_a (psi_c - C dpsi^2 -
+// D dpsi^3), dpsi = psi_c - psi_0 (ratio of roll R_a; modified roll 2C and 6D are the Gleason
+// coefficients, expanded about the cradle angle psi_0, 0 unless set). A point
 // fixed in the blank has coordinates Rz(-psi_1) r in the blank frame: those are the flank
 // coordinates (member frame: apex at the origin, axis +z, teeth toward +z).
 //
@@ -70,14 +71,24 @@ struct MachineSettings
   /// angle q + j (swivel j) in the cradle plane [rad]; 0: axis parallel to the cradle axis.
   double tilt                   = 0;
   double swivel                 = 0;
-  double sliding_base           = 0;    ///< Delta X_B [m]
-  double machine_centre_to_back = 0;    ///< Delta X_D [m]
-  double blank_offset           = 0;    ///< E_m [m]
-  double ratio_of_roll          = 1;    ///< R_a = d psi_1 / d psi_c at psi_c = 0
-  double modified_roll_2c       = 0;    ///< 2C: psi_1 = R_a (psi_c - C psi_c^2 - D psi_c^3)
-  double modified_roll_6d       = 0;    ///< 6D
-  bool   generated              = true; ///< false: formate (no roll; the flank is the blade cone)
+  double sliding_base           = 0; ///< Delta X_B [m]
+  double machine_centre_to_back = 0; ///< Delta X_D [m]
+  double blank_offset           = 0; ///< E_m [m]
+  double ratio_of_roll          = 1; ///< R_a = d psi_1 / d psi_c at psi_c = psi_0
+  double modified_roll_2c       = 0; ///< 2C: psi_1 = R_a (psi_c - C dpsi^2 - D dpsi^3)
+  double modified_roll_6d       = 0; ///< 6D
+  /// psi_0 [rad]: the cradle angle the modified roll is expanded about, dpsi = psi_c - psi_0;
+  /// there the blank rolls at the plain ratio R_a (the point generated there is unmodified).
+  double modified_roll_centre = 0;
+  bool   generated            = true; ///< false: formate (no roll; the flank is the blade cone)
 };
+
+/// Axes of the head cutter's frame in the cradle frame S_m (columns): z along the cutter axis
+/// (leaning by the tilt toward the swivel direction), x the cradle's x axis made perpendicular to
+/// it; the identity without tilt. A blade point (s, theta) lies at C + R (rho(s) cos theta,
+/// rho(s) sin theta, z(s)), C the cutter centre in the cradle plane.
+Eigen::Matrix3d
+cutter_frame(const MachineSettings &machine);
 
 /// The blank of one member, in its own frame (apex at the origin, axis +z). Uniform depth: root
 /// and face cones parallel to the pitch cone.

@@ -229,8 +229,17 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
               "", "it must lie in (0, 1]");
     }
 
-  const ModificationFrame frame{base_radius * roll_angle_form, base_radius * roll_angle_tip,
-                                d.face_width};
+  require(d.active_profile_start_radius == 0 ||
+              (d.active_profile_start_radius >= form_radius * (1 - 1e-12) &&
+               d.active_profile_start_radius < tip_radius),
+          d, "start of active profile diameter", 2 * d.active_profile_start_radius * 1e3, "mm",
+          "it must lie in [d_Ff, d_a) = [" + str(2 * form_radius * 1e3) + ", " +
+              str(2 * tip_radius * 1e3) + ") mm, or be 0 (not known)");
+  frame = {base_radius * roll_angle_form, base_radius * roll_angle_tip, d.face_width,
+           d.normal_module};
+  if (d.active_profile_start_radius > 0)
+    frame.roll_length_active_start =
+        std::max(base_radius * roll_angle(d.active_profile_start_radius), frame.roll_length_form);
   check_modifications(d.drive_modifications, frame, d.name + " drive flank");
   check_modifications(d.coast_modifications, frame, d.name + " coast flank");
 }
@@ -483,9 +492,8 @@ InvoluteFlank::evaluate(double xi, double z) const
   // Superpose delta(L, z) along the nominal normal: P~ = P + delta n. The tangents of the
   // modified surface need the derivatives of the nominal normal; they are exact here from the
   // second derivatives of P.
-  const double            rb = g.base_radius;
-  const ModificationFrame frame{rb * g.roll_angle_form, rb * g.roll_angle_tip, g.d.face_width};
-  NormalDeviation         dev = evaluate_modifications(m, frame, rb * xi, z);
+  const double    rb  = g.base_radius;
+  NormalDeviation dev = evaluate_modifications(m, g.frame, rb * xi, z);
   dev.value += offset;
 
   const double s    = side == FlankSide::drive ? 1.0 : -1.0;
@@ -543,6 +551,41 @@ double
 working_centre_distance(const InvoluteGear &p, const InvoluteGear &g)
 {
   return (p.base_radius + g.base_radius) / std::cos(working_pressure_angle(p, g));
+}
+
+double
+active_profile_start_radius(const InvoluteGear &g, const InvoluteGear &mate, double a)
+{
+  const double rb = g.base_radius + mate.base_radius;
+  if (!(a > rb))
+    throw InputError("start of active profile of " + g.data().name + ": centre distance " +
+                     std::to_string(a * 1e3) + " mm is not above the sum of the base radii " +
+                     std::to_string(rb * 1e3) + " mm");
+  const double sin_alpha = std::sqrt(1 - (rb / a) * (rb / a));
+  const double L_A       = a * sin_alpha - std::sqrt(mate.tip_radius * mate.tip_radius -
+                                                     mate.base_radius * mate.base_radius);
+  if (!(L_A < g.base_radius * g.roll_angle_tip))
+    throw InputError("start of active profile of " + g.data().name + ": the tip circle of " +
+                     mate.data().name + " does not cross the line of action inside " +
+                     g.data().name + "'s tip circle at centre distance " + std::to_string(a * 1e3) +
+                     " mm; the pair does not mesh there");
+  if (L_A <= g.base_radius * g.roll_angle_form)
+    return g.form_radius; // the mate's tip reaches below the involute (into the fillet)
+  return std::hypot(g.base_radius, L_A);
+}
+
+std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+create_pair(const InvoluteGearData &pinion, const InvoluteGearData &gear, double a)
+{
+  const auto p = InvoluteGear::create(pinion), g = InvoluteGear::create(gear);
+  if (!(a > 0))
+    a = working_centre_distance(*p, *g);
+  InvoluteGearData dp = pinion, dg = gear;
+  if (dp.active_profile_start_radius == 0)
+    dp.active_profile_start_radius = active_profile_start_radius(*p, *g, a);
+  if (dg.active_profile_start_radius == 0)
+    dg.active_profile_start_radius = active_profile_start_radius(*g, *p, a);
+  return {InvoluteGear::create(dp), InvoluteGear::create(dg)};
 }
 
 ContactRatios

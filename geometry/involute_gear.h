@@ -57,6 +57,11 @@ struct InvoluteGearData
   double      bore_diameter         = 0;    ///< [m], 0 = solid
   double      density               = 7850; ///< [kg/m^3]
 
+  /// Radius of the start of the active profile (SAP) in the mesh the drawing refers to [m]:
+  /// the profile evaluation range of f_Halpha starts there. 0: not known (a gear on its own; the
+  /// form circle stands in); create_pair sets it from the mate.
+  double active_profile_start_radius = 0;
+
   ToothModifications drive_modifications;
   ToothModifications coast_modifications;
   /// Single pitch deviations f_p per tooth [m], along the reference circle: entry k is the
@@ -141,6 +146,12 @@ public:
   {
     return gear_checks;
   }
+  /// The extent the flank modifications refer to (modifications.h).
+  const ModificationFrame &
+  modification_frame() const
+  {
+    return frame;
+  }
 
   /// Transverse arc tooth thickness at a radius in [r_b, r_a] (ISO 21771):
   /// s_yt = d_y (s_t / d + inv alpha_t - inv alpha_yt).
@@ -191,6 +202,7 @@ private:
 
   InvoluteGearData    d;
   GearChecks          gear_checks;
+  ModificationFrame   frame;
   std::vector<double> tooth_angle;     ///< per tooth, incl. cumulative pitch deviations
   double              half_angle_base; ///< theta_b = s_t / (2 r) + inv alpha_t
   double              rack_h_form;     ///< rack height of the last straight-flank point
@@ -205,6 +217,23 @@ double
 working_pressure_angle(const InvoluteGear &pinion, const InvoluteGear &gear);
 double
 working_centre_distance(const InvoluteGear &pinion, const InvoluteGear &gear);
+
+/// Radius of the start of the active profile (SAP) of `gear` in an external mesh with `mate`
+/// at centre distance a: where the mate's tip circle crosses the line of action, at roll length
+/// L_A = a sin(alpha_wt) - sqrt(r_a,mate^2 - r_b,mate^2) from the gear's base tangent point
+/// (cos(alpha_wt) = (r_b + r_b,mate) / a), r = sqrt(r_b^2 + L_A^2); the form radius where the
+/// mate's tip reaches below the involute. Throws InputError when the pair cannot mesh at a.
+double
+active_profile_start_radius(const InvoluteGear &gear, const InvoluteGear &mate,
+                            double centre_distance);
+
+/// Both members of an external pair, each with its start of active profile (and so its profile
+/// evaluation range) from the other at centre distance a; a <= 0: the zero-backlash working
+/// centre distance (the design mesh, kept whatever centre distance an analysis assembles them
+/// at). A start already in the data (the drawing's) is kept.
+std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+create_pair(const InvoluteGearData &pinion, const InvoluteGearData &gear,
+            double centre_distance = 0);
 
 /// Contact ratios of an external pair at centre distance a: transverse eps_alpha =
 /// (sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin(alpha_wt)) / p_bt with

@@ -222,7 +222,12 @@ private:
   std::size_t       next = 0;
 };
 
-const std::string frame_description = "member axis z, tooth 0 centred on +x at z = 0";
+// The `frame` header line (free text for readers of the file; docs/cmm-format.md). CMM files
+// hold cylindrical or bevel members, topography files only involute (cylindrical) ones.
+const std::string cmm_frame_description =
+    "member axis +z, tooth 0 centred on +x; cylindrical: at z = 0, face z = -b/2 .. b/2; "
+    "bevel: cone apex at z = 0, teeth toward +z, at the mean point";
+const std::string topography_frame_description = "member axis z, tooth 0 centred on +x at z = 0";
 
 /// The header both formats share: format, member, teeth, frame (optional), units, and `more`.
 struct Header
@@ -470,7 +475,7 @@ write_cmm_file(const std::string &path, const MeasuredMember &m, const CmmWriteO
   write_atomically(path, [&](std::ostream &out) {
     out << "# gearkit CMM point file (docs/cmm-format.md)\n"
         << "format = gearkit-cmm 1\nmember = " << m.member << "\nteeth = " << m.teeth
-        << "\nframe = " << frame_description << "\nunits = " << (o.millimetres ? "mm" : "m")
+        << "\nframe = " << cmm_frame_description << "\nunits = " << (o.millimetres ? "mm" : "m")
         << "\nnormals = " << (normals ? "yes" : "no") << "\n";
     for (const MeasuredFlank &f : m.flanks)
       {
@@ -590,7 +595,7 @@ write_topography_file(const std::string &path, const TopographyMember &m)
   write_atomically(path, [&](std::ostream &out) {
     out << "# gearkit flank topography file (docs/cmm-format.md)\n"
         << "format = gearkit-topography 1\nmember = " << m.member << "\nteeth = " << m.teeth
-        << "\nframe = " << frame_description << "\nunits = mm\ndeviation units = um\n";
+        << "\nframe = " << topography_frame_description << "\nunits = mm\ndeviation units = um\n";
     for (const FlankTopography &f : m.flanks)
       {
         const std::size_t nf = f.face.size();

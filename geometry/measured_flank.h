@@ -3,8 +3,11 @@
 // theoretical flanks, and a synthesiser of realistic "measured" flanks. File formats:
 // docs/cmm-format.md.
 //
-// Frame of every point and file: the member frame of involute_gear.h (member axis = z, tooth 0
-// centred on +x in the section z = 0, tooth k nominally at the polar angle 2 pi k / z). SI units.
+// Frame of every point and file: the member frame, member axis = z, tooth k nominally at the
+// polar angle 2 pi k / z. Cylindrical gears (involute_gear.h): face z = -b/2 .. b/2, tooth 0
+// centred on +x in the section z = 0. Spiral bevel gears (BevelMemberFlanks, bevel_gear.h): cone
+// apex at the origin, teeth toward +z, tooth 0 centred on +x at the mean point of the pitch cone
+// (cone distance A_m). SI units.
 #pragma once
 
 #include "geometry/involute_gear.h"

@@ -2,6 +2,7 @@
 
 #include "geometry/types.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -33,6 +34,23 @@ ramp(ReliefShape shape, double s, double &value, double &slope)
     }
 }
 } // namespace
+
+std::pair<double, double>
+profile_evaluation_range(const ModificationFrame &f)
+{
+  // Without a mate (a gear on its own) the active profile is not known: the whole involute
+  // from the form circle stands in for it.
+  const double start =
+      std::isnan(f.roll_length_active_start) ? f.roll_length_form : f.roll_length_active_start;
+  return {start, start + 0.92 * (f.roll_length_tip - start)};
+}
+
+std::pair<double, double>
+helix_evaluation_range(const ModificationFrame &f)
+{
+  const double e = std::min(0.05 * f.face_width, f.normal_module);
+  return {-0.5 * f.face_width + e, 0.5 * f.face_width - e};
+}
 
 NormalDeviation
 evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, double L, double z)
@@ -72,8 +90,11 @@ evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, 
     }
   if (m.profile_slope != 0)
     {
-      d.value += m.profile_slope * (L - L_mid) / L_alpha;
-      d.d_dL += m.profile_slope / L_alpha;
+      // The mean profile line rises by f_Halpha over the evaluation range (zero in its middle)
+      // and goes on linearly beyond it.
+      const auto [L0, L1] = profile_evaluation_range(f);
+      d.value += m.profile_slope * (L - 0.5 * (L0 + L1)) / (L1 - L0);
+      d.d_dL += m.profile_slope / (L1 - L0);
     }
   if (m.waviness_amplitude != 0 && m.waviness_wavelength > 0)
     {
@@ -100,8 +121,10 @@ evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, 
     }
   if (m.helix_slope != 0)
     {
-      d.value += m.helix_slope * z / f.face_width;
-      d.d_dz += m.helix_slope / f.face_width;
+      // Likewise over the helix evaluation range, which is centred on z = 0.
+      const auto [z0, z1] = helix_evaluation_range(f);
+      d.value += m.helix_slope * z / (z1 - z0);
+      d.d_dz += m.helix_slope / (z1 - z0);
     }
   return d;
 }

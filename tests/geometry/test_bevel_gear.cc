@@ -2,6 +2,7 @@
 // flanks generated on the cradle: the equation of meshing, envelope tangency, formate flanks on
 // the cutter cone, hand of spiral.
 #include "geometry/bevel_gear.h"
+#include "tests/seed_bevel_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -242,4 +243,46 @@ TEST(GeneratedFlank, RootFilletFromTheEdgeRadius)
   BevelMemberCut       sharp = conjugate_cuts(d).second;
   const GeneratedFlank f(sharp.blank, sharp.outside_blade, sharp.outside_machine);
   EXPECT_THROW(f.fillet_point(0.5, 0), InputError);
+}
+
+TEST(BevelMismatch, CutterRadiusChangeKeepsTheMeanPoint)
+{
+  // A pinion cutter radius change pivots each blade about the blade line that generates the
+  // flank's mean point (A_m, middle of the working depth): there the changed flank must give
+  // the conjugate point and normal. Newton puts both flanks' points on the axial-plane target
+  // to 1e-15 A_m, so 1e-9 m (and 1e-9 in the unit normal) is rounding with a wide margin; a
+  // pivot 1 mm along the face off the mean point (the former fault) misses it by 3e-7 to 1e-6 m
+  // and tilts the normal by 4e-4 to 1.5e-3. Away from the mean point the flank must differ (the
+  // mismatch is not a no-op): at the face ends the pinion loses material against the conjugate
+  // flank.
+  const BevelPairDesign seed          = test_data::seed_bevel_design();
+  BevelPairDesign       long_addendum = seed; // unequal addenda: the mean point off the pitch cone
+  long_addendum.pinion_addendum       = 1.2;
+  for (const BevelPairDesign &d : {seed, long_addendum})
+    for (double c2 : {0.0, -0.03}) // the modified roll, expanded about the mean point, keeps it too
+      {
+        PinionMismatch m;
+        m.cutter_radius            = 2e-3;
+        m.modified_roll_2c         = c2;
+        const BevelMemberCut conj  = conjugate_cuts(d).first;
+        const BevelMemberCut moved = mismatched_cuts(d, m).first;
+        const double h_mid = 0.5 * (conj.blank.addendum - conjugate_cuts(d).second.blank.addendum);
+        EXPECT_NEAR(h_mid, (d.pinion_addendum - 1) * bevel_geometry(d).mean_normal_module, 1e-15);
+        for (bool outside : {true, false})
+          {
+            const GeneratedFlank f0(conj.blank, outside ? conj.outside_blade : conj.inside_blade,
+                                    outside ? conj.outside_machine : conj.inside_machine);
+            const GeneratedFlank f1(moved.blank, outside ? moved.outside_blade : moved.inside_blade,
+                                    outside ? moved.outside_machine : moved.inside_machine);
+            const FlankPoint     p0 = f0.evaluate(h_mid, 0), p1 = f1.evaluate(h_mid, 0);
+            EXPECT_LT((p1.position - p0.position).norm(), 1e-9) << outside << " 2C " << c2;
+            EXPECT_LT((p1.normal - p0.normal).norm(), 1e-9) << outside << " 2C " << c2;
+            if (c2 == 0)
+              for (double v : {-8e-3, 8e-3})
+                {
+                  const FlankPoint q0 = f0.evaluate(h_mid, v), q1 = f1.evaluate(h_mid, v);
+                  EXPECT_LT((q1.position - q0.position).dot(q0.normal), -1e-6) << outside << v;
+                }
+          }
+      }
 }

@@ -2,6 +2,7 @@
 // independent integrations). Tolerances: 1e-12 relative where both sides are closed-form double
 // arithmetic of a few dozen operations; looser ones are justified where they appear.
 #include "geometry/involute_gear.h"
+#include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -482,5 +483,154 @@ TEST(InvoluteGear, NormalDerivativesOfSpurFlank)
       const double a = std::atan2(q.y(), q.x()) - std::atan(g->roll_angle(q.head<2>().norm()));
       EXPECT_NEAR((n_u - Vec3(std::cos(a), std::sin(a), 0)).norm(), 0, 1e-8);
       EXPECT_LT(n_v.norm(), 1e-8);
+    }
+}
+
+namespace
+{
+// The deviation of a flank from its nominal surface at (xi, z): the modified point minus the
+// nominal one along the nominal normal (the modifications are superposed along it).
+double
+deviation(const InvoluteFlank &f, double xi, double z)
+{
+  const FlankPoint n = f.nominal(xi, z);
+  return (f.evaluate(xi, z).position - n.position).dot(n.normal);
+}
+} // namespace
+
+TEST(InvoluteModifications, ProfileSlopeIsTheDifferenceOverTheIsoEvaluationRange)
+{
+  // ISO 1328-1: f_Halpha is the difference of the mean profile line between the ends of the
+  // profile evaluation range L_alpha, from the start of active profile A (where the mate's tip
+  // circle crosses the line of action) over 92 % of the active length A..E toward the tip E.
+  // FZG C pair at its zero-backlash centre distance, both members with f_Halpha = -6 um; the
+  // ends computed here from the radii: L_A = a sin(alpha_wt) - sqrt(r_a,mate^2 - r_b,mate^2),
+  // L_E = sqrt(r_a^2 - r_b^2). The deviation is the difference of points ~0.05 m from the axis
+  // (rounding ~1e-17 m): 1e-12 m is a wide margin, and 6e-6 (1 - 0.92 L_AE / L_FE) > 1e-7 m
+  // separates the former range (form circle to tip).
+  auto [dp, dg]                        = test_data::fzg_c_pair();
+  dp.drive_modifications.profile_slope = -6e-6;
+  dp.coast_modifications.profile_slope = -6e-6;
+  dg.drive_modifications.profile_slope = -6e-6;
+  const auto [p, g]                    = create_pair(dp, dg);
+  const double a                       = working_centre_distance(*p, *g);
+  const double sin_alpha = std::sqrt(1 - std::pow((p->base_radius + g->base_radius) / a, 2));
+  auto         path      = [](const InvoluteGear &m) {
+    return std::sqrt(m.tip_radius * m.tip_radius - m.base_radius * m.base_radius);
+  };
+  for (const auto &[member, mate] : {std::pair{p, g}, std::pair{g, p}})
+    {
+      const double rb     = member->base_radius;
+      const double L_A    = a * sin_alpha - path(*mate);
+      const double L_E    = path(*member);
+      const double L_end  = L_A + 0.92 * (L_E - L_A);
+      const double L_form = rb * member->roll_angle_form;
+      ASSERT_GT(L_A, L_form + 1e-4); // the active profile starts well above the form circle
+      EXPECT_GT(6e-6 * (1 - 0.92 * (L_E - L_A) / (L_E - L_form)), 1e-7);
+      for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+        {
+          const auto &mods = side == FlankSide::drive ? member->data().drive_modifications
+                                                      : member->data().coast_modifications;
+          if (mods.profile_slope == 0)
+            continue;
+          const InvoluteFlank f = member->flank(3, side);
+          for (double z : {-5e-3, 0.0, 4e-3})
+            {
+              EXPECT_NEAR(deviation(f, L_end / rb, z) - deviation(f, L_A / rb, z), -6e-6, 1e-12)
+                  << member->data().name << " " << to_string(side) << " z " << z;
+              // the mean profile line goes on linearly to the tip: -6 um / 0.92 over A..E
+              EXPECT_NEAR(deviation(f, L_E / rb, z) - deviation(f, L_A / rb, z), -6e-6 / 0.92,
+                          1e-12);
+            }
+        }
+    }
+  // A gear on its own (no mate): the form circle stands in for the start of active profile.
+  const auto   alone  = InvoluteGear::create(dp);
+  const double rb     = alone->base_radius;
+  const double L_form = rb * alone->roll_angle_form, L_E = path(*alone);
+  const auto   f = alone->flank(0, FlankSide::drive);
+  EXPECT_NEAR(deviation(f, (L_form + 0.92 * (L_E - L_form)) / rb, 0) - deviation(f, L_form / rb, 0),
+              -6e-6, 1e-12);
+}
+
+TEST(InvoluteModifications, HelixSlopeIsTheDifferenceOverTheIsoEvaluationRange)
+{
+  // ISO 1328-1: f_Hbeta over the helix evaluation range L_beta, the face width less at each end
+  // the smaller of 5 % of b and one module: b 25 mm, m_n 2 mm leaves 1.25 mm (5 %) at each end,
+  // b 60 mm leaves 2 mm (the module). Tolerance as for the profile slope.
+  for (const auto &[b, end] : {std::pair{25e-3, 1.25e-3}, std::pair{60e-3, 2e-3}})
+    {
+      InvoluteGearData d                  = helical();
+      d.face_width                        = b;
+      d.drive_modifications.helix_slope   = -6e-6;
+      d.drive_modifications.lead_crowning = 4e-6; // symmetric: cancels in the difference
+      const auto          g               = InvoluteGear::create(d);
+      const InvoluteFlank f               = g->flank(5, FlankSide::drive);
+      const double        z0 = -b / 2 + end, z1 = b / 2 - end;
+      for (double xi : {0.3 * g->roll_angle_form + 0.7 * g->roll_angle_tip,
+                        0.8 * g->roll_angle_form + 0.2 * g->roll_angle_tip})
+        {
+          EXPECT_NEAR(deviation(f, xi, z1) - deviation(f, xi, z0), -6e-6, 1e-12) << b;
+          // linear beyond the range: -6 um b / L_beta over the whole face
+          EXPECT_NEAR(deviation(f, xi, b / 2) - deviation(f, xi, -b / 2), -6e-6 * b / (z1 - z0),
+                      1e-12)
+              << b;
+        }
+    }
+}
+
+TEST(InvoluteModifications, OtherModificationsDoNotDependOnTheMate)
+{
+  // Only the slope deviations refer to the evaluation ranges: every other modification is the
+  // same with and without the mate (bit for bit), and has its closed-form value (rounding of
+  // point differences ~1e-17 m; 1e-13 m) at the places that define it.
+  auto [dp, dg]         = test_data::fzg_c_pair();
+  ToothModifications &m = dp.drive_modifications;
+  m.tip_relief = 20e-6, m.tip_relief_length = 1.5e-3;
+  m.root_relief = 10e-6, m.root_relief_length = 1e-3, m.root_relief_shape = ReliefShape::parabolic;
+  const auto   alone = InvoluteGear::create(dp);
+  const auto   mated = create_pair(dp, dg).first;
+  const double rb = alone->base_radius, b = dp.face_width;
+  const double L_F = rb * alone->roll_angle_form, L_E = rb * alone->roll_angle_tip;
+  auto         dev = [&](const InvoluteGear &gear, double L, double z) {
+    return deviation(gear.flank(2, FlankSide::drive), L / rb, z);
+  };
+  for (int i = 0; i <= 10; ++i)
+    for (double z : {-b / 2, -b / 5, 0.0, b / 3, b / 2})
+      {
+        const double L = L_F + (L_E - L_F) * i / 10;
+        EXPECT_EQ(dev(*alone, L, z), dev(*mated, L, z)) << i << " " << z;
+      }
+  for (const InvoluteGear *gear : {alone.get(), mated.get()})
+    {
+      EXPECT_NEAR(dev(*gear, L_E, 0), -20e-6, 1e-13);           // C_a at the tip
+      EXPECT_NEAR(dev(*gear, L_E - 0.75e-3, 0), -10e-6, 1e-13); // linear: half way
+      EXPECT_NEAR(dev(*gear, L_F, 0), -10e-6, 1e-13);           // C_f at the form circle
+      EXPECT_NEAR(dev(*gear, L_F + 0.5e-3, 0), -2.5e-6, 1e-13); // parabolic: a quarter
+      EXPECT_NEAR(dev(*gear, 0.5 * (L_F + L_E), 0), 0, 1e-13);  // untouched in between
+    }
+
+  // The face and profile shapes, on a gear of their own.
+  dp.drive_modifications = {};
+  ToothModifications &n  = dp.drive_modifications;
+  n.lead_crowning = 8e-6, n.end_relief = 5e-6, n.end_relief_length = 3e-3;
+  n.profile_crowning   = 3e-6;
+  n.waviness_amplitude = 1e-6, n.waviness_wavelength = 0.4e-3, n.waviness_phase = 30 * deg;
+  const auto   alone2 = InvoluteGear::create(dp);
+  const auto   mated2 = create_pair(dp, dg).first;
+  const double L_mid  = 0.5 * (L_F + L_E);
+  // at the middle of the profile: the crowning's vertex; the waviness there
+  const double wave = 1e-6 * std::sin(2 * pi * (L_mid - L_F) / 0.4e-3 + 30 * deg);
+  for (const InvoluteGear *gear : {alone2.get(), mated2.get()})
+    {
+      EXPECT_NEAR(dev(*gear, L_mid, 0), wave, 1e-13);
+      EXPECT_NEAR(dev(*gear, L_mid, b / 2), wave - 8e-6 - 5e-6, 1e-13); // C_beta + C_I at the end
+      EXPECT_NEAR(dev(*gear, L_mid, -b / 4), wave - 2e-6, 1e-13);       // C_beta / 4
+      EXPECT_NEAR(dev(*gear, L_mid, b / 2 - 1.5e-3),
+                  wave - 8e-6 * std::pow(1 - 3e-3 / b, 2) - 2.5e-6, 1e-13);
+      // C_alpha at both ends of the involute, with the waviness from its phase at the form point
+      EXPECT_NEAR(dev(*gear, L_F, 0), -3e-6 + 1e-6 * std::sin(30 * deg), 1e-13);
+      EXPECT_NEAR(dev(*gear, L_E, 0),
+                  -3e-6 + 1e-6 * std::sin(2 * pi * (L_E - L_F) / 0.4e-3 + 30 * deg), 1e-13);
     }
 }

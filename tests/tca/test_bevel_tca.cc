@@ -80,6 +80,43 @@ TEST(BevelTca, CutterRadiusMismatchLocalisesTheContact)
   EXPECT_GT(UnloadedTca(c.pinion, c.gear, c.assembly, o).run().mean_pairs_in_contact, 2.5);
 }
 
+TEST(BevelTca, CutterRadiusMismatchCentresTheBearingOnTheMeanPoint)
+{
+  // With a cutter radius change alone the pinion flank keeps the conjugate mean point and
+  // normal (the blades pivot about the line that generates it), so where that point lies on
+  // the pitch element (the pitch cones' line of contact, Assembly::bevel: polar angle 0) it
+  // touches the gear with zero TE, and the bearing's centre is there: (h, A - A_m) = (0, 0) on
+  // the pinion, and the contact point is the mean point. The contact search ends at a flat
+  // maximum of the touch angle, accepted to 1e-14 rad; near it the angle falls as
+  // k_min d^2 / (2 |lambda_g . a_g|) over a distance d along the ellipse's major axis, so the
+  // position is resolved to d = sqrt(2e-14 |lambda_g . a_g| / k_min) (~7e-8 m here). The former
+  // pivot put the contact 1.08 mm toward the heel and 0.29 mm up the profile.
+  PinionMismatch m;
+  m.cutter_radius = 2e-3;
+  const auto f    = bevel_pair_flanks(seed_design(), m);
+  for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+    {
+      const Vec3   mean = f.pinion->tooth_flank(side).evaluate(0, 0).position; // h_mid = 0
+      const double phi  = -std::atan2(mean.y(), mean.x());
+      TcaOptions   o;
+      o.side                 = side;
+      const TcaPosition  p   = UnloadedTca(f.pinion, f.gear, f.assembly, o).at(phi);
+      const PairContact &c   = p.pairs[p.leading];
+      const double       arm = std::abs(c.lambda_gear.dot(f.assembly.gear_axis()));
+      const double       tol = std::sqrt(2e-14 * arm / c.curvature_min);
+      ASSERT_EQ(c.pinion_tooth, 0) << to_string(side);
+      EXPECT_FALSE(c.edge) << to_string(side);
+      EXPECT_LT(tol, 1e-6) << to_string(side);
+      EXPECT_NEAR(c.v1, 0, tol) << to_string(side);
+      EXPECT_NEAR(c.u1, 0, tol) << to_string(side);
+      EXPECT_LT((c.position - f.assembly.pinion_to_global(mean, phi)).norm(), tol)
+          << to_string(side);
+      // touching as the conjugate pair does there: no transmission error, to the touch-angle
+      // Newton's 1e-13 m over the arm (z2/z1 1e-13 m / |lambda_g . a_g| ~ 1.3e-12 rad)
+      EXPECT_NEAR(p.transmission_error, 0, 2 * 1e-13 / arm) << to_string(side);
+    }
+}
+
 TEST(BevelTca, ModifiedRollGivesTheRequestedParabolicTransmissionError)
 {
   // Local synthesis: the seed's classical TE amplitude 3.72e-5 rad (reference-data.md section 1)

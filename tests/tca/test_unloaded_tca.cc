@@ -27,7 +27,8 @@ struct Pair
 Pair
 make(const std::pair<InvoluteGearData, InvoluteGearData> &d)
 {
-  auto p = InvoluteGear::create(d.first), g = InvoluteGear::create(d.second);
+  // assembled as a pair: each member's start of active profile from the other
+  auto [p, g] = create_pair(d.first, d.second);
   return {p, g, working_centre_distance(*p, *g)};
 }
 
@@ -153,16 +154,22 @@ TEST(UnloadedTca, LeadCrowningAloneLeavesSpurErrorZero)
 
 TEST(UnloadedTca, ProfileSlopeGivesTheExpectedRamp)
 {
-  // delta = f_Ha (L - L_mid) / L_alpha on every pinion tooth: while one pair leads, its contact
-  // rolls along the line of action by r_b1 dphi, so to first order dTE/dphi = -f_Ha / L_alpha.
-  // The slope also tilts the normal by f_Ha / L_alpha (~4e-4 here), which moves the contact: the
-  // relative departure from the first-order ramp must be of that order and halve with f_Ha.
+  // delta = f_Ha (L - L_mid) / L_alpha on every pinion tooth, L_alpha the ISO 1328-1 profile
+  // evaluation range: 92 % of the active length from the start of active profile L_A (the gear's
+  // tip circle on the line of action, L_A = a sin(alpha_wt) - sqrt(r_a2^2 - r_b2^2)) to the tip
+  // L_E. While one pair leads, its contact rolls along the line of action by r_b1 dphi, so to
+  // first order dTE/dphi = -f_Ha / L_alpha. The slope also tilts the normal by f_Ha / L_alpha
+  // (~4.5e-4 here), which moves the contact: the relative departure from the first-order ramp
+  // must be of that order and halve with f_Ha.
   auto departure = [](double f_Ha) {
     auto d                                    = c_pair();
     d.first.drive_modifications.profile_slope = f_Ha;
-    const Pair   s                            = make(d);
-    const double L_alpha =
-        s.pinion->base_radius * (s.pinion->roll_angle_tip - s.pinion->roll_angle_form);
+    const Pair          s                     = make(d);
+    const InvoluteGear &p = *s.pinion, &g = *s.gear;
+    const double        cos_alpha = (p.base_radius + g.base_radius) / s.a_w;
+    const double        L_A       = s.a_w * std::sqrt(1 - cos_alpha * cos_alpha) -
+                       std::sqrt(g.tip_radius * g.tip_radius - g.base_radius * g.base_radius);
+    const double L_alpha = 0.92 * (p.base_radius * p.roll_angle_tip - L_A);
     UnloadedTca  tca(s.pinion, s.gear, s.a_w);
     const double h  = 1e-3;
     const auto   p0 = tca.at(0.0), p1 = tca.at(h);

@@ -3,6 +3,7 @@
 #include "driver/driver.h"
 #include "driver/h5_file.h"
 #include "driver/stages.h"
+#include "geometry/involute_gear.h"
 #include "geometry/measured_flank.h"
 #include "tests/malformed_cmm.h"
 #include "tests/temp_directory_test.h"
@@ -908,4 +909,29 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
       EXPECT_FALSE(fs::exists(dir / "out/fromfiles/results.h5")) << c.what;
       EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
     }
+}
+
+// f_Halpha acts over the ISO 1328-1 profile evaluation range of the pair the scene describes:
+// from the start of active profile in mesh with the mate (not from the form circle, where an
+// entered -6 um acted as -5.3 um over the active profile), 92 % of the active length.
+TEST_F(DriverTest, ProfileSlopeDeviationActsOverTheEvaluationRangeInMesh)
+{
+  const std::string text =
+      small_scene + "subsection Flanks\n  subsection p1\n    subsection Pinion\n      subsection "
+                    "Drive flank modifications\n        set profile slope deviation = -6\n      "
+                    "end\n    end\n  end\nend\n";
+  const Scene s              = read_scene(scene(text));
+  const auto [pinion, gear]  = s.pairs[0].involute_members();
+  const ModificationFrame &f = pinion->modification_frame();
+  ASSERT_FALSE(std::isnan(f.roll_length_active_start)) << "the mate sets the start";
+  // the start: where the gear's tip circle crosses the line of action at a_w
+  const double a  = working_centre_distance(*pinion, *gear);
+  const double rb = pinion->base_radius + gear->base_radius;
+  const double LA = std::sqrt(a * a - rb * rb) -
+                    std::sqrt(std::pow(gear->tip_radius, 2) - std::pow(gear->base_radius, 2));
+  EXPECT_NEAR(f.roll_length_active_start, LA, 1e-12);
+  const double LE = f.roll_length_tip, L1 = LA + 0.92 * (LE - LA);
+  const auto  &m = pinion->data().drive_modifications;
+  EXPECT_NEAR(evaluate_modifications(m, f, L1, 0).value - evaluate_modifications(m, f, LA, 0).value,
+              -6e-6, 1e-12);
 }

@@ -277,12 +277,8 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                                  n);
       };
 
-      PairModelParameters p = d.model;
-      p.pinion_teeth        = z1;
-      p.pinion.axis         = pinion_axis;
-      p.gear.axis           = gear_axis;
-      for (RadialBearing &b : p.gear.bearings) // given along the gear frame's axis
-        b.position = -b.position;
+      const PairModelParameters p =
+          placed_in_assembly(d.model, z1, pinion_axis, members.assembly.gear_axis());
 
       // the excitations: models and static equilibria
       struct Excitation

@@ -240,4 +240,16 @@ PairModel::static_equilibrium(double load_torque) const
     }
   return s;
 }
+
+PairModelParameters
+placed_in_assembly(PairModelParameters p, int pinion_teeth, const Vec3 &pinion_axis,
+                   const Vec3 &gear_frame_axis)
+{
+  p.pinion_teeth = pinion_teeth;
+  p.pinion.axis  = pinion_axis;
+  p.gear.axis    = -gear_frame_axis;
+  for (RadialBearing &b : p.gear.bearings)
+    b.position = -b.position;
+  return p;
+}
 } // namespace gearkit

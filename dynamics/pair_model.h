@@ -77,6 +77,14 @@ struct PairModelParameters
   bool speed_controlled_motor = false;
 };
 
+/// The parameters of a pair as its member frames place it: the pinion turns about
+/// `pinion_axis`, the gear in its driven sense about -`gear_frame_axis` (the TCA's gear frame
+/// axis; the driven gear turns against it); bearing positions, given along each member frame's
+/// own axis, follow the gear's flip.
+PairModelParameters
+placed_in_assembly(PairModelParameters p, int pinion_teeth, const Vec3 &pinion_axis,
+                   const Vec3 &gear_frame_axis);
+
 /// Static equilibrium under a load torque at the phase-averaged mesh, with the pinion's rotation
 /// about its axis held at zero: the shafts' wind-up goes to the motor and load angles (a
 /// speed-controlled motor is then held at its wound-up angle), so that the bodies' rotations are

@@ -165,3 +165,16 @@ TEST(PairModel, BadInputIsRefused)
   RunOptions      o; // no speed
   EXPECT_THROW(simulate(model, PairVector::Zero(), PairVector::Zero(), o), InputError);
 }
+
+TEST(PairModel, PlacedInTheAssemblyTheGearTurnsAgainstItsFrameAxis)
+{
+  PairModelParameters p;
+  p.gear.bearings = {{0.1, 1e8, 0}, {0.16, 1e8, 0}};
+  const PairModelParameters q = placed_in_assembly(p, 12, Vec3::UnitZ(), Vec3::UnitY());
+  EXPECT_EQ(q.pinion_teeth, 12);
+  EXPECT_EQ(q.pinion.axis, Vec3::UnitZ());
+  EXPECT_EQ(q.gear.axis, -Vec3::UnitY()); // driven sense
+  // 100 mm along the gear frame's +y is 100 mm along the model's -y axis
+  EXPECT_EQ(q.gear.bearings[0].position, -0.1);
+  EXPECT_EQ(q.gear.bearings[1].position, -0.16);
+}

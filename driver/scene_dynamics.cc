@@ -152,6 +152,8 @@ void
 DynamicsScene::check(const PairScene &pair, const TcaScene &tca) const
 {
   const std::string where = "Dynamics/" + pair.name + "/";
+  if (!theoretical && !measured)
+    throw InputError(where + "excitations: none chosen; choose theoretical, measured or both");
   if (measured && !tca.measured)
     throw InputError(where + "excitations: measured needs the measured flanks' TCA (set TCA/" +
                      pair.name + "/measured flanks = true)");

@@ -93,6 +93,9 @@ MeasuredScene::check(const PairScene &pair) const
         throw InputError(where + key + " = '" + f + "' does not name a readable file (source = " +
                          (source == MeasuredSource::cmm_files ? "cmm files" : "topography files") +
                          ")");
+  if (source == MeasuredSource::topography_files && pair.type != PairType::involute)
+    throw InputError(where + "source = topography files: topography grids are defined on "
+                             "involute flanks; for a spiral bevel pair use cmm files");
   const auto [z1, z2] = pair_teeth(pair);
   for (const auto &[key, teeth, z] :
        {std::tuple{"pinion teeth", &pinion_teeth, z1}, {"gear teeth", &gear_teeth, z2}})

@@ -330,9 +330,6 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           log << "\n";
           excitations.push_back(std::move(e));
         }
-      if (excitations.empty())
-        throw InputError("Dynamics/" + pair.name + "/excitations: none chosen");
-
       log << "  " << pair.name << ": static mesh force " << excitations.front().s.mesh_force
           << " N\n";
       write_modes(g, *excitations.front().model, excitations.front().label, z1, log, pair.name);

@@ -142,10 +142,6 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
               break;
             case MeasuredSource::topography_files:
               {
-                if (pair.type != PairType::involute)
-                  throw InputError("Measured flanks/" + pair.name +
-                                   "/source = topography files: topography grids are defined "
-                                   "on involute flanks; for a spiral bevel pair use cmm files");
                 const TopographyMember t = read_topography_file(member.file);
                 measured =
                     topography_to_points(member.name[0] == 'p' ? *pair.involute_members().first

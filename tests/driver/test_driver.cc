@@ -831,6 +831,10 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
        "subsection Loaded contact\n  subsection p1\n    set measured flanks = true\n  "
        "end\nend\n",
        {"Loaded contact/p1/measured flanks", "Measured flanks/p1/source"}},
+      {"dynamics without an excitation",
+       "",
+       "subsection Dynamics\n  subsection p1\n    set excitations = \n  end\nend\n",
+       {"Dynamics/p1/excitations: none chosen"}},
       {"a measured tooth the member does not have",
        "",
        "subsection Measured flanks\n  subsection p1\n    set source = virtual cmm\n    set "

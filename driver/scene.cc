@@ -7,9 +7,11 @@
 #include <deal.II/base/exceptions.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -37,9 +39,11 @@ split_list(const std::string &text)
 std::vector<double>
 get_doubles(const ParameterHandler &prm, const std::string &entry, double factor)
 {
+  // strtod, not std::stod: the pattern has accepted the text, and a subnormal number such as
+  // 1e-310 is a number (std::stod throws out_of_range for it, as strtod sets ERANGE).
   std::vector<double> values;
   for (const std::string &v : split_list(prm.get(entry)))
-    values.push_back(std::stod(v) * factor);
+    values.push_back(std::strtod(v.c_str(), nullptr) * factor);
   return values;
 }
 
@@ -48,7 +52,13 @@ get_integers(const ParameterHandler &prm, const std::string &entry)
 {
   std::vector<int> values;
   for (const std::string &v : split_list(prm.get(entry)))
-    values.push_back(std::stoi(v));
+    {
+      const long x = std::strtol(v.c_str(), nullptr, 10);
+      if (x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max())
+        throw InputError(entry + " = " + v + " is not allowed; expected integers of at most " +
+                         std::to_string(std::numeric_limits<int>::max()));
+      values.push_back(int(x));
+    }
   return values;
 }
 
@@ -223,6 +233,11 @@ read_scene(const std::string &file)
       in_subsection(header, {"Scene"}, [&] { pairs = split_list(header.get("pairs")); });
       for (const std::string &p : pairs)
         check_identifier(p, "Scene/pairs: the pair name");
+      // Each pair costs its members' construction and checks when the scene is read (tenths of
+      // a second); a gearbox has a handful. Bounded, so no input makes the reader run for long.
+      if (pairs.size() > 20)
+        throw InputError("Scene/pairs: " + std::to_string(pairs.size()) +
+                         " pairs is not allowed; at most 20 in one scene (split it)");
       if (std::set<std::string>(pairs.begin(), pairs.end()).size() != pairs.size())
         throw InputError("Scene/pairs: a pair name appears twice; each pair needs its own name");
       if (const auto missing = undescribed_pairs(file, pairs); !missing.empty())

@@ -90,14 +90,28 @@ TcaScene::parse(ParameterHandler &prm)
 void
 TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measured_flanks)
 {
+  const std::string where = "TCA/" + pair.name + "/";
   if (hunting)
-    options.mesh_cycles = std::lcm(pair_teeth(pair).first, pair_teeth(pair).second);
+    {
+      // lcm(z1, z2) mesh cycles, in 64 bits (tooth counts up to 100 000 overflow an int)
+      const long long cycles = std::lcm<long long>(pair_teeth(pair).first, pair_teeth(pair).second);
+      if (cycles > 100000)
+        throw InputError(where + "hunting cycle: the hunting cycle of " +
+                         std::to_string(pair_teeth(pair).first) + "/" +
+                         std::to_string(pair_teeth(pair).second) + " teeth is " +
+                         std::to_string(cycles) +
+                         " mesh cycles; allowed: at most 100000 (set mesh cycles instead)");
+      options.mesh_cycles = int(cycles);
+    }
+  if (double(options.mesh_cycles) * options.positions_per_mesh > 1e7)
+    throw InputError(where + "positions per mesh cycle x mesh cycles = " +
+                     std::to_string(double(options.mesh_cycles) * options.positions_per_mesh) +
+                     " positions is not allowed; at most 10 million");
   paper.side               = options.side;
   paper.positions_per_mesh = options.positions_per_mesh;
   paper.mesh_cycles        = options.mesh_cycles;
   paper.start_angle        = options.start_angle;
 
-  const std::string where = "TCA/" + pair.name + "/";
   if (measured && measured_flanks.source == MeasuredSource::none)
     throw InputError(where + "measured flanks = true needs measured flanks: set Measured flanks/" +
                      pair.name + "/source");

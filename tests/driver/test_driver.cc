@@ -831,6 +831,19 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
        "subsection Loaded contact\n  subsection p1\n    set measured flanks = true\n  "
        "end\nend\n",
        {"Loaded contact/p1/measured flanks", "Measured flanks/p1/source"}},
+      // found by fuzzing (tests/fuzz/findings): an int overflow of lcm(z1, z2) and unbounded
+      // work per pair
+      {"a hunting cycle beyond int",
+       "",
+       "subsection Flanks\n  subsection p1\n    subsection Pinion\n      set number of teeth = "
+       "99991\n    end\n    subsection Gear\n      set number of teeth = 99989\n    end\n  "
+       "end\nend\nsubsection TCA\n  subsection p1\n    set hunting cycle = true\n  end\nend\n",
+       {"TCA/p1/hunting cycle", "9998000099 mesh cycles", "at most 100000"}},
+      {"21 pairs",
+       "set pairs   = p1",
+       "set pairs   = p1, q2, q3, q4, q5, q6, q7, q8, q9, q10, q11, q12, q13, q14, q15, q16, q17, "
+       "q18, q19, q20, q21",
+       {"Scene/pairs: 21 pairs", "at most 20"}},
       {"dynamics without an excitation",
        "",
        "subsection Dynamics\n  subsection p1\n    set excitations = \n  end\nend\n",
@@ -855,6 +868,13 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
       EXPECT_EQ(out.str().find("stage "), std::string::npos) << c.what << ": a stage ran";
       EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
     }
+
+  // A subnormal number passes the pattern and is read as the number it is (std::stod threw
+  // out_of_range past the reader's error handling: found by fuzzing).
+  const Scene tiny = read_scene(scene(
+      ste +
+      "subsection Loaded contact\n  subsection p1\n    set torques = 1e-310, 5\n  end\nend\n"));
+  EXPECT_EQ(tiny.loaded.at("p1").torques, (std::vector<double>{1e-310, 5}));
 
   // Measured files: export a perfect measurement, then break it the ways a CMM user might.
   const std::string virtual_scene =

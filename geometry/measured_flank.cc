@@ -93,12 +93,10 @@ using Entries = std::map<std::string, Entry>;
 class Reader
 {
 public:
-  explicit Reader(const std::string &path)
+  /// Reads every content line of `in`; `path` names the input in messages.
+  Reader(std::istream &in, const std::string &path)
       : path(path)
   {
-    std::ifstream in(path);
-    if (!in)
-      throw InputError(path + ": cannot open the file; expected a readable text file");
     std::string text;
     for (int number = 1; std::getline(in, text); ++number)
       if (std::string t = trim(text.substr(0, text.find('#'))); !t.empty())
@@ -221,6 +219,16 @@ private:
   std::vector<Line> lines;
   std::size_t       next = 0;
 };
+
+/// The file as a stream, or InputError naming it.
+std::ifstream
+open_for_reading(const std::string &path)
+{
+  std::ifstream in(path);
+  if (!in)
+    throw InputError(path + ": cannot open the file; expected a readable text file");
+  return in;
+}
 
 // The `frame` header line (free text for readers of the file; docs/cmm-format.md). CMM files
 // hold cylindrical or bevel members, topography files only involute (cylindrical) ones.
@@ -501,7 +509,14 @@ write_cmm_file(const std::string &path, const MeasuredMember &m, const CmmWriteO
 MeasuredMember
 read_cmm_file(const std::string &path)
 {
-  Reader       in(path);
+  std::ifstream in = open_for_reading(path);
+  return read_cmm(in, path);
+}
+
+MeasuredMember
+read_cmm(std::istream &stream, const std::string &path)
+{
+  Reader       in(stream, path);
   const Header h = read_header(in, "gearkit-cmm 1", {"normals"});
   // file units per metre; dividing by an exact power of ten rounds once
   const double per_metre =
@@ -615,7 +630,14 @@ write_topography_file(const std::string &path, const TopographyMember &m)
 TopographyMember
 read_topography_file(const std::string &path)
 {
-  Reader       in(path);
+  std::ifstream in = open_for_reading(path);
+  return read_topography(in, path);
+}
+
+TopographyMember
+read_topography(std::istream &stream, const std::string &path)
+{
+  Reader       in(stream, path);
   const Header h = read_header(in, "gearkit-topography 1", {"deviation units"});
   in.choice(h.keys, "units", {"mm"}, "units = mm (diameters and face positions)");
   in.choice(h.keys, "deviation units", {"um"}, "deviation units = um");

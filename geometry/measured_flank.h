@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,11 @@ write_cmm_file(const std::string &path, const MeasuredMember &member,
 MeasuredMember
 read_cmm_file(const std::string &path);
 
+/// The same from a stream (e.g. a string, as the fuzz target reads); `name` stands for the file
+/// in the messages.
+MeasuredMember
+read_cmm(std::istream &in, const std::string &name);
+
 /// Topography of one flank: deviations along the nominal outward normal (positive = material
 /// added) at profile positions given as diameters (root to tip) x face positions (z from the
 /// face middle), both strictly increasing.
@@ -99,6 +105,10 @@ write_topography_file(const std::string &path, const TopographyMember &member);
 /// Reads a topography file; errors as read_cmm_file.
 TopographyMember
 read_topography_file(const std::string &path);
+
+/// The same from a stream; `name` stands for the file in the messages.
+TopographyMember
+read_topography(std::istream &in, const std::string &name);
 
 /// Points of the measured flanks from their topography: the nominal involute flank (no
 /// modifications; InvoluteFlank::nominal at roll angle xi(d/2) and z) plus deviation * normal,

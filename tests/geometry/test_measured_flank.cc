@@ -537,6 +537,27 @@ TEST_F(TopographyFile, ValidTextReads)
   EXPECT_EQ(t.flanks[0].deviations[5], 1.4 / 1e6);
 }
 
+// The stream readers (used by the fuzz target tests/fuzz/fuzz_cmm.cc) read what the file readers
+// read, and their messages name the stream as the file readers name the file.
+TEST_F(TopographyFile, StreamsReadAsFiles)
+{
+  std::istringstream   cmm(test_data::valid_cmm());
+  const MeasuredMember m = read_cmm(cmm, "in memory");
+  EXPECT_EQ(m.flanks.at(0).points,
+            read_cmm_file(file("ok.cmm", test_data::valid_cmm())).flanks.at(0).points);
+  std::istringstream bad_cmm(std::regex_replace(test_data::valid_cmm(), std::regex("1\\.1"), "x"));
+  expect_error(error_of([&] { read_cmm(bad_cmm, "in memory"); }), "in memory",
+               ":14:", "a decimal number");
+
+  std::istringstream     topography(valid_topography);
+  const TopographyMember t = read_topography(topography, "in memory");
+  EXPECT_EQ(t.flanks.at(0).deviations,
+            read_topography_file(file("ok.topo", valid_topography)).flanks.at(0).deviations);
+  std::istringstream empty("# nothing\n");
+  expect_error(error_of([&] { read_topography(empty, "in memory"); }), "in memory",
+               ":1:", "a header");
+}
+
 const std::vector<MalformedCmm> malformed_topography = {
     {"row too short", "0.4 0.9 1.4", "0.4 0.9", ":13:", "3 (one per face position)"},
     {"too many rows", "end flank", "0.2 0.7 1.2\nend flank", ":15:", "3 rows, one per diameter"},

@@ -47,13 +47,13 @@ cmake -S "$top" -B "$build" -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=cla
 cmake --build "$build" --parallel "${JOBS:-$(nproc 2>/dev/null || echo 2)}" --target $targets
 
 # The scene dictionary from the reader's own declarations (subsections, entries, selections), so
-# that it follows driver/scene.cc, plus the syntax and boundary numbers (as in tests/fuzz/cmm.dict).
+# that it follows driver/scene*.cc, plus the syntax and boundary numbers (as in tests/fuzz/cmm.dict).
 {
   printf '"subsection "\n"set "\n"end"\n" = "\n"true"\n"false"\n", "\n"\\x0a"\n"#"\n'
   printf '"%s"\n' 0 -1 1e308 1e-320 nan inf 2147483647 2147483648 100000
-  grep -oE '(declare_entry|enter_subsection)\("[^"]*"' "$top/driver/scene.cc" |
+  grep -ohE '(declare_entry|enter_subsection)\("[^"]*"' "$top"/driver/scene*.cc |
     sed -E 's/^[a-z_]+\(//'
-  grep -oE 'Patterns::Selection\("[^"]*"' "$top/driver/scene.cc" |
+  grep -ohE 'Patterns::Selection\("[^"]*"' "$top"/driver/scene*.cc |
     sed -E 's/^Patterns::Selection\("//; s/"$//' | tr '|' '\n' | sed 's/.*/"&"/'
   for w in mass "axial inertia" "transverse inertia" "bearing positions"; do
     printf '"pinion %s"\n"gear %s"\n' "$w" "$w"

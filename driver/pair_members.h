@@ -20,6 +20,13 @@ struct PairMembers
   double pitch_radius = 0;
 };
 
+/// The involute gear behind a member of an involute pair (its flanks are InvoluteMemberFlanks).
+inline const InvoluteGear &
+involute(const MemberFlanks &member)
+{
+  return dynamic_cast<const InvoluteMemberFlanks &>(member).involute();
+}
+
 /// The pinion mismatch with the modified roll the flanks stage synthesised (spiral bevel).
 PinionMismatch
 synthesised_mismatch(const PairScene &pair, const H5Group &flanks);

@@ -125,7 +125,7 @@ TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measure
     }
   // Parallel axes: the teeth must neither overlap (below the zero-backlash working centre
   // distance the flanks would interpenetrate: no rigid contact exists) nor miss each other
-  // (the tips must reach past the other member's base circle tangents).
+  // (the path of contact between the tip circles must not be empty).
   const auto [pinion, gear] = pair.involute_members();
   const double a_w          = working_centre_distance(*pinion, *gear);
   const double a =
@@ -136,11 +136,8 @@ TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measure
                      " (with the centre distance error) is not allowed; the teeth would overlap "
                      "below the zero-backlash working centre distance " +
                      mm_text(a_w) + " (allowed: at least that)");
-  const double reach =
-      std::sqrt(std::pow(pinion->tip_radius, 2) - std::pow(pinion->base_radius, 2)) +
-      std::sqrt(std::pow(gear->tip_radius, 2) - std::pow(gear->base_radius, 2));
-  const double base = pinion->base_radius + gear->base_radius;
-  if (a >= base && reach <= std::sqrt(a * a - base * base))
+  // a >= a_w > r_b1 + r_b2 here, so the contact ratio exists; <= 0: an empty path of contact
+  if (contact_ratios(*pinion, *gear, a).transverse <= 0)
     throw InputError(where + "centre distance: " + mm_text(a) +
                      " is not allowed; the teeth do not reach each other there (the path of "
                      "contact would be empty)");

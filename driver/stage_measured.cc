@@ -143,10 +143,7 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             case MeasuredSource::topography_files:
               {
                 const TopographyMember t = read_topography_file(member.file);
-                measured =
-                    topography_to_points(member.name[0] == 'p' ? *pair.involute_members().first
-                                                               : *pair.involute_members().second,
-                                         t);
+                measured                 = topography_to_points(involute(member.flanks), t);
                 check_measurement(measured, member.flanks, m.nominal_tolerance, member.file,
                                   "Measured flanks/" + pair.name + "/nominal tolerance");
                 for (const FlankTopography &f : t.flanks)

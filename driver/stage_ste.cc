@@ -196,13 +196,8 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       if (!t.measured)
         continue;
       // Fast discrete-point STE on the measured flanks of this pair.
-      const H5Group &measured = *upstream.at("measured");
-      if (!measured.has(pair.name) || !measured.group(pair.name).has("pinion"))
-        throw InputError("TCA/" + pair.name +
-                         ": measured flanks = true needs measured flanks: set "
-                         "Measured flanks/" +
-                         pair.name + "/source");
-      const H5Group m = measured.group(pair.name);
+      // (a measurement source is there: TcaScene::complete_and_check)
+      const H5Group m = upstream.at("measured")->group(pair.name);
       const auto    mp =
           std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("pinion"), "pinion"));
       const auto mg =

@@ -64,8 +64,7 @@ compliance_table(const PairScene &pair, const MemberFlanks &flanks, bool is_pini
   if (pair.type == PairType::spiral_bevel)
     return bevel_member_compliance(dynamic_cast<const BevelMemberFlanks &>(flanks),
                                    is_pinion ? "pinion" : "gear", member_module(pair), o, info);
-  return involute_member_compliance(dynamic_cast<const InvoluteMemberFlanks &>(flanks).involute(),
-                                    flanks, o, info);
+  return involute_member_compliance(involute(flanks), flanks, o, info);
 }
 } // namespace
 
@@ -217,7 +216,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       if (!lc.reference_positions.empty())
         {
-          const auto [pinion, gear] = pair.involute_members();
+          const InvoluteGear &pinion = involute(*members.pinion), &gear = involute(*members.gear);
           // Reference mode at the chosen positions on the compliance stage's segments; VTU
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
           const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
@@ -244,8 +243,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
               ro.vtu_prefix = (vtu / (pair.name + "_position" + std::to_string(i))).string();
               ReferenceContactInfo              info;
               const std::vector<LoadedPosition> r = reference_contact(
-                  *pinion, *gear, theory,
-                  theory.at(tca.options.start_angle + 2 * pi / pinion->teeth() * i / lc.positions),
+                  pinion, gear, theory,
+                  theory.at(tca.options.start_angle + 2 * pi / pinion.teeth() * i / lc.positions),
                   lc.torques, ro, &info);
               phi.push_back(r.front().pinion_angle);
               for (const LoadedPosition &p : r)
@@ -281,10 +280,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       // ISO 6336-1 method B beside it (the standard's yardstick); for spiral bevel pairs on the
       // virtual cylindrical gears of the mean point (ISO 10300-1).
-      const IsoPair iso = bevel
-                              ? iso_pair(pair.bevel)
-                              : iso_pair(*pair.involute_members().first,
-                                         *pair.involute_members().second, members.centre_distance);
+      const IsoPair iso = bevel ? iso_pair(pair.bevel)
+                                : iso_pair(involute(*members.pinion), involute(*members.gear),
+                                           members.centre_distance);
       if (bevel)
         g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
       const double b = iso.face_width;
@@ -301,12 +299,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       if (!lc.measured)
         continue;
-      const H5Group &measured = *upstream.at("measured");
-      if (!measured.has(pair.name) || !measured.group(pair.name).has("pinion"))
-        throw InputError("Loaded contact/" + pair.name +
-                         ": measured flanks = true needs measured flanks: set Measured flanks/" +
-                         pair.name + "/source");
-      const H5Group mg = measured.group(pair.name);
+      // (a measurement source is there: LoadedScene::check)
+      const H5Group mg = upstream.at("measured")->group(pair.name);
       const auto    mp =
           std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
       const auto mgr =

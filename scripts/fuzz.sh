@@ -24,19 +24,7 @@ targets=${FUZZ_TARGETS:-fuzz_cmm fuzz_scene}
 
 # clang-14 and libclang-rt-14-dev (libFuzzer, ASan and UBSan runtimes) on Debian bookworm; the
 # project's own packages (packages.txt) are assumed present (./test or ./run installs them).
-missing=()
-for pkg in clang-14 libclang-rt-14-dev; do
-  status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
-  [[ "$status" == "install ok installed" ]] || missing+=("$pkg")
-done
-if ((${#missing[@]})); then
-  echo "fuzz: installing missing Debian packages: ${missing[*]}"
-  sudo=""
-  if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
-  $sudo apt-get update -q
-  $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+"$top/scripts/install_packages.sh" clang-14 libclang-rt-14-dev
 
 # Release as far as deal.II's set-up macro is concerned (it knows only Debug and Release), but
 # -O1 -g without NDEBUG: assertions stay on, and reports have line numbers.

@@ -169,7 +169,7 @@ TEST(PairModel, BadInputIsRefused)
 TEST(PairModel, PlacedInTheAssemblyTheGearTurnsAgainstItsFrameAxis)
 {
   PairModelParameters p;
-  p.gear.bearings = {{0.1, 1e8, 0}, {0.16, 1e8, 0}};
+  p.gear.bearings             = {{0.1, 1e8, 0}, {0.16, 1e8, 0}};
   const PairModelParameters q = placed_in_assembly(p, 12, Vec3::UnitZ(), Vec3::UnitY());
   EXPECT_EQ(q.pinion_teeth, 12);
   EXPECT_EQ(q.pinion.axis, Vec3::UnitZ());

@@ -1,0 +1,187 @@
+// Impact dynamics of a gear train (seeds 001 and 002): rigid rotors on fixed frictionless
+// bearings, joined by gear meshes with backlash and by torsional shafts, optionally loaded by a
+// crank-slider. Every body turns about its own fixed axis; its angle theta and speed are counted
+// in the sense the train turns it when running forward (so a forward-running train has positive
+// speeds everywhere: the sign flips of external meshes are in the meshes, not in the states).
+//
+// Tooth contact is per tooth pair (base/tooth_pairs.h): for every pairing near the line of action
+// on both flanks the penetration d along the actual contact normal, from the members' flanks,
+// so backlash, eccentric or chipped teeth and pitch errors enter by geometry. Each touching pair
+// carries the MSC ADAMS IMPACT force (impact_force). The pinion of mesh m sits on body
+// `driver` with phi = theta_driver + phi0, its gear on body `driven` with psi = theta_driven +
+// psi0 (the TCA's angles).
+//
+// Equations (Lagrange; the forces are the derivatives of the potentials, so that the undamped
+// model conserves energy exactly):
+//   J_i(theta_i) theta_i'' + J_i'(theta_i) theta_i'^2 / 2 = T_i(t, theta_i') - sum_pairs F dd/dtheta_i
+//                                                          - shaft torques
+// with J_i' of a crank-slider's configuration-dependent inertia. A body at constant speed is
+// driven by whatever torque holds it (its work is counted).
+//
+// Time integration: CVODE (dynamics/cvode_solver.h; Adams or BDF) with event location where a
+// mesh's flank side starts or stops touching, the energy balance integrated alongside:
+//   work of the torques = kinetic energy change + potential energy + dissipated energy.
+#pragma once
+
+#include "base/tooth_pairs.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+/// MSC ADAMS IMPACT: for penetration d > 0, F = K d^e + STEP(d, 0, 0, d_max, c_max) d', F >= 0
+/// (the reference writes - STEP x' with x the distance, x' = -d'), STEP the cubic smooth step
+/// from 0 at d = 0 to c_max at d >= d_max; F = 0 without contact.
+struct ImpactLaw
+{
+  double stiffness = 0; ///< K [N / m^e]
+  double exponent  = 1; ///< e (>= 1)
+  double damping   = 0; ///< c_max [N s / m]
+  double depth     = 0; ///< d_max [m] (> 0 when damping > 0)
+};
+
+/// IMPACT force [N] at penetration d [m] and rate d' [m/s].
+double
+impact_force(const ImpactLaw &law, double d, double d_rate);
+/// Elastic energy K d^(e+1) / (e+1) [J] stored at penetration d (0 for d <= 0).
+double
+impact_energy(const ImpactLaw &law, double d);
+/// The law's stiffness in SI from one given in model units of length (ADAMS: force / length^e):
+/// K_SI = K_model / unit^e, e.g. unit = 1e-3 for N/mm^e, 0.0254 for force per inch^e.
+double
+impact_stiffness_si(double stiffness, double exponent, double length_unit);
+
+/// T(t, w) = constant + step (1 - exp(-t / tau)) - viscous w [N m] (tau = 0: the step at once).
+struct TorqueLaw
+{
+  double constant = 0, step = 0, time_constant = 0;
+  double viscous = 0; ///< [N m s/rad]
+  double
+  operator()(double t, double speed) const;
+};
+
+/// Crank-slider on a body (the crank): crank radius r, connecting rod of length l (centre of
+/// mass at l_c from the crank pin, mass m_r, inertia J_r about its centre of mass), piston of
+/// mass m_s moving along the line through the crank axis at crank angle 0 (theta = 0: top dead
+/// centre), optional constant gas force on the piston (> 0 pushes it toward the crank axis).
+struct CrankSlider
+{
+  double crank_radius = 0, rod_length = 0, rod_centre = 0; ///< r, l, l_c [m]
+  double rod_mass = 0, rod_inertia = 0, piston_mass = 0;   ///< [kg], [kg m^2], [kg]
+  double piston_force  = 0;                                ///< [N]
+  double crank_angle_0 = 0; ///< crank angle at body angle 0 [rad]
+  /// Configuration-dependent inertia J(theta) it adds to the crank, and dJ/dtheta.
+  std::pair<double, double>
+  inertia(double crank_angle) const;
+  /// Piston position from the crank axis [m] and its derivative by the crank angle.
+  std::pair<double, double>
+  piston(double crank_angle) const;
+};
+
+struct TrainBody
+{
+  std::string name;
+  double      inertia       = 0; ///< about its axis, gears and shaft included [kg m^2]
+  double      initial_angle = 0; ///< [rad]
+  double      initial_speed = 0; ///< [rad/s]
+  /// Held at this constant speed from t = 0 (its torque law is then ignored).
+  bool        constant_speed = false;
+  TorqueLaw   torque;
+  bool        has_crank = false;
+  CrankSlider crank;
+};
+
+struct TrainMesh
+{
+  std::string     name;
+  int             driver = 0, driven = 1; ///< body indices: pinion (phi), gear (psi)
+  double          pinion_angle_0 = 0, gear_angle_0 = 0; ///< phi0, psi0 [rad]
+  ToothPairTables teeth;
+  ImpactLaw       law;
+  /// Reference radii of the relative displacement S = R_g (psi - psi_c) - R_p (phi - phi_c)
+  /// along the line of action (the seeds' S, with R the base radii; here S > 0 means the pinion
+  /// ahead, S >= B/2 drive contact for perfect flanks): R_p, R_g [m] and the band centre.
+  double pinion_base_radius = 0, gear_base_radius = 0;
+  double band_centre = 0; ///< gear angle offset of the backlash band's centre [rad] at phi = 0
+};
+
+/// A torsional shaft between two bodies turning together (ratio 1): torque k (theta_b -
+/// theta_a) + c (w_b - w_a) on a, its opposite on b.
+struct TrainShaft
+{
+  int    a = 0, b = 1;
+  double stiffness = 0, damping = 0; ///< [N m/rad], [N m s/rad]
+};
+
+struct TrainModel
+{
+  std::vector<TrainBody>  bodies;
+  std::vector<TrainMesh>  meshes;
+  std::vector<TrainShaft> shafts;
+  /// Throws InputError naming the body, mesh or shaft and the parameter: negative or zero
+  /// inertias, unknown bodies, a mesh from a body to itself, curves without samples, bad laws.
+  void
+  check() const;
+};
+
+enum class TrainIntegrator
+{
+  adams,
+  bdf
+};
+
+struct TrainRunOptions
+{
+  double          duration    = 0.1;  ///< [s]
+  double          sample_rate = 20e3; ///< output samples per second
+  TrainIntegrator method      = TrainIntegrator::adams;
+  /// Local error tolerances: relative, and absolute as a length along the contact normal [m]
+  /// (angles: this over the largest base radius; speeds: over it and the shortest contact
+  /// time scale).
+  double relative_tolerance = 1e-9, absolute_tolerance = 1e-10;
+  /// CVODE steps allowed in the whole run: beyond, a clear failure, never a hang.
+  long max_steps = 20000000;
+  /// Pairings examined on each side of the one at the line of centres.
+  int pairings_each_side = 3;
+};
+
+/// One mesh's outputs at the sample times.
+struct MeshSeries
+{
+  std::vector<double> relative;    ///< S [m]
+  std::vector<double> force;       ///< normal force, drive flanks + and coast - [N]
+  std::vector<int>    pairs;       ///< tooth pairs touching
+  std::size_t         impacts = 0; ///< first touches of a side after separation
+  std::size_t         drive_impacts = 0, coast_impacts = 0;
+  double              max_force     = 0; ///< largest |force| over every CVODE step [N]
+  double              first_contact = -1; ///< time of the first touch [s] (-1: none)
+};
+
+struct TrainResult
+{
+  std::vector<double>              t;             ///< [s]
+  std::vector<std::vector<double>> angle, speed;  ///< [body][sample] [rad], [rad/s]
+  std::vector<MeshSeries>          meshes;
+  /// Energy balance at the sample times [J]: work of the torques (incl. constant-speed drives),
+  /// kinetic energy, stored elastic energy (contacts, shafts) and dissipated energy.
+  std::vector<double> work, kinetic, potential, dissipated;
+  std::size_t         steps = 0, events = 0;
+  /// max |work - (kinetic - kinetic(0)) - (potential - potential(0)) - dissipated| over the
+  /// run, relative to the largest of the terms.
+  double energy_error = 0;
+};
+
+/// Integrates the train from its bodies' initial angles and speeds. Throws InputError for a
+/// bad model or options and for integrator failures (naming the time and the CVODE flag).
+TrainResult
+simulate_train(const TrainModel &model, const TrainRunOptions &options);
+
+/// Exact kinematics of the train running forward: the speed of every body for the given speed
+/// of body `body`, through the meshes' tooth ratios and the shafts (constant speed bodies are
+/// ignored). Throws InputError when the ratios do not close (a loop of meshes whose ratios
+/// disagree).
+std::vector<double>
+train_speeds(const TrainModel &model, int body, double speed);
+} // namespace gearkit

@@ -1,14 +1,10 @@
 #include "dynamics/integrators.h"
 
+#include "dynamics/cvode_solver.h"
+
 #include <Eigen/Dense>
 
 #include <cmath>
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sstream>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 namespace gearkit
 {
@@ -29,121 +25,63 @@ record(const PairModel &model, const RunOptions &o, double t, const PairVector &
   out.force.push_back(model.mesh_force(m, g.dot(q), g.dot(v), et_rate));
 }
 
-struct CvodeData
-{
-  const PairModel  *model;
-  const RunOptions *o;
-  double            period; // mesh period [s]
-};
-
-// y = [q; v] in SI, time tau in mesh cycles: dy/dtau = T dy/dt
-int
-cvode_rhs(sunrealtype tau, N_Vector y, N_Vector ydot, void *user)
-{
-  const auto                  *d = static_cast<CvodeData *>(user);
-  Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
-  Eigen::Map<const PairVector> v(N_VGetArrayPointer(y) + pair_dofs);
-  Eigen::Map<PairVector>       dq(N_VGetArrayPointer(ydot));
-  Eigen::Map<PairVector>       dv(N_VGetArrayPointer(ydot) + pair_dofs);
-  const double                 t = tau * d->period;
-  dq                             = d->period * v;
-  dv                             = d->period *
-       d->model->acceleration(t, q, v, d->o->omega, d->o->motor_torque, d->o->load_torque);
-  return 0;
-}
-
-int
-cvode_roots(sunrealtype tau, N_Vector y, sunrealtype *gout, void *user)
-{
-  const auto                  *d = static_cast<CvodeData *>(user);
-  Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
-  const MeshState              m = d->model->mesh().at(tau); // tau is the mesh phase
-  const double                 x = PairModel::mesh_gradient(m).dot(q) - m.et,
-               b                 = d->model->parameters().half_backlash;
-  gout[0]                        = x - b;
-  gout[1]                        = x + b;
-  return 0;
-}
-
-void
-cvode_check(int flag, const char *call, double tau)
-{
-  if (flag < 0)
-    {
-      std::ostringstream msg;
-      msg << "pair dynamics: CVODE failed in " << call << " at mesh cycle " << tau << " (flag "
-          << flag << ": " << CVodeGetReturnFlagName(flag)
-          << "); try a smaller tolerance, the Newmark path, or check the model's stiffnesses";
-      throw InputError(msg.str());
-    }
-}
-
 Trajectory
 run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, const RunOptions &o)
 {
-  Trajectory out;
-  CvodeData  data{&model, &o, 2 * pi / (model.parameters().pinion_teeth * o.omega)};
-  SUNContext ctx;
-  if (SUNContext_Create(nullptr, &ctx) != 0)
-    throw InputError("pair dynamics: cannot create a SUNDIALS context");
-  N_Vector        y = N_VNew_Serial(2 * pair_dofs, ctx), abstol = N_VNew_Serial(2 * pair_dofs, ctx);
-  SUNMatrix       A   = SUNDenseMatrix(2 * pair_dofs, 2 * pair_dofs, ctx);
-  SUNLinearSolver LS  = SUNLinSol_Dense(y, A, ctx);
-  void           *mem = CVodeCreate(o.method == Integrator::cvode_adams ? CV_ADAMS : CV_BDF, ctx);
-  auto            release = [&] {
-    CVodeFree(&mem);
-    SUNLinSolFree(LS);
-    SUNMatDestroy(A);
-    N_VDestroy(abstol);
-    N_VDestroy(y);
-    SUNContext_Free(&ctx);
+  // y = [q; v] in SI, time tau in mesh cycles (the mesh phase): dy/dtau = T dy/dt
+  Trajectory   out;
+  const double period = 2 * pi / (model.parameters().pinion_teeth * o.omega);
+  CvodeProblem p;
+  p.what = "pair dynamics";
+  p.hint = "try a smaller tolerance, the Newmark path, or check the model's stiffnesses";
+  p.size = 2 * pair_dofs;
+  p.bdf  = o.method != Integrator::cvode_adams;
+  p.rhs  = [&](double tau, const double *y, double *ydot) {
+    Eigen::Map<const PairVector> q(y), v(y + pair_dofs);
+    Eigen::Map<PairVector>       dq(ydot), dv(ydot + pair_dofs);
+    dq = period * v;
+    dv = period * model.acceleration(tau * period, q, v, o.omega, o.motor_torque, o.load_torque);
+    return 0;
   };
-  try
+  if (model.parameters().half_backlash > 0)
     {
-      Eigen::Map<PairVector>(N_VGetArrayPointer(y))             = q0;
-      Eigen::Map<PairVector>(N_VGetArrayPointer(y) + pair_dofs) = v0;
-      // scales: displacements, and their rates per mesh cycle... per second (v in SI)
-      // the static mesh deflection's scale: the half backlash, at least a micrometre
-      const PairVector s = model.dof_scale(std::max(model.parameters().half_backlash, 1e-6));
-      Eigen::Map<PairVector>(N_VGetArrayPointer(abstol)) = o.absolute_tolerance * s;
-      Eigen::Map<PairVector>(N_VGetArrayPointer(abstol) + pair_dofs) =
-          o.absolute_tolerance * s / data.period;
-      cvode_check(CVodeInit(mem, cvode_rhs, 0.0, y), "CVodeInit", 0);
-      cvode_check(CVodeSVtolerances(mem, o.relative_tolerance, abstol), "CVodeSVtolerances", 0);
-      cvode_check(CVodeSetUserData(mem, &data), "CVodeSetUserData", 0);
-      cvode_check(CVodeSetLinearSolver(mem, LS, A), "CVodeSetLinearSolver", 0);
-      cvode_check(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps", 0);
-      if (model.parameters().half_backlash > 0)
-        cvode_check(CVodeRootInit(mem, 2, cvode_roots), "CVodeRootInit", 0);
-      record(model, o, 0, q0, v0, out);
-      const int n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
-      double    tau   = 0;
-      for (int k = 1; k <= n_out; ++k)
+      p.roots          = 2;
+      p.root_functions = [&](double tau, const double *y, double *g) {
+        const MeshState m = model.mesh().at(tau);
+        const double    x = PairModel::mesh_gradient(m).dot(Eigen::Map<const PairVector>(y)) - m.et,
+                     b    = model.parameters().half_backlash;
+        g[0]              = x - b;
+        g[1]              = x + b;
+      };
+    }
+  // scales: the static mesh deflection's, the half backlash, at least a micrometre
+  const PairVector s   = model.dof_scale(std::max(model.parameters().half_backlash, 1e-6));
+  p.relative_tolerance = o.relative_tolerance;
+  p.absolute_tolerance.resize(p.size);
+  for (int i = 0; i < pair_dofs; ++i)
+    {
+      p.absolute_tolerance[i]             = o.absolute_tolerance * s[i];
+      p.absolute_tolerance[pair_dofs + i] = o.absolute_tolerance * s[i] / period;
+    }
+  std::vector<double> y(p.size);
+  Eigen::Map<PairVector>(y.data())             = q0;
+  Eigen::Map<PairVector>(y.data() + pair_dofs) = v0;
+  CvodeSolver solver(p, 0.0, y);
+  record(model, o, 0, q0, v0, out);
+  const int n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
+  double    tau   = 0;
+  for (int k = 1; k <= n_out; ++k)
+    {
+      const double tout = double(k) / o.samples_per_cycle;
+      while (solver.advance(tout, tau, y))
         {
-          const double tout = double(k) / o.samples_per_cycle;
-          while (true)
-            {
-              const int flag = CVode(mem, tout, y, &tau, CV_NORMAL);
-              cvode_check(flag, "CVode", tau);
-              if (flag != CV_ROOT_RETURN)
-                break;
-              ++out.events; // the mesh force changes its law here: restart the method
-              cvode_check(CVodeReInit(mem, tau, y), "CVodeReInit", tau);
-            }
-          Eigen::Map<const PairVector> q(N_VGetArrayPointer(y));
-          Eigen::Map<const PairVector> v(N_VGetArrayPointer(y) + pair_dofs);
-          record(model, o, tout * data.period, q, v, out);
+          ++out.events; // the mesh force changes its law here: restart the method
+          solver.reinit(tau, y);
         }
-      long steps = 0;
-      CVodeGetNumSteps(mem, &steps);
-      out.steps = std::size_t(steps);
+      record(model, o, tout * period, Eigen::Map<const PairVector>(y.data()),
+             Eigen::Map<const PairVector>(y.data() + pair_dofs), out);
     }
-  catch (...)
-    {
-      release();
-      throw;
-    }
-  release();
+  out.steps = std::size_t(solver.steps());
   return out;
 }
 

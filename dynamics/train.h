@@ -13,7 +13,8 @@
 //
 // Equations (Lagrange; the forces are the derivatives of the potentials, so that the undamped
 // model conserves energy exactly):
-//   J_i(theta_i) theta_i'' + J_i'(theta_i) theta_i'^2 / 2 = T_i(t, theta_i') - sum_pairs F dd/dtheta_i
+//   J_i(theta_i) theta_i'' + J_i'(theta_i) theta_i'^2 / 2 = T_i(t, theta_i') - sum_pairs F
+//   dd/dtheta_i
 //                                                          - shaft torques
 // with J_i' of a crank-slider's configuration-dependent inertia. A body at constant speed is
 // driven by whatever torque holds it (its work is counted).
@@ -71,7 +72,7 @@ struct CrankSlider
   double crank_radius = 0, rod_length = 0, rod_centre = 0; ///< r, l, l_c [m]
   double rod_mass = 0, rod_inertia = 0, piston_mass = 0;   ///< [kg], [kg m^2], [kg]
   double piston_force  = 0;                                ///< [N]
-  double crank_angle_0 = 0; ///< crank angle at body angle 0 [rad]
+  double crank_angle_0 = 0;                                ///< crank angle at body angle 0 [rad]
   /// Configuration-dependent inertia J(theta) it adds to the crank, and dJ/dtheta.
   std::pair<double, double>
   inertia(double crank_angle) const;
@@ -96,7 +97,7 @@ struct TrainBody
 struct TrainMesh
 {
   std::string     name;
-  int             driver = 0, driven = 1; ///< body indices: pinion (phi), gear (psi)
+  int             driver = 0, driven = 1;               ///< body indices: pinion (phi), gear (psi)
   double          pinion_angle_0 = 0, gear_angle_0 = 0; ///< phi0, psi0 [rad]
   ToothPairTables teeth;
   ImpactLaw       law;
@@ -150,19 +151,19 @@ struct TrainRunOptions
 /// One mesh's outputs at the sample times.
 struct MeshSeries
 {
-  std::vector<double> relative;    ///< S [m]
-  std::vector<double> force;       ///< normal force, drive flanks + and coast - [N]
-  std::vector<int>    pairs;       ///< tooth pairs touching
-  std::size_t         impacts = 0; ///< first touches of a side after separation
+  std::vector<double> relative;          ///< S [m]
+  std::vector<double> force;             ///< normal force, drive flanks + and coast - [N]
+  std::vector<int>    pairs;             ///< tooth pairs touching
+  std::size_t         impacts       = 0; ///< first touches of a side after separation
   std::size_t         drive_impacts = 0, coast_impacts = 0;
-  double              max_force     = 0; ///< largest |force| over every CVODE step [N]
+  double              max_force     = 0;  ///< largest |force| over every CVODE step [N]
   double              first_contact = -1; ///< time of the first touch [s] (-1: none)
 };
 
 struct TrainResult
 {
-  std::vector<double>              t;             ///< [s]
-  std::vector<std::vector<double>> angle, speed;  ///< [body][sample] [rad], [rad/s]
+  std::vector<double>              t;            ///< [s]
+  std::vector<std::vector<double>> angle, speed; ///< [body][sample] [rad], [rad/s]
   std::vector<MeshSeries>          meshes;
   /// Energy balance at the sample times [J]: work of the torques (incl. constant-speed drives),
   /// kinetic energy, stored elastic energy (contacts, shafts) and dissipated energy.

@@ -18,7 +18,7 @@ struct ToothPairOptions
   int samples_per_mesh = 64; ///< curve samples per mesh cycle of the pinion (2 pi / z1)
   /// A curve ends where the pair stops touching, or where its touch angle has fallen this far
   /// behind (drive) or ahead (coast) of the conjugate one, along the contact normal [m].
-  double recess = 100e-6;
+  double recess          = 100e-6;
   int    profile_samples = 17, face_samples = 3; ///< the TCA's search grid (tca/unloaded_tca.h)
 };
 

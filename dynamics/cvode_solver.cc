@@ -1,0 +1,190 @@
+#include "dynamics/cvode_solver.h"
+
+#include "base/types.h"
+
+#include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
+#include <sstream>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+namespace gearkit
+{
+namespace
+{
+int
+rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
+{
+  const auto *p = static_cast<const CvodeProblem *>(user);
+  return p->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+int
+quadrature_callback(sunrealtype t, N_Vector y, N_Vector qdot, void *user)
+{
+  const auto *p = static_cast<const CvodeProblem *>(user);
+  return p->quadrature_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(qdot));
+}
+
+int
+root_callback(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
+{
+  const auto *p = static_cast<const CvodeProblem *>(user);
+  p->root_functions(t, N_VGetArrayPointer(y), g);
+  return 0;
+}
+} // namespace
+
+void
+CvodeSolver::check(int flag, const char *call, double t) const
+{
+  if (flag >= 0)
+    return;
+  std::ostringstream msg;
+  msg << p.what << ": CVODE failed in " << call << " at t = " << t << " (flag " << flag << ": "
+      << CVodeGetReturnFlagName(flag) << "); " << p.hint;
+  throw InputError(msg.str());
+}
+
+CvodeSolver::CvodeSolver(const CvodeProblem &problem, double t0, const std::vector<double> &y0)
+    : p(problem)
+{
+  require_value(int(y0.size()) == p.size && int(p.absolute_tolerance.size()) == p.size, p.what,
+                "state size", double(y0.size()), "the problem's size");
+  SUNContext ctx = nullptr;
+  if (SUNContext_Create(nullptr, &ctx) != 0)
+    throw InputError(p.what + ": cannot create a SUNDIALS context");
+  context       = ctx;
+  N_Vector y    = N_VNew_Serial(p.size, ctx);
+  N_Vector atol = N_VNew_Serial(p.size, ctx);
+  state = y, tolerance = atol;
+  SUNMatrix A        = SUNDenseMatrix(p.size, p.size, ctx);
+  matrix             = A;
+  SUNLinearSolver LS = SUNLinSol_Dense(y, A, ctx);
+  solver             = LS;
+  memory             = CVodeCreate(p.bdf ? CV_BDF : CV_ADAMS, ctx);
+  if (!y || !atol || !A || !LS || !memory)
+    {
+      release();
+      throw InputError(p.what + ": cannot allocate the CVODE integrator");
+    }
+  try
+    {
+      for (int i = 0; i < p.size; ++i)
+        {
+          N_VGetArrayPointer(y)[i]    = y0[i];
+          N_VGetArrayPointer(atol)[i] = p.absolute_tolerance[i];
+        }
+      check(CVodeInit(memory, rhs_callback, t0, y), "CVodeInit", t0);
+      check(CVodeSVtolerances(memory, p.relative_tolerance, atol), "CVodeSVtolerances", t0);
+      check(CVodeSetUserData(memory, &p), "CVodeSetUserData", t0);
+      check(CVodeSetLinearSolver(memory, LS, A), "CVodeSetLinearSolver", t0);
+      check(CVodeSetMaxNumSteps(memory, p.max_steps_per_call), "CVodeSetMaxNumSteps", t0);
+      if (p.quadratures > 0)
+        {
+          N_Vector q = N_VNew_Serial(p.quadratures, ctx);
+          quadrature = q;
+          if (!q)
+            throw InputError(p.what + ": cannot allocate the CVODE quadratures");
+          N_VConst(0.0, q);
+          check(CVodeQuadInit(memory, quadrature_callback, q), "CVodeQuadInit", t0);
+          if (!p.quadrature_tolerance.empty())
+            {
+              require_value(int(p.quadrature_tolerance.size()) == p.quadratures, p.what,
+                            "quadrature tolerances", double(p.quadrature_tolerance.size()),
+                            "one per quadrature");
+              N_Vector a = N_VClone(q);
+              for (int i = 0; i < p.quadratures; ++i)
+                N_VGetArrayPointer(a)[i] = p.quadrature_tolerance[i];
+              const int flag = CVodeQuadSVtolerances(memory, p.relative_tolerance, a);
+              N_VDestroy(a);
+              check(flag, "CVodeQuadSVtolerances", t0);
+              check(CVodeSetQuadErrCon(memory, SUNTRUE), "CVodeSetQuadErrCon", t0);
+            }
+        }
+      if (p.roots > 0)
+        check(CVodeRootInit(memory, p.roots, root_callback), "CVodeRootInit", t0);
+    }
+  catch (...)
+    {
+      release();
+      throw;
+    }
+}
+
+CvodeSolver::~CvodeSolver() { release(); }
+
+void
+CvodeSolver::release()
+{
+  if (memory)
+    CVodeFree(&memory);
+  if (solver)
+    SUNLinSolFree(static_cast<SUNLinearSolver>(solver));
+  if (matrix)
+    SUNMatDestroy(static_cast<SUNMatrix>(matrix));
+  if (quadrature)
+    N_VDestroy(static_cast<N_Vector>(quadrature));
+  if (tolerance)
+    N_VDestroy(static_cast<N_Vector>(tolerance));
+  if (state)
+    N_VDestroy(static_cast<N_Vector>(state));
+  if (context)
+    {
+      SUNContext ctx = static_cast<SUNContext>(context);
+      SUNContext_Free(&ctx);
+    }
+  memory = solver = matrix = tolerance = state = context = quadrature = nullptr;
+}
+
+bool
+CvodeSolver::advance(double t_out, double &t, std::vector<double> &y, std::vector<int> *fired)
+{
+  N_Vector    v       = static_cast<N_Vector>(state);
+  sunrealtype reached = 0;
+  const int   flag    = CVode(memory, t_out, v, &reached, CV_NORMAL);
+  check(flag, "CVode", reached);
+  t = reached;
+  y.assign(N_VGetArrayPointer(v), N_VGetArrayPointer(v) + p.size);
+  if (flag != CV_ROOT_RETURN)
+    return false;
+  if (fired)
+    {
+      fired->assign(p.roots, 0);
+      check(CVodeGetRootInfo(memory, fired->data()), "CVodeGetRootInfo", t);
+    }
+  return true;
+}
+
+void
+CvodeSolver::reinit(double t, const std::vector<double> &y)
+{
+  quadratures(); // their values at t, where the method restarts
+  N_Vector v = static_cast<N_Vector>(state);
+  for (int i = 0; i < p.size; ++i)
+    N_VGetArrayPointer(v)[i] = y[i];
+  check(CVodeReInit(memory, t, v), "CVodeReInit", t);
+  if (quadrature)
+    check(CVodeQuadReInit(memory, static_cast<N_Vector>(quadrature)), "CVodeQuadReInit", t);
+}
+
+std::vector<double>
+CvodeSolver::quadratures() const
+{
+  if (!quadrature)
+    return {};
+  N_Vector    q = static_cast<N_Vector>(quadrature);
+  sunrealtype t = 0;
+  check(CVodeGetQuad(memory, &t, q), "CVodeGetQuad", t);
+  return {N_VGetArrayPointer(q), N_VGetArrayPointer(q) + p.quadratures};
+}
+
+long
+CvodeSolver::steps() const
+{
+  long n = 0;
+  CVodeGetNumSteps(memory, &n);
+  return n;
+}
+} // namespace gearkit

@@ -1,0 +1,66 @@
+// The one time integrator family of dynamics/: SUNDIALS CVODE (BDF for stiff problems, Adams
+// for tight non-stiff runs) with a dense Newton solver, per-component absolute tolerances and
+// root finding (event location). Every model (the 14-DOF pair, the gear train) supplies its
+// right-hand side and root functions; this class owns the SUNDIALS objects and turns every
+// failure into an InputError naming the model, the call, the time and the CVODE flag.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+struct CvodeProblem
+{
+  std::string what = "dynamics"; ///< the model, for messages
+  int         size = 0;
+  /// y' = f(t, y); a non-zero return tells CVODE the step failed (recoverable if > 0)
+  std::function<int(double t, const double *y, double *ydot)> rhs;
+  int roots = 0; ///< root functions g(t, y) located by CVODE
+  std::function<void(double t, const double *y, double *g)> root_functions;
+  /// Quadratures q' = h(t, y) integrated alongside (e.g. the work and the dissipated energy of
+  /// an energy balance), in the error test with these absolute tolerances (none: outside it)
+  int                                                         quadratures = 0;
+  std::vector<double>                                         quadrature_tolerance;
+  std::function<int(double t, const double *y, double *qdot)> quadrature_rhs;
+  bool                                                        bdf                = true;
+  double                                                      relative_tolerance = 1e-8;
+  std::vector<double> absolute_tolerance; ///< per component (size entries)
+  long                max_steps_per_call = 1000000;
+  std::string         hint = "try a smaller tolerance or check the model's stiffnesses";
+};
+
+class CvodeSolver
+{
+public:
+  CvodeSolver(const CvodeProblem &problem, double t0, const std::vector<double> &y0);
+  ~CvodeSolver();
+  CvodeSolver(const CvodeSolver &) = delete;
+  CvodeSolver &
+  operator=(const CvodeSolver &) = delete;
+
+  /// Advances towards t_out; returns false there, or true at a root before it (then `fired`,
+  /// if given, holds the root functions' directions: +1 rising, -1 falling, 0 not fired).
+  /// t and y hold the time and state reached.
+  bool
+  advance(double t_out, double &t, std::vector<double> &y, std::vector<int> *fired = nullptr);
+  /// Restarts the method at (t, y) (after a change of the force law at an event).
+  void
+  reinit(double t, const std::vector<double> &y);
+  /// The quadratures at the time last reached.
+  std::vector<double>
+  quadratures() const;
+  long
+  steps() const;
+
+private:
+  void
+  release();
+  void
+               check(int flag, const char *call, double t) const;
+  CvodeProblem p;
+  void        *context = nullptr, *memory = nullptr, *state = nullptr, *tolerance = nullptr,
+       *matrix = nullptr, *solver = nullptr, *quadrature = nullptr;
+};
+} // namespace gearkit

@@ -1,0 +1,575 @@
+#include "dynamics/train.h"
+
+#include "base/types.h"
+#include "dynamics/cvode_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace gearkit
+{
+double
+impact_force(const ImpactLaw &law, double d, double d_rate)
+{
+  if (!(d > 0))
+    return 0;
+  double c = law.damping;
+  if (d < law.depth)
+    {
+      const double x = d / law.depth;
+      c *= x * x * (3 - 2 * x);
+    }
+  return std::max(0.0, law.stiffness * std::pow(d, law.exponent) + c * d_rate);
+}
+
+double
+impact_energy(const ImpactLaw &law, double d)
+{
+  return d > 0 ? law.stiffness * std::pow(d, law.exponent + 1) / (law.exponent + 1) : 0.0;
+}
+
+double
+impact_stiffness_si(double stiffness, double exponent, double length_unit)
+{
+  return stiffness / std::pow(length_unit, exponent);
+}
+
+double
+TorqueLaw::operator()(double t, double speed) const
+{
+  const double ramp = time_constant > 0 ? -std::expm1(-t / time_constant) : 1.0;
+  return constant + step * ramp - viscous * speed;
+}
+
+std::pair<double, double>
+CrankSlider::piston(double c) const
+{
+  const double s = std::sin(c), k = std::cos(c);
+  const double w = std::sqrt(rod_length * rod_length - crank_radius * crank_radius * s * s);
+  return {crank_radius * k + w, -crank_radius * s - crank_radius * crank_radius * s * k / w};
+}
+
+namespace
+{
+/// J(c) of the crank-slider's moving parts referred to the crank angle.
+double
+crank_inertia(const CrankSlider &k, double c)
+{
+  const double s = std::sin(c), co = std::cos(c), r = k.crank_radius, l = k.rod_length;
+  const double w  = std::sqrt(l * l - r * r * s * s);
+  const double xs = -r * s - r * r * s * co / w; // piston velocity per crank rate
+  const double px = -r * s, py = r * co;         // crank pin's
+  const double f  = k.rod_centre / l;
+  const double gx = px + f * (xs - px), gy = (1 - f) * py; // the rod's centre of mass
+  const double beta = r * co / w;                          // the rod's angular rate
+  return k.piston_mass * xs * xs + k.rod_mass * (gx * gx + gy * gy) + k.rod_inertia * beta * beta;
+}
+} // namespace
+
+std::pair<double, double>
+CrankSlider::inertia(double c) const
+{
+  const double h = 1e-5;
+  return {crank_inertia(*this, c),
+          (crank_inertia(*this, c + h) - crank_inertia(*this, c - h)) / (2 * h)};
+}
+
+void
+TrainModel::check() const
+{
+  const std::string section = "Train";
+  auto              fail    = [](const std::string &where, const std::string &what, double value,
+                 const std::string &allowed) { require_value(false, where, what, value, allowed); };
+  if (bodies.size() < 2)
+    fail(section, "bodies", double(bodies.size()), "at least two bodies");
+  const int n = int(bodies.size());
+  for (const TrainBody &b : bodies)
+    {
+      const std::string where = "Train body " + b.name;
+      if (!(b.inertia > 0) || !std::isfinite(b.inertia))
+        fail(where, "inertia [kg m^2]", b.inertia, "> 0");
+      if (!std::isfinite(b.initial_speed) || !std::isfinite(b.initial_angle))
+        fail(where, "initial speed", b.initial_speed, "finite");
+      if (b.torque.time_constant < 0 || b.torque.viscous < 0)
+        fail(where, "torque time constant / viscous coefficient",
+             std::min(b.torque.time_constant, b.torque.viscous), ">= 0");
+      if (b.has_crank)
+        {
+          const CrankSlider &k = b.crank;
+          if (!(k.crank_radius > 0) || !(k.rod_length > k.crank_radius))
+            fail(where, "crank radius and rod length [m]", k.rod_length,
+                 "0 < crank radius < rod length");
+          if (k.rod_centre < 0 || k.rod_centre > k.rod_length)
+            fail(where, "rod centre of mass [m]", k.rod_centre, "in [0, rod length]");
+          if (k.rod_mass < 0 || k.rod_inertia < 0 || k.piston_mass < 0)
+            fail(where, "rod and piston masses",
+                 std::min({k.rod_mass, k.rod_inertia, k.piston_mass}), ">= 0");
+        }
+    }
+  for (const TrainMesh &m : meshes)
+    {
+      const std::string where = "Train mesh " + m.name;
+      if (m.driver < 0 || m.driver >= n || m.driven < 0 || m.driven >= n)
+        fail(where, "body index", m.driver < 0 || m.driver >= n ? m.driver : m.driven,
+             "a body of the train");
+      if (m.driver == m.driven)
+        fail(where, "driven body", m.driven, "another body than the driver");
+      const ToothPairTables &t = m.teeth;
+      if (t.pinion_teeth < 1 || t.gear_teeth < 1 || int(t.pinion_class.size()) != t.pinion_teeth ||
+          int(t.gear_class.size()) != t.gear_teeth)
+        fail(where, "tooth pair tables (teeth)", t.pinion_teeth, "tables for every tooth");
+      for (const auto &side : t.curves)
+        {
+          if (int(side.size()) != t.pinion_classes * t.gear_classes)
+            fail(where, "tooth pair tables (class pairs)", double(side.size()),
+                 "one curve per class pair");
+          for (const ToothPairCurve &c : side)
+            if (c.offset.size() < 2 || c.arm.size() != c.offset.size() || !(c.step > 0))
+              fail(where, "tooth pair curve samples", double(c.offset.size()),
+                   ">= 2 samples, positive spacing");
+        }
+      const ImpactLaw &l = m.law;
+      if (!(l.stiffness > 0) || !std::isfinite(l.stiffness))
+        fail(where, "contact stiffness", l.stiffness, "> 0");
+      if (!(l.exponent >= 1) || l.exponent > 10)
+        fail(where, "force exponent", l.exponent, "in [1, 10]");
+      if (l.damping < 0 || (l.damping > 0 && !(l.depth > 0)))
+        fail(where, "damping / penetration depth", l.damping > 0 ? l.depth : l.damping,
+             "damping >= 0, depth > 0 with damping");
+      if (!(m.pinion_base_radius > 0) || !(m.gear_base_radius > 0))
+        fail(where, "base radii [m]", std::min(m.pinion_base_radius, m.gear_base_radius), "> 0");
+    }
+  for (const TrainShaft &s : shafts)
+    {
+      if (s.a < 0 || s.a >= n || s.b < 0 || s.b >= n || s.a == s.b)
+        fail("Train shaft", "bodies", s.a, "two different bodies of the train");
+      if (s.stiffness < 0 || s.damping < 0)
+        fail("Train shaft", "stiffness / damping", std::min(s.stiffness, s.damping), ">= 0");
+    }
+}
+
+std::vector<double>
+train_speeds(const TrainModel &model, int body, double speed)
+{
+  const int           n = int(model.bodies.size());
+  std::vector<double> w(n, std::nan(""));
+  require_value(body >= 0 && body < n, "Train", "body", body, "a body of the train");
+  w[body] = speed;
+  // propagate along meshes and shafts until nothing changes; a second value for a body must
+  // agree with the first
+  for (bool changed = true; changed;)
+    {
+      changed   = false;
+      auto link = [&](int a, int b, double ratio, const std::string &what) {
+        for (int pass = 0; pass < 2; ++pass)
+          {
+            const int    from = pass ? b : a, to = pass ? a : b;
+            const double r = pass ? 1 / ratio : ratio;
+            if (std::isnan(w[from]))
+              continue;
+            if (std::isnan(w[to]))
+              w[to] = w[from] * r, changed = true;
+            else if (std::abs(w[to] - w[from] * r) > 1e-12 * std::abs(w[to]) + 1e-300)
+              {
+                std::ostringstream m;
+                m << "Train: " << what << " does not close: it would turn " << model.bodies[to].name
+                  << " at " << w[from] * r << " rad/s where the rest of "
+                  << "the train turns it at " << w[to]
+                  << " rad/s; expected tooth ratios that agree around every loop";
+                throw InputError(m.str());
+              }
+          }
+      };
+      for (const TrainMesh &m : model.meshes)
+        link(m.driver, m.driven, double(m.teeth.pinion_teeth) / m.teeth.gear_teeth,
+             "mesh " + m.name);
+      for (const TrainShaft &s : model.shafts)
+        link(s.a, s.b, 1.0, "a shaft");
+    }
+  return w;
+}
+
+namespace
+{
+/// Cubic Hermite interpolation of samples (slopes by central differences) with its derivative;
+/// false outside the samples.
+bool
+interpolate(const ToothPairCurve &c, const std::vector<double> &y, double x, double &value,
+            double &slope)
+{
+  const int    n = int(y.size());
+  const double s = (x - c.start) / c.step;
+  if (!(s >= 0) || s > n - 1)
+    return false;
+  const int    i = std::min(int(s), n - 2);
+  const double u = s - i;
+  auto         m = [&](int j) {
+    if (j == 0)
+      return y[1] - y[0];
+    if (j == n - 1)
+      return y[n - 1] - y[n - 2];
+    return (y[j + 1] - y[j - 1]) / 2;
+  };
+  const double m0 = m(i), m1 = m(i + 1), y0 = y[i], y1 = y[i + 1];
+  const double u2 = u * u, u3 = u2 * u;
+  value = (2 * u3 - 3 * u2 + 1) * y0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * y1 +
+          (u3 - u2) * m1;
+  slope = ((6 * u2 - 6 * u) * y0 + (3 * u2 - 4 * u + 1) * m0 + (-6 * u2 + 6 * u) * y1 +
+           (3 * u2 - 2 * u) * m1) /
+          c.step;
+  return true;
+}
+
+int
+mod(int a, int n)
+{
+  return ((a % n) + n) % n;
+}
+
+/// One mesh at one state: forces on its bodies, energies, root functions, outputs.
+struct MeshEval
+{
+  double torque_driver = 0, torque_driven = 0; ///< generalised forces on the two angles
+  double force[2] = {0, 0};                    ///< normal force per side [N]
+  double energy = 0, dissipation_rate = 0;
+  double max_penetration[2] = {-HUGE_VAL, -HUGE_VAL};
+  double force_rate         = 0; ///< rate of the elastic force of all touching pairs
+  int    pairs              = 0;
+};
+
+class TrainSystem
+{
+public:
+  TrainSystem(const TrainModel &m, const TrainRunOptions &o)
+      : model(m)
+      , options(o)
+  {
+    n = int(model.bodies.size());
+    for (const TrainMesh &mesh : model.meshes)
+      {
+        const ToothPairTables &t = mesh.teeth;
+        double                 v[2], slope;
+        const ToothPairCurve  &d = t.curve(drive_side, 0, mod(-1, t.gear_teeth));
+        const ToothPairCurve  &c = t.curve(coast_side, 0, 0);
+        if (!interpolate(d, d.offset, 0.0, v[0], slope) ||
+            !interpolate(c, c.offset, 0.0, v[1], slope))
+          require_value(false, "Train mesh " + mesh.name, "tooth pair curves at the pitch point", 0,
+                        "curves that cover the pairing's centre (local angle 0)");
+        centre.push_back((v[0] + v[1]) / 2);
+      }
+  }
+
+  MeshEval
+  mesh(int index, const double *theta, const double *omega) const
+  {
+    const TrainMesh       &m   = model.meshes[index];
+    const ToothPairTables &t   = m.teeth;
+    const double           phi = theta[m.driver] + m.pinion_angle_0;
+    const double           psi = theta[m.driven] + m.gear_angle_0;
+    const double           w_p = omega[m.driver], w_g = omega[m.driven];
+    const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
+    MeshEval               e;
+    const int              k0 = int(std::lround(phi * t.pinion_teeth / (2 * pi)));
+    for (int k = k0 - options.pairings_each_side; k <= k0 + options.pairings_each_side; ++k)
+      {
+        const double phi_k = phi - 2 * pi * k / t.pinion_teeth;
+        const int    i     = mod(-k, t.pinion_teeth);
+        for (int side = 0; side < 2; ++side)
+          {
+            const int             j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
+            const ToothPairCurve &c = t.curve(side, i, j);
+            double                o, o_slope, arm, arm_slope;
+            if (!interpolate(c, c.offset, phi_k, o, o_slope) ||
+                !interpolate(c, c.arm, phi_k, arm, arm_slope))
+              continue;
+            const double gap        = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
+            const double s          = side == drive_side ? 1.0 : -1.0;
+            const double d          = s * arm * gap;
+            e.max_penetration[side] = std::max(e.max_penetration[side], d);
+            if (!(d > 0))
+              continue;
+            // d = s arm(phi_k) (psi_touch(phi_k) - psi)
+            const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
+            const double dd_dpsi = -s * arm;
+            const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
+            const double F       = impact_force(m.law, d, d_rate);
+            const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
+            e.torque_driver -= F * dd_dphi;
+            e.torque_driven -= F * dd_dpsi;
+            e.force[side] += F;
+            e.energy += impact_energy(m.law, d);
+            e.dissipation_rate += (F - elastic) * d_rate;
+            e.force_rate += m.law.exponent * elastic / d * d_rate;
+            ++e.pairs;
+          }
+      }
+    return e;
+  }
+
+  /// S of a mesh [m].
+  double
+  relative(int index, const double *theta) const
+  {
+    const TrainMesh &m     = model.meshes[index];
+    const double     ratio = double(m.teeth.pinion_teeth) / m.teeth.gear_teeth;
+    const double phi = theta[m.driver] + m.pinion_angle_0, psi = theta[m.driven] + m.gear_angle_0;
+    return m.gear_base_radius * (ratio * phi + centre[index] - psi);
+  }
+
+  /// Accelerations, the power of the torques and the dissipation rate at (t, theta, omega).
+  void
+  evaluate(double t, const double *theta, const double *omega, double *alpha, double &power,
+           double &dissipation) const
+  {
+    std::vector<double> Q(n, 0.0);
+    dissipation = 0;
+    for (int i = 0; i < int(model.meshes.size()); ++i)
+      {
+        const MeshEval e = mesh(i, theta, omega);
+        Q[model.meshes[i].driver] += e.torque_driver;
+        Q[model.meshes[i].driven] += e.torque_driven;
+        dissipation += e.dissipation_rate;
+      }
+    for (const TrainShaft &s : model.shafts)
+      {
+        const double dw = omega[s.b] - omega[s.a];
+        const double T  = s.stiffness * (theta[s.b] - theta[s.a]) + s.damping * dw;
+        Q[s.a] += T;
+        Q[s.b] -= T;
+        dissipation += s.damping * dw * dw;
+      }
+    power = 0;
+    for (int i = 0; i < n; ++i)
+      {
+        const TrainBody &b = model.bodies[i];
+        double           J = b.inertia, dJ = 0, external = 0;
+        if (b.has_crank)
+          {
+            const auto [Jc, dJc] = b.crank.inertia(theta[i] + b.crank.crank_angle_0);
+            J += Jc, dJ = dJc;
+            external -=
+                b.crank.piston_force * b.crank.piston(theta[i] + b.crank.crank_angle_0).second;
+          }
+        if (b.constant_speed)
+          {
+            alpha[i] = 0; // held by the torque that balances the rest
+            power += (dJ * omega[i] * omega[i] / 2 - Q[i]) * omega[i];
+            continue;
+          }
+        external += b.torque(t, omega[i]);
+        power += external * omega[i];
+        alpha[i] = (external + Q[i] - dJ * omega[i] * omega[i] / 2) / J;
+      }
+  }
+
+  double
+  kinetic(const double *theta, const double *omega) const
+  {
+    double E = 0;
+    for (int i = 0; i < n; ++i)
+      {
+        const TrainBody &b = model.bodies[i];
+        double           J = b.inertia;
+        if (b.has_crank)
+          J += b.crank.inertia(theta[i] + b.crank.crank_angle_0).first;
+        E += J * omega[i] * omega[i] / 2;
+      }
+    return E;
+  }
+
+  double
+  potential(const double *theta, const double *omega) const
+  {
+    double V = 0;
+    for (int i = 0; i < int(model.meshes.size()); ++i)
+      V += mesh(i, theta, omega).energy;
+    for (const TrainShaft &s : model.shafts)
+      V += s.stiffness * std::pow(theta[s.b] - theta[s.a], 2) / 2;
+    return V;
+  }
+
+  int                 n;
+  const TrainModel   &model;
+  TrainRunOptions     options;
+  std::vector<double> centre; ///< band centre per mesh [rad]
+};
+} // namespace
+
+TrainResult
+simulate_train(const TrainModel &model, const TrainRunOptions &o)
+{
+  // 1. check
+  model.check();
+  auto require = [](bool ok, const std::string &what, double value, const std::string &allowed) {
+    require_value(ok, "Train run", what, value, allowed);
+  };
+  require(o.duration > 0 && std::isfinite(o.duration), "duration [s]", o.duration, "> 0");
+  require(o.sample_rate > 0 && o.duration * o.sample_rate <= 5e7, "sample rate [1/s]",
+          o.sample_rate, "> 0, at most 5e7 samples in the run");
+  require(o.relative_tolerance > 0 && o.absolute_tolerance > 0, "tolerance",
+          std::min(o.relative_tolerance, o.absolute_tolerance), "> 0");
+  require(o.max_steps > 0, "max steps", double(o.max_steps), "> 0");
+  require(o.pairings_each_side >= 1 && o.pairings_each_side <= 50, "pairings each side",
+          o.pairings_each_side, "in [1, 50]");
+
+  // 2. the system and its CVODE problem: y = [theta; omega], quadratures [work; dissipated]
+  const TrainSystem   sys(model, o);
+  const int           n      = sys.n;
+  const int           meshes = int(model.meshes.size());
+  std::vector<double> y0(2 * n);
+  for (int i = 0; i < n; ++i)
+    y0[i] = model.bodies[i].initial_angle, y0[n + i] = model.bodies[i].initial_speed;
+  std::vector<double> y = y0;
+  CvodeProblem        p;
+  p.what = "gear train";
+  p.hint = "try a smaller tolerance, a smaller contact stiffness, or check the inertias";
+  p.size = 2 * n;
+  p.bdf  = o.method == TrainIntegrator::bdf;
+  p.rhs  = [&](double t, const double *y, double *ydot) {
+    double power, dissipation;
+    std::copy(y + n, y + 2 * n, ydot);
+    sys.evaluate(t, y, y + n, ydot + n, power, dissipation);
+    return 0;
+  };
+  p.quadratures = 2;
+  // the energies to the tolerance's share of the initial kinetic energy (at least a microjoule)
+  p.quadrature_tolerance.assign(2, o.relative_tolerance *
+                                       std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
+  p.quadrature_rhs = [&](double t, const double *y, double *q) {
+    std::vector<double> alpha(n);
+    sys.evaluate(t, y, y + n, alpha.data(), q[0], q[1]);
+    return 0;
+  };
+  // per mesh: either side's deepest penetration (touch and separation), and the elastic force's
+  // rate while touching (its peaks). The touch functions carry a hysteresis of a thousandth of
+  // the absolute tolerance: a root never stays exactly zero on rounding-quantised penetrations
+  // (which CVODE refuses as a root "at and very near" the last).
+  std::vector<char> touching(2 * meshes, 0);
+  const double      hysteresis = 1e-3 * o.absolute_tolerance;
+  p.roots                      = 3 * meshes;
+  p.root_functions             = [&](double, const double *y, double *g) {
+    for (int i = 0; i < meshes; ++i)
+      {
+        const MeshEval e     = sys.mesh(i, y, y + n);
+        const double   floor = -1.0; // no pairing within reach
+        for (int side = 0; side < 2; ++side)
+          g[3 * i + side] = std::max(e.max_penetration[side], floor) +
+                            (touching[2 * i + side] ? hysteresis : -hysteresis);
+        g[3 * i + 2] = e.pairs ? e.force_rate : -1.0;
+      }
+  };
+  // tolerances along the contact normals: angles over the body's largest base radius, speeds
+  // over a contact time scale of 0.1 ms
+  std::vector<double> radius(n, 0.0);
+  for (const TrainMesh &m : model.meshes)
+    {
+      radius[m.driver] = std::max(radius[m.driver], m.pinion_base_radius);
+      radius[m.driven] = std::max(radius[m.driven], m.gear_base_radius);
+    }
+  const double r_max   = *std::max_element(radius.begin(), radius.end());
+  p.relative_tolerance = o.relative_tolerance;
+  p.absolute_tolerance.resize(2 * n);
+  for (int i = 0; i < n; ++i)
+    {
+      const double r              = radius[i] > 0 ? radius[i] : r_max;
+      p.absolute_tolerance[i]     = o.absolute_tolerance / r;
+      p.absolute_tolerance[n + i] = o.absolute_tolerance / r / 1e-4;
+    }
+
+  // 3. integrate, recording at the sample times, counting impacts at the roots
+  TrainResult out;
+  out.angle.assign(n, {});
+  out.speed.assign(n, {});
+  out.meshes.assign(meshes, {});
+  const double kinetic0   = sys.kinetic(y.data(), y.data() + n);
+  const double potential0 = sys.potential(y.data(), y.data() + n);
+  double       scale      = std::max(kinetic0, 1e-300);
+  auto         peaks      = [&](const std::vector<double> &state) {
+    for (int i = 0; i < meshes; ++i)
+      {
+        const MeshEval e = sys.mesh(i, state.data(), state.data() + n);
+        out.meshes[i].max_force =
+            std::max({out.meshes[i].max_force, e.force[drive_side], e.force[coast_side]});
+      }
+  };
+  auto record = [&](double t, const std::vector<double> &state, const std::vector<double> &q) {
+    out.t.push_back(t);
+    for (int i = 0; i < n; ++i)
+      {
+        out.angle[i].push_back(state[i]);
+        out.speed[i].push_back(state[n + i]);
+      }
+    for (int i = 0; i < meshes; ++i)
+      {
+        const MeshEval e = sys.mesh(i, state.data(), state.data() + n);
+        out.meshes[i].relative.push_back(sys.relative(i, state.data()));
+        out.meshes[i].force.push_back(e.force[drive_side] - e.force[coast_side]);
+        out.meshes[i].pairs.push_back(e.pairs);
+      }
+    peaks(state);
+    const double K = sys.kinetic(state.data(), state.data() + n);
+    const double V = sys.potential(state.data(), state.data() + n);
+    out.work.push_back(q[0]);
+    out.kinetic.push_back(K);
+    out.potential.push_back(V);
+    out.dissipated.push_back(q[1]);
+    scale = std::max({scale, std::abs(q[0]), K, V, std::abs(q[1])});
+    out.energy_error =
+        std::max(out.energy_error, std::abs(q[0] - (K - kinetic0) - (V - potential0) - q[1]));
+  };
+  CvodeSolver      solver(p, 0.0, y);
+  std::vector<int> fired;
+  record(0, y, {0.0, 0.0});
+  const long samples = std::max(1L, long(std::ceil(o.duration * o.sample_rate - 1e-9)));
+  double     t       = 0;
+  for (long s = 1; s <= samples; ++s)
+    {
+      const double t_out = std::min(o.duration, s / o.sample_rate);
+      while (solver.advance(t_out, t, y, &fired))
+        {
+          ++out.events;
+          bool contact_change = false;
+          for (int i = 0; i < meshes; ++i)
+            {
+              MeshSeries &ms = out.meshes[i];
+              for (int side = 0; side < 2; ++side)
+                if (fired[3 * i + side])
+                  touching[2 * i + side] = fired[3 * i + side] > 0;
+              for (int side = 0; side < 2; ++side)
+                if (fired[3 * i + side] > 0)
+                  {
+                    ++ms.impacts;
+                    ++(side == drive_side ? ms.drive_impacts : ms.coast_impacts);
+                    if (ms.first_contact < 0)
+                      ms.first_contact = t;
+                  }
+              contact_change = contact_change || fired[3 * i] || fired[3 * i + 1];
+            }
+          peaks(y);
+          if (contact_change && model.meshes[0].law.exponent < 2)
+            solver.reinit(t, y); // a kink of the force law: restart the method there
+          if (solver.steps() > o.max_steps)
+            break;
+        }
+      if (solver.steps() > o.max_steps)
+        {
+          std::ostringstream m;
+          m << "gear train: more than " << o.max_steps << " integrator steps by t = " << t
+            << " s of " << o.duration
+            << " s; the contact is too stiff for this duration (reduce the contact stiffness "
+               "or the duration, or raise the step budget)";
+          throw InputError(m.str());
+        }
+      record(t_out, y, solver.quadratures());
+      for (double v : y)
+        if (!std::isfinite(v))
+          throw InputError("gear train: the state is not finite at t = " + std::to_string(t) +
+                           " s; check the inertias and the contact law");
+    }
+  out.steps        = std::size_t(solver.steps());
+  out.energy_error = out.energy_error / scale;
+  return out;
+}
+} // namespace gearkit

@@ -1,0 +1,248 @@
+// The gear-train impact model against exact solutions: a linear oscillator (one tooth pair of
+// constant stiffness, e = 1, no damping, no backlash), the restitution of one impact against the
+// IMPACT law integrated alone (Boost.Odeint, an independent integrator), the energy balance,
+// kinematics, the crank-slider's inertia, bad input.
+#include "base/types.h"
+#include "dynamics/train.h"
+
+#include <boost/numeric/odeint.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace gearkit;
+
+namespace
+{
+/// Ideal conjugate flanks: every pairing touches over `contact_ratio` base pitches around its
+/// centre with a constant offset (drive -beta/2, coast +beta/2: the angular backlash beta) and
+/// arm r_bg; beyond, the flanks recede quadratically (100 um along the normal a pitch further)
+/// as tip edges do.
+ToothPairTables
+ideal_tables(int z1, int z2, double r_bg, double beta, double contact_ratio = 1.0)
+{
+  ToothPairTables t;
+  t.pinion_teeth = z1, t.gear_teeth = z2;
+  t.pinion_class.assign(z1, 0);
+  t.gear_class.assign(z2, 0);
+  t.pinion_classes = t.gear_classes = 1;
+  const double pitch                = 2 * pi / z1;
+  for (int side = 0; side < 2; ++side)
+    {
+      ToothPairCurve c;
+      const int      n = 64;
+      const double   s = side == drive_side ? -1.0 : 1.0;
+      c.step           = pitch / n;
+      c.start          = -(contact_ratio / 2 + 1) * pitch;
+      for (double x = c.start; x <= -c.start + 1e-12; x += c.step)
+        {
+          const double beyond = std::max(0.0, std::abs(x) - contact_ratio * pitch / 2) / pitch;
+          c.offset.push_back(s * (beta / 2 + 100e-6 / r_bg * beyond * beyond));
+          c.arm.push_back(r_bg);
+        }
+      t.curves[side] = {c};
+    }
+  return t;
+}
+
+TrainModel
+two_body_model(double J_p, double J_g, int z1, int z2, double r_bp, double beta,
+               const ImpactLaw &law, double contact_ratio = 1.0)
+{
+  TrainModel m;
+  m.bodies.resize(2);
+  m.bodies[0].name = "pinion", m.bodies[0].inertia = J_p;
+  m.bodies[1].name = "gear", m.bodies[1].inertia = J_g;
+  TrainMesh mesh;
+  mesh.name               = "stage";
+  mesh.pinion_base_radius = r_bp;
+  mesh.gear_base_radius   = r_bp * z2 / z1;
+  mesh.teeth              = ideal_tables(z1, z2, mesh.gear_base_radius, beta, contact_ratio);
+  mesh.law                = law;
+  m.meshes                = {mesh};
+  return m;
+}
+} // namespace
+
+TEST(ImpactLaw, StepDampingContinuousNeverTensile)
+{
+  ImpactLaw law{1e12, 2.2, 1e5, 1e-6};
+  EXPECT_EQ(impact_force(law, 0.0, 1.0), 0.0);
+  EXPECT_EQ(impact_force(law, -1e-6, 1.0), 0.0);
+  // continuous at first touch: the damping ramps from zero with the cubic step
+  EXPECT_LT(impact_force(law, 1e-12, 1.0), 1e-6);
+  // full damping beyond the depth, half at half depth (the cubic step is symmetric)
+  const double d = 2e-6;
+  EXPECT_NEAR(impact_force(law, d, 0.1) - impact_force(law, d, 0.0), 1e4, 1e-6);
+  EXPECT_NEAR(impact_force(law, 0.5e-6, 0.1) - impact_force(law, 0.5e-6, 0.0), 0.5e4, 1e-6);
+  // separating fast: the damping would pull, the force is clamped at zero
+  EXPECT_EQ(impact_force(law, 1e-7, -1e3), 0.0);
+  // ADAMS model units: 2e7 N/mm^2.2 in SI
+  EXPECT_NEAR(impact_stiffness_si(2e7, 2.2, 1e-3) * std::pow(1e-5, 2.2), 2e7 * std::pow(1e-2, 2.2),
+              1e-9 * 2e7 * std::pow(1e-2, 2.2));
+}
+
+TEST(Train, OneToothPairOfConstantStiffnessIsALinearOscillator)
+{
+  // e = 1, no damping, zero backlash: drive or coast flanks always touch, the force k x acts
+  // on x = r_bp phi - r_bg psi: m_e x'' + k x = 0 with 1/m_e = r_bp^2/J_p + r_bg^2/J_g.
+  const double J_p = 1.06e-3, J_g = 0.05, r_bp = 0.032, k = 2e8;
+  const int    z1 = 17, z2 = 60;
+  TrainModel   m            = two_body_model(J_p, J_g, z1, z2, r_bp, 0.0, ImpactLaw{k, 1.0, 0, 0});
+  m.bodies[0].initial_speed = 10;
+  const double    r_bg      = r_bp * z2 / z1;
+  const double    m_e       = 1 / (r_bp * r_bp / J_p + r_bg * r_bg / J_g);
+  const double    w_n       = std::sqrt(k / m_e);
+  TrainRunOptions o;
+  o.duration           = 10 * 2 * pi / w_n;
+  o.sample_rate        = 40 * w_n / (2 * pi);
+  o.absolute_tolerance = 1e-15, o.relative_tolerance = 1e-12;
+  const TrainResult r     = simulate_train(m, o);
+  const double      v0    = r_bp * 10;
+  double            worst = 0;
+  for (std::size_t i = 0; i < r.t.size(); ++i)
+    {
+      const double exact = v0 / w_n * std::sin(w_n * r.t[i]);
+      worst              = std::max(worst, std::abs(r.meshes[0].relative[i] - exact));
+    }
+  EXPECT_LT(worst, 1e-6 * v0 / w_n) << "amplitude " << v0 / w_n << " m";
+  EXPECT_LT(r.energy_error, 1e-6);
+}
+
+TEST(Train, ImpactsWithoutDampingOrTorquesConserveEnergy)
+{
+  // double-sided impacts (the gear a little slower than the kinematic speed), no torques, no
+  // damping: kinetic plus stored energy stays what it was
+  const double J_p = 1.06e-3, J_g = 0.05, r_bp = 0.032;
+  const int    z1 = 17, z2 = 60;
+  ImpactLaw    law{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2, 0, 0};
+  TrainModel   m            = two_body_model(J_p, J_g, z1, z2, r_bp, 2e-3, law, 1.6);
+  m.bodies[0].initial_speed = 167.5;
+  m.bodies[1].initial_speed = 167.5 * z1 / z2 * 0.99;
+  TrainRunOptions o;
+  o.duration          = 0.05;
+  const TrainResult r = simulate_train(m, o);
+  EXPECT_GT(r.meshes[0].drive_impacts, 2u);
+  EXPECT_GT(r.meshes[0].coast_impacts, 2u);
+  const std::size_t last = r.t.size() - 1;
+  EXPECT_EQ(r.work[last], 0.0);
+  EXPECT_EQ(r.dissipated[last], 0.0);
+  EXPECT_NEAR(r.kinetic[last] + r.potential[last], r.kinetic[0] + r.potential[0],
+              1e-6 * r.kinetic[0]);
+  EXPECT_LT(r.energy_error, 1e-6);
+}
+
+TEST(Train, RestitutionOfOneImpactMatchesTheLawIntegratedAlone)
+{
+  // the pinion hits a gear at rest once (coast flanks far away: a wide backlash); the
+  // relative speed after the impact against m_e d'' = -F(d, d') by Boost.Odeint
+  const double J_p = 1.06e-3, J_g = 0.05, r_bp = 0.032;
+  const int    z1 = 17, z2 = 60;
+  const double r_bg = r_bp * z2 / z1;
+  ImpactLaw    law{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2, 2e2, 1e-7 * 1e-3 * 1e3};
+  const double beta         = 2e-3 / r_bg; // 2 mm backlash: the pinion starts at the band centre
+  TrainModel   m            = two_body_model(J_p, J_g, z1, z2, r_bp, beta, law); // one pair touches
+  const double w0           = 5;
+  m.bodies[0].initial_speed = w0;
+  TrainRunOptions o;
+  o.duration          = 1e-3 / (r_bp * w0) + 1e-3; // reach the flank, bounce once
+  o.sample_rate       = 1e6;
+  const TrainResult r = simulate_train(m, o);
+  ASSERT_EQ(r.meshes[0].drive_impacts, 1u);
+  ASSERT_EQ(r.meshes[0].coast_impacts, 0u);
+  const std::size_t last     = r.t.size() - 1;
+  const double      v_after  = r_bp * r.speed[0][last] - r_bg * r.speed[1][last];
+  const double      v_before = r_bp * w0;
+
+  const double m_e = 1 / (r_bp * r_bp / J_p + r_bg * r_bg / J_g);
+  using State      = std::array<double, 2>; // d, d'
+  State  s{0.0, v_before};
+  double t   = 0;
+  auto   rhs = [&](const State &x, State &dx, double) {
+    dx[0] = x[1];
+    dx[1] = -impact_force(law, x[0], x[1]) / m_e;
+  };
+  boost::numeric::odeint::runge_kutta4<State> rk;
+  const double                                h = 1e-9;
+  do
+    {
+      rk.do_step(rhs, s, t, h);
+      t += h;
+    }
+  while (s[0] > 0 || t < 10 * h);
+  const double restitution = -s[1] / v_before;
+  EXPECT_GT(restitution, 0.1);
+  EXPECT_LT(restitution, 0.999);
+  EXPECT_NEAR(-v_after / v_before, restitution, 1e-4 * restitution);
+  EXPECT_LT(r.energy_error, 1e-6);
+}
+
+TEST(Train, KinematicsThroughTwoStagesAndAClosureError)
+{
+  TrainModel m;
+  m.bodies.resize(3);
+  for (int i = 0; i < 3; ++i)
+    m.bodies[i].name = "b" + std::to_string(i), m.bodies[i].inertia = 1e-3;
+  TrainMesh a, b;
+  a.name = "1", a.driver = 0, a.driven = 1, a.teeth.pinion_teeth = 17, a.teeth.gear_teeth = 60;
+  b.name = "2", b.driver = 1, b.driven = 2, b.teeth.pinion_teeth = 19, b.teeth.gear_teeth = 72;
+  m.meshes                    = {a, b};
+  const std::vector<double> w = train_speeds(m, 0, 167.5);
+  EXPECT_NEAR(w[1], 47.458, 5e-4);
+  EXPECT_NEAR(w[2], 12.524, 5e-4);
+  EXPECT_NEAR(w[1] / (2 * pi), 7.553, 5e-4);
+  EXPECT_NEAR(167.5 / w[2], 13.375 * (17.0 * 19 * 60 * 72) / (17 * 19 * 60 * 72), 1e-3);
+  // a third mesh from body 0 to body 2 with the wrong ratio does not close
+  TrainMesh c = a;
+  c.name = "loop", c.driven = 2, c.teeth.gear_teeth = 200;
+  m.meshes.push_back(c);
+  EXPECT_THROW(train_speeds(m, 0, 167.5), InputError);
+}
+
+TEST(Train, CrankSliderInertiaAgainstFiniteDifferencesOfItsKinematics)
+{
+  CrankSlider k;
+  k.crank_radius = 0.05, k.rod_length = 0.2, k.rod_centre = 0.08;
+  k.rod_mass = 1.2, k.rod_inertia = 4e-3, k.piston_mass = 2.0;
+  for (double c : {0.0, 0.3, 1.2, 2.5, 3.1, 4.0, 5.5})
+    {
+      // piston velocity per crank rate by differences of the position
+      const double h  = 1e-6;
+      const double xs = (k.piston(c + h).first - k.piston(c - h).first) / (2 * h);
+      EXPECT_NEAR(k.piston(c).second, xs, 1e-8);
+      // top dead centre: x = r + l
+      if (c == 0.0)
+        EXPECT_NEAR(k.piston(c).first, 0.25, 1e-15);
+      const auto [J, dJ] = k.inertia(c);
+      EXPECT_GE(J, 0);
+      EXPECT_NEAR(dJ, (k.inertia(c + 1e-4).first - k.inertia(c - 1e-4).first) / 2e-4, 1e-6);
+    }
+  // at dead centres the piston stands: only the rod's share remains
+  EXPECT_NEAR(k.inertia(0).first,
+              k.rod_mass * std::pow(0.05 * (1 - 0.08 / 0.2), 2) +
+                  k.rod_inertia * std::pow(0.05 / 0.2, 2),
+              1e-12);
+}
+
+TEST(Train, BadModelsAreRefusedByName)
+{
+  ImpactLaw  law{1e12, 2.2, 0, 0};
+  TrainModel m        = two_body_model(1e-3, 1e-2, 17, 60, 0.032, 1e-3, law);
+  m.bodies[1].inertia = -1;
+  try
+    {
+      simulate_train(m, {});
+      FAIL();
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("gear"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("inertia"), std::string::npos) << e.what();
+    }
+  m                  = two_body_model(1e-3, 1e-2, 17, 60, 0.032, 1e-3, law);
+  m.meshes[0].driven = 5;
+  EXPECT_THROW(simulate_train(m, {}), InputError);
+  m                        = two_body_model(1e-3, 1e-2, 17, 60, 0.032, 1e-3, law);
+  m.meshes[0].law.exponent = 0.5;
+  EXPECT_THROW(simulate_train(m, {}), InputError);
+}

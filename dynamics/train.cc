@@ -227,6 +227,22 @@ mod(int a, int n)
 {
   return ((a % n) + n) % n;
 }
+} // namespace
+
+double
+band_centre(const ToothPairTables &t)
+{
+  double                v[2], slope;
+  const ToothPairCurve &d = t.curve(drive_side, 0, mod(-1, t.gear_teeth));
+  const ToothPairCurve &c = t.curve(coast_side, 0, 0);
+  if (!interpolate(d, d.offset, 0.0, v[0], slope) || !interpolate(c, c.offset, 0.0, v[1], slope))
+    require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
+                  "curves that cover the pairing's centre (local angle 0)");
+  return (v[0] + v[1]) / 2;
+}
+
+namespace
+{
 
 /// One mesh at one state: forces on its bodies, energies, root functions, outputs.
 struct MeshEval
@@ -248,17 +264,7 @@ public:
   {
     n = int(model.bodies.size());
     for (const TrainMesh &mesh : model.meshes)
-      {
-        const ToothPairTables &t = mesh.teeth;
-        double                 v[2], slope;
-        const ToothPairCurve  &d = t.curve(drive_side, 0, mod(-1, t.gear_teeth));
-        const ToothPairCurve  &c = t.curve(coast_side, 0, 0);
-        if (!interpolate(d, d.offset, 0.0, v[0], slope) ||
-            !interpolate(c, c.offset, 0.0, v[1], slope))
-          require_value(false, "Train mesh " + mesh.name, "tooth pair curves at the pitch point", 0,
-                        "curves that cover the pairing's centre (local angle 0)");
-        centre.push_back((v[0] + v[1]) / 2);
-      }
+      centre.push_back(band_centre(mesh.teeth));
   }
 
   MeshEval

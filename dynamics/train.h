@@ -101,12 +101,18 @@ struct TrainMesh
   double          pinion_angle_0 = 0, gear_angle_0 = 0; ///< phi0, psi0 [rad]
   ToothPairTables teeth;
   ImpactLaw       law;
-  /// Reference radii of the relative displacement S = R_g (psi - psi_c) - R_p (phi - phi_c)
-  /// along the line of action (the seeds' S, with R the base radii; here S > 0 means the pinion
-  /// ahead, S >= B/2 drive contact for perfect flanks): R_p, R_g [m] and the band centre.
+  /// Base radii [m] of the relative displacement along the line of action
+  /// S = R_g ((z1/z2) phi + c - psi) (the seeds' S up to its sign: here S > 0 is the pinion
+  /// ahead; for perfect flanks S >= B/2 is drive contact, S <= -B/2 coast contact), c the
+  /// band centre (band_centre).
   double pinion_base_radius = 0, gear_base_radius = 0;
-  double band_centre = 0; ///< gear angle offset of the backlash band's centre [rad] at phi = 0
 };
+
+/// The gear angle offset c of the backlash band's centre [rad]: the mean of the drive and coast
+/// touch offsets of pairing 0 (pinion tooth 0) at its centre. A mesh placed with
+/// gear_angle_0 = c + (z1/z2) pinion_angle_0 starts in the middle of its backlash.
+double
+band_centre(const ToothPairTables &teeth);
 
 /// A torsional shaft between two bodies turning together (ratio 1): torque k (theta_b -
 /// theta_a) + c (w_b - w_a) on a, its opposite on b.

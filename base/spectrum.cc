@@ -49,3 +49,112 @@ mesh_order_amplitudes(const std::vector<double> &samples, int cycles, int max_or
   return amplitude;
 }
 } // namespace gearkit
+
+namespace gearkit
+{
+namespace
+{
+std::vector<double>
+window_weights(Window w, std::size_t n)
+{
+  std::vector<double> x(n, 1.0);
+  if (w == Window::rectangular)
+    return x;
+  const double a0 = w == Window::hann ? 0.5 : 25.0 / 46.0;
+  for (std::size_t i = 0; i < n; ++i)
+    x[i] = a0 - (1 - a0) * std::cos(2 * pi * double(i) / double(n)); // periodic form
+  return x;
+}
+
+/// Amplitudes of bins 0..n/2 of a windowed record (mean removed), coherent gain divided out.
+std::vector<double>
+windowed_amplitudes(const double *samples, std::size_t n, const std::vector<double> &w)
+{
+  double mean = 0, gain = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    mean += samples[i], gain += w[i];
+  mean /= double(n);
+  std::vector<double> x(n);
+  for (std::size_t i = 0; i < n; ++i)
+    x[i] = (samples[i] - mean) * w[i];
+  std::vector<double> a = amplitude_spectrum(x, int(n / 2));
+  for (double &v : a)
+    v *= double(n) / gain;
+  return a;
+}
+} // namespace
+
+FrequencySpectrum
+frequency_spectrum(const std::vector<double> &samples, double sample_rate, Window window)
+{
+  require_value(samples.size() >= 4, "spectrum", "samples", double(samples.size()), ">= 4");
+  require_value(sample_rate > 0, "spectrum", "sample rate [1/s]", sample_rate, "> 0");
+  FrequencySpectrum s;
+  s.window     = window;
+  s.resolution = sample_rate / double(samples.size());
+  s.amplitude =
+      windowed_amplitudes(samples.data(), samples.size(), window_weights(window, samples.size()));
+  return s;
+}
+
+SpectralLine
+spectral_peak(const FrequencySpectrum &s, double low, double high)
+{
+  const std::size_t n  = s.amplitude.size();
+  std::size_t       lo = std::size_t(std::max(1.0, std::ceil(low / s.resolution)));
+  std::size_t       hi = std::min(n - 2, std::size_t(std::floor(high / s.resolution)));
+  require_value(lo <= hi, "spectral peak", "band [Hz]", high, "a band that holds a bin");
+  std::size_t k = lo;
+  for (std::size_t i = lo; i <= hi; ++i)
+    if (s.amplitude[i] > s.amplitude[k])
+      k = i;
+  const double a = s.amplitude[k - 1], b = s.amplitude[k], c = s.amplitude[k + 1];
+  double       delta = 0;
+  if (s.window == Window::hann)
+    // a lone sinusoid's Hann main lobe: the neighbours' ratio gives the offset exactly
+    delta = c > a ? (2 * c - b) / (b + c) : -(2 * a - b) / (a + b);
+  else if (a > 0 && b > 0 && c > 0)
+    {
+      const double la = std::log(a), lb = std::log(b), lc = std::log(c);
+      delta = 0.5 * (la - lc) / (la - 2 * lb + lc);
+    }
+  delta = std::clamp(delta, -0.5, 0.5);
+  SpectralLine line;
+  line.frequency = (double(k) + delta) * s.resolution;
+  line.amplitude = b;
+  if (s.window == Window::hann && std::abs(delta) > 0)
+    {
+      // the Hann lobe's amplitude at offset delta: sinc(delta) / (1 - delta^2)
+      const double x = pi * delta;
+      line.amplitude = b * (1 - delta * delta) * x / std::sin(x);
+    }
+  return line;
+}
+
+Spectrogram
+spectrogram(const std::vector<double> &samples, double sample_rate, double window_seconds,
+            double overlap, Window window, double max_frequency)
+{
+  require_value(sample_rate > 0, "spectrogram", "sample rate [1/s]", sample_rate, "> 0");
+  require_value(overlap >= 0 && overlap < 1, "spectrogram", "overlap", overlap, "in [0, 1)");
+  const std::size_t n = std::size_t(std::lround(window_seconds * sample_rate));
+  require_value(n >= 4 && n <= samples.size(), "spectrogram", "window [s]", window_seconds,
+                "at least 4 samples and at most the record");
+  const std::size_t hop =
+      std::max<std::size_t>(1, std::size_t(std::lround(double(n) * (1 - overlap))));
+  const std::vector<double> w  = window_weights(window, n);
+  const double              df = sample_rate / double(n);
+  const std::size_t         bins =
+      max_frequency > 0 ? std::min(n / 2 + 1, std::size_t(max_frequency / df) + 1) : n / 2 + 1;
+  Spectrogram s;
+  for (std::size_t j = 0; j < bins; ++j)
+    s.frequency.push_back(df * double(j));
+  for (std::size_t start = 0; start + n <= samples.size(); start += hop)
+    {
+      s.time.push_back((double(start) + double(n) / 2) / sample_rate);
+      const std::vector<double> a = windowed_amplitudes(samples.data() + start, n, w);
+      s.amplitude.insert(s.amplitude.end(), a.begin(), a.begin() + long(bins));
+    }
+  return s;
+}
+} // namespace gearkit

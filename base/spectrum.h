@@ -1,4 +1,6 @@
-// Mesh-order harmonics of a transmission error sampled uniformly over whole mesh cycles (FFTW).
+// Amplitude spectra (FFTW): mesh-order harmonics of a transmission error sampled uniformly over
+// whole mesh cycles; windowed spectra of time signals in hertz with interpolated line
+// frequencies; short-time spectra (spectrograms) for run-ups.
 #pragma once
 
 #include <vector>
@@ -18,4 +20,53 @@ amplitude_spectrum(const std::vector<double> &samples, int max_bin);
 /// Orders above the Nyquist limit are reported as 0.
 std::vector<double>
 mesh_order_amplitudes(const std::vector<double> &samples, int cycles, int max_order);
+
+enum class Window
+{
+  rectangular,
+  hann,
+  hamming
+};
+
+/// A single-sided amplitude spectrum in hertz: a sinusoid of amplitude A at a bin's frequency
+/// shows A there (the window's coherent gain is divided out).
+struct FrequencySpectrum
+{
+  double              resolution = 0; ///< bin spacing [Hz] (sample rate / samples)
+  std::vector<double> amplitude;      ///< bins 0 .. n/2 (signal unit)
+  Window              window = Window::hann;
+  double
+  frequency(std::size_t bin) const
+  {
+    return resolution * double(bin);
+  }
+};
+
+/// The windowed spectrum of samples at a sample rate [1/s] (the mean removed first).
+FrequencySpectrum
+frequency_spectrum(const std::vector<double> &samples, double sample_rate,
+                   Window window = Window::hann);
+
+/// The largest line in [low, high] Hz: its frequency, interpolated between bins from the
+/// window's shape (Hann: exact for a lone sinusoid; others: parabolic on the log amplitude),
+/// and its amplitude.
+struct SpectralLine
+{
+  double frequency = 0, amplitude = 0;
+};
+SpectralLine
+spectral_peak(const FrequencySpectrum &spectrum, double low, double high);
+
+/// Short-time spectra: windows of `window_seconds`, each `overlap` (in [0, 1)) shared with the
+/// next, up to max_frequency (0: the Nyquist frequency).
+struct Spectrogram
+{
+  std::vector<double> time;      ///< window centres [s]
+  std::vector<double> frequency; ///< [Hz]
+  /// amplitude[i * frequency.size() + j]: window i, frequency j (signal unit)
+  std::vector<double> amplitude;
+};
+Spectrogram
+spectrogram(const std::vector<double> &samples, double sample_rate, double window_seconds,
+            double overlap, Window window = Window::hamming, double max_frequency = 0);
 } // namespace gearkit

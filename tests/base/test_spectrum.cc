@@ -27,3 +27,52 @@ TEST(Harmonics, RecoversKnownMeshOrders)
   EXPECT_NEAR(a[4], 0, 1e-13);
   EXPECT_THROW(mesh_order_amplitudes({1.0}, 1, 2), InputError);
 }
+
+TEST(FrequencySpectrum, HannInterpolationFindsALineBetweenBins)
+{
+  // 453.19 Hz (GMF1 of seed 002) with sidebands at +-1.993 Hz, 4 s at 20 kHz
+  const double        fs = 20e3, f = 453.19, fm = 1.993;
+  std::vector<double> x(80000);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      const double t = double(i) / fs;
+      x[i] = 3 + 500 * std::sin(2 * pi * f * t + 0.3) + 40 * std::cos(2 * pi * (f + fm) * t) +
+             40 * std::cos(2 * pi * (f - fm) * t);
+    }
+  const FrequencySpectrum s = frequency_spectrum(x, fs);
+  EXPECT_DOUBLE_EQ(s.resolution, 0.25);
+  const SpectralLine gmf = spectral_peak(s, 440, 460);
+  EXPECT_NEAR(gmf.frequency, f, 1e-4 * f); // well within 0.1 %
+  EXPECT_NEAR(gmf.amplitude, 500, 0.02 * 500);
+  const SpectralLine upper = spectral_peak(s, f + 1, f + 3);
+  EXPECT_NEAR(upper.frequency, f + fm, 1e-3 * (f + fm));
+  EXPECT_NEAR(upper.amplitude, 40, 0.1 * 40);
+  // the mean (3) is removed; what is left at 0 Hz is leakage of the lines
+  EXPECT_LT(s.amplitude[0], 0.1);
+}
+
+TEST(Spectrogram, FollowsARisingTone)
+{
+  // f(t) = 100 + 200 t Hz over 2 s; 50 ms Hamming windows, 80 % overlap
+  const double        fs = 10e3;
+  std::vector<double> x(20000);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      const double t = double(i) / fs;
+      x[i]           = std::sin(2 * pi * (100 * t + 100 * t * t));
+    }
+  const Spectrogram s = spectrogram(x, fs, 0.05, 0.8, Window::hamming, 1000);
+  ASSERT_GT(s.time.size(), 150u);
+  EXPECT_NEAR(s.time[1] - s.time[0], 0.01, 1e-12);
+  EXPECT_NEAR(s.frequency[1], 20, 1e-12);
+  const std::size_t nf = s.frequency.size();
+  for (std::size_t i = 0; i < s.time.size(); i += 20)
+    {
+      std::size_t k = 0;
+      for (std::size_t j = 0; j < nf; ++j)
+        if (s.amplitude[i * nf + j] > s.amplitude[i * nf + k])
+          k = j;
+      EXPECT_NEAR(s.frequency[k], 100 + 200 * s.time[i], 20) << "window at " << s.time[i] << " s";
+      EXPECT_NEAR(s.amplitude[i * nf + k], 1.0, 0.25);
+    }
+}

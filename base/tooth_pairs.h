@@ -22,7 +22,8 @@
 
 namespace gearkit
 {
-/// One class pair, one side: samples at local pinion angles start + i step.
+/// One class pair, one side: samples at local pinion angles start + i step; none where the
+/// pair never touches (e.g. a missing tooth).
 struct ToothPairCurve
 {
   double              start = 0; ///< local pinion angle of the first sample [rad]

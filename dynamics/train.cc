@@ -125,10 +125,11 @@ TrainModel::check() const
           if (int(side.size()) != t.pinion_classes * t.gear_classes)
             fail(where, "tooth pair tables (class pairs)", double(side.size()),
                  "one curve per class pair");
-          for (const ToothPairCurve &c : side)
-            if (c.offset.size() < 2 || c.arm.size() != c.offset.size() || !(c.step > 0))
+          for (const ToothPairCurve &c : side) // empty: the pair never touches (a missing tooth)
+            if (c.offset.size() == 1 || c.arm.size() != c.offset.size() ||
+                (!c.offset.empty() && !(c.step > 0)))
               fail(where, "tooth pair curve samples", double(c.offset.size()),
-                   ">= 2 samples, positive spacing");
+                   "none (never touching) or >= 2 samples, positive spacing");
         }
       const ImpactLaw &l = m.law;
       if (!(l.stiffness > 0) || !std::isfinite(l.stiffness))
@@ -199,7 +200,9 @@ bool
 interpolate(const ToothPairCurve &c, const std::vector<double> &y, double x, double &value,
             double &slope)
 {
-  const int    n = int(y.size());
+  const int n = int(y.size());
+  if (n < 2)
+    return false;
   const double s = (x - c.start) / c.step;
   if (!(s >= 0) || s > n - 1)
     return false;

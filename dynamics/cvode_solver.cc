@@ -160,7 +160,8 @@ CvodeSolver::advance(double t_out, double &t, std::vector<double> &y, std::vecto
 void
 CvodeSolver::reinit(double t, const std::vector<double> &y)
 {
-  quadratures(); // their values at t, where the method restarts
+  steps_before += steps_since_start(); // CVodeReInit zeroes CVODE's count
+  quadratures();                       // their values at t, where the method restarts
   N_Vector v = static_cast<N_Vector>(state);
   for (int i = 0; i < p.size; ++i)
     N_VGetArrayPointer(v)[i] = y[i];
@@ -181,10 +182,16 @@ CvodeSolver::quadratures() const
 }
 
 long
-CvodeSolver::steps() const
+CvodeSolver::steps_since_start() const
 {
   long n = 0;
   CVodeGetNumSteps(memory, &n);
   return n;
+}
+
+long
+CvodeSolver::steps() const
+{
+  return steps_before + steps_since_start();
 }
 } // namespace gearkit

@@ -51,10 +51,14 @@ public:
   /// The quadratures at the time last reached.
   std::vector<double>
   quadratures() const;
+  /// Steps taken since the start, restarts included.
   long
   steps() const;
 
 private:
+  long
+       steps_since_start() const;
+  long steps_before = 0;
   void
   release();
   void

@@ -254,8 +254,10 @@ struct MeshEval
   double force[2] = {0, 0};                    ///< normal force per side [N]
   double energy = 0, dissipation_rate = 0;
   double max_penetration[2] = {-HUGE_VAL, -HUGE_VAL};
-  double force_rate         = 0; ///< rate of the elastic force of all touching pairs
-  int    pairs              = 0;
+  /// The penetration rates of the touching pairs, weighted by d^(e-1): zero where their
+  /// elastic force peaks (a finite number at first touch, unlike the force's own rate)
+  double peak_rate = 0, peak_weight = 0;
+  int    pairs = 0;
 };
 
 class TrainSystem
@@ -310,7 +312,8 @@ public:
             e.force[side] += F;
             e.energy += impact_energy(m.law, d);
             e.dissipation_rate += (F - elastic) * d_rate;
-            e.force_rate += m.law.exponent * elastic / d * d_rate;
+            e.peak_rate += elastic / d * d_rate;
+            e.peak_weight += elastic / d;
             ++e.pairs;
           }
       }
@@ -452,9 +455,9 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
     return 0;
   };
   // per mesh: either side's deepest penetration (touch and separation), and the elastic force's
-  // rate while touching (its peaks). The touch functions carry a hysteresis of a thousandth of
-  // the absolute tolerance: a root never stays exactly zero on rounding-quantised penetrations
-  // (which CVODE refuses as a root "at and very near" the last).
+  // rate while touching (its peaks; positive without contact). The touch functions carry a
+  // hysteresis of a thousandth of the absolute tolerance: a root never stays exactly zero on
+  // rounding-quantised penetrations (which CVODE refuses as a root "at and very near" the last).
   std::vector<char> touching(2 * meshes, 0);
   const double      hysteresis = 1e-3 * o.absolute_tolerance;
   p.roots                      = 3 * meshes;
@@ -466,7 +469,7 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
         for (int side = 0; side < 2; ++side)
           g[3 * i + side] = std::max(e.max_penetration[side], floor) +
                             (touching[2 * i + side] ? hysteresis : -hysteresis);
-        g[3 * i + 2] = e.pairs ? e.force_rate : -1.0;
+        g[3 * i + 2] = e.pairs ? e.peak_rate / e.peak_weight : 1.0; // no sign change at touch
       }
   };
   // tolerances along the contact normals: angles over the body's largest base radius, speeds
@@ -557,8 +560,14 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
               contact_change = contact_change || fired[3 * i] || fired[3 * i + 1];
             }
           peaks(y);
-          if (contact_change && model.meshes[0].law.exponent < 2)
-            solver.reinit(t, y); // a kink of the force law: restart the method there
+          // restart the method at a kink of the force law (e < 2), and where a root function
+          // is exactly zero at the root (rounding-quantised rates): CVODE would take it for a
+          // root "at and very near" the last one, a restart sets it aside
+          std::vector<double> g(p.roots);
+          p.root_functions(t, y.data(), g.data());
+          if ((contact_change && model.meshes[0].law.exponent < 2) ||
+              std::find(g.begin(), g.end(), 0.0) != g.end())
+            solver.reinit(t, y);
           if (solver.steps() > o.max_steps)
             break;
         }

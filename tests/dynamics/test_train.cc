@@ -4,6 +4,7 @@
 // kinematics, the crank-slider's inertia, bad input.
 #include "base/types.h"
 #include "dynamics/train.h"
+#include "tests/dynamics/train_fixture.h"
 
 #include <boost/numeric/odeint.hpp>
 #include <gtest/gtest.h>
@@ -11,58 +12,7 @@
 #include <cmath>
 
 using namespace gearkit;
-
-namespace
-{
-/// Ideal conjugate flanks: every pairing touches over `contact_ratio` base pitches around its
-/// centre with a constant offset (drive -beta/2, coast +beta/2: the angular backlash beta) and
-/// arm r_bg; beyond, the flanks recede quadratically (100 um along the normal a pitch further)
-/// as tip edges do.
-ToothPairTables
-ideal_tables(int z1, int z2, double r_bg, double beta, double contact_ratio = 1.0)
-{
-  ToothPairTables t;
-  t.pinion_teeth = z1, t.gear_teeth = z2;
-  t.pinion_class.assign(z1, 0);
-  t.gear_class.assign(z2, 0);
-  t.pinion_classes = t.gear_classes = 1;
-  const double pitch                = 2 * pi / z1;
-  for (int side = 0; side < 2; ++side)
-    {
-      ToothPairCurve c;
-      const int      n = 64;
-      const double   s = side == drive_side ? -1.0 : 1.0;
-      c.step           = pitch / n;
-      c.start          = -(contact_ratio / 2 + 1) * pitch;
-      for (double x = c.start; x <= -c.start + 1e-12; x += c.step)
-        {
-          const double beyond = std::max(0.0, std::abs(x) - contact_ratio * pitch / 2) / pitch;
-          c.offset.push_back(s * (beta / 2 + 100e-6 / r_bg * beyond * beyond));
-          c.arm.push_back(r_bg);
-        }
-      t.curves[side] = {c};
-    }
-  return t;
-}
-
-TrainModel
-two_body_model(double J_p, double J_g, int z1, int z2, double r_bp, double beta,
-               const ImpactLaw &law, double contact_ratio = 1.0)
-{
-  TrainModel m;
-  m.bodies.resize(2);
-  m.bodies[0].name = "pinion", m.bodies[0].inertia = J_p;
-  m.bodies[1].name = "gear", m.bodies[1].inertia = J_g;
-  TrainMesh mesh;
-  mesh.name               = "stage";
-  mesh.pinion_base_radius = r_bp;
-  mesh.gear_base_radius   = r_bp * z2 / z1;
-  mesh.teeth              = ideal_tables(z1, z2, mesh.gear_base_radius, beta, contact_ratio);
-  mesh.law                = law;
-  m.meshes                = {mesh};
-  return m;
-}
-} // namespace
+using namespace gearkit::test_data;
 
 TEST(ImpactLaw, StepDampingContinuousNeverTensile)
 {

@@ -1,0 +1,127 @@
+// Stress tests of the gear-train impact model: a contact 1000 times stiffer, no backlash and a
+// millimetre of it, 20 000 rpm, a missing tooth. Each ends with finite results or a clear
+// InputError - never a hang (the step budget) and never a NaN.
+#include "dynamics/train.h"
+#include "tests/dynamics/train_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace gearkit;
+using namespace gearkit::test_data;
+
+namespace
+{
+/// Seed 002's first stage (17/60, m 4 mm) with ideal flanks: pinion A 1.06e-3 kg m^2, the
+/// gear side 0.05 kg m^2, 0.05 mm backlash, the seed's IMPACT law, 1 % resistive torque.
+TrainModel
+stage_one(double stiffness_factor = 1, double backlash = 0.05e-3)
+{
+  const double r_bp = 0.034 * std::cos(20 * pi / 180), r_bg = r_bp * 60 / 17;
+  ImpactLaw    law{stiffness_factor * impact_stiffness_si(2e7, 2.2, 1e-3), 2.2,
+                impact_stiffness_si(2e7 * 2e-4, 1.0, 1e-3), 1e-10};
+  TrainModel   m = two_body_model(1.06e-3, 0.05, 17, 60, r_bp, backlash / r_bg, law, 1.6);
+  m.bodies[0].initial_speed   = 167.5;
+  m.bodies[1].initial_speed   = 167.5 * 17 / 60;
+  m.bodies[0].torque.constant = 1.49;
+  m.bodies[1].torque.constant = -1.49 * 60 / 17;
+  return m;
+}
+
+void
+expect_finite(const TrainResult &r)
+{
+  for (const auto &w : r.speed)
+    for (double v : w)
+      ASSERT_TRUE(std::isfinite(v));
+  for (const MeshSeries &m : r.meshes)
+    for (double f : m.force)
+      {
+        ASSERT_TRUE(std::isfinite(f));
+        ASSERT_LT(std::abs(f), 1e9);
+      }
+}
+
+/// Runs; a failure must be an InputError that says what to change.
+void
+run_or_refuse(const TrainModel &m, const TrainRunOptions &o, const char *expect_in_message)
+{
+  try
+    {
+      const TrainResult r = simulate_train(m, o);
+      expect_finite(r);
+      EXPECT_LT(r.energy_error, 1e-6);
+      std::printf("ran: %zu steps, %zu impacts, max force %g N, energy error %g\n", r.steps,
+                  r.meshes[0].impacts, r.meshes[0].max_force, r.energy_error);
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find(expect_in_message), std::string::npos) << e.what();
+      std::printf("refused: %s\n", e.what());
+    }
+}
+} // namespace
+
+TEST(TrainStress, ContactThousandTimesStiffer)
+{
+  TrainRunOptions o;
+  o.duration = 0.02;
+  run_or_refuse(stage_one(1000), o, "gear train");
+  // a step budget too small for it: refused with the reason, not a hang
+  o.max_steps = 50;
+  try
+    {
+      simulate_train(stage_one(1000), o);
+      FAIL() << "expected the step budget to run out";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("integrator steps"), std::string::npos) << e.what();
+    }
+}
+
+TEST(TrainStress, NoBacklashAndAMillimetre)
+{
+  TrainRunOptions o;
+  o.duration = 0.02;
+  for (double b : {0.0, 1e-3})
+    {
+      const TrainResult r = simulate_train(stage_one(1, b), o);
+      expect_finite(r);
+      EXPECT_LT(r.energy_error, 1e-6) << "backlash " << b;
+      // S stays within the band, up to the penetrations
+      for (double s : r.meshes[0].relative)
+        EXPECT_LT(std::abs(s), b / 2 + 50e-6);
+    }
+}
+
+TEST(TrainStress, TwentyThousandRpm)
+{
+  TrainModel m              = stage_one();
+  m.bodies[0].initial_speed = 20000 * 2 * pi / 60;
+  m.bodies[1].initial_speed = m.bodies[0].initial_speed * 17 / 60;
+  TrainRunOptions o;
+  o.duration = 0.01;
+  run_or_refuse(m, o, "gear train");
+}
+
+TEST(TrainStress, MissingTooth)
+{
+  // pinion tooth 5 gone: its class pair never touches; the mesh runs on the others and loses
+  // contact once a pinion revolution, touching again with an impact
+  TrainModel m      = stage_one();
+  auto      &t      = m.meshes[0].teeth;
+  t.pinion_class    = std::vector<int>(17, 0);
+  t.pinion_class[5] = 1;
+  t.pinion_classes  = 2;
+  for (auto &side : t.curves)
+    side.push_back(ToothPairCurve{}); // class pair (1, 0): never touches
+
+  TrainRunOptions o;
+  o.duration          = 0.1; // 2.7 pinion revolutions
+  const TrainResult r = simulate_train(m, o);
+  expect_finite(r);
+  EXPECT_LT(r.energy_error, 1e-6);
+  EXPECT_GE(r.meshes[0].drive_impacts, 2u);
+}

@@ -4,6 +4,7 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <mutex>
@@ -129,6 +130,37 @@ spectral_peak(const FrequencySpectrum &s, double low, double high)
       line.amplitude = b * (1 - delta * delta) * x / std::sin(x);
     }
   return line;
+}
+
+ExpectedLine
+spectral_line_near(const FrequencySpectrum &s, double frequency, double half_width,
+                   double prominence)
+{
+  require_value(half_width >= s.resolution, "spectral line", "half width [Hz]", half_width,
+                "at least the resolution " + std::to_string(s.resolution) + " Hz");
+  require_value(frequency - half_width > s.resolution &&
+                    (frequency + half_width) / s.resolution < double(s.amplitude.size()) - 2,
+                "spectral line", "frequency [Hz]", frequency,
+                "a band inside the spectrum (above its first bin, below its last)");
+  ExpectedLine e;
+  e.expected = frequency;
+  e.line     = spectral_peak(s, frequency - half_width, frequency + half_width);
+  // the bin spectral_peak took, and the band's first and last bins
+  const std::size_t lo = std::size_t(std::ceil((frequency - half_width) / s.resolution));
+  const std::size_t hi = std::size_t(std::floor((frequency + half_width) / s.resolution));
+  std::size_t       k  = lo;
+  for (std::size_t i = lo; i <= hi; ++i)
+    if (s.amplitude[i] > s.amplitude[k])
+      k = i;
+  const double        reach = 10 * half_width / s.resolution;
+  const std::size_t   a     = std::size_t(std::max(1.0, double(k) - reach));
+  const std::size_t   b     = std::min(s.amplitude.size() - 1, std::size_t(double(k) + reach));
+  std::vector<double> near(s.amplitude.begin() + long(a), s.amplitude.begin() + long(b) + 1);
+  std::nth_element(near.begin(), near.begin() + long(near.size() / 2), near.end());
+  e.floor = near[near.size() / 2];
+  e.found = k > lo && k < hi && s.amplitude[k] > s.amplitude[k - 1] &&
+            s.amplitude[k] >= s.amplitude[k + 1] && s.amplitude[k] >= prominence * e.floor;
+  return e;
 }
 
 Spectrogram

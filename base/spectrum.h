@@ -57,6 +57,22 @@ struct SpectralLine
 SpectralLine
 spectral_peak(const FrequencySpectrum &spectrum, double low, double high);
 
+/// A line looked for at an expected frequency (a mesh frequency, its harmonics and sidebands):
+/// the largest bin within half_width [Hz] of it, interpolated as spectral_peak. It counts as
+/// found when that bin is a local maximum strictly inside the band (a bin on the band's edge is
+/// the skirt of a line outside it) and stands at least `prominence` times above the local floor,
+/// the median amplitude of the bins within 10 half-widths.
+struct ExpectedLine
+{
+  double       expected = 0; ///< [Hz]
+  SpectralLine line;         ///< the largest bin of the band, interpolated
+  double       floor = 0;    ///< median amplitude nearby (signal unit)
+  bool         found = false;
+};
+ExpectedLine
+spectral_line_near(const FrequencySpectrum &spectrum, double frequency, double half_width,
+                   double prominence = 4);
+
 /// Short-time spectra: windows of `window_seconds`, each `overlap` (in [0, 1)) shared with the
 /// next, up to max_frequency (0: the Nyquist frequency).
 struct Spectrogram

@@ -192,6 +192,17 @@ train_speeds(const TrainModel &model, int body, double speed)
   return w;
 }
 
+TrainFrequencies
+train_frequencies(const TrainModel &model, int body, double speed)
+{
+  TrainFrequencies f;
+  for (const double w : train_speeds(model, body, speed))
+    f.shaft.push_back(std::abs(w) / (2 * pi));
+  for (const TrainMesh &m : model.meshes)
+    f.mesh.push_back(m.teeth.pinion_teeth * f.shaft[std::size_t(m.driver)]);
+  return f;
+}
+
 namespace
 {
 /// Cubic Hermite interpolation of samples (slopes by central differences) with its derivative;
@@ -232,8 +243,8 @@ mod(int a, int n)
 }
 } // namespace
 
-double
-band_centre(const ToothPairTables &t)
+std::pair<double, double>
+band_edges(const ToothPairTables &t)
 {
   double                v[2], slope;
   const ToothPairCurve &d = t.curve(drive_side, 0, mod(-1, t.gear_teeth));
@@ -241,7 +252,14 @@ band_centre(const ToothPairTables &t)
   if (!interpolate(d, d.offset, 0.0, v[0], slope) || !interpolate(c, c.offset, 0.0, v[1], slope))
     require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
                   "curves that cover the pairing's centre (local angle 0)");
-  return (v[0] + v[1]) / 2;
+  return {v[0], v[1]};
+}
+
+double
+band_centre(const ToothPairTables &t)
+{
+  const auto [drive, coast] = band_edges(t);
+  return (drive + coast) / 2;
 }
 
 namespace

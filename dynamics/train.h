@@ -113,6 +113,11 @@ struct TrainMesh
 /// gear_angle_0 = c + (z1/z2) pinion_angle_0 starts in the middle of its backlash.
 double
 band_centre(const ToothPairTables &teeth);
+/// The drive and coast touch offsets of pairing 0 at its centre [rad] (band_centre is their
+/// mean): the mesh's relative displacement S is r_b2 (coast - drive) / 2 at drive contact and
+/// minus that at coast contact (half the normal backlash for perfect flanks).
+std::pair<double, double>
+band_edges(const ToothPairTables &teeth);
 
 /// A torsional shaft between two bodies turning together (ratio 1): torque k (theta_b -
 /// theta_a) + c (w_b - w_a) on a, its opposite on b.
@@ -191,4 +196,15 @@ simulate_train(const TrainModel &model, const TrainRunOptions &options);
 /// disagree).
 std::vector<double>
 train_speeds(const TrainModel &model, int body, double speed);
+
+/// The kinematic frequencies of a train running forward with body `body` at `speed` [rad/s]
+/// (train_speeds): every body's shaft frequency |w| / 2 pi and every mesh's tooth mesh
+/// frequency z_pinion |w_driver| / 2 pi [Hz].
+struct TrainFrequencies
+{
+  std::vector<double> shaft; ///< per body [Hz]
+  std::vector<double> mesh;  ///< per mesh [Hz]
+};
+TrainFrequencies
+train_frequencies(const TrainModel &model, int body, double speed);
 } // namespace gearkit

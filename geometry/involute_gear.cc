@@ -607,6 +607,40 @@ contact_ratios(const InvoluteGear &p, const InvoluteGear &g, double a)
   return c;
 }
 
+double
+circumferential_backlash(const InvoluteGear &p, const InvoluteGear &g, double a)
+{
+  const double a_w = working_centre_distance(p, g);
+  if (!(a >= a_w * (1 - 1e-12)))
+    throw InputError("backlash: centre distance " + std::to_string(a * 1e3) +
+                     " mm is below the zero-backlash working centre distance " +
+                     std::to_string(a_w * 1e3) + " mm (the teeth would overlap)");
+  const double alpha = std::acos(std::min(1.0, (p.base_radius + g.base_radius) / a));
+  return 2 * a * (inv(alpha) - inv(working_pressure_angle(p, g)));
+}
+
+double
+centre_distance_for_backlash(const InvoluteGear &p, const InvoluteGear &g, double backlash)
+{
+  require_value(backlash >= 0 && std::isfinite(backlash), "centre distance for a backlash",
+                "backlash [m]", backlash, ">= 0");
+  // Newton on j_t(a) = backlash from the first-order estimate; dj_t/da = 2 inv(alpha') - 2
+  // inv(alpha_w) + 2 tan(alpha') (d inv / da = tan(alpha') / a): increasing and convex.
+  const double a_w     = working_centre_distance(p, g);
+  const double alpha_w = working_pressure_angle(p, g);
+  double       a       = a_w + backlash / (2 * std::tan(alpha_w));
+  for (int i = 0; i < 50; ++i)
+    {
+      const double alpha = std::acos((p.base_radius + g.base_radius) / a);
+      const double f     = 2 * a * (inv(alpha) - inv(alpha_w)) - backlash;
+      const double slope = 2 * (inv(alpha) - inv(alpha_w)) + 2 * std::tan(alpha);
+      a -= f / slope;
+      if (std::abs(f) < 1e-15 * (1 + backlash))
+        break;
+    }
+  return std::max(a, a_w);
+}
+
 FlankGrid
 sample_flank(const Flank &flank, int n_u, int n_v, double margin)
 {

@@ -246,6 +246,21 @@ struct ContactRatios
 ContactRatios
 contact_ratios(const InvoluteGear &pinion, const InvoluteGear &gear, double centre_distance);
 
+/// Circumferential backlash of an external pair of nominal teeth at centre distance a, on the
+/// operating pitch circles: j_t = 2 a (inv(alpha'_t) - inv(alpha_wt)) with cos(alpha'_t) = (r_b1
+/// + r_b2) / a and alpha_wt the zero-backlash working pressure angle (the normal backlash along
+/// the line of action is j_bn = j_t cos(alpha'_t) = 2 (r_b1 + r_b2) (inv(alpha'_t) -
+/// inv(alpha_wt)); for small centre distance increases j_t ~ 2 da tan(alpha_wt)). Throws
+/// InputError for a below the zero-backlash working centre distance.
+double
+circumferential_backlash(const InvoluteGear &pinion, const InvoluteGear &gear,
+                         double centre_distance);
+/// The centre distance at which the nominal teeth have circumferential backlash j_t (>= 0) on
+/// the operating pitch circles (the inverse of circumferential_backlash: a_w + j_t / (2
+/// tan(alpha_wt)) to first order).
+double
+centre_distance_for_backlash(const InvoluteGear &pinion, const InvoluteGear &gear, double backlash);
+
 /// A sampled flank: n_u x n_v points stored row-major, index i_u * n_v + i_v.
 struct FlankGrid
 {

@@ -76,3 +76,37 @@ TEST(Spectrogram, FollowsARisingTone)
       EXPECT_NEAR(s.amplitude[i * nf + k], 1.0, 0.25);
     }
 }
+
+// Expected lines: a carrier at GMF1 with sidebands 30 dB down at +-1.993 Hz and a little
+// noise are found where they are; where there is nothing (+-5 Hz) the band's largest bin is
+// noise (not prominent) or the carrier's skirt (on the band's edge) and is not found.
+TEST(FrequencySpectrum, ExpectedLinesFoundOnlyWhereThereAreLines)
+{
+  const double        fs = 20e3, f = 453.19, fm = 1.993;
+  std::vector<double> x(60000); // 3 s: 1/3 Hz bins, the Hann main lobe +-2/3 Hz
+  unsigned            seed = 7;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      const double t     = double(i) / fs;
+      seed               = seed * 1103515245u + 12345u;
+      const double noise = (double((seed >> 8) & 0xffff) / 65535.0 - 0.5) * 2.0;
+      x[i]               = 500 * std::sin(2 * pi * f * t) + 16 * std::cos(2 * pi * (f + fm) * t) +
+             16 * std::cos(2 * pi * (f - fm) * t) + noise;
+    }
+  const FrequencySpectrum s = frequency_spectrum(x, fs);
+  for (double g : {f, f + fm, f - fm})
+    {
+      const ExpectedLine e = spectral_line_near(s, g, fm / 2);
+      EXPECT_TRUE(e.found) << g;
+      EXPECT_NEAR(e.line.frequency, g, 1e-3 * g) << g; // 0.1 %
+      EXPECT_EQ(e.expected, g);
+    }
+  EXPECT_NEAR(spectral_line_near(s, f, fm / 2).line.amplitude, 500, 10);
+  EXPECT_NEAR(spectral_line_near(s, f + fm, fm / 2).line.amplitude, 16, 1);
+  for (double g : {f + 2.5 * fm, f - 2.5 * fm, 300.0})
+    EXPECT_FALSE(spectral_line_near(s, g, fm / 2).found) << g;
+  // a band wider than the distance to the carrier ends on its skirt: the edge is no line
+  EXPECT_FALSE(spectral_line_near(s, f + 1.0, 0.4).found);
+  EXPECT_THROW(spectral_line_near(s, f, 0.1), InputError);  // narrower than a bin
+  EXPECT_THROW(spectral_line_near(s, 9999, 5), InputError); // beyond the spectrum
+}

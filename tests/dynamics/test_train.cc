@@ -149,6 +149,44 @@ TEST(Train, KinematicsThroughTwoStagesAndAClosureError)
   EXPECT_THROW(train_speeds(m, 0, 167.5), InputError);
 }
 
+// Seed 002's kinematic frequencies at input 167.5 rad/s (reference-data.md §2, derived from
+// the tooth counts alone): shafts 26.658 / 7.553 / 1.993 Hz, GMF1 = 17 x 26.658 = 453.19 Hz,
+// GMF2 = 19 x 7.553 = 143.51 Hz; the same from the output's speed (exact ratios: 1e-12).
+TEST(Train, KinematicFrequenciesOfSeed002)
+{
+  TrainModel m;
+  m.bodies.resize(3);
+  for (int i = 0; i < 3; ++i)
+    m.bodies[i].name = "b" + std::to_string(i), m.bodies[i].inertia = 1e-3;
+  TrainMesh a, b;
+  a.name = "1", a.driver = 0, a.driven = 1, a.teeth.pinion_teeth = 17, a.teeth.gear_teeth = 60;
+  b.name = "2", b.driver = 1, b.driven = 2, b.teeth.pinion_teeth = 19, b.teeth.gear_teeth = 72;
+  m.meshes                 = {a, b};
+  const TrainFrequencies f = train_frequencies(m, 0, 167.5);
+  ASSERT_EQ(f.shaft.size(), 3u);
+  ASSERT_EQ(f.mesh.size(), 2u);
+  EXPECT_NEAR(f.shaft[0], 167.5 / (2 * pi), 1e-12);
+  EXPECT_NEAR(f.shaft[1], 7.553, 5e-4);
+  EXPECT_NEAR(f.shaft[2], 1.993, 5e-4);
+  EXPECT_NEAR(f.mesh[0], 453.19, 5e-3);
+  EXPECT_NEAR(f.mesh[1], 143.51, 5e-3);
+  EXPECT_NEAR(f.mesh[0], 17 * f.shaft[0], 1e-12);
+  EXPECT_NEAR(f.mesh[1], 72 * f.shaft[2], 1e-10); // the gear's teeth at its own speed
+  const TrainFrequencies back = train_frequencies(m, 2, -12.524); // the sense does not matter
+  EXPECT_NEAR(back.mesh[0], 453.19, 0.2);
+}
+
+// band_edges: the drive and coast offsets of pairing 0 at its centre (ideal curves: -beta/2 and
+// +beta/2), whose mean is band_centre.
+TEST(Train, BandEdgesOfIdealCurves)
+{
+  const ToothPairTables t   = ideal_tables(17, 60, 0.1, 2e-3);
+  const auto [drive, coast] = band_edges(t);
+  EXPECT_NEAR(drive, -1e-3, 1e-15);
+  EXPECT_NEAR(coast, 1e-3, 1e-15);
+  EXPECT_NEAR(band_centre(t), 0, 1e-15);
+}
+
 TEST(Train, CrankSliderInertiaAgainstFiniteDifferencesOfItsKinematics)
 {
   CrankSlider k;

@@ -634,3 +634,52 @@ TEST(InvoluteModifications, OtherModificationsDoNotDependOnTheMate)
                   -3e-6 + 1e-6 * std::sin(2 * pi * (L_E - L_F) / 0.4e-3 + 30 * deg), 1e-13);
     }
 }
+
+// Backlash by the centre distance (seed 001, reference-data.md §2): j_t on the operating pitch
+// circles from the tooth thicknesses there (ISO 21771 s_yt, an independent route: p' - s_1(r'_1)
+// - s_2(r'_2)) against circumferential_backlash, and centre_distance_for_backlash as its
+// inverse. Seed 001: P_d 10 /in, 20 deg, 23/31 teeth, B 0.004 in: a = 2.700 in + B / (2 tan 20
+// deg) = 2.7055 in to first order, 2.70544 in exactly (the seed's 2.705 in). The
+// profile-shifted FZG C pair checks the zero-backlash working pressure angle's part.
+TEST(InvoluteGear, BacklashByTheCentreDistance)
+{
+  const double     inch = 25.4e-3;
+  InvoluteGearData dp, dg;
+  dp.teeth = 23, dg.teeth = 31;
+  dp.normal_module = dg.normal_module = inch / 10;
+  dp.face_width = dg.face_width = 0.5 * inch;
+  const auto [p, g]             = create_pair(dp, dg);
+  const auto [fp, fg] = create_pair(test_data::fzg_c_pair().first, test_data::fzg_c_pair().second);
+  auto thickness_backlash = [](const InvoluteGear &a, const InvoluteGear &b, double c) {
+    const double alpha = std::acos((a.base_radius + b.base_radius) / c);
+    const double r1 = a.base_radius / std::cos(alpha), r2 = b.base_radius / std::cos(alpha);
+    return 2 * pi * r1 / a.teeth() - a.tooth_thickness(r1) - b.tooth_thickness(r2);
+  };
+  for (const auto &[a, b] : {std::pair{p, g}, std::pair{fp, fg}})
+    {
+      const double a_w = working_centre_distance(*a, *b);
+      EXPECT_NEAR(circumferential_backlash(*a, *b, a_w), 0, 1e-15);
+      // roundings of the thicknesses' involute functions near 1e-16 m
+      for (double da : {1e-6, 0.127e-3, 1e-3})
+        EXPECT_NEAR(circumferential_backlash(*a, *b, a_w + da),
+                    thickness_backlash(*a, *b, a_w + da), 1e-13)
+            << da;
+      for (double j : {0.0, 1e-6, 0.1016e-3, 0.5e-3})
+        EXPECT_NEAR(circumferential_backlash(*a, *b, centre_distance_for_backlash(*a, *b, j)), j,
+                    1e-15)
+            << j;
+      EXPECT_THROW(circumferential_backlash(*a, *b, a_w - 1e-6), InputError);
+      EXPECT_THROW(centre_distance_for_backlash(*a, *b, -1e-6), InputError);
+    }
+  EXPECT_NEAR(working_centre_distance(*p, *g), 2.7 * inch, 1e-12);
+  // Exactly, j_t = 2 da tan(alpha_w) + da^2 / (a sin(alpha_w) cos(alpha_w)) + O(da^3): the
+  // first-order a (2.705495 in) is 5.2e-5 in too wide; with the second-order term the
+  // remainder, ~(da / a) x that term, is below 1e-5 in.
+  const double s = std::sin(20 * deg), c = std::cos(20 * deg), da1 = 0.004 / (2 * s / c);
+  EXPECT_NEAR(centre_distance_for_backlash(*p, *g, 0.004 * inch) / inch,
+              2.7 + da1 - da1 * da1 / (2.7 * s * c) / (2 * s / c), 1e-5);
+  EXPECT_NEAR(centre_distance_for_backlash(*p, *g, 0.004 * inch) / inch, 2.70544, 1e-5);
+  // the seed's 2.705 in (the exact 2.70544 in rounded): 0.00367 in of backlash (an independent
+  // evaluation of 2 a (inv alpha' - inv 20 deg) gave 0.0036717650919)
+  EXPECT_NEAR(circumferential_backlash(*p, *g, 2.705 * inch) / inch, 0.0036717650919, 1e-12);
+}

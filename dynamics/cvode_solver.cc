@@ -97,7 +97,11 @@ CvodeSolver::CvodeSolver(const CvodeProblem &problem, double t0, const std::vect
               N_Vector a = N_VClone(q);
               for (int i = 0; i < p.quadratures; ++i)
                 N_VGetArrayPointer(a)[i] = p.quadrature_tolerance[i];
-              const int flag = CVodeQuadSVtolerances(memory, p.relative_tolerance, a);
+              const int flag = CVodeQuadSVtolerances(memory,
+                                                     p.quadrature_relative_tolerance < 0
+                                                         ? p.relative_tolerance
+                                                         : p.quadrature_relative_tolerance,
+                                                     a);
               N_VDestroy(a);
               check(flag, "CVodeQuadSVtolerances", t0);
               check(CVodeSetQuadErrCon(memory, SUNTRUE), "CVodeSetQuadErrCon", t0);

@@ -21,8 +21,12 @@ struct CvodeProblem
   std::function<void(double t, const double *y, double *g)> root_functions;
   /// Quadratures q' = h(t, y) integrated alongside (e.g. the work and the dissipated energy of
   /// an energy balance), in the error test with these absolute tolerances (none: outside it)
-  int                                                         quadratures = 0;
-  std::vector<double>                                         quadrature_tolerance;
+  int                 quadratures = 0;
+  std::vector<double> quadrature_tolerance;
+  /// Relative tolerance of the quadratures' error test (< 0: relative_tolerance). A quadrature
+  /// that accumulates (work over a long run) lets its local error grow with its value under a
+  /// relative test; 0 holds every step to the absolute tolerances.
+  double                                                      quadrature_relative_tolerance = -1;
   std::function<int(double t, const double *y, double *qdot)> quadrature_rhs;
   bool                                                        bdf                = true;
   double                                                      relative_tolerance = 1e-8;

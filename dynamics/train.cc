@@ -441,6 +441,8 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   require(o.relative_tolerance > 0 && o.absolute_tolerance > 0, "tolerance",
           std::min(o.relative_tolerance, o.absolute_tolerance), "> 0");
   require(o.max_steps > 0, "max steps", double(o.max_steps), "> 0");
+  require(o.energy_tolerance >= 0 && o.energy_tolerance < 1, "energy tolerance", o.energy_tolerance,
+          "in [0, 1)");
   require(o.pairings_each_side >= 1 && o.pairings_each_side <= 50, "pairings each side",
           o.pairings_each_side, "in [1, 50]");
 
@@ -464,10 +466,15 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
     return 0;
   };
   p.quadratures = 2;
-  // the energies to the tolerance's share of the initial kinetic energy (at least a microjoule)
-  p.quadrature_tolerance.assign(2, o.relative_tolerance *
+  // the energies to the energy tolerance's share of the initial kinetic energy (at least a
+  // microjoule), in every step: a relative test would let the local error grow with the work
+  // done, which accumulates over a long run (a constant-speed drive against resistive torques)
+  const double energy_tolerance =
+      o.energy_tolerance > 0 ? o.energy_tolerance : o.relative_tolerance;
+  p.quadrature_tolerance.assign(2, energy_tolerance *
                                        std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
-  p.quadrature_rhs = [&](double t, const double *y, double *q) {
+  p.quadrature_relative_tolerance = energy_tolerance;
+  p.quadrature_rhs                = [&](double t, const double *y, double *q) {
     std::vector<double> alpha(n);
     sys.evaluate(t, y, y + n, alpha.data(), q[0], q[1]);
     return 0;

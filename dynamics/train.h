@@ -153,6 +153,11 @@ struct TrainRunOptions
   /// (angles: this over the largest base radius; speeds: over it and the shortest contact
   /// time scale).
   double relative_tolerance = 1e-9, absolute_tolerance = 1e-10;
+  /// Error test of the energy balance's quadratures (work, dissipated energy), relative and
+  /// absolute as a share of the initial kinetic energy (at least 1 uJ); 0: the relative
+  /// tolerance. Their local errors add up over the steps: a long run whose work is large
+  /// against its energies (a constant-speed drive against resistive torques) needs it smaller.
+  double energy_tolerance = 0;
   /// CVODE steps allowed in the whole run: beyond, a clear failure, never a hang.
   long max_steps = 20000000;
   /// Pairings examined on each side of the one at the line of centres.

@@ -119,6 +119,9 @@ UnloadedTca::touch_angle(int j, const Vec3 &X, double expected, double &psi, dou
     }
   if (!converged)
     return false;
+  // The gear passes through X once per turn: the pass nearest the expected angle (a Newton step
+  // across a near-singular Jacobian can land whole turns away).
+  psi                = expected + wrap(psi - expected);
   const double tol_u = 1e-12 * (d.u_max - d.u_min), tol_v = 1e-12 * (d.v_max - d.v_min);
   return u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u && v2 >= d.v_min - tol_v &&
          v2 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / gear->teeth() &&
@@ -250,6 +253,12 @@ UnloadedTca::pair_contact(int k, double phi) const
   set_contact_geometry(c, assembly, flank, gear_flank, phi, c.touch_angle);
   set_relative_curvature(c, assembly, flank, gear_flank, phi, c.touch_angle);
   return c;
+}
+
+PairContact
+UnloadedTca::pair(int k, double phi) const
+{
+  return pair_contact(k, phi);
 }
 
 TcaPosition

@@ -113,6 +113,13 @@ public:
   TcaPosition
   at(double pinion_angle) const;
 
+  /// Tooth pairing k alone at pinion angle phi, on options.side: pinion tooth mod(-k, z1) (the
+  /// k-th tooth to pass the line of centres) with gear tooth mod(k - 1, z2) on the drive flanks,
+  /// mod(k, z2) on the coast flanks (base/tooth_pairs.h). Not found when the flanks cannot meet
+  /// in this position (or a flank is missing); separation is left 0 (it needs the other pairs).
+  PairContact
+  pair(int k, double pinion_angle) const;
+
   /// options.positions_per_mesh x options.mesh_cycles positions from options.start_angle.
   TcaResult
   run() const;

@@ -246,10 +246,34 @@ mod(int a, int n)
 std::pair<double, double>
 band_edges(const ToothPairTables &t)
 {
-  double                v[2], slope;
-  const ToothPairCurve &d = t.curve(drive_side, 0, mod(-1, t.gear_teeth));
-  const ToothPairCurve &c = t.curve(coast_side, 0, 0);
-  if (!interpolate(d, d.offset, 0.0, v[0], slope) || !interpolate(c, c.offset, 0.0, v[1], slope))
+  // the most common class of a member; -1 when none is more common than every other
+  auto nominal = [](const std::vector<int> &classes, int count) {
+    std::vector<int> n(std::size_t(std::max(count, 0)), 0);
+    for (int c : classes)
+      if (c >= 0 && c < count)
+        ++n[std::size_t(c)];
+    int best = -1, most = 0, ties = 0;
+    for (int c = 0; c < count; ++c)
+      if (n[std::size_t(c)] > most)
+        best = c, most = n[std::size_t(c)], ties = 0;
+      else if (n[std::size_t(c)] == most)
+        ++ties;
+    return ties > 0 ? -1 : best;
+  };
+  const int             p = nominal(t.pinion_class, t.pinion_classes);
+  const int             g = nominal(t.gear_class, t.gear_classes);
+  const ToothPairCurve *d = &t.curve(drive_side, 0, mod(-1, t.gear_teeth));
+  const ToothPairCurve *c = &t.curve(coast_side, 0, 0);
+  if (p >= 0 && g >= 0 &&
+      !t.curves[drive_side][std::size_t(p * t.gear_classes + g)].offset.empty() &&
+      !t.curves[coast_side][std::size_t(p * t.gear_classes + g)].offset.empty())
+    {
+      d = &t.curves[drive_side][std::size_t(p * t.gear_classes + g)];
+      c = &t.curves[coast_side][std::size_t(p * t.gear_classes + g)];
+    }
+  double v[2], slope;
+  if (!interpolate(*d, d->offset, 0.0, v[0], slope) ||
+      !interpolate(*c, c->offset, 0.0, v[1], slope))
     require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
                   "curves that cover the pairing's centre (local angle 0)");
   return {v[0], v[1]};

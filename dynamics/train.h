@@ -108,14 +108,16 @@ struct TrainMesh
   double pinion_base_radius = 0, gear_base_radius = 0;
 };
 
-/// The gear angle offset c of the backlash band's centre [rad]: the mean of the drive and coast
-/// touch offsets of pairing 0 (pinion tooth 0) at its centre. A mesh placed with
-/// gear_angle_0 = c + (z1/z2) pinion_angle_0 starts in the middle of its backlash.
+/// The gear angle offset c of the backlash band's centre [rad]: the mean of band_edges. A mesh
+/// placed with gear_angle_0 = c + (z1/z2) pinion_angle_0 starts in the middle of its backlash.
 double
 band_centre(const ToothPairTables &teeth);
-/// The drive and coast touch offsets of pairing 0 at its centre [rad] (band_centre is their
-/// mean): the mesh's relative displacement S is r_b2 (coast - drive) / 2 at drive contact and
-/// minus that at coast contact (half the normal backlash for perfect flanks).
+/// The drive and coast touch offsets [rad] at the centre (local angle 0) of the nominal teeth:
+/// the class pair of the pinion's and the gear's most common classes (a defective tooth does not
+/// move the band of the others; when no class is more common than another, or that class pair
+/// has no curve, pairing 0's classes). The mesh's relative displacement S is r_b2 (coast - drive)
+/// / 2 at the nominal teeth's drive contact and minus that at their coast contact (half the
+/// normal backlash for perfect flanks).
 std::pair<double, double>
 band_edges(const ToothPairTables &teeth);
 

@@ -207,15 +207,41 @@ TEST(Train, KinematicFrequenciesOfSeed002)
   EXPECT_NEAR(back.mesh[0], 453.19, 0.2);
 }
 
-// band_edges: the drive and coast offsets of pairing 0 at its centre (ideal curves: -beta/2 and
-// +beta/2), whose mean is band_centre.
-TEST(Train, BandEdgesOfIdealCurves)
+// band_edges: the drive and coast offsets at the centre of the nominal teeth (ideal curves:
+// -beta/2 and +beta/2), whose mean is band_centre. A proud tooth 0 on the pinion (its own class,
+// its drive curve raised) or a gear tooth that never touches (its class's curves empty) does
+// not move the band of the others; with two classes of a member equally common, pairing 0's
+// classes count.
+TEST(Train, BandEdgesOfTheNominalTeeth)
 {
-  const ToothPairTables t   = ideal_tables(17, 60, 0.1, 2e-3);
+  ToothPairTables t         = ideal_tables(17, 60, 0.1, 2e-3);
   const auto [drive, coast] = band_edges(t);
   EXPECT_NEAR(drive, -1e-3, 1e-15);
   EXPECT_NEAR(coast, 1e-3, 1e-15);
   EXPECT_NEAR(band_centre(t), 0, 1e-15);
+  // pinion tooth 0 in a class of its own, 0.2 mrad proud on the drive flank; gear tooth 59 (the
+  // drive mate of pairing 0) in a class of its own that never touches
+  ToothPairTables d = t;
+  d.pinion_class[0] = 1, d.pinion_classes = 2;
+  d.gear_class[59] = 1, d.gear_classes = 2;
+  for (int side = 0; side < 2; ++side)
+    {
+      const ToothPairCurve nominal = t.curves[side][0];
+      ToothPairCurve       proud   = nominal;
+      if (side == drive_side)
+        for (double &o : proud.offset)
+          o += 2e-4;
+      d.curves[side] = {nominal, ToothPairCurve{}, proud, ToothPairCurve{}};
+    }
+  const auto [d_drive, d_coast] = band_edges(d);
+  EXPECT_NEAR(d_drive, -1e-3, 1e-15);
+  EXPECT_NEAR(d_coast, 1e-3, 1e-15);
+  // a two-tooth pinion with one tooth of each class: pairing 0's (the proud one)
+  ToothPairTables two = d;
+  two.pinion_teeth    = 2;
+  two.pinion_class    = {1, 0};
+  two.gear_class[59]  = 0;
+  EXPECT_NEAR(band_edges(two).first, -1e-3 + 2e-4, 1e-15);
 }
 
 TEST(Train, CrankSliderInertiaAgainstFiniteDifferencesOfItsKinematics)

@@ -77,7 +77,7 @@ check_identifier(const std::string &name, const std::string &where)
 
 namespace
 {
-const char *output_names = "flanks|measured|ste|stiffness|dynamics";
+const char *output_names = "flanks|measured|ste|stiffness|dynamics|train";
 
 // The stage sections in the order of the data flow, each with one subsection per pair.
 struct SectionDeclaration
@@ -92,13 +92,38 @@ const SectionDeclaration pair_sections[] = {{"Flanks", PairScene::declare},
                                             {"Loaded contact", LoadedScene::declare},
                                             {"Dynamics", DynamicsScene::declare}};
 
+/// A train's name with the names of its bodies and meshes (they name its subsections).
+struct TrainNames
+{
+  std::string              name;
+  std::vector<std::string> bodies, meshes;
+};
+
 void
-declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs)
+declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs,
+            const std::vector<TrainNames> &trains = {})
 {
   in_subsection(prm, {"Scene"}, [&] { Scene::declare(prm); });
   for (const SectionDeclaration &s : pair_sections)
     for (const std::string &pair : pairs)
       in_subsection(prm, {s.name, pair}, [&] { s.declare(prm); });
+  for (const TrainNames &t : trains)
+    in_subsection(prm, {"Train", t.name}, [&] { TrainScene::declare(prm, t.bodies, t.meshes); });
+}
+
+/// Names of a list entry, each checked as an identifier, unique, at most `most`.
+std::vector<std::string>
+names_of(const std::string &text, const std::string &where, std::size_t most)
+{
+  const std::vector<std::string> names = split_list(text);
+  for (const std::string &n : names)
+    check_identifier(n, where + ": the name");
+  if (names.size() > most)
+    throw InputError(where + ": " + std::to_string(names.size()) +
+                     " names is not allowed; at most " + std::to_string(most));
+  if (std::set<std::string>(names.begin(), names.end()).size() != names.size())
+    throw InputError(where + ": a name appears twice; each needs its own name");
+  return names;
 }
 
 // deal.II exceptions carry a long report; the user needs the "Additional information" part,
@@ -214,6 +239,9 @@ Scene::declare(ParameterHandler &prm)
   prm.declare_entry("pairs", "pair", Patterns::List(Patterns::Anything(), 1),
                     "Names of the gear pairs in this scene; each has a subsection of that name "
                     "in every stage subsection (letters, digits, _ and -, at most 64 characters).");
+  prm.declare_entry("trains", "", Patterns::List(Patterns::Anything(), 0),
+                    "Names of the gear trains in this scene (output train), each with a "
+                    "subsection Train/<name> whose meshes use pairs of this scene.");
 }
 
 Scene
@@ -245,9 +273,29 @@ read_scene(const std::string &file)
                          "' has no subsection Flanks/" + missing.front() +
                          "; describe every pair named in pairs (or remove the name)");
 
+      // 1b. The trains, and the names of their bodies and meshes (which name subsections).
+      std::vector<TrainNames> trains;
+      in_subsection(header, {"Scene"}, [&] {
+        for (const std::string &t : names_of(header.get("trains"), "Scene/trains", 20))
+          trains.push_back({t, {}, {}});
+      });
+      if (!trains.empty())
+        {
+          ParameterHandler names;
+          in_subsection(names, {"Scene"}, [&] { Scene::declare(names); });
+          for (const TrainNames &t : trains)
+            in_subsection(names, {"Train", t.name}, [&] { TrainScene::declare(names, {}, {}); });
+          names.parse_input(file, "", true);
+          for (TrainNames &t : trains)
+            in_subsection(names, {"Train", t.name}, [&] {
+              t.bodies = names_of(names.get("bodies"), "Train/" + t.name + "/bodies", 50);
+              t.meshes = names_of(names.get("meshes"), "Train/" + t.name + "/meshes", 50);
+            });
+        }
+
       // 2. Everything, strictly: unknown entries and values outside their patterns are errors.
       ParameterHandler prm;
-      declare_all(prm, pairs);
+      declare_all(prm, pairs, trains);
       prm.parse_input(file);
 
       // 3. Each section parses itself.
@@ -274,6 +322,13 @@ read_scene(const std::string &file)
           in_subsection(prm, {"Dynamics", p}, [&] { scene.dynamics[p].parse(prm); });
           scene.pairs.push_back(pair);
         }
+      for (const TrainNames &t : trains)
+        {
+          TrainScene train;
+          train.name = t.name;
+          in_subsection(prm, {"Train", t.name}, [&] { train.parse(prm); });
+          scene.trains.push_back(train);
+        }
 
       // 4. Each section checks itself against the rest of the scene: everything the scene
       //    alone can tell is refused here, before any stage runs.
@@ -287,6 +342,13 @@ read_scene(const std::string &file)
           scene.loaded.at(p).check(pair, scene.measured.at(p));
           scene.dynamics.at(p).check(pair, scene.tca.at(p));
         }
+      const bool train_wanted =
+          std::find(scene.outputs.begin(), scene.outputs.end(), "train") != scene.outputs.end();
+      if (train_wanted && scene.trains.empty())
+        throw InputError("Scene/trains is empty with outputs = train; name the trains to run "
+                         "(each with a subsection Train/<name>)");
+      for (const TrainScene &t : scene.trains)
+        t.check(scene);
 
       // 5. The parameters as text, one block per section: the cache keys hash these.
       std::ostringstream text;
@@ -315,27 +377,27 @@ print_parameters(std::ostream &out, const std::vector<std::string> &pairs)
   // deal.II's PRM listing omits the allowed values and its Description listing the defaults;
   // this one has both and is itself a valid scene file.
   ParameterHandler prm;
-  declare_all(prm, pairs);
+  declare_all(prm, pairs, {{"train", {"input", "output"}, {"stage"}}});
   std::stringstream json;
   prm.print_parameters(json, ParameterHandler::JSON);
   boost::property_tree::ptree tree;
   boost::property_tree::read_json(json, tree);
 
-  std::function<void(const boost::property_tree::ptree &, int)> print =
-      [&](const boost::property_tree::ptree &node, int depth) {
+  std::function<void(std::ostream &, const boost::property_tree::ptree &, int)> print =
+      [&](std::ostream &to, const boost::property_tree::ptree &node, int depth) {
         const std::string indent(2 * depth, ' ');
         for (const auto &[name, child] : node) // entries first, then subsections
           if (child.count("value"))
-            out << indent << "# " << child.get<std::string>("documentation") << "\n"
-                << indent << "# allowed: " << child.get<std::string>("pattern_description") << "\n"
-                << indent << "set " << name << " = " << child.get<std::string>("default_value")
-                << "\n\n";
+            to << indent << "# " << child.get<std::string>("documentation") << "\n"
+               << indent << "# allowed: " << child.get<std::string>("pattern_description") << "\n"
+               << indent << "set " << name << " = " << child.get<std::string>("default_value")
+               << "\n\n";
         for (const auto &[name, child] : node)
           if (!child.count("value"))
             {
-              out << indent << "subsection " << name << "\n";
-              print(child, depth + 1);
-              out << indent << "end\n\n";
+              to << indent << "subsection " << name << "\n";
+              print(to, child, depth + 1);
+              to << indent << "end\n\n";
             }
       };
   out << "# gearkit scene parameters: every entry with its help text, allowed values and default.\n"
@@ -344,8 +406,19 @@ print_parameters(std::ostream &out, const std::vector<std::string> &pairs)
   boost::property_tree::ptree scene_first;
   scene_first.add_child("Scene", tree.get_child("Scene"));
   for (const auto &[name, child] : tree)
-    if (name != "Scene")
+    if (name != "Scene" && name != "Train")
       scene_first.add_child(name, child);
-  print(scene_first, 0);
+  print(out, scene_first, 0);
+  // A train's section exists only for the trains Scene/trains names: commented out here (an
+  // example train "train" with bodies input, output and mesh stage), so that the listing stays
+  // a valid scene.
+  boost::property_tree::ptree train;
+  train.add_child("Train", tree.get_child("Train"));
+  std::stringstream train_text;
+  print(train_text, train, 0);
+  out << "# Train/<train> (name it in Scene/trains, its bodies in bodies, its meshes in meshes;\n"
+      << "# here an example train with bodies input, output and mesh stage):\n";
+  for (std::string line; std::getline(train_text, line);)
+    out << (line.empty() ? "#" : "# " + line) << "\n";
 }
 } // namespace gearkit

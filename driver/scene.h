@@ -10,11 +10,13 @@
 #pragma once
 
 #include "dynamics/integrators.h"
+#include "dynamics/train.h"
 #include "geometry/bevel_gear.h"
 #include "geometry/involute_gear.h"
 #include "stiffness/contact_cells.h"
 #include "stiffness/half_space.h"
 #include "tca/paper_mode.h"
+#include "tca/tooth_pairs.h"
 #include "tca/unloaded_tca.h"
 
 #include <iosfwd>
@@ -215,6 +217,99 @@ struct DynamicsScene
   check(const PairScene &pair, const TcaScene &tca) const;
 };
 
+/// One body of a gear train (Train/<train>/Bodies/<body>): a rigid rotor with its gears.
+struct TrainBodyScene
+{
+  std::string name;
+  /// Inertia about its axis [kg m^2]; auto: the polar inertias of its gears from their
+  /// geometry (InvoluteGear::mass_properties, chipped teeth included) plus shaft_inertia.
+  bool   inertia_auto  = false;
+  double inertia       = 0;
+  double shaft_inertia = 0;
+  /// Initial speed [rad/s]; kinematic: from the first body with a number, through the ratios.
+  bool        kinematic_speed = true;
+  double      initial_speed   = 0;
+  double      initial_angle   = 0; ///< [rad]
+  bool        constant_speed  = false;
+  TorqueLaw   torque; ///< SI
+  bool        has_crank = false;
+  CrankSlider crank;
+  /// Axis position in the plane of the train [m] (optional): fixes the centre distances.
+  bool   placed = false;
+  double x = 0, y = 0;
+};
+
+/// Where a mesh starts within its backlash.
+enum class MeshStart
+{
+  centre, ///< in the middle of the backlash
+  drive,  ///< the drive flanks of pairing 0 touching
+  coast   ///< the coast flanks of pairing 0 touching
+};
+
+/// One mesh of a train (Train/<train>/Meshes/<mesh>): an involute pair between two bodies.
+struct TrainMeshScene
+{
+  std::string name, pair, pinion_body, gear_body;
+  /// Circumferential backlash on the operating pitch circles [m], added by the centre
+  /// distance (centre_distance_for_backlash from the pair's TCA centre distance); 0: the TCA
+  /// centre distance as it is.
+  double backlash = 0;
+  double pinion_angle =
+      0; ///< pinion angle on its body [rad] (pairing 0 at the line of centres at 0)
+  MeshStart start = MeshStart::centre;
+};
+
+/// A gear train's impact dynamics (stage "train", section Train/<train>).
+struct TrainScene
+{
+  std::string                 name;
+  std::vector<TrainBodyScene> bodies;
+  std::vector<TrainMeshScene> meshes;
+  ImpactLaw                   law;    ///< SI, every mesh
+  ToothPairOptions            curves; ///< of every mesh's tooth pair tables
+  TrainRunOptions             run;
+  /// Spectra of the mesh forces from this time on [s] (0: the second half of the run), lines
+  /// looked for at GMF harmonics 1..harmonics and sidebands 1..sidebands shaft orders away.
+  double spectrum_start = 0;
+  int    harmonics = 4, sidebands = 2;
+  double spectrum_max_frequency = 0; ///< stored bins up to this [Hz] (0: all)
+  /// Spectrogram of the first mesh's force: window [s], overlap, top frequency [Hz] (0: Nyquist).
+  double spectrogram_window = 0.05, spectrogram_overlap = 0.8, spectrogram_max_frequency = 0;
+  /// The body whose mean speed over the spectrum interval sets the kinematic frequencies (empty:
+  /// the first constant-speed body, else the first body).
+  std::string reference_body;
+
+  /// Declares the section of a train with these body and mesh names.
+  static void
+  declare(ParameterHandler &prm, const std::vector<std::string> &bodies,
+          const std::vector<std::string> &meshes);
+  void
+  parse(ParameterHandler &prm);
+  /// Pairs named and involute, bodies named, no mesh from a body to itself, inertias, ratios
+  /// and centre distances that close, a speed to start from, run and spectrum settings.
+  void
+  check(const Scene &scene) const;
+
+  /// Index of a body by name (-1: none).
+  int
+  body_index(const std::string &body) const;
+  /// The reference body's index.
+  int
+  reference() const;
+  /// The train model without its tooth pair tables (the train stage adds those and the mesh
+  /// angles): bodies with their inertias (auto: from the gears' geometry) and initial speeds
+  /// (kinematic ones through the ratios), meshes with their bodies, tooth counts, base radii and
+  /// contact law.
+  TrainModel
+  model(const Scene &scene) const;
+};
+
+/// The centre distance of a train's mesh [m]: the pair's TCA centre distance (0 there: the
+/// zero-backlash working one) opened by the mesh's backlash.
+double
+train_mesh_centre_distance(const Scene &scene, const TrainMeshScene &mesh);
+
 struct Scene
 {
   std::string                          file;    ///< the scene file as given
@@ -226,11 +321,15 @@ struct Scene
   std::map<std::string, FeScene>       fe;       ///< by pair name
   std::map<std::string, LoadedScene>   loaded;   ///< by pair name
   std::map<std::string, DynamicsScene> dynamics; ///< by pair name
+  std::vector<TrainScene>              trains;   ///< Train/<train>, in the order of Scene/trains
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
   std::map<std::string, std::string> sections;
 
-  /// Section "Scene": name, outputs, pairs.
+  const PairScene &
+  pair(const std::string &name) const;
+
+  /// Section "Scene": name, outputs, pairs, trains.
   static void
   declare(ParameterHandler &prm);
 };

@@ -118,6 +118,13 @@ stage_definitions()
              return std::vector<std::string>{"stiffness"};
          return std::vector<std::string>{};
        }},
+      {"train",
+       "gear-train impact dynamics: tooth pair curves, IMPACT contact, CVODE run, spectra",
+       {"flanks"},
+       {"Flanks", "TCA", "Train"},
+       {"base", "geometry", "tca", "dynamics"},
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_train_stage},
   };
   return stages;
 }
@@ -144,11 +151,9 @@ upstream_of(const Scene &scene, const StageDefinition &stage)
 const std::map<std::string, std::string> &
 output_stages()
 {
-  static const std::map<std::string, std::string> map = {{"flanks", "flanks"},
-                                                         {"measured", "measured"},
-                                                         {"ste", "ste"},
-                                                         {"stiffness", "stiffness"},
-                                                         {"dynamics", "dynamics"}};
+  static const std::map<std::string, std::string> map = {
+      {"flanks", "flanks"},       {"measured", "measured"}, {"ste", "ste"},
+      {"stiffness", "stiffness"}, {"dynamics", "dynamics"}, {"train", "train"}};
   return map;
 }
 std::vector<std::string>

@@ -553,6 +553,9 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
         const MeshEval e = sys.mesh(i, state.data(), state.data() + n);
         out.meshes[i].max_force =
             std::max({out.meshes[i].max_force, e.force[drive_side], e.force[coast_side]});
+        out.meshes[i].max_penetration =
+            std::max({out.meshes[i].max_penetration, e.max_penetration[drive_side],
+                      e.max_penetration[coast_side]});
       }
   };
   auto record = [&](double t, const std::vector<double> &state, const std::vector<double> &q) {

@@ -174,8 +174,13 @@ struct MeshSeries
   std::vector<int>    pairs;             ///< tooth pairs touching
   std::size_t         impacts       = 0; ///< first touches of a side after separation
   std::size_t         drive_impacts = 0, coast_impacts = 0;
-  double              max_force     = 0;  ///< largest |force| over every CVODE step [N]
-  double              first_contact = -1; ///< time of the first touch [s] (-1: none)
+  double              max_force = 0; ///< largest |force| over every CVODE step [N]
+  /// Deepest penetration of a tooth pair at the samples and located events (the elastic force
+  /// peaks among them) [m]: the tooth pair curves must
+  /// reach this far beyond the conjugate touch (tca/tooth_pairs.h: their recess), or pairs leave
+  /// their curves while still touching (their force and stored energy lost at once).
+  double max_penetration = 0;
+  double first_contact   = -1; ///< time of the first touch [s] (-1: none)
 };
 
 struct TrainResult

@@ -12,6 +12,11 @@ usage: plot_results.py out/<scene>/results.h5
   ste_harmonics.md     mesh-order harmonics at the pitch point, theoretical and measured
   stiffness.png   loaded against unloaded TE, mesh stiffness over the mesh cycle (with ISO
                   6336), load sharing and the contact pressure on the pinion flank
+  train_<train>.png  per gear train: the relative displacement S of every mesh with its
+                  backlash band, its force, its force spectrum with the GMF harmonics and the
+                  sidebands found, the body speeds and the energy balance
+  train_compare.png  every train of the scene over each other: S, forces and speeds
+  train_spectrogram.png  the first mesh's force over time and frequency, per train
 """
 import os
 import sys
@@ -614,6 +619,180 @@ def plot_dynamics_time(dyn, out_dir):
     save(fig, os.path.join(out_dir, "dynamics_time.png"))
 
 
+TRAIN_COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
+
+
+def names_of(group, attribute):
+    return [s.strip() for s in group.attrs[attribute].split(",")]
+
+
+def time_axis(t):
+    """Times in ms for runs up to a second, else in s."""
+    return (t * 1e3, "time [ms]") if t[-1] <= 1.0 else (t, "time [s]")
+
+
+def plot_trains(trains, out_dir):
+    for name in trains:
+        plot_train(name, trains[name], out_dir)
+    plot_train_compare(trains, out_dir)
+    plot_train_spectrograms(trains, out_dir)
+
+
+def plot_train(name, g, out_dir):
+    """One gear train: per mesh S(t) with the backlash band (the seeds' Figures 3, 6, 7), the
+    normal force (drive +, coast -), the spectrum of the force magnitude over the analysis
+    interval with the GMF harmonics (red: a line found there, grey: none) and the sidebands found
+    (triangles); the body speeds and the energy balance."""
+    meshes = names_of(g, "meshes")
+    bodies = names_of(g, "bodies")
+    t, t_label = time_axis(g["time"][:])
+    fig, axes = plt.subplots(len(meshes) + 1, 3, figsize=(20, 4.0 * (len(meshes) + 1)),
+                             squeeze=False)
+    for row, mesh in zip(axes, meshes):
+        m = g["meshes"][mesh]
+        half = m["band_half_width"][()]
+        row[0].plot(t, m["relative"][:] * 1e6, lw=0.8)
+        for s, label in ((1, "drive contact"), (-1, "coast contact")):
+            row[0].axhline(s * half * 1e6, color="k", ls="--", lw=0.8)
+            row[0].text(t[-1], s * half * 1e6, " " + label, fontsize=7, va="center")
+        row[0].set_xlabel(t_label)
+        row[0].set_ylabel("S [um]")
+        row[0].set_title(f"{name} {mesh}: S along the line of action (band +-{half * 1e6:.1f} "
+                         "um)", fontsize=10)
+        row[1].plot(t, m["force"][:], lw=0.7, color="tab:red")
+        first = m["first_contact"][()]
+        row[1].set_xlabel(t_label)
+        row[1].set_ylabel("normal force [N]")
+        row[1].set_title(f"force (drive +, coast -): {m['impacts'][()]:.0f} impacts "
+                         f"({m['drive_impacts'][()]:.0f} drive, {m['coast_impacts'][()]:.0f} "
+                         f"coast), first {first * 1e3:.3g} ms, peak {m['max_force'][()]:.4g} N",
+                         fontsize=9)
+        sp = m["spectrum"]
+        a = sp["amplitude"][:]
+        f = np.arange(a.size) * sp["resolution"][()]
+        gmf = m["gmf"][()]
+        lines = sp["lines"]
+        harmonics = lines["harmonic"][:]
+        top = min(f[-1], (harmonics.max() + 0.6) * gmf) if harmonics.size else f[-1]
+        k = f <= top
+        row[2].plot(f[k], a[k], lw=0.7, color="tab:blue")
+        expected, found = lines["expected"][:], lines["found"][:]
+        freq, amp, side = lines["frequency"][:], lines["amplitude"][:], lines["sideband"][:]
+        for e, ok, h, s in zip(expected, found, harmonics, side):
+            if h > 0 and s == 0:
+                row[2].axvline(e, color="tab:red" if ok else "0.6", ls="-" if ok else ":",
+                               lw=0.8)
+        sb = (side != 0) & (found == 1) & (harmonics > 0)
+        row[2].plot(freq[sb], amp[sb], "v", color="tab:green", ms=4, label="sidebands found")
+        shaft = (harmonics == 0) & (found == 1)
+        row[2].plot(freq[shaft], amp[shaft], "s", color="tab:purple", ms=4,
+                    label="shaft orders found")
+        row[2].set_xlim(0, top)
+        row[2].set_xlabel("frequency [Hz]")
+        row[2].set_ylabel("amplitude of |force| [N]")
+        row[2].set_title(f"force spectrum from {sp['start'][()]:.3g} s: GMF {gmf:.2f} Hz "
+                         f"(red: harmonics found)", fontsize=9)
+        row[2].legend(fontsize=7)
+    last = axes[-1]
+    speed = g["speed"][:]
+    for i, body in enumerate(bodies):
+        last[0].plot(t, speed[i], lw=0.9, label=body)
+    last[0].set_xlabel(t_label)
+    last[0].set_ylabel("speed [rad/s]")
+    last[0].set_title(f"{name}: body speeds")
+    last[0].legend(fontsize=7)
+    work, kin, pot, dis = (g[k][:] for k in ("work", "kinetic", "potential", "dissipated"))
+    last[1].plot(t, work, label="work of the torques")
+    last[1].plot(t, kin - kin[0], label="kinetic energy change")
+    last[1].plot(t, pot - pot[0], label="stored (contacts)")
+    last[1].plot(t, dis, label="dissipated")
+    last[1].plot(t, work - (kin - kin[0]) - (pot - pot[0]) - dis, "k:", label="balance residual")
+    last[1].set_xlabel(t_label)
+    last[1].set_ylabel("energy [J]")
+    last[1].set_title(f"energy balance (error {g['energy_error'][()]:.2g} of the largest term)")
+    last[1].legend(fontsize=7)
+    kin_f = g["kinematics"]
+    text = [f"{g['steps'][()]:.0f} CVODE steps, {g['events'][()]:.0f} events, "
+            f"{g['seconds'][()]:.2f} s", "kinematic frequencies [Hz]:"]
+    for body, fr in zip(bodies, kin_f["shaft_frequency"][:]):
+        text.append(f"  {body}: {fr:.4f}")
+    for mesh, fr in zip(meshes, kin_f["mesh_frequency"][:]):
+        text.append(f"  GMF {mesh}: {fr:.3f}")
+    for body, j in zip(bodies, g["inertia"][:]):
+        text.append(f"  J {body}: {j:.4g} kg m^2")
+    last[2].axis("off")
+    last[2].text(0.02, 0.98, "\n".join(text), va="top", family="monospace", fontsize=9,
+                 transform=last[2].transAxes)
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, f"train_{name}.png"))
+
+
+def plot_train_compare(trains, out_dir):
+    """The trains of the scene over each other (perfect against defective gears): S and the
+    force of every mesh and the speed of every body (the seeds' comparisons). Trains whose names
+    end in the same _<suffix> (e.g. perfect_light, chipped_light) share a column; the others
+    share the first."""
+    groups = {}
+    for name in trains:
+        groups.setdefault(name.split("_", 1)[1] if "_" in name else "", []).append(name)
+    first = trains[next(iter(trains))]
+    meshes, bodies = names_of(first, "meshes"), names_of(first, "bodies")
+    rows = len(meshes) * 2 + len(bodies)
+    fig, axes = plt.subplots(rows, len(groups), figsize=(14 * len(groups) ** 0.5 + 4,
+                                                         2.6 * rows), squeeze=False)
+    for column, (suffix, names) in zip(axes.T, groups.items()):
+        for n, name in enumerate(names):
+            g = trains[name]
+            c = TRAIN_COLOURS[n % len(TRAIN_COLOURS)]
+            t, t_label = time_axis(g["time"][:])
+            for i, mesh in enumerate(meshes):
+                if mesh not in g["meshes"]:
+                    continue
+                m = g["meshes"][mesh]
+                column[2 * i].plot(t, m["relative"][:] * 1e6, lw=0.8, color=c, label=name)
+                if n == 0:
+                    half = m["band_half_width"][()] * 1e6
+                    for s in (1, -1):
+                        column[2 * i].axhline(s * half, color="k", ls="--", lw=0.7)
+                column[2 * i].set_ylabel(f"S {mesh} [um]")
+                column[2 * i + 1].plot(t, m["force"][:], lw=0.7, color=c, label=name)
+                column[2 * i + 1].set_ylabel(f"force {mesh} [N]")
+            for j, body in enumerate(names_of(g, "bodies")):
+                if j < len(bodies):
+                    column[2 * len(meshes) + j].plot(t, g["speed"][j], lw=0.8, color=c,
+                                                     label=name)
+                    column[2 * len(meshes) + j].set_ylabel(f"{body} [rad/s]")
+        for ax in column:
+            ax.legend(fontsize=7, loc="upper right")
+            ax.set_xlabel(t_label)
+        column[0].set_title(f"{', '.join(names)}: S per mesh (dashed: the backlash band), "
+                            "forces, speeds", fontsize=10)
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "train_compare.png"))
+
+
+def plot_train_spectrograms(trains, out_dir):
+    """Per train: the spectrogram of the first mesh's force magnitude (time on x, frequency on y,
+    colour: log10 amplitude), with its GMF from the kinematics at the end of the run."""
+    names = [n for n in trains if "spectrogram" in trains[n]]
+    if not names:
+        return
+    fig, axes = plt.subplots(len(names), 1, figsize=(12, 4.5 * len(names)), squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        s = trains[name]["spectrogram"]
+        t, f, a = s["time"][:], s["frequency"][:], s["amplitude"][:]
+        top = a.max()
+        image = ax.pcolormesh(t, f, np.log10(np.maximum(a.T, top * 1e-4)), shading="nearest",
+                              cmap="viridis")
+        fig.colorbar(image, ax=ax, label="log10 amplitude [N]")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("frequency [Hz]")
+        ax.set_title(f"{name}: spectrogram of the {s.attrs['mesh']} force magnitude "
+                     f"({(t[1] - t[0]) * 1e3 if t.size > 1 else 0:.0f} ms steps)")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "train_spectrogram.png"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -634,6 +813,8 @@ def main():
             plot_stiffness(f["stiffness"], f["flanks"], out_dir)
         if "dynamics" in f:
             plot_dynamics(f["dynamics"], f["flanks"], out_dir)
+        if "train" in f:
+            plot_trains(f["train"], out_dir)
 
 
 if __name__ == "__main__":

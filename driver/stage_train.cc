@@ -1,0 +1,283 @@
+// Stage "train": the impact dynamics of every gear train of the scene (dynamics/train.h). Each
+// mesh's tooth pair contact curves come from the pair's involute flanks at the mesh's centre
+// distance (tca/tooth_pairs.h), its gear starts in the middle of the backlash (or touching),
+// and the run is written with its kinematic frequencies, the mesh forces' spectra with the lines
+// found at the mesh frequencies, their harmonics and sidebands, and a spectrogram of the first
+// mesh's force.
+#include "base/spectrum.h"
+#include "driver/stages.h"
+#include "dynamics/train.h"
+#include "tca/tooth_pairs.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+namespace gearkit
+{
+namespace
+{
+/// The train model of the scene with its tooth pair tables and mesh angles.
+TrainModel
+train_model(const Scene &scene, const TrainScene &train)
+{
+  TrainModel model = train.model(scene);
+  for (std::size_t i = 0; i < train.meshes.size(); ++i)
+    {
+      const TrainMeshScene &s   = train.meshes[i];
+      TrainMesh            &m   = model.meshes[i];
+      const auto [pinion, gear] = scene.pair(s.pair).involute_members();
+      const double a            = train_mesh_centre_distance(scene, s);
+      m.teeth                   = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
+                                                    std::make_shared<InvoluteMemberFlanks>(gear), a,
+                                                    scene.tca.at(s.pair).misalignment, train.curves);
+      const auto [drive, coast] = band_edges(m.teeth);
+      const double offset       = s.start == MeshStart::centre  ? (drive + coast) / 2
+                                  : s.start == MeshStart::drive ? drive
+                                                                : coast;
+      const double ratio        = double(pinion->teeth()) / gear->teeth();
+      const double theta_p      = model.bodies[std::size_t(m.driver)].initial_angle;
+      const double theta_g      = model.bodies[std::size_t(m.driven)].initial_angle;
+      m.gear_angle_0            = offset + ratio * (theta_p + m.pinion_angle_0) - theta_g;
+    }
+  return model;
+}
+
+/// |x| of the samples from index `from` on.
+std::vector<double>
+magnitude(const std::vector<double> &x, std::size_t from)
+{
+  std::vector<double> m;
+  for (std::size_t i = from; i < x.size(); ++i)
+    m.push_back(std::abs(x[i]));
+  return m;
+}
+
+/// The lines of a mesh's force spectrum at its GMF harmonics and their sidebands (every
+/// shaft frequency of the train that the spectrum resolves).
+struct LineTable
+{
+  std::vector<double> expected, frequency, amplitude, floor;
+  std::vector<int>    found, harmonic, sideband, shaft;
+};
+
+LineTable
+find_lines(const FrequencySpectrum &s, double gmf, const std::vector<double> &shafts,
+           const TrainScene &train)
+{
+  LineTable    t;
+  const double top   = s.resolution * double(s.amplitude.size() - 3);
+  const double res   = s.resolution;
+  double       f_min = gmf;
+  for (double f : shafts)
+    if (f > 1.5 * res / 0.45) // resolved: its sidebands' bands hold at least 3 bins
+      f_min = std::min(f_min, f);
+  // one band width for every line of the mesh: less than half the closest spacing
+  const double half = std::max(0.45 * f_min, 1.5 * res);
+  auto         look = [&](double f, int h, int order, int shaft) {
+    if (f - half <= res || f + half >= top)
+      return;
+    const ExpectedLine e = spectral_line_near(s, f, half);
+    t.expected.push_back(f);
+    t.frequency.push_back(e.line.frequency);
+    t.amplitude.push_back(e.line.amplitude);
+    t.floor.push_back(e.floor);
+    t.found.push_back(e.found);
+    t.harmonic.push_back(h);
+    t.sideband.push_back(order);
+    t.shaft.push_back(shaft);
+  };
+  for (int h = 1; h <= train.harmonics; ++h)
+    {
+      look(h * gmf, h, 0, -1);
+      for (std::size_t b = 0; b < shafts.size(); ++b)
+        if (0.45 * shafts[b] >= half * (1 - 1e-12))
+          for (int j = 1; j <= train.sidebands; ++j)
+            for (int sign : {-1, 1})
+              look(h * gmf + sign * j * shafts[b], h, sign * j, int(b));
+    }
+  // the lowest shaft orders too (an eccentric or chipped tooth turns once per revolution)
+  for (std::size_t b = 0; b < shafts.size(); ++b)
+    if (0.45 * shafts[b] >= half * (1 - 1e-12))
+      for (int j = 1; j <= train.harmonics; ++j)
+        look(j * shafts[b], 0, j, int(b));
+  return t;
+}
+
+void
+write_lines(const H5Group &g, const LineTable &t)
+{
+  const hsize_t n = t.expected.size();
+  g.write("expected", t.expected, {n}, "Hz",
+          "where a line is looked for: harmonic x GMF + sideband x the shaft's frequency (harmonic "
+          "0: the shaft's own orders)");
+  g.write("frequency", t.frequency, {n}, "Hz",
+          "the largest bin's frequency within the band around it, interpolated (spectral_peak)");
+  g.write("amplitude", t.amplitude, {n}, "N", "its amplitude");
+  g.write("floor", t.floor, {n}, "N", "median amplitude within 10 band widths (the local floor)");
+  g.write("found", t.found, {n}, "1",
+          "1: a local maximum inside the band, 4 times above the floor (base/spectrum.h "
+          "spectral_line_near)");
+  g.write("harmonic", t.harmonic, {n}, "1", "GMF harmonic (0: shaft orders)");
+  g.write("sideband", t.sideband, {n}, "1", "sideband order (signed), or the shaft order");
+  g.write("shaft", t.shaft, {n}, "1", "body index of the shaft frequency (-1: none)");
+}
+} // namespace
+
+void
+run_train_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+{
+  for (const TrainScene &train : scene.trains)
+    {
+      const TrainModel  model = train_model(scene, train);
+      const auto        start = std::chrono::steady_clock::now();
+      const TrainResult r     = simulate_train(model, train.run);
+      const double      seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const H5Group     g  = out.group(train.name);
+      const hsize_t     n  = r.t.size();
+      const std::size_t nb = model.bodies.size();
+      std::string       names;
+      for (const TrainBody &b : model.bodies)
+        names += (names.empty() ? "" : ", ") + b.name;
+      g.attribute("bodies", names);
+      names.clear();
+      for (const TrainMesh &m : model.meshes)
+        names += (names.empty() ? "" : ", ") + m.name;
+      g.attribute("meshes", names);
+
+      // 1. time series and the energy balance
+      std::vector<double> inertia, initial, angle, speed;
+      for (std::size_t b = 0; b < nb; ++b)
+        {
+          inertia.push_back(model.bodies[b].inertia);
+          initial.push_back(model.bodies[b].initial_speed);
+          angle.insert(angle.end(), r.angle[b].begin(), r.angle[b].end());
+          speed.insert(speed.end(), r.speed[b].begin(), r.speed[b].end());
+        }
+      g.write("time", r.t, {n}, "s", "sample times");
+      g.write("inertia", inertia, {nb}, "kg m^2",
+              "each body's inertia about its axis (a crank-slider's varying part not included)");
+      g.write("initial_speed", initial, {nb}, "rad/s", "each body's speed at t = 0");
+      g.write("angle", angle, {nb, n}, "rad", "body angles (in the sense the train runs forward)");
+      g.write("speed", speed, {nb, n}, "rad/s", "body speeds");
+      g.write("work", r.work, {n}, "J", "work of the torques (constant-speed drives included)");
+      g.write("kinetic", r.kinetic, {n}, "J", "kinetic energy");
+      g.write("potential", r.potential, {n}, "J", "elastic energy stored in the contacts");
+      g.write("dissipated", r.dissipated, {n}, "J", "energy dissipated by the contact damping");
+      g.write("energy_error", r.energy_error, "1",
+              "max |work - kinetic change - potential change - dissipated| over the run, "
+              "relative to the largest of the terms");
+      g.write("steps", double(r.steps), "1", "CVODE steps");
+      g.write("events", double(r.events), "1", "contact events located (touch, separation, peaks)");
+      g.write("seconds", seconds, "s", "wall time of the run");
+
+      // 2. kinematic frequencies at the reference body's mean speed over the spectrum interval
+      const double t0 = train.spectrum_start > 0 ? train.spectrum_start : train.run.duration / 2;
+      const std::size_t from =
+          std::size_t(std::lower_bound(r.t.begin(), r.t.end(), t0 - 1e-12) - r.t.begin());
+      const int                  ref = train.reference();
+      const std::vector<double> &w   = r.speed[std::size_t(ref)];
+      const double               mean_speed =
+          std::accumulate(w.begin() + long(from), w.end(), 0.0) / double(w.size() - from);
+      const TrainFrequencies f = train_frequencies(model, ref, mean_speed);
+      const H5Group          k = g.group("kinematics");
+      k.write("reference_body", double(ref), "1", "index of the body whose speed sets them");
+      k.write("reference_speed", mean_speed, "rad/s", "its mean speed over the spectrum interval");
+      k.write("shaft_frequency", f.shaft, {nb}, "Hz", "every body's rotation frequency");
+      k.write("mesh_frequency", f.mesh, {hsize_t(f.mesh.size())}, "Hz",
+              "every mesh's tooth mesh frequency (GMF): pinion teeth x its shaft frequency");
+      log << "  " << train.name << ": " << r.steps << " steps, " << r.events << " events in "
+          << seconds << " s; energy error " << r.energy_error << "\n";
+
+      // 3. per mesh: series, impacts, the force spectrum and its lines
+      for (std::size_t i = 0; i < model.meshes.size(); ++i)
+        {
+          const TrainMesh      &m   = model.meshes[i];
+          const TrainMeshScene &s   = train.meshes[i];
+          const MeshSeries     &ms  = r.meshes[i];
+          const H5Group         mg  = g.group("meshes").group(m.name);
+          const auto [pinion, gear] = scene.pair(s.pair).involute_members();
+          const double a            = train_mesh_centre_distance(scene, s);
+          const auto [drive, coast] = band_edges(m.teeth);
+          mg.attribute("pair", s.pair);
+          mg.attribute("pinion_body", s.pinion_body);
+          mg.attribute("gear_body", s.gear_body);
+          mg.write("centre_distance", a, "m",
+                   "nominal centre distance (the TCA's centre distance error comes on top)");
+          mg.write("circumferential_backlash", circumferential_backlash(*pinion, *gear, a), "m",
+                   "of the nominal teeth on the operating pitch circles at that centre distance");
+          mg.write("band_half_width", m.gear_base_radius * (coast - drive) / 2, "m",
+                   "S at drive contact of pairing 0 (minus it at coast contact): half the normal "
+                   "backlash for perfect flanks");
+          mg.write("pinion_base_radius", m.pinion_base_radius, "m", "r_b1");
+          mg.write("gear_base_radius", m.gear_base_radius, "m", "r_b2");
+          mg.write("pinion_angle_0", m.pinion_angle_0, "rad", "pinion angle on its body");
+          mg.write("gear_angle_0", m.gear_angle_0, "rad", "gear angle on its body");
+          mg.write("relative", ms.relative, {n}, "m",
+                   "S = r_b2 ((z1/z2) phi + c - psi) along the line of action (> 0: pinion "
+                   "ahead; drive contact at +band_half_width, coast at -band_half_width)");
+          mg.write("force", ms.force, {n}, "N", "normal force, drive flanks + and coast -");
+          mg.write("pairs", ms.pairs, {n}, "1", "tooth pairs touching");
+          mg.write("impacts", double(ms.impacts), "1", "first touches of a side after separation");
+          mg.write("drive_impacts", double(ms.drive_impacts), "1", "of them on the drive flanks");
+          mg.write("coast_impacts", double(ms.coast_impacts), "1", "of them on the coast flanks");
+          mg.write("first_contact", ms.first_contact, "s", "time of the first touch (-1: none)");
+          mg.write("max_force", ms.max_force, "N",
+                   "largest force at the samples and located events (its peaks among them)");
+          mg.write("max_penetration", ms.max_penetration, "m",
+                   "deepest penetration of a tooth pair (the curves reach tooth pair recess "
+                   "beyond the conjugate touch)");
+          if (ms.max_penetration > 0.5 * train.curves.recess)
+            log << "  WARNING " << train.name << " " << m.name << ": a tooth pair penetrates "
+                << ms.max_penetration * 1e6 << " um, more than half the tooth pair curves' "
+                << "recess (" << train.curves.recess * 1e6 << " um): pairs may leave their "
+                << "curves still touching (raise Train/" << train.name
+                << "/Contact/tooth pair recess)\n";
+          mg.write("gmf", f.mesh[i], "Hz", "tooth mesh frequency (kinematics)");
+
+          const FrequencySpectrum spectrum =
+              frequency_spectrum(magnitude(ms.force, from), train.run.sample_rate, Window::hann);
+          std::size_t bins = spectrum.amplitude.size();
+          if (train.spectrum_max_frequency > 0)
+            bins =
+                std::min(bins, std::size_t(train.spectrum_max_frequency / spectrum.resolution) + 1);
+          const H5Group sg = mg.group("spectrum");
+          sg.write("start", r.t[from], "s", "the spectrum's record starts here (to the end)");
+          sg.write("resolution", spectrum.resolution, "Hz", "bin spacing");
+          sg.write("amplitude",
+                   std::vector<double>(spectrum.amplitude.begin(),
+                                       spectrum.amplitude.begin() + long(bins)),
+                   {hsize_t(bins)}, "N",
+                   "single-sided amplitude of the force magnitude |force| (Hann window, mean "
+                   "removed), bins 0, resolution, 2 resolution, ...");
+          const LineTable lines = find_lines(spectrum, f.mesh[i], f.shaft, train);
+          write_lines(sg.group("lines"), lines);
+          log << "  " << train.name << " " << m.name << ": " << ms.impacts << " impacts ("
+              << ms.drive_impacts << " drive, " << ms.coast_impacts << " coast), first contact "
+              << ms.first_contact * 1e3 << " ms, max force " << ms.max_force << " N, GMF "
+              << f.mesh[i] << " Hz";
+          if (!lines.expected.empty())
+            log << " found at " << lines.frequency[0] << " Hz";
+          log << "\n";
+        }
+
+      // 4. a spectrogram of the first mesh's force magnitude over the whole run
+      if (train.spectrogram_window > 0)
+        {
+          const Spectrogram sp = spectrogram(magnitude(r.meshes[0].force, 0), train.run.sample_rate,
+                                             train.spectrogram_window, train.spectrogram_overlap,
+                                             Window::hamming, train.spectrogram_max_frequency);
+          const H5Group     sg = g.group("spectrogram");
+          sg.attribute("mesh", model.meshes[0].name);
+          sg.write("time", sp.time, {hsize_t(sp.time.size())}, "s", "window centres");
+          sg.write("frequency", sp.frequency, {hsize_t(sp.frequency.size())}, "Hz", "bins");
+          sg.write("amplitude", sp.amplitude,
+                   {hsize_t(sp.time.size()), hsize_t(sp.frequency.size())}, "N",
+                   "amplitude of the first mesh's force magnitude per window (Hamming) and "
+                   "frequency");
+        }
+    }
+}
+} // namespace gearkit

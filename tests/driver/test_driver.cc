@@ -85,20 +85,24 @@ TEST_F(DriverTest, DefaultCaseCentreDistancesMatchPublishedPairs)
   EXPECT_NEAR(pinion.read_double("base_radius"), 36e-3 * std::cos(20 * pi / 180), 1e-15);
 }
 
-TEST_F(DriverTest, EveryDatasetHasUnitsAndDescription)
+namespace
 {
-  ASSERT_EQ(run({scene(small_scene)}), 0) << err.str();
-  const std::string path = (dir / "out/small/results.h5").string();
-  const hid_t       file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  ASSERT_GE(file, 0);
-  struct Count
-  {
-    int datasets = 0, missing = 0;
-  } count;
+/// Datasets of a result file, and how many of them lack a units or description attribute.
+struct DatasetCount
+{
+  int datasets = 0, missing = 0;
+};
+DatasetCount
+count_datasets(const std::string &path)
+{
+  DatasetCount count;
+  const hid_t  file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0)
+    return {-1, -1};
   H5Ovisit(
       file, H5_INDEX_NAME, H5_ITER_NATIVE,
       [](hid_t root, const char *name, const H5O_info_t *info, void *data) -> herr_t {
-        auto *c = static_cast<Count *>(data);
+        auto *c = static_cast<DatasetCount *>(data);
         if (info->type == H5O_TYPE_DATASET)
           {
             ++c->datasets;
@@ -110,6 +114,14 @@ TEST_F(DriverTest, EveryDatasetHasUnitsAndDescription)
       },
       &count);
   H5Fclose(file);
+  return count;
+}
+} // namespace
+
+TEST_F(DriverTest, EveryDatasetHasUnitsAndDescription)
+{
+  ASSERT_EQ(run({scene(small_scene)}), 0) << err.str();
+  const DatasetCount count = count_datasets((dir / "out/small/results.h5").string());
   EXPECT_GT(count.datasets, 40);
   EXPECT_EQ(count.missing, 0);
 }
@@ -958,4 +970,232 @@ TEST_F(DriverTest, ProfileSlopeDeviationActsOverTheEvaluationRangeInMesh)
   const auto  &m = pinion->data().drive_modifications;
   EXPECT_NEAR(evaluate_modifications(m, f, L1, 0).value - evaluate_modifications(m, f, LA, 0).value,
               -6e-6, 1e-12);
+}
+
+namespace
+{
+// A two-stage train of two spur pairs (19/37 and 20/40, m 2 mm): bodies a, b, c, meshes m1 (p1,
+// a to b) and m2 (p2, b to c), a held at 100 rad/s, the others kinematic with a small resistive
+// torque on c; 5 ms.
+const std::string train_scene = R"(
+subsection Scene
+  set name    = small
+  set outputs = train
+  set pairs   = p1, p2
+  set trains  = t
+end
+subsection Flanks
+  subsection p1
+    set grid profile points = 3
+    set grid face points    = 2
+    subsection Pinion
+      set number of teeth = 19
+      set normal module   = 2
+      set face width      = 10
+    end
+    subsection Gear
+      set number of teeth = 37
+      set normal module   = 2
+      set face width      = 10
+    end
+  end
+  subsection p2
+    set grid profile points = 3
+    set grid face points    = 2
+    subsection Pinion
+      set number of teeth = 20
+      set normal module   = 2
+      set face width      = 10
+    end
+    subsection Gear
+      set number of teeth = 40
+      set normal module   = 2
+      set face width      = 10
+    end
+  end
+end
+subsection Train
+  subsection t
+    set bodies = a, b, c
+    set meshes = m1, m2
+    subsection Run
+      set duration    = 0.005
+      set sample rate = 20000
+    end
+    subsection Spectrum
+      set spectrogram window = 2
+    end
+    subsection Bodies
+      subsection a
+        set inertia       = 1e-4
+        set initial speed = 100
+        set drive         = constant speed
+      end
+      subsection b
+        set inertia = auto
+      end
+      subsection c
+        set inertia = 2e-3
+        set torque  = -0.5
+      end
+    end
+    subsection Meshes
+      subsection m1
+        set pair        = p1
+        set pinion body = a
+        set gear body   = b
+        set backlash    = 0.05
+      end
+      subsection m2
+        set pair        = p2
+        set pinion body = b
+        set gear body   = c
+        set backlash    = 0.05
+        set initial contact = drive
+      end
+    end
+  end
+end
+)";
+} // namespace
+
+// The train stage end to end on a small two-stage train: the kinematics, the auto inertia of
+// the middle body (its two gears' polar inertias from the flanks stage), the backlash by the
+// centre distance (the nominal teeth's j_t on the operating pitch circles), the mesh placed at
+// drive contact, the energy balance; a rerun reuses the stage.
+TEST_F(DriverTest, TrainStageRunsASmallTwoStageTrain)
+{
+  const std::string file = scene(train_scene);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage train: ran"), std::string::npos) << out.str();
+  const H5File  f = H5File::open((dir / "out/small/results.h5").string());
+  const H5Group g = f.root().group("train/t");
+  EXPECT_EQ(g.read_attribute("bodies"), "a, b, c");
+  const auto inertia = g.read_doubles("inertia");
+  ASSERT_EQ(inertia.size(), 3u);
+  EXPECT_DOUBLE_EQ(inertia[0], 1e-4);
+  EXPECT_NEAR(inertia[1],
+              f.root().group("flanks/p1/gear").read_double("polar_inertia") +
+                  f.root().group("flanks/p2/pinion").read_double("polar_inertia"),
+              1e-15);
+  // kinematic speeds: b = 100 x 19/37, c = b x 20/40 (exact ratios)
+  const auto w0 = g.read_doubles("initial_speed");
+  EXPECT_NEAR(w0[1], 100.0 * 19 / 37, 1e-12);
+  EXPECT_NEAR(w0[2], 100.0 * 19 / 37 / 2, 1e-12);
+  const H5Group k = g.group("kinematics");
+  EXPECT_NEAR(k.read_doubles("mesh_frequency")[0], 19 * 100 / (2 * pi), 1e-9);
+  for (const char *mesh : {"m1", "m2"})
+    {
+      const H5Group m = g.group("meshes").group(mesh);
+      // 0.05 mm of circumferential backlash: half the normal backlash j_t cos(alpha') / 2 is
+      // the band's half width (about 23.5 um)
+      EXPECT_NEAR(m.read_double("circumferential_backlash"), 0.05e-3, 1e-12);
+      const double half = m.read_double("band_half_width");
+      EXPECT_NEAR(half, 0.05e-3 * std::cos(20.2 * pi / 180) / 2, 0.3e-6);
+      const auto S = m.read_doubles("relative");
+      ASSERT_EQ(S.size(), g.read_doubles("time").size());
+      if (std::string(mesh) == "m2") // placed at drive contact
+        EXPECT_NEAR(S.front(), half, 1e-9);
+      else
+        EXPECT_NEAR(S.front(), 0, 1e-9); // the middle of the backlash
+    }
+  EXPECT_LT(g.read_double("energy_error"), 1e-6);
+  const DatasetCount count = count_datasets((dir / "out/small/results.h5").string());
+  EXPECT_GT(count.datasets, 80);
+  EXPECT_EQ(count.missing, 0);
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage train: reused"), std::string::npos) << out.str();
+}
+
+// Bad trains are refused when the scene is read: the message names the section, the parameter,
+// the value and what is allowed; no stage runs and no result file is written.
+TEST_F(DriverTest, BadTrainsAreRefusedBeforeAnyStage)
+{
+  const std::string mesh3 = "    set meshes = m1, m2, m3";
+  const std::string add_m3 =
+      "      end\n      subsection m3\n        set pair        = p1\n        set pinion body = "
+      "a\n        set gear body   = c\n      end\n    end\n  end\nend\n";
+  const std::vector<BadScene> cases = {
+      {"meshes that do not close (ratios)",
+       "    set meshes = m1, m2",
+       mesh3,
+       {"Train/t/meshes", "tooth ratios do not close", "mesh m3", "rad/s"}},
+      {"axes whose distance is not the centre distance",
+       "        set inertia       = 1e-4\n",
+       "        set inertia       = 1e-4\n        set axis position = 0, 0\n",
+       {"Train/t/Meshes/m1", "axis position", "57 mm apart", "56.0", "within 1 um"}},
+      {"a body the train does not have",
+       "        set pinion body = a\n        set gear body   = b",
+       "        set pinion body = x\n        set gear body   = b",
+       {"Train/t/Meshes/m1/pinion body", "'x'", "a, b, c"}},
+      {"a pair the scene does not have",
+       "        set pair        = p2",
+       "        set pair        = q",
+       {"Train/t/Meshes/m2/pair", "'q'", "p1, p2"}},
+      {"a mesh from a body to itself",
+       "        set pinion body = a\n        set gear body   = b",
+       "        set pinion body = a\n        set gear body   = a",
+       {"Train/t/Meshes/m1/gear body", "'a'", "two different bodies"}},
+      {"a negative inertia",
+       "        set inertia = 2e-3",
+       "        set inertia = -2e-3",
+       {"Train/t/Bodies/c/inertia", "-0.002", "> 0"}},
+      {"an inertia that is no number",
+       "        set inertia = 2e-3",
+       "        set inertia = heavy",
+       {"Train/t/Bodies/c/inertia", "'heavy'", "a number [kg m^2] or auto"}},
+      {"no speed to start from",
+       "        set initial speed = 100\n",
+       "",
+       {"Train/t/Bodies", "every initial speed is kinematic"}},
+      {"a body in no mesh",
+       "    set bodies = a, b, c",
+       "    set bodies = a, b, c, d",
+       {"Train/t/bodies", "'d' is in no mesh"}},
+      {"a helical pair of equal hands",
+       "      set number of teeth = 20\n      set normal module   = 2\n      set face width      "
+       "= 10\n    end\n    subsection Gear\n      set number of teeth = 40\n      set normal "
+       "module   = 2\n      set face width      = 10",
+       "      set number of teeth = 20\n      set normal module   = 2\n      set face width      "
+       "= 10\n      set helix angle = 15\n    end\n    subsection Gear\n      set number of "
+       "teeth = 40\n      set normal module   = 2\n      set face width      = 10\n      set "
+       "helix angle = 15",
+       {"Flanks/p2", "opposite hands", "right"}},
+      {"a spiral bevel pair in a train",
+       "  subsection p2\n    set grid profile points = 3",
+       "  subsection p2\n    set type = spiral bevel\n    set grid profile points = 3",
+       {"Train/t/Meshes/m2/pair", "spiral bevel", "involute"}},
+      {"outputs train without trains",
+       "  set trains  = t\n",
+       "",
+       {"Scene/trains is empty", "outputs = train"}},
+      {"backlash and a TCA centre distance",
+       "subsection Train\n",
+       "subsection TCA\n  subsection p1\n    set centre distance = 56.5\n  end\nend\n"
+       "subsection Train\n",
+       {"Train/t/Meshes/m1/backlash", "TCA/p1/centre distance", "not both"}},
+      {"a backlash the teeth cannot bridge",
+       "        set backlash    = 0.05\n      end\n      subsection m2",
+       "        set backlash    = 50\n      end\n      subsection m2",
+       {"Train/t/Meshes/m1/backlash", "50 mm", "no longer reach"}},
+  };
+  for (const BadScene &c : cases)
+    {
+      std::string text = std::regex_replace(train_scene, std::regex(c.from), c.to,
+                                            std::regex_constants::format_first_only);
+      if (std::string(c.what).find("do not close") != std::string::npos)
+        text = std::regex_replace(text, std::regex("      end\n    end\n  end\nend\n$"), add_m3);
+      if (std::string(c.what).find("axes") != std::string::npos) // b at 57 mm from a
+        text =
+            std::regex_replace(text, std::regex("        set inertia = auto\n"),
+                               "        set inertia = auto\n        set axis position = 57, 0\n");
+      if (std::string(c.what).find("outputs train") != std::string::npos)
+        text = text.substr(0, text.find("subsection Train"));
+      ASSERT_NE(text, train_scene) << c.what;
+      EXPECT_EQ(run({scene(text)}), 1) << c.what << "\n" << out.str();
+      for (const std::string &e : c.expected)
+        EXPECT_NE(err.str().find(e), std::string::npos) << c.what << ": " << err.str();
+      EXPECT_EQ(out.str().find("stage "), std::string::npos) << c.what << ": a stage ran";
+      EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
+    }
 }

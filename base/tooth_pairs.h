@@ -13,8 +13,24 @@
 //   psi_touch = 2 pi k / z2 + (z1 / z2) phi_k + offset(phi_k)
 // and the flanks interpenetrate by d = arm(phi_k) (psi_touch - psi) on the drive side and
 // d = arm(phi_k) (psi - psi_touch) on the coast side (to first order in the angle: the gear
-// flank moves along its normal by arm dpsi), where d > 0. Outside a curve's samples the pair
-// cannot touch.
+// flank moves along its normal by arm dpsi), where d > 0. (UnloadedTca::pair(k, phi) is this
+// pairing; UnloadedTca::at's separation of a pair is -d at the gear's actual angle, its arm
+// taken with the gear flank's normal.)
+//
+// Offsets: zero for perfect involutes at the zero-backlash centre distance, on both sides. At a
+// larger centre distance (perfect involutes, symmetric about the line of centres at zero
+// rotation) the drive offset is -j / (2 r'_2) and the coast offset +j / (2 r'_2),
+// j the circumferential backlash on the operating pitch circles (j = p' - s_1(r'_1) -
+// s_2(r'_2)): the gear turns freely between them, coast - drive = j_bn / r_b2, j_bn the normal
+// backlash (~ 2 da sin(alpha'_wt)). More material on a drive flank (either member) raises the
+// drive offset (the gear is met earlier), on a coast flank it lowers the coast offset; an
+// eccentric pinion tooth of offset e moves its class's offset by +e / r_b2 (drive), -e / r_b2
+// (coast). Each curve runs over every position where the pair can touch, through the edge
+// contact of tips and chips, to where the touch angle has fallen behind its most advanced
+// value (the conjugate one) by the recess of tca/tooth_pairs.h along the normal: its first and
+// last samples stand off by more than that; outside them the pair does not touch (or stands
+// off further). A class pair whose teeth never mate (tooth counts with a common factor) has an
+// empty curve; it is never looked up by a pairing.
 #pragma once
 
 #include <array>
@@ -22,14 +38,18 @@
 
 namespace gearkit
 {
-/// One class pair, one side: samples at local pinion angles start + i step; none where the
-/// pair never touches (e.g. a missing tooth).
+/// One class pair, one side: samples at local pinion angles start + i step (start a multiple
+/// of step: one grid through local angle 0 for every curve).
 struct ToothPairCurve
 {
   double              start = 0; ///< local pinion angle of the first sample [rad]
   double              step  = 0; ///< their spacing [rad] (> 0)
   std::vector<double> offset;    ///< gear touch angle less (z1 / z2) x local pinion angle [rad]
-  std::vector<double> arm; ///< the gear's moment arm of the contact normal |(a x r) . n_g| [m]
+  /// The gear's moment arm of the contact normal |(a x r) . n| [m], a the gear axis, r from the
+  /// gear centre to the contact: n the gear flank's normal n_g, but the pinion flank's where an
+  /// edge of the gear flank (its tip, a chip) touches the pinion inside its flank (the normal
+  /// of the smooth surface; both agree in tangential contact). r_b2 cos(beta_b) for involutes.
+  std::vector<double> arm;
 };
 
 enum ToothPairSide

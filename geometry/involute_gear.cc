@@ -445,7 +445,7 @@ InvoluteFlank::contains(double u, double v) const
   const InvoluteGear &g = *gear;
   for (const ChippedTooth &c : g.d.chipped_teeth)
     if (c.tooth == tooth && u > g.roll_angle(c.radius) &&
-        v < -g.d.face_width / 2 + c.face_fraction * g.d.face_width)
+        (c.face_fraction >= 1 || v <= -g.d.face_width / 2 + c.face_fraction * g.d.face_width))
       return false;
   return true;
 }

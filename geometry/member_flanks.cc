@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+
 namespace gearkit
 {
 namespace
@@ -70,6 +72,21 @@ MemberFlanks::rotational_parameters(const Vec3 &) const
                    "projection (measured flanks: use the theoretical member's)");
 }
 
+int
+MemberFlanks::flank_class(int tooth) const
+{
+  return tooth;
+}
+
+int
+InvoluteMemberFlanks::flank_class(int tooth) const
+{
+  if (tooth < 0 || tooth >= teeth())
+    throw InputError(gear->data().name + ": tooth index " + std::to_string(tooth) +
+                     " is outside [0, " + std::to_string(teeth() - 1) + "]");
+  return classes[tooth];
+}
+
 std::pair<double, double>
 InvoluteMemberFlanks::rotational_parameters(const Vec3 &x) const
 {
@@ -90,6 +107,22 @@ InvoluteMemberFlanks::InvoluteMemberFlanks(std::shared_ptr<const InvoluteGear> g
   for (int k = 0; k < gear->teeth(); ++k)
     for (FlankSide side : {FlankSide::drive, FlankSide::coast})
       add(k, side, std::make_unique<InvoluteFlank>(gear->flank(k, side)));
+
+  // Tooth classes: pitch deviations and runout make every tooth its own.
+  const InvoluteGearData &d = gear->data();
+  const bool              pitch_errors =
+      std::any_of(d.single_pitch_deviations.begin(), d.single_pitch_deviations.end(),
+                  [](double f) { return f != 0; });
+  std::vector<bool> nominal(gear->teeth(), !pitch_errors && d.runout.eccentricity == 0);
+  for (const EccentricTooth &e : d.eccentric_teeth)
+    if (e.offset != 0)
+      nominal[e.tooth] = false;
+  for (const ChippedTooth &c : d.chipped_teeth)
+    nominal[c.tooth] = false;
+  const bool any_nominal = std::find(nominal.begin(), nominal.end(), true) != nominal.end();
+  int        next        = any_nominal ? 1 : 0;
+  for (int k = 0; k < gear->teeth(); ++k)
+    classes.push_back(nominal[k] ? 0 : next++);
 }
 
 namespace
@@ -150,6 +183,7 @@ MeasuredMemberFlanks::MeasuredMemberFlanks(const MeasuredMember &m)
   std::map<std::pair<int, int>, std::shared_ptr<const Flank>> measured;
   for (const MeasuredFlank &f : m.flanks)
     measured[{f.tooth, int(f.side)}] = std::make_shared<InterpolatedFlank>(f);
+  std::vector<std::pair<int, int>> sources(z, {-1, -1}); // measured tooth behind each side
   for (FlankSide side : {FlankSide::drive, FlankSide::coast})
     for (int k = 0; k < z; ++k)
       {
@@ -165,6 +199,23 @@ MeasuredMemberFlanks::MeasuredMemberFlanks(const MeasuredMember &m)
           add(k, side,
               std::make_unique<RotatedFlank>(measured.at({best, int(side)}),
                                              2 * pi * (k - best) / z));
+        (side == FlankSide::drive ? sources[k].first : sources[k].second) = best;
       }
+  // Teeth whose both sides are the same measured flanks turned into place form one class.
+  std::map<std::pair<int, int>, int> class_of;
+  for (int k = 0; k < z; ++k)
+    {
+      const auto it = class_of.emplace(sources[k], int(class_of.size())).first;
+      classes.push_back(it->second);
+    }
+}
+
+int
+MeasuredMemberFlanks::flank_class(int tooth) const
+{
+  if (tooth < 0 || tooth >= z)
+    throw InputError("measured member: tooth index " + std::to_string(tooth) + " is outside [0, " +
+                     std::to_string(z - 1) + "]");
+  return classes[tooth];
 }
 } // namespace gearkit

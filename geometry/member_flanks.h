@@ -9,6 +9,7 @@
 
 #include <map>
 #include <memory>
+#include <vector>
 
 namespace gearkit
 {
@@ -36,6 +37,12 @@ public:
   /// measured flank's points. Throws InputError for members without such a parametrisation.
   virtual std::pair<double, double>
   rotational_parameters(const Vec3 &x) const;
+  /// The class of a tooth (0 <= tooth < teeth()): teeth of one class have the same flanks, both
+  /// sides, up to a rotation about the member axis by their nominal angles 2 pi k / z (so a
+  /// contact computed for one of them serves all). Classes are numbered densely from 0. The
+  /// default: every tooth its own class (the tooth's index).
+  virtual int
+  flank_class(int tooth) const;
 
 protected:
   /// Implementations add their flanks in the constructor.
@@ -65,9 +72,16 @@ public:
   /// Roll angle at the radius of x (at least the base circle), and z.
   std::pair<double, double>
   rotational_parameters(const Vec3 &x) const override;
+  /// Class 0: every nominal tooth (no nonzero single pitch deviation anywhere in the data, as
+  /// cumulative pitch deviations move every tooth; no runout; neither an eccentric nor a chipped
+  /// tooth); every other tooth a class of its own (1, 2, ... in tooth order; from 0 when no
+  /// tooth is nominal).
+  int
+  flank_class(int tooth) const override;
 
 private:
   std::shared_ptr<const InvoluteGear> gear;
+  std::vector<int>                    classes; ///< per tooth
 };
 
 /// A perfect CMM of any member's flanks: n_profile x n_face points per flank (sample_flank),
@@ -87,8 +101,13 @@ public:
   {
     return z;
   }
+  /// Teeth whose flanks (both sides) are the same measured flanks turned into place share a
+  /// class; a tooth measured itself has one of its own.
+  int
+  flank_class(int tooth) const override;
 
 private:
-  int z;
+  int              z;
+  std::vector<int> classes; ///< per tooth
 };
 } // namespace gearkit

@@ -85,6 +85,13 @@ bool
 UnloadedTca::touch_angle(int j, const Vec3 &X, double expected, double &psi, double &u2,
                          double &v2) const
 {
+  return solve_touch(j, X, expected, psi, u2, v2) == Touch::on_flank;
+}
+
+UnloadedTca::Touch
+UnloadedTca::solve_touch(int j, const Vec3 &X, double expected, double &psi, double &u2,
+                         double &v2) const
+{
   // Solve r_g(u2, v2) = Rz(psi) Q for (u2, v2, psi) by Newton, from the coarse flank sample
   // nearest in the rotation-invariant (radius, z) and the polar angle difference.
   const Flank      &flank = gear->flank(j, options.side);
@@ -115,18 +122,24 @@ UnloadedTca::touch_angle(int j, const Vec3 &X, double expected, double &psi, dou
       v2 += step.y();
       psi += step.z();
       if (!std::isfinite(psi + u2 + v2))
-        return false;
+        return Touch::none;
     }
   if (!converged)
-    return false;
+    return Touch::none;
+  // The gear passes through X once per turn: the pass nearest the expected angle (a Newton step
+  // across a near-singular Jacobian can land whole turns away).
+  psi                = expected + wrap(psi - expected);
   const double tol_u = 1e-12 * (d.u_max - d.u_min), tol_v = 1e-12 * (d.v_max - d.v_min);
-  return u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u && v2 >= d.v_min - tol_v &&
-         v2 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / gear->teeth() &&
-         flank.contains(u2, v2);
+  if (!(u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u &&
+        std::abs(wrap(psi - expected)) < pi / gear->teeth()))
+    return Touch::none;
+  if (!(v2 >= d.v_min - tol_v && v2 <= d.v_max + tol_v))
+    return Touch::beyond_face;
+  return flank.contains(u2, v2) ? Touch::on_flank : Touch::none;
 }
 
 PairContact
-UnloadedTca::pair_contact(int k, double phi) const
+UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
 {
   // Pair k: the k-th pinion tooth to pass the line of centres (tooth -k) and its mate.
   PairContact  c;
@@ -136,14 +149,60 @@ UnloadedTca::pair_contact(int k, double phi) const
   c.gear_tooth       = mod(drive ? k - 1 : k, gear->teeth());
   if (!pinion->has(c.pinion_tooth, options.side) || !gear->has(c.gear_tooth, options.side))
     return c;
-  const Flank      &flank    = pinion->flank(c.pinion_tooth, options.side);
-  const FlankDomain d        = flank.domain();
-  const double      expected = ratio * phi;
+  const Flank      &flank      = pinion->flank(c.pinion_tooth, options.side);
+  const FlankDomain d          = flank.domain();
+  const Flank      &gear_flank = gear->flank(c.gear_tooth, options.side);
+  const FlankDomain dg         = gear_flank.domain();
+  const double      expected   = ratio * phi;
+
+  // (robust_search) A pinion point whose mate lies beyond an end of the gear's face: moved
+  // along the pinion's face (v1, at fixed u1) to where the gear's face end meets it, by Newton
+  // on r_g(u2, v_end) = Rz(psi) Q(X(u1, v1)). The contact of a face end then lies on a line of
+  // samples at fixed u1 instead of a thin band the pattern search cannot follow (a modified
+  // helical pinion's face edge stands off its face plane by the modification times sin beta_b,
+  // beyond the gear's face).
+  auto face_end = [&](double u1, double &v1, double &psi, double &u2, double &v2) {
+    v2 = v2 > dg.v_max ? dg.v_max : dg.v_min;
+    for (int it = 0; it < 40; ++it)
+      {
+        const FlankPoint p = flank.evaluate(u1, v1);
+        const FlankPoint q = gear_flank.evaluate(u2, v2);
+        const Vec3       Q =
+            assembly.global_to_gear_unrotated(assembly.pinion_to_global(p.position, phi));
+        const Vec3 RQ = rot_z(psi) * Q;
+        const Vec3 F  = q.position - RQ;
+        if (F.norm() < 1e-13)
+          {
+            psi                = expected + wrap(psi - expected);
+            const double tol_u = 1e-12 * (dg.u_max - dg.u_min) + 1e-12 / q.d_du.norm();
+            const double tol_v = 1e-12 * (d.v_max - d.v_min) + 1e-12 / p.d_dv.norm();
+            if (!(u2 >= dg.u_min - tol_u && u2 <= dg.u_max + tol_u && v1 >= d.v_min - tol_v &&
+                  v1 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / gear->teeth()))
+              return false;
+            u2 = std::clamp(u2, dg.u_min, dg.u_max);
+            v1 = std::clamp(v1, d.v_min, d.v_max);
+            return flank.contains(u1, v1) && gear_flank.contains(u2, v2);
+          }
+        Eigen::Matrix3d J;
+        J.col(0)        = q.d_du;
+        J.col(1)        = -(rot_z(psi) * assembly.global_to_gear_unrotated_vector(
+                                             assembly.pinion_vector_to_global(p.d_dv, phi)));
+        J.col(2)        = -Vec3::UnitZ().cross(RQ);
+        const Vec3 step = J.partialPivLu().solve(-F);
+        u2 += step.x();
+        v1 += step.y();
+        psi += step.z();
+        if (!std::isfinite(psi + u2 + v1))
+          return false;
+      }
+    return false;
+  };
 
   // s * touch angle of a pinion flank point; -inf where the gear flank cannot reach it.
   struct Sample
   {
     double value = -HUGE_VAL, u1 = 0, v1 = 0, psi = 0, u2 = 0, v2 = 0;
+    bool   face_end = false; ///< moved to the gear's face end (face_end above)
   };
   auto sample = [&](double u1, double v1) {
     Sample out;
@@ -151,51 +210,109 @@ UnloadedTca::pair_contact(int k, double phi) const
     out.v1 = std::clamp(v1, d.v_min, d.v_max);
     if (!flank.contains(out.u1, out.v1))
       return out;
-    const Vec3 X = assembly.pinion_to_global(flank.evaluate(out.u1, out.v1).position, phi);
-    if (touch_angle(c.gear_tooth, X, expected, out.psi, out.u2, out.v2))
+    const Vec3  X = assembly.pinion_to_global(flank.evaluate(out.u1, out.v1).position, phi);
+    const Touch t = solve_touch(c.gear_tooth, X, expected, out.psi, out.u2, out.v2);
+    out.face_end  = t == Touch::beyond_face && options.robust_search;
+    if (t == Touch::on_flank || (out.face_end && face_end(out.u1, out.v1, out.psi, out.u2, out.v2)))
       out.value = s * out.psi;
     return out;
   };
+  // t beats u; a sample moved to the gear's face end only by more than 1e-10 rad (a few pm at
+  // the flank): where the flanks touch along a line through the face end, the line's interior
+  // points are the contact (their tangency is pinned below; the face end's only to ~1e-7).
+  auto better = [](const Sample &t, const Sample &u) {
+    auto rank = [](const Sample &x) {
+      return x.face_end ? x.value - 1e-10 * (1 + std::abs(x.value)) : x.value;
+    };
+    return rank(t) > rank(u);
+  };
 
   // A grid over the flank, then a pattern search that halves its step around the best sample
-  // (it follows the maximum into corners and along edges as well as to interior maxima).
-  Sample    best;
-  const int nu = options.profile_samples, nv = options.face_samples;
+  // (it follows the maximum into corners and along edges as well as to interior maxima); with
+  // robust_search also around the grid's other local maxima and a nearby position's contact,
+  // the best result kept.
+  const int           nu = options.profile_samples, nv = options.face_samples;
+  const double        hu0 = (d.u_max - d.u_min) / (nu - 1), hv0 = (d.v_max - d.v_min) / (nv - 1);
+  std::vector<Sample> grid(nu * nv);
+  Sample              best;
   for (int i = 0; i < nu; ++i)
     for (int l = 0; l < nv; ++l)
       {
-        const Sample t = sample(d.u_min + (d.u_max - d.u_min) * i / (nu - 1),
-                                d.v_min + (d.v_max - d.v_min) * l / (nv - 1));
-        if (t.value > best.value)
+        Sample &t = grid[i * nv + l];
+        t         = sample(d.u_min + (d.u_max - d.u_min) * i / (nu - 1),
+                           d.v_min + (d.v_max - d.v_min) * l / (nv - 1));
+        if (better(t, best))
           best = t;
       }
+  std::vector<Sample> starts{best};
+  if (options.robust_search) // every local maximum of the grid (the best four) as well
+    {
+      std::vector<Sample> maxima;
+      for (int i = 0; i < nu; ++i)
+        for (int l = 0; l < nv; ++l)
+          {
+            const Sample &t     = grid[i * nv + l];
+            bool          local = t.value > -HUGE_VAL;
+            for (int a = -1; a <= 1 && local; ++a)
+              for (int b = -1; b <= 1 && local; ++b)
+                if ((a || b) && i + a >= 0 && i + a < nu && l + b >= 0 && l + b < nv)
+                  local = !better(grid[(i + a) * nv + l + b], t);
+            if (local)
+              maxima.push_back(t);
+          }
+      std::sort(maxima.begin(), maxima.end(), better);
+      for (std::size_t j = 0; j < maxima.size() && j < 4; ++j)
+        if (maxima[j].u1 != best.u1 || maxima[j].v1 != best.v1)
+          starts.push_back(maxima[j]);
+    }
+  if (near && near->found) // and a finer cluster around a nearby position's contact
+    {
+      Sample closest;
+      for (int i = -2; i <= 2; ++i)
+        for (int l = -2; l <= 2; ++l)
+          {
+            const Sample t = sample(near->u1 + i * hu0 / 4, near->v1 + l * hv0 / 4);
+            if (better(t, closest))
+              closest = t;
+          }
+      if (options.robust_search)
+        starts.push_back(closest);
+      else if (better(closest, starts[0]))
+        starts[0] = closest;
+    }
+  best = Sample();
+  for (Sample start : starts)
+    {
+      if (start.value == -HUGE_VAL)
+        continue;
+      double hu = hu0, hv = hv0;
+      while (hu > 1e-11 * (d.u_max - d.u_min) || hv > 1e-11 * (d.v_max - d.v_min))
+        {
+          Sample next = start;
+          for (int a = -1; a <= 1; ++a)
+            for (int b = -1; b <= 1; ++b)
+              if (a || b)
+                {
+                  const Sample t = sample(start.u1 + a * hu, start.v1 + b * hv);
+                  if (better(t, next))
+                    next = t;
+                }
+          if (next.u1 == start.u1 && next.v1 == start.v1)
+            hu /= 2, hv /= 2;
+          start = next;
+        }
+      if (better(start, best))
+        best = start;
+    }
   if (best.value == -HUGE_VAL)
     return c;
-  double hu = (d.u_max - d.u_min) / (nu - 1), hv = (d.v_max - d.v_min) / (nv - 1);
-  while (hu > 1e-11 * (d.u_max - d.u_min) || hv > 1e-11 * (d.v_max - d.v_min))
-    {
-      Sample next = best;
-      for (int a = -1; a <= 1; ++a)
-        for (int b = -1; b <= 1; ++b)
-          if (a || b)
-            {
-              const Sample t = sample(best.u1 + a * hu, best.v1 + b * hv);
-              if (t.value > next.value)
-                next = t;
-            }
-      if (next.u1 == best.u1 && next.v1 == best.v1)
-        hu /= 2, hv /= 2;
-      best = next;
-    }
 
   // Newton on the stationarity of the touch angle (the classical tangency condition) in the
   // free parameters: the pattern search locates the maximum to ~1e-8 (the touch angle is flat
   // there), Newton pins it to rounding. The gradient follows from the implicit function theorem
   // on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ. A pseudo-inverse
   // handles line contact (a singular Hessian along the contact line).
-  const Flank      &gear_flank = gear->flank(c.gear_tooth, options.side);
-  const FlankDomain dg         = gear_flank.domain();
-  auto              at_edge    = [](double x, double lo, double hi) {
+  auto at_edge = [](double x, double lo, double hi) {
     return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
   };
   const bool free_u = !at_edge(best.u1, d.u_min, d.u_max);
@@ -250,6 +367,12 @@ UnloadedTca::pair_contact(int k, double phi) const
   set_contact_geometry(c, assembly, flank, gear_flank, phi, c.touch_angle);
   set_relative_curvature(c, assembly, flank, gear_flank, phi, c.touch_angle);
   return c;
+}
+
+PairContact
+UnloadedTca::pair(int k, double phi, const PairContact *near) const
+{
+  return pair_contact(k, phi, near);
 }
 
 TcaPosition

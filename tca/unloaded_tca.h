@@ -27,6 +27,18 @@ struct TcaOptions
   int       profile_samples    = 17;   ///< initial search grid over each pinion flank ...
   int       face_samples       = 9;    ///< ... refined by successive zooms around the maximum
   double    contact_tolerance  = 1e-9; ///< pairs closer than this [m] count as touching
+  /// A more thorough search for edge contacts (the tooth pair curves, tca/tooth_pairs.h): the
+  /// pattern search also starts from the grid's other local maxima (the best four) and from the
+  /// neighbouring position's contact (pair(k, phi, near)), not only the best sample; and a
+  /// pinion point whose mate lies beyond an end of the gear's face is moved along the pinion's
+  /// face to where the gear's face end meets it, so that the search follows a face-end edge
+  /// contact (a modified helical pinion's face edge stands off its face plane by the
+  /// modification times sin(beta_b), just beyond the gear's face). Without it, a pair entering
+  /// or leaving mesh by an edge (a tip, a chip, a face end) can be found on a lower local
+  /// maximum, or ~0.1 um off at a face end. Off by default: slower, and a face-end contact's
+  /// normal is found only to ~1e-7, so that where it ties with another pair's conjugate contact
+  /// within rounding the leading pair may change.
+  bool robust_search = false;
 };
 
 /// One tooth pair at one position.
@@ -113,6 +125,16 @@ public:
   TcaPosition
   at(double pinion_angle) const;
 
+  /// Tooth pairing k alone at pinion angle phi, on options.side: pinion tooth mod(-k, z1) (the
+  /// k-th tooth to pass the line of centres) with gear tooth mod(k - 1, z2) on the drive flanks,
+  /// mod(k, z2) on the coast flanks (base/tooth_pairs.h). Not found when the flanks cannot meet
+  /// in this position (or a flank is missing); separation is left 0 (it needs the other pairs).
+  /// `near`: this pairing's contact at a nearby pinion angle, if known; the search then also
+  /// looks around its flank point (it follows an edge contact whose touching region is a sliver
+  /// the search grid misses, as at a helical gear's tip corner entering mesh).
+  PairContact
+  pair(int k, double pinion_angle, const PairContact *near = nullptr) const;
+
   /// options.positions_per_mesh x options.mesh_cycles positions from options.start_angle.
   TcaResult
   run() const;
@@ -146,7 +168,19 @@ public:
 
 private:
   PairContact
-  pair_contact(int k, double phi) const;
+  pair_contact(int k, double phi, const PairContact *near = nullptr) const;
+  /// touch_angle's solve: none (no solution near `expected`, or off the flank), beyond_face
+  /// (on the gear flank's surface continued beyond an end of its face: v2 outside the domain),
+  /// on_flank.
+  enum class Touch
+  {
+    none,
+    beyond_face,
+    on_flank
+  };
+  Touch
+  solve_touch(int gear_tooth, const Vec3 &X, double expected, double &psi, double &u2,
+              double &v2) const;
 
   std::shared_ptr<const MemberFlanks> pinion, gear;
   Assembly                            assembly;

@@ -465,6 +465,12 @@ TEST(MassProperties, ChippedToothRemovesItsVolume)
   EXPECT_FALSE(f.contains(whole->roll_angle_tip, -0.01));
   EXPECT_TRUE(f.contains(whole->roll_angle_tip, +0.01));
   EXPECT_TRUE(f.contains(whole->roll_angle_form, -0.01));
+  // a chip over the whole face leaves no material above its radius, face ends included
+  d.chipped_teeth    = {{0, r_chip, 1.0}};
+  const auto through = InvoluteGear::create(d)->flank(0, FlankSide::coast);
+  EXPECT_FALSE(through.contains(whole->roll_angle_tip, d.face_width / 2));
+  EXPECT_FALSE(through.contains(whole->roll_angle_tip, -d.face_width / 2));
+  EXPECT_TRUE(through.contains(whole->roll_angle_form, d.face_width / 2));
 }
 
 TEST(InvoluteGear, NormalDerivativesOfSpurFlank)

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 
 using namespace gearkit;
@@ -62,4 +63,47 @@ TEST(MemberFlanks, UnmeasuredTeethTakeTheNearestMeasuredFlankTurnedIntoPlace)
   EXPECT_LT(
       (e.evaluate(0.5 * (dm.u_min + dm.u_max), 0.5 * (dm.v_min + dm.v_max)).position - p).norm(),
       1e-12);
+}
+
+TEST(MemberFlanks, ToothClassesOfInvoluteAndMeasuredMembers)
+{
+  // Nominal teeth share class 0; an eccentric or chipped tooth has its own; any pitch deviation
+  // or runout makes every tooth its own class; the numbering is dense.
+  InvoluteGearData d;
+  d.teeth         = 9;
+  d.normal_module = 2e-3;
+  {
+    InvoluteMemberFlanks m(InvoluteGear::create(d));
+    for (int k = 0; k < 9; ++k)
+      EXPECT_EQ(m.flank_class(k), 0);
+  }
+  InvoluteGearData e = d;
+  e.eccentric_teeth  = {{4, FlankSide::coast, 3e-6}, {6, FlankSide::drive, 0}};
+  e.chipped_teeth    = {{2, 10e-3, 0.5}}; // r = 9 mm, r_a = 11 mm
+  InvoluteMemberFlanks m(InvoluteGear::create(e));
+  for (int k = 0; k < 9; ++k)
+    EXPECT_EQ(m.flank_class(k), k == 2 ? 1 : k == 4 ? 2 : 0) << k; // a zero offset is nominal
+  for (auto change : std::vector<std::function<void(InvoluteGearData &)>>{
+           [](InvoluteGearData &x) {
+             x.single_pitch_deviations = {1e-6, -1e-6, 0, 0, 0, 0, 0, 0, 0};
+           },
+           [](InvoluteGearData &x) { x.runout.eccentricity = 5e-6; }})
+    {
+      InvoluteGearData x = d;
+      change(x);
+      InvoluteMemberFlanks each(InvoluteGear::create(x));
+      for (int k = 0; k < 9; ++k)
+        EXPECT_EQ(each.flank_class(k), k);
+    }
+  EXPECT_THROW(m.flank_class(9), InputError);
+
+  // Measured: teeth standing in by one measured tooth's flanks share its class.
+  const auto           g = InvoluteGear::create(d);
+  MeasuredMemberFlanks one(virtual_cmm(*g, "gear", 9, 5, 0, {3}));
+  for (int k = 0; k < 9; ++k)
+    EXPECT_EQ(one.flank_class(k), 0);
+  MeasuredMemberFlanks two(virtual_cmm(*g, "gear", 9, 5, 0, {1, 5}));
+  // nearest measured tooth (ties to the lower index): 0-3 from tooth 1, 4-7 from 5, 8 from 1
+  for (int k = 0; k < 9; ++k)
+    EXPECT_EQ(two.flank_class(k), k >= 4 && k <= 7 ? 1 : 0) << k;
 }

@@ -128,7 +128,8 @@ UnloadedTca::solve_touch(int j, const Vec3 &X, double expected, double &psi, dou
     return Touch::none;
   // The gear passes through X once per turn: the pass nearest the expected angle (a Newton step
   // across a near-singular Jacobian can land whole turns away).
-  psi                = expected + wrap(psi - expected);
+  if (std::abs(psi - expected) > pi)
+    psi = expected + wrap(psi - expected);
   const double tol_u = 1e-12 * (d.u_max - d.u_min), tol_v = 1e-12 * (d.v_max - d.v_min);
   if (!(u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u &&
         std::abs(wrap(psi - expected)) < pi / gear->teeth()))

@@ -281,30 +281,42 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
       else if (better(closest, starts[0]))
         starts[0] = closest;
     }
-  best = Sample();
-  for (Sample start : starts)
-    {
-      if (start.value == -HUGE_VAL)
-        continue;
-      double hu = hu0, hv = hv0;
-      while (hu > 1e-11 * (d.u_max - d.u_min) || hv > 1e-11 * (d.v_max - d.v_min))
-        {
-          Sample next = start;
-          for (int a = -1; a <= 1; ++a)
-            for (int b = -1; b <= 1; ++b)
-              if (a || b)
-                {
-                  const Sample t = sample(start.u1 + a * hu, start.v1 + b * hv);
-                  if (better(t, next))
-                    next = t;
-                }
-          if (next.u1 == start.u1 && next.v1 == start.v1)
-            hu /= 2, hv /= 2;
-          start = next;
-        }
-      if (better(start, best))
-        best = start;
-    }
+  // Each start coarsely (to 1e-4 of the grid step), then the best of them to the end.
+  struct Search
+  {
+    Sample at;
+    double hu, hv;
+  };
+  auto refine = [&](Search &x, double until) {
+    while ((x.hu > 1e-11 * (d.u_max - d.u_min) || x.hv > 1e-11 * (d.v_max - d.v_min)) &&
+           x.hu > until * hu0)
+      {
+        Sample next = x.at;
+        for (int a = -1; a <= 1; ++a)
+          for (int b = -1; b <= 1; ++b)
+            if (a || b)
+              {
+                const Sample t = sample(x.at.u1 + a * x.hu, x.at.v1 + b * x.hv);
+                if (better(t, next))
+                  next = t;
+              }
+        if (next.u1 == x.at.u1 && next.v1 == x.at.v1)
+          x.hu /= 2, x.hv /= 2;
+        x.at = next;
+      }
+  };
+  Search found{Sample(), hu0, hv0};
+  for (const Sample &start : starts)
+    if (start.value > -HUGE_VAL)
+      {
+        Search x{start, hu0, hv0};
+        if (starts.size() > 1)
+          refine(x, 1e-4);
+        if (better(x.at, found.at))
+          found = x;
+      }
+  refine(found, 0);
+  best = found.at;
   if (best.value == -HUGE_VAL)
     return c;
 

@@ -39,8 +39,7 @@
 namespace gearkit
 {
 /// One class pair, one side: samples at local pinion angles start + i step (start a multiple
-/// of step: one grid through local angle 0 for every curve); none where the pair never touches
-/// (e.g. a missing tooth).
+/// of step: one grid through local angle 0 for every curve).
 struct ToothPairCurve
 {
   double              start = 0; ///< local pinion angle of the first sample [rad]

@@ -128,7 +128,8 @@ UnloadedTca::solve_touch(int j, const Vec3 &X, double expected, double &psi, dou
     return Touch::none;
   // The gear passes through X once per turn: the pass nearest the expected angle (a Newton step
   // across a near-singular Jacobian can land whole turns away).
-  psi                = expected + wrap(psi - expected);
+  if (std::abs(psi - expected) > pi)
+    psi = expected + wrap(psi - expected);
   const double tol_u = 1e-12 * (d.u_max - d.u_min), tol_v = 1e-12 * (d.v_max - d.v_min);
   if (!(u2 >= d.u_min - tol_u && u2 <= d.u_max + tol_u &&
         std::abs(wrap(psi - expected)) < pi / gear->teeth()))
@@ -280,30 +281,42 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
       else if (better(closest, starts[0]))
         starts[0] = closest;
     }
-  best = Sample();
-  for (Sample start : starts)
-    {
-      if (start.value == -HUGE_VAL)
-        continue;
-      double hu = hu0, hv = hv0;
-      while (hu > 1e-11 * (d.u_max - d.u_min) || hv > 1e-11 * (d.v_max - d.v_min))
-        {
-          Sample next = start;
-          for (int a = -1; a <= 1; ++a)
-            for (int b = -1; b <= 1; ++b)
-              if (a || b)
-                {
-                  const Sample t = sample(start.u1 + a * hu, start.v1 + b * hv);
-                  if (better(t, next))
-                    next = t;
-                }
-          if (next.u1 == start.u1 && next.v1 == start.v1)
-            hu /= 2, hv /= 2;
-          start = next;
-        }
-      if (better(start, best))
-        best = start;
-    }
+  // Each start coarsely (to 1e-4 of the grid step), then the best of them to the end.
+  struct Search
+  {
+    Sample at;
+    double hu, hv;
+  };
+  auto refine = [&](Search &x, double until) {
+    while ((x.hu > 1e-11 * (d.u_max - d.u_min) || x.hv > 1e-11 * (d.v_max - d.v_min)) &&
+           x.hu > until * hu0)
+      {
+        Sample next = x.at;
+        for (int a = -1; a <= 1; ++a)
+          for (int b = -1; b <= 1; ++b)
+            if (a || b)
+              {
+                const Sample t = sample(x.at.u1 + a * x.hu, x.at.v1 + b * x.hv);
+                if (better(t, next))
+                  next = t;
+              }
+        if (next.u1 == x.at.u1 && next.v1 == x.at.v1)
+          x.hu /= 2, x.hv /= 2;
+        x.at = next;
+      }
+  };
+  Search found{Sample(), hu0, hv0};
+  for (const Sample &start : starts)
+    if (start.value > -HUGE_VAL)
+      {
+        Search x{start, hu0, hv0};
+        if (starts.size() > 1)
+          refine(x, 1e-4);
+        if (better(x.at, found.at))
+          found = x;
+      }
+  refine(found, 0);
+  best = found.at;
   if (best.value == -HUGE_VAL)
     return c;
 

@@ -34,9 +34,9 @@ stage(const std::string &name, int driver, int z1, int z2, double module, double
   TrainMesh    m;
   m.name   = name;
   m.driver = driver, m.driven = driver + 1;
-  m.teeth = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
-                              std::make_shared<InvoluteMemberFlanks>(gear), a);
-  m.law   = ImpactLaw{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2,
+  m.teeth              = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
+                                           std::make_shared<InvoluteMemberFlanks>(gear), a);
+  m.law                = ImpactLaw{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2,
                     impact_stiffness_si(2e7 * 2e-4, 1.0, 1e-3), 1e-10};
   m.pinion_base_radius = pinion->base_radius;
   m.gear_base_radius   = gear->base_radius;
@@ -64,8 +64,8 @@ main(int argc, char **argv)
   const bool       quick = argc > 1 && std::string(argv[1]) == "--quick";
   const TrainModel base  = seed002();
   // 1. start-up: time against peak-force error
-  TrainModel startup              = base;
-  startup.bodies[0].torque.step   = 149.123;
+  TrainModel startup                     = base;
+  startup.bodies[0].torque.step          = 149.123;
   startup.bodies[0].torque.time_constant = 0.1;
   TrainRunOptions reference;
   reference.duration           = quick ? 0.3 : 3.0;
@@ -75,7 +75,7 @@ main(int argc, char **argv)
   const double t_ref = bench::median_seconds([&] { ref = simulate_train(startup, reference); }, 1);
   for (int m = 0; m < 2; ++m)
     {
-      const auto  &f = ref.meshes[m].force;
+      const auto &f = ref.meshes[m].force;
       std::size_t k = 0;
       for (std::size_t i = 0; i < f.size(); ++i)
         if (std::abs(f[i]) > std::abs(f[k]))
@@ -86,11 +86,11 @@ main(int argc, char **argv)
     }
   std::printf("first contact stage 1 at %.2f ms, stage 2 at %.2f ms\n",
               1e3 * ref.meshes[0].first_contact, 1e3 * ref.meshes[1].first_contact);
-  std::printf("start-up %.1f s, reference (adams, rtol 1e-12, atol 1e-13 m): %.1f s, %zu steps, "
-              "peak forces %.1f / %.1f N, energy error %.1e, final speeds %.3f / %.3f / %.3f rad/s\n",
-              reference.duration, t_ref, ref.steps, ref.meshes[0].max_force,
-              ref.meshes[1].max_force, ref.energy_error, ref.speed[0].back(),
-              ref.speed[1].back(), ref.speed[2].back());
+  std::printf(
+      "start-up %.1f s, reference (adams, rtol 1e-12, atol 1e-13 m): %.1f s, %zu steps, "
+      "peak forces %.1f / %.1f N, energy error %.1e, final speeds %.3f / %.3f / %.3f rad/s\n",
+      reference.duration, t_ref, ref.steps, ref.meshes[0].max_force, ref.meshes[1].max_force,
+      ref.energy_error, ref.speed[0].back(), ref.speed[1].back(), ref.speed[2].back());
   std::printf("%-6s %8s %8s %10s %10s %12s %12s %10s\n", "method", "rtol", "atol[m]", "time[s]",
               "steps", "peak err 1", "peak err 2", "energy");
   for (TrainIntegrator method : {TrainIntegrator::adams, TrainIntegrator::bdf})
@@ -101,8 +101,8 @@ main(int argc, char **argv)
           o.method             = method;
           o.relative_tolerance = rtol, o.absolute_tolerance = atol;
           TrainResult  r;
-          const double t = bench::median_seconds([&] { r = simulate_train(startup, o); },
-                                                 quick ? 1 : 3);
+          const double t =
+              bench::median_seconds([&] { r = simulate_train(startup, o); }, quick ? 1 : 3);
           std::printf("%-6s %8.0e %8.0e %10.2f %10zu %12.2e %12.2e %10.1e\n",
                       method == TrainIntegrator::adams ? "adams" : "bdf", rtol, atol, t, r.steps,
                       std::abs(r.meshes[0].max_force / ref.meshes[0].max_force - 1),
@@ -112,9 +112,9 @@ main(int argc, char **argv)
 
   // 2. steady stage 1 over 200 input speeds (0.1 s each, from the kinematic speeds, 1 %
   // resistive torque on the intermediate and output shafts)
-  const int   speeds = quick ? 10 : 200;
-  TrainModel  steady = base;
-  std::size_t steps  = 0;
+  const int    speeds  = quick ? 10 : 200;
+  TrainModel   steady  = base;
+  std::size_t  steps   = 0;
   const double t_sweep = bench::median_seconds(
       [&] {
         for (int i = 0; i < speeds; ++i)
@@ -123,9 +123,9 @@ main(int argc, char **argv)
             const std::vector<double> k = train_speeds(steady, 0, w);
             for (int b = 0; b < 3; ++b)
               steady.bodies[b].initial_speed = k[b];
-            steady.bodies[0].constant_speed   = true;
-            steady.bodies[1].torque.constant  = -0.01 * 149.123 * 60 / 17;
-            steady.bodies[2].torque.constant  = -0.01 * 149.123 * 60 / 17 * 72 / 19;
+            steady.bodies[0].constant_speed  = true;
+            steady.bodies[1].torque.constant = -0.01 * 149.123 * 60 / 17;
+            steady.bodies[2].torque.constant = -0.01 * 149.123 * 60 / 17 * 72 / 19;
             TrainRunOptions o;
             o.duration = 0.1;
             steps += simulate_train(steady, o).steps;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace gearkit::test_data
 {
@@ -55,6 +56,21 @@ two_body_model(double J_p, double J_g, int z1, int z2, double r_bp, double beta,
   mesh.teeth              = ideal_tables(z1, z2, mesh.gear_base_radius, beta, contact_ratio);
   mesh.law                = law;
   m.meshes                = {mesh};
+  return m;
+}
+/// Seed 002's train for its kinematics alone: input, intermediate and output bodies, stages
+/// 17/60 and 19/72 (tooth counts only, no contact curves).
+inline TrainModel
+seed002_kinematic_train()
+{
+  TrainModel m;
+  m.bodies.resize(3);
+  for (int i = 0; i < 3; ++i)
+    m.bodies[i].name = "b" + std::to_string(i), m.bodies[i].inertia = 1e-3;
+  TrainMesh a, b;
+  a.name = "1", a.driver = 0, a.driven = 1, a.teeth.pinion_teeth = 17, a.teeth.gear_teeth = 60;
+  b.name = "2", b.driver = 1, b.driven = 2, b.teeth.pinion_teeth = 19, b.teeth.gear_teeth = 72;
+  m.meshes = {a, b};
   return m;
 }
 } // namespace gearkit::test_data

@@ -38,6 +38,13 @@
 
 namespace gearkit
 {
+/// a mod n in [0, n) for either sign of a (n > 0): the tooth of index a counted either way round.
+inline int
+mod(int a, int n)
+{
+  return ((a % n) + n) % n;
+}
+
 /// One class pair, one side: samples at local pinion angles start + i step (start a multiple
 /// of step: one grid through local angle 0 for every curve).
 struct ToothPairCurve

@@ -236,11 +236,6 @@ interpolate(const ToothPairCurve &c, const std::vector<double> &y, double x, dou
   return true;
 }
 
-int
-mod(int a, int n)
-{
-  return ((a % n) + n) % n;
-}
 } // namespace
 
 std::pair<double, double>

@@ -1,5 +1,6 @@
 #include "tca/paper_mode.h"
 
+#include "base/tooth_pairs.h"
 #include "geometry/point_cloud.h"
 
 #include <Eigen/Geometry>
@@ -13,12 +14,6 @@ namespace gearkit
 {
 namespace
 {
-int
-mod(int a, int n)
-{
-  return ((a % n) + n) % n;
-}
-
 /// A flank sampled at (about) the requested spacing: points in the member frame, with the flank
 /// parameters of each point (for the normals of the contact tables).
 struct Cloud

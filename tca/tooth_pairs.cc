@@ -14,12 +14,6 @@ namespace gearkit
 {
 namespace
 {
-int
-mod(int a, int n)
-{
-  return ((a % n) + n) % n;
-}
-
 /// Per tooth the member's classes, renumbered densely in their order; returns their count.
 int
 dense_classes(const MemberFlanks &member, std::vector<int> &classes)

@@ -1,5 +1,7 @@
 #include "tca/unloaded_tca.h"
 
+#include "base/tooth_pairs.h"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -14,12 +16,6 @@ namespace gearkit
 {
 namespace
 {
-int
-mod(int a, int n)
-{
-  return ((a % n) + n) % n;
-}
-
 double
 wrap(double a) // to (-pi, pi]
 {

@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <random>
 
@@ -518,7 +517,7 @@ TEST(ToothPairs, ClassPairsThatNeverMateHaveNoSamples)
   EXPECT_FALSE(t.curve(drive_side, 1, 20).offset.empty());
 }
 
-TEST(ToothPairs, TimeOfA17To60PairWithAChippedAndAnEccentricTooth)
+TEST(ToothPairs, A17To60PairWithAChippedAndAnEccentricToothRecedesOnEveryCurve)
 {
   // m 4 mm, 17 / 60 teeth, 0.1 mm backlash opening, a chipped gear tooth and an eccentric pinion
   // tooth: 2 x 2 class pairs on both sides.
@@ -537,21 +536,14 @@ TEST(ToothPairs, TimeOfA17To60PairWithAChippedAndAnEccentricTooth)
   p.eccentric_teeth       = {{0, FlankSide::drive, 4.5e-6}};
   g.chipped_teeth         = {{11, 0.5 * 60 * 4e-3 + 2e-3, 0.5}};
   const Members m         = make({p, g});
-  const auto    t0        = std::chrono::steady_clock::now();
-  const auto    t         = tooth_pair_tables(m.pinion_flanks, m.gear_flanks, m.a_w + 0.1e-3);
-  const double  seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  int samples = 0;
+  // (Its run time is measured by bench/train_startup, not here.)
+  const auto t = tooth_pair_tables(m.pinion_flanks, m.gear_flanks, m.a_w + 0.1e-3);
   for (int side : {drive_side, coast_side})
-    for (const ToothPairCurve &c : t.curves[side])
-      {
-        samples += int(c.offset.size());
+    {
+      EXPECT_EQ(t.curves[side].size(), 4u);
+      for (const ToothPairCurve &c : t.curves[side])
         expect_ends_recessed(c, side, 100e-6);
-      }
-  RecordProperty("seconds", std::to_string(seconds));
-  std::printf("17/60 tooth pair tables: %d samples in %.3f s\n", samples, seconds);
-  EXPECT_EQ(t.curves[0].size(), 4u);
-  EXPECT_LT(seconds, 10);
+    }
 }
 
 TEST(ToothPairs, MeasuredFlanks)

@@ -139,6 +139,15 @@ TrainModel::check() const
       if (l.damping < 0 || (l.damping > 0 && !(l.depth > 0)))
         fail(where, "damping / penetration depth", l.damping > 0 ? l.depth : l.damping,
              "damping >= 0, depth > 0 with damping");
+      if (!m.mesh_stiffness.empty())
+        {
+          if (m.mesh_stiffness.size() < 2)
+            fail(where, "mesh stiffness samples", double(m.mesh_stiffness.size()),
+                 ">= 2 over the mesh cycle");
+          for (double K : m.mesh_stiffness)
+            if (!(K > 0) || !std::isfinite(K))
+              fail(where, "mesh stiffness [N/m]", K, "> 0 and finite at every sample");
+        }
       if (!(m.pinion_base_radius > 0) || !(m.gear_base_radius > 0))
         fail(where, "base radii [m]", std::min(m.pinion_base_radius, m.gear_base_radius), "> 0");
     }
@@ -294,8 +303,25 @@ struct MeshEval
   /// The penetration rates of the touching pairs, weighted by d^(e-1): zero where their
   /// elastic force peaks (a finite number at first touch, unlike the force's own rate)
   double peak_rate = 0, peak_weight = 0;
-  int    pairs = 0;
+  int    pairs            = 0;
+  double parametric_power = 0; ///< of a finite-element K_m's variation [W]
 };
+
+/// A finite-element mesh stiffness at pinion angle phi and its derivative by phi (periodic over
+/// the mesh cycle, linear between the samples).
+std::pair<double, double>
+mesh_stiffness_at(const TrainMesh &m, double phi)
+{
+  const std::vector<double> &K    = m.mesh_stiffness;
+  const int                  n    = int(K.size());
+  const double               step = 2 * pi / m.teeth.pinion_teeth / n;
+  const double               s    = (phi - m.mesh_stiffness_start) / step;
+  const double               f    = std::floor(s);
+  const int                  i    = mod(int(std::fmod(f, double(n))), n);
+  const double               u    = s - f;
+  const double               a = K[std::size_t(i)], b = K[std::size_t((i + 1) % n)];
+  return {a + u * (b - a), (b - a) / step};
+}
 
 class TrainSystem
 {
@@ -320,6 +346,12 @@ public:
     const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
     MeshEval               e;
     const int              k0 = int(std::lround(phi * t.pinion_teeth / (2 * pi)));
+    const bool             fe = !m.mesh_stiffness.empty();
+    /// the deepest touching pair of each side (finite-element K_m)
+    struct Deepest
+    {
+      double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0;
+    } deepest[2];
     for (int k = k0 - options.pairings_each_side; k <= k0 + options.pairings_each_side; ++k)
       {
         const double phi_k = phi - 2 * pi * k / t.pinion_teeth;
@@ -342,6 +374,13 @@ public:
             const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
             const double dd_dpsi = -s * arm;
             const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
+            ++e.pairs;
+            if (fe)
+              {
+                if (d > deepest[side].d)
+                  deepest[side] = {d, dd_dphi, dd_dpsi, d_rate};
+                continue;
+              }
             const double F       = impact_force(m.law, d, d_rate);
             const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
             e.torque_driver -= F * dd_dphi;
@@ -351,7 +390,26 @@ public:
             e.dissipation_rate += (F - elastic) * d_rate;
             e.peak_rate += elastic / d * d_rate;
             e.peak_weight += elastic / d;
-            ++e.pairs;
+          }
+      }
+    if (fe)
+      {
+        const auto [K, dK_dphi] = mesh_stiffness_at(m, phi);
+        const ImpactLaw linear{K, 1.0, m.law.damping, m.law.depth};
+        for (int side = 0; side < 2; ++side)
+          {
+            const Deepest &p = deepest[side];
+            if (!(p.d > 0))
+              continue;
+            const double F = impact_force(linear, p.d, p.rate);
+            e.torque_driver -= F * p.dd_dphi;
+            e.torque_driven -= F * p.dd_dpsi;
+            e.force[side] += F;
+            e.energy += K * p.d * p.d / 2;
+            e.dissipation_rate += (F - K * p.d) * p.rate;
+            e.parametric_power += dK_dphi * w_p * p.d * p.d / 2;
+            e.peak_rate += K * p.rate;
+            e.peak_weight += K;
           }
       }
     return e;
@@ -367,19 +425,22 @@ public:
     return m.gear_base_radius * (ratio * phi + centre[index] - psi);
   }
 
-  /// Accelerations, the power of the torques and the dissipation rate at (t, theta, omega).
+  /// Accelerations, the power of the torques (and of a finite-element K_m's variation) and the
+  /// dissipation rate at (t, theta, omega).
   void
   evaluate(double t, const double *theta, const double *omega, double *alpha, double &power,
            double &dissipation) const
   {
     std::vector<double> Q(n, 0.0);
-    dissipation = 0;
+    dissipation       = 0;
+    double parametric = 0;
     for (int i = 0; i < int(model.meshes.size()); ++i)
       {
         const MeshEval e = mesh(i, theta, omega);
         Q[model.meshes[i].driver] += e.torque_driver;
         Q[model.meshes[i].driven] += e.torque_driven;
         dissipation += e.dissipation_rate;
+        parametric += e.parametric_power;
       }
     for (const TrainShaft &s : model.shafts)
       {
@@ -389,7 +450,7 @@ public:
         Q[s.b] -= T;
         dissipation += s.damping * dw * dw;
       }
-    power = 0;
+    power = parametric;
     for (int i = 0; i < n; ++i)
       {
         const TrainBody &b = model.bodies[i];

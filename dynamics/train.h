@@ -106,6 +106,17 @@ struct TrainMesh
   /// ahead; for perfect flanks S >= B/2 is drive contact, S <= -B/2 coast contact), c the
   /// band centre (band_centre).
   double pinion_base_radius = 0, gear_base_radius = 0;
+  /// Optional mesh stiffness K_m [N/m] from finite elements (the stiffness stage's
+  /// K_m = F / (lambda (e_L - e_0)) at one torque): uniform samples over one pinion mesh cycle
+  /// 2 pi / z1 from pinion angle `mesh_stiffness_start` (the TCA's phi), repeated, linear in
+  /// between. When given it replaces the elastic part of IMPACT: on each side the deepest
+  /// touching pair carries K_m(phi) d_max + STEP(d_max, 0, 0, d_max, c_max) d_max' (>= 0), all
+  /// the side's elastic force - by K_m's definition its deflection lambda (e_L - e_0) is the
+  /// penetration of the pair that touches first. The stored energy is K_m d_max^2 / 2; the
+  /// work of the stiffness variation (K_m'(phi) phi' d_max^2 / 2) counts as work done on the
+  /// train. K_m belongs to one load: it is the secant stiffness there.
+  std::vector<double> mesh_stiffness;
+  double              mesh_stiffness_start = 0;
 };
 
 /// The gear angle offset c of the backlash band's centre [rad]: the mean of band_edges. A mesh
@@ -188,8 +199,9 @@ struct TrainResult
   std::vector<double>              t;            ///< [s]
   std::vector<std::vector<double>> angle, speed; ///< [body][sample] [rad], [rad/s]
   std::vector<MeshSeries>          meshes;
-  /// Energy balance at the sample times [J]: work of the torques (incl. constant-speed drives),
-  /// kinetic energy, stored elastic energy (contacts, shafts) and dissipated energy.
+  /// Energy balance at the sample times [J]: work of the torques (incl. constant-speed drives;
+  /// and of a finite-element K_m's variation, TrainMesh::mesh_stiffness), kinetic energy, stored
+  /// elastic energy (contacts, shafts) and dissipated energy.
   std::vector<double> work, kinetic, potential, dissipated;
   std::size_t         steps = 0, events = 0;
   /// max |work - (kinetic - kinetic(0)) - (potential - potential(0)) - dissipated| over the

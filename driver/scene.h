@@ -258,6 +258,11 @@ struct TrainMeshScene
   double pinion_angle =
       0; ///< pinion angle on its body [rad] (pairing 0 at the line of centres at 0)
   MeshStart start = MeshStart::centre;
+  /// The elastic contact force: IMPACT per tooth pair (false) or the stiffness stage's K_m
+  /// over the mesh cycle (TrainMesh::mesh_stiffness), at the loaded-contact torque nearest
+  /// `stiffness_torque` [N m] (0: the largest).
+  bool   fe_stiffness     = false;
+  double stiffness_torque = 0;
 };
 
 /// A gear train's impact dynamics (stage "train", section Train/<train>).

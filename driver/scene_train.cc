@@ -112,6 +112,17 @@ declare_mesh(ParameterHandler &prm)
   prm.declare_entry("pinion angle", "0", Patterns::Double(-360, 360),
                     "[deg] Angle of the pinion on its body (0: its tooth 0 on the line of "
                     "centres at body angle 0).");
+  prm.declare_entry("stiffness", "impact", Patterns::Selection("impact|finite elements"),
+                    "impact: every touching tooth pair carries the IMPACT force of the Contact "
+                    "section; finite elements: the mesh stiffness K_m over the mesh cycle from "
+                    "the stiffness stage (Loaded contact/<pair>) acts on each side's deepest "
+                    "pair, K_m d_max in place of K d^e (by K_m's definition its deflection "
+                    "lambda (e_L - e_0) is that pair's penetration); the Contact section's "
+                    "damping stays (dynamics/train.h).");
+  prm.declare_entry("stiffness torque", "0", Patterns::Double(0),
+                    "[N m] With stiffness = finite elements: the K_m of the loaded-contact "
+                    "torque nearest this (K_m is the secant stiffness at one load); 0: the "
+                    "largest torque.");
   prm.declare_entry("initial contact", "centre", Patterns::Selection("centre|drive|coast"),
                     "Where the gear starts: in the middle of the backlash (centre), or with the "
                     "drive or coast flanks of the pairing at the line of centres touching.");
@@ -267,6 +278,8 @@ TrainScene::parse(ParameterHandler &prm)
         mesh.gear_body         = prm.get("gear body");
         mesh.backlash          = prm.get_double("backlash") * mm;
         mesh.pinion_angle      = prm.get_double("pinion angle") * deg;
+        mesh.fe_stiffness      = prm.get("stiffness") == "finite elements";
+        mesh.stiffness_torque  = prm.get_double("stiffness torque");
         const std::string from = prm.get("initial contact");
         mesh.start             = from == "centre"  ? MeshStart::centre
                                  : from == "drive" ? MeshStart::drive

@@ -19,8 +19,37 @@ namespace gearkit
 namespace
 {
 /// The train model of the scene with its tooth pair tables and mesh angles.
+/// The stiffness stage's K_m of a pair over its mesh cycle at the loaded-contact torque nearest
+/// `torque` (0: the largest): the mesh's TrainMesh::mesh_stiffness and its start angle.
+void
+fe_mesh_stiffness(const H5Group &stiffness, const std::string &pair, double torque, int z1,
+                  TrainMesh &m)
+{
+  const H5Group        g       = stiffness.group(pair);
+  const auto           torques = g.read_doubles("torque");
+  const auto           phi     = g.read_doubles("pinion_angle");
+  std::vector<hsize_t> shape;
+  const auto           K    = g.read_doubles("mesh_stiffness", &shape);
+  std::size_t          best = 0;
+  for (std::size_t t = 1; t < torques.size(); ++t)
+    if (torque > 0 ? std::abs(torques[t] - torque) < std::abs(torques[best] - torque)
+                   : torques[t] > torques[best])
+      best = t;
+  const std::size_t n = shape.size() == 2 ? std::size_t(shape[1]) : 0;
+  // uniform positions over one mesh cycle (the stiffness stage's), or the table is refused
+  const double step = 2 * pi / z1 / double(std::max<std::size_t>(n, 1));
+  for (std::size_t i = 1; i < phi.size(); ++i)
+    if (phi.size() != n || n < 2 || std::abs(phi[i] - phi[i - 1] - step) > 1e-9 * step)
+      throw InputError("stiffness/" + pair + "/pinion_angle: positions that are not " +
+                       std::to_string(n) +
+                       " uniform steps over one mesh cycle are not allowed "
+                       "for a train mesh's K_m (stiffness = finite elements)");
+  m.mesh_stiffness.assign(K.begin() + long(best * n), K.begin() + long((best + 1) * n));
+  m.mesh_stiffness_start = phi.front();
+}
+
 TrainModel
-train_model(const Scene &scene, const TrainScene &train)
+train_model(const Scene &scene, const TrainScene &train, const Upstream &upstream)
 {
   TrainModel model = train.model(scene);
   for (std::size_t i = 0; i < train.meshes.size(); ++i)
@@ -40,6 +69,9 @@ train_model(const Scene &scene, const TrainScene &train)
       const double theta_p      = model.bodies[std::size_t(m.driver)].initial_angle;
       const double theta_g      = model.bodies[std::size_t(m.driven)].initial_angle;
       m.gear_angle_0            = offset + ratio * (theta_p + m.pinion_angle_0) - theta_g;
+      if (s.fe_stiffness)
+        fe_mesh_stiffness(*upstream.at("stiffness"), s.pair, s.stiffness_torque, pinion->teeth(),
+                          m);
     }
   return model;
 }
@@ -126,11 +158,11 @@ write_lines(const H5Group &g, const LineTable &t)
 } // namespace
 
 void
-run_train_stage(const Scene &scene, const Upstream &, const H5Group &out, std::ostream &log)
+run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, std::ostream &log)
 {
   for (const TrainScene &train : scene.trains)
     {
-      const TrainModel  model = train_model(scene, train);
+      const TrainModel  model = train_model(scene, train, upstream);
       const auto        start = std::chrono::steady_clock::now();
       const TrainResult r     = simulate_train(model, train.run);
       const double      seconds =
@@ -162,7 +194,9 @@ run_train_stage(const Scene &scene, const Upstream &, const H5Group &out, std::o
       g.write("initial_speed", initial, {nb}, "rad/s", "each body's speed at t = 0");
       g.write("angle", angle, {nb, n}, "rad", "body angles (in the sense the train runs forward)");
       g.write("speed", speed, {nb, n}, "rad/s", "body speeds");
-      g.write("work", r.work, {n}, "J", "work of the torques (constant-speed drives included)");
+      g.write("work", r.work, {n}, "J",
+              "work of the torques (constant-speed drives included) and of a finite-element "
+              "K_m's variation");
       g.write("kinetic", r.kinetic, {n}, "J", "kinetic energy");
       g.write("potential", r.potential, {n}, "J", "elastic energy stored in the contacts");
       g.write("dissipated", r.dissipated, {n}, "J", "energy dissipated by the contact damping");
@@ -215,6 +249,22 @@ run_train_stage(const Scene &scene, const Upstream &, const H5Group &out, std::o
           mg.write("gear_base_radius", m.gear_base_radius, "m", "r_b2");
           mg.write("pinion_angle_0", m.pinion_angle_0, "rad", "pinion angle on its body");
           mg.write("gear_angle_0", m.gear_angle_0, "rad", "gear angle on its body");
+          if (!m.mesh_stiffness.empty())
+            {
+              const hsize_t       N = m.mesh_stiffness.size();
+              std::vector<double> phi;
+              for (hsize_t j = 0; j < N; ++j)
+                phi.push_back(m.mesh_stiffness_start +
+                              2 * pi / pinion->teeth() * double(j) / double(N));
+              mg.write("mesh_stiffness", m.mesh_stiffness, {N}, "N/m",
+                       "the stiffness stage's K_m on each side's deepest pair (stiffness = finite "
+                       "elements), over one mesh cycle");
+              mg.write("mesh_stiffness_pinion_angle", phi, {N}, "rad", "its pinion angles phi");
+              log << "  " << train.name << "/" << m.name << ": finite-element K_m, mean "
+                  << std::accumulate(m.mesh_stiffness.begin(), m.mesh_stiffness.end(), 0.0) /
+                         double(N) / 1e6
+                  << " N/um\n";
+            }
           mg.write("relative", ms.relative, {n}, "m",
                    "S = r_b2 ((z1/z2) phi + c - psi) along the line of action (> 0: pinion "
                    "ahead; drive contact at +band_half_width, coast at -band_half_width)");

@@ -124,7 +124,14 @@ stage_definitions()
        {"Flanks", "TCA", "Train"},
        {"base", "geometry", "tca", "dynamics"},
        [](const Scene &) { return std::vector<std::string>{}; },
-       run_train_stage},
+       run_train_stage,
+       [](const Scene &scene) {
+         for (const TrainScene &t : scene.trains)
+           for (const TrainMeshScene &m : t.meshes)
+             if (m.fe_stiffness)
+               return std::vector<std::string>{"stiffness"};
+         return std::vector<std::string>{};
+       }},
   };
   return stages;
 }

@@ -1107,6 +1107,151 @@ TEST_F(DriverTest, TrainStageRunsASmallTwoStageTrain)
   EXPECT_NE(out.str().find("stage train: reused"), std::string::npos) << out.str();
 }
 
+// A train mesh on the stiffness stage's K_m (stiffness = finite elements): the FZG C pair on
+// coarse segments, the pinion crawling at 1 rad/s against the gear's 300 N m (the pinion's 200 N m,
+// the second loaded-contact torque), light damping. Quasi-static, each side's deepest pair then
+// carries F = K_m d, so the train's deflection beyond first contact at the finite-element
+// positions is the stiffness stage's lambda (e_L - e_0) there: the same loaded TE from the two
+// stages. The table written is the chosen torque's row; the stage graph reaches the stiffness.
+const std::string fe_train_scene = R"(
+subsection Scene
+  set name    = fe_train
+  set outputs = train
+  set pairs   = fzg
+  set trains  = t
+end
+subsection Flanks
+  subsection fzg
+    subsection Pinion
+      set number of teeth           = 16
+      set normal module             = 4.5
+      set profile shift coefficient = 0.1817
+      set face width                = 14
+      set bore diameter             = 30
+    end
+    subsection Gear
+      set number of teeth           = 24
+      set normal module             = 4.5
+      set profile shift coefficient = 0.1715
+      set face width                = 14
+      set bore diameter             = 40
+    end
+  end
+end
+subsection TCA
+  subsection fzg
+    set positions per mesh cycle = 8
+  end
+end
+subsection Finite elements
+  subsection fzg
+    set segment teeth      = 3
+    set flank element size = 0.5
+    set degree             = 1
+  end
+end
+subsection Loaded contact
+  subsection fzg
+    set torques                  = 100, 200
+    set positions per mesh cycle = 8
+    set cells across             = 9
+    set cells along              = 12
+  end
+end
+subsection Train
+  subsection t
+    set bodies = p, g
+    set meshes = m
+    subsection Contact
+      set damping = 0.0002
+    end
+    subsection Run
+      set duration    = 0.6
+      set sample rate = 1000
+    end
+    subsection Spectrum
+      set spectrogram window = 0
+    end
+    subsection Bodies
+      subsection p
+        set inertia       = 1e-3
+        set initial speed = 1
+        set drive         = constant speed
+      end
+      subsection g
+        set inertia = 5e-3
+        set torque  = -300
+      end
+    end
+    subsection Meshes
+      subsection m
+        set pair             = fzg
+        set pinion body      = p
+        set gear body        = g
+        set backlash         = 0.05
+        set initial contact  = drive
+        set stiffness        = finite elements
+        set stiffness torque = 200
+      end
+    end
+  end
+end
+)";
+
+TEST_F(DriverTest, TrainOnTheFiniteElementMeshStiffnessHasItsLoadedTransmissionError)
+{
+  const std::string file   = scene(fe_train_scene);
+  const auto        stages = required_stages(read_scene(file));
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "stiffness"), stages.end());
+  ASSERT_EQ(run({file}), 0) << err.str();
+  const H5File         f = H5File::open((dir / "out/fe_train/results.h5").string());
+  const H5Group        s = f.root().group("stiffness/fzg");
+  const H5Group        g = f.root().group("train/t");
+  const H5Group        m = g.group("meshes/m");
+  std::vector<hsize_t> shape;
+  const auto           K      = s.read_doubles("mesh_stiffness", &shape);
+  const auto           eL     = s.read_doubles("transmission_error_loaded");
+  const auto           e0     = s.read_doubles("transmission_error_unloaded");
+  const auto           lambda = s.read_doubles("lever");
+  const auto           phi_fe = s.read_doubles("pinion_angle");
+  const std::size_t    n      = shape[1];
+  ASSERT_EQ(shape[0], 2u);
+  const auto K_train = m.read_doubles("mesh_stiffness");
+  ASSERT_EQ(K_train.size(), n);
+  for (std::size_t i = 0; i < n; ++i)
+    EXPECT_EQ(K_train[i], K[n + i]); // the 200 N m row
+
+  const auto   t = g.read_doubles("time"), S = m.read_doubles("relative");
+  const auto   theta   = g.read_doubles("angle"); // [body][sample]: the pinion's first
+  const double half    = m.read_double("band_half_width");
+  const double phi0    = m.read_double("pinion_angle_0");
+  const double cycle   = 2 * pi / 16;
+  int          checked = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    {
+      const double expected = lambda[n + i] * (eL[n + i] - e0[i]);
+      for (std::size_t k = 100; k + 1 < t.size(); ++k) // after the start transient (0.1 s)
+        {
+          auto x = [&](std::size_t j) {
+            return std::remainder(theta[j] + phi0 - phi_fe[i], cycle);
+          };
+          if (!(x(k) <= 0 && x(k + 1) > 0))
+            continue;
+          const double u = -x(k) / (x(k + 1) - x(k));
+          const double d = (1 - u) * (S[k] - half) + u * (S[k + 1] - half);
+          EXPECT_NEAR(d, expected, 1e-2 * expected) << "position " << i << " at " << t[k] << " s";
+          ++checked;
+        }
+    }
+  EXPECT_GE(checked, int(n)); // every position passed at least once
+  // the mean force carries the gear's torque
+  const auto F    = m.read_doubles("force");
+  double     mean = 0;
+  for (std::size_t k = 100; k < F.size(); ++k)
+    mean += F[k] / double(F.size() - 100);
+  EXPECT_NEAR(mean, 300 / m.read_double("gear_base_radius"), 1e-3 * mean);
+}
+
 // Bad trains are refused when the scene is read: the message names the section, the parameter,
 // the value and what is allowed; no stage runs and no result file is written.
 TEST_F(DriverTest, BadTrainsAreRefusedBeforeAnyStage)

@@ -30,7 +30,8 @@
 // value (the conjugate one) by the recess of tca/tooth_pairs.h along the normal: its first and
 // last samples stand off by more than that; outside them the pair does not touch (or stands
 // off further). A class pair whose teeth never mate (tooth counts with a common factor) has an
-// empty curve; it is never looked up by a pairing.
+// empty curve; it is never looked up by a pairing. A class pair that never touches (a missing
+// tooth) has an empty curve too: looked up, it never touches.
 #pragma once
 
 #include <array>

@@ -96,8 +96,10 @@ public:
                   std::abs(assembly.gear_axis().cross(r).dot(n)), c};
   }
 
-  ToothPairCurve
-  run() const
+  /// The curve, or nothing when the pair never touches within three mesh cycles of its
+  /// centre (why: in `why`).
+  std::optional<ToothPairCurve>
+  run(std::string &why) const
   {
     // The pairing's centre: local angle 0, else the nearest position where it touches (within
     // three mesh cycles).
@@ -120,7 +122,8 @@ public:
           << to_string(tca.options_data().side)
           << " flanks within three mesh cycles of their pairing's centre; expected flanks that "
              "mesh (check the centre distance, hands and face widths)";
-        throw InputError(m.str());
+        why = m.str();
+        return std::nullopt;
       }
 
     // Outwards both ways while the pair touches, through the first sample whose touch angle has
@@ -207,7 +210,9 @@ tooth_pair_tables(std::shared_ptr<const MemberFlanks> pinion,
           if (!seen[c])
             seen[c] = 1, pairing[c] = k, --left;
         }
-      auto &curves = tables.curves[int(side == FlankSide::drive ? drive_side : coast_side)];
+      auto       &curves = tables.curves[int(side == FlankSide::drive ? drive_side : coast_side)];
+      std::string never;
+      int         touching = 0;
       curves.resize(classes);
       for (ToothPairCurve &curve : curves)
         curve.step = 2 * pi / z1 / options.samples_per_mesh;
@@ -222,8 +227,13 @@ tooth_pair_tables(std::shared_ptr<const MemberFlanks> pinion,
                 throw InputError("tooth pair curves: the " + std::string(name) + " has no " +
                                  to_string(side) + " flank on tooth " + std::to_string(tooth) +
                                  "; the curves need both flanks of every tooth");
-            curves[c] = CurveWalk(tca, k, options).run();
+            // a class pair that never touches while others do: a tooth that is gone (a chip
+            // down to the root), its curve left empty (never touching)
+            if (auto curve = CurveWalk(tca, k, options).run(never))
+              curves[c] = std::move(*curve), ++touching;
           }
+      if (touching == 0)
+        throw InputError(never);
     }
   return tables;
 }

@@ -28,8 +28,9 @@ struct ToothPairOptions
 /// angle 0 (or the nearest position within three mesh cycles where it touches), the TCA's
 /// search made thorough (TcaOptions::robust_search) and started at each sample also around the
 /// previous sample's contact, so that it follows edge contacts to the curve's ends. Tooth
-/// classes from MemberFlanks::flank_class, renumbered densely in their order. Throws InputError
-/// when a class pair can never touch (flanks that do not mesh).
+/// classes from MemberFlanks::flank_class, renumbered densely in their order. A class pair
+/// that never touches while another does (a tooth chipped down to its root: gone) has an empty
+/// curve. Throws InputError when no class pair of a side touches (flanks that do not mesh).
 ToothPairTables
 tooth_pair_tables(std::shared_ptr<const MemberFlanks> pinion,
                   std::shared_ptr<const MemberFlanks> gear, double centre_distance,

@@ -489,12 +489,32 @@ TEST(ToothPairs, FlanksThatNeverMeetAreRefused)
   bad        = {};
   bad.recess = 0;
   EXPECT_THROW(tooth_pair_tables(m.pinion_flanks, m.gear_flanks, m.a_w, {}, bad), InputError);
-  // a wholly chipped gear tooth (gone to the root over the face) never meets the pinion
-  auto d                 = seed_pair();
-  d.second.chipped_teeth = {{3, 0.5 * 31 * 2.54e-3 - 1.25 * 2.54e-3, 1.0}};
-  const Members gone     = make(d);
-  EXPECT_THROW(tooth_pair_tables(gone.pinion_flanks, gone.gear_flanks, gone.a_w + 0.1e-3),
-               InputError);
+}
+
+TEST(ToothPairs, AToothGoneToTheRootNeverTouches)
+{
+  // a wholly chipped gear tooth (gone to the root over the face) never meets the pinion: its
+  // class pair's curves are empty on both sides (a pairing with it never touches), the nominal
+  // teeth's curves are those of the perfect pair
+  auto d                        = seed_pair();
+  d.second.chipped_teeth        = {{3, 0.5 * 31 * 2.54e-3 - 1.25 * 2.54e-3, 1.0}};
+  const Members         gone    = make(d);
+  const Members         perfect = make(seed_pair());
+  const double          a       = gone.a_w + 0.1e-3;
+  const ToothPairTables t       = tooth_pair_tables(gone.pinion_flanks, gone.gear_flanks, a);
+  const ToothPairTables p       = tooth_pair_tables(perfect.pinion_flanks, perfect.gear_flanks, a);
+  ASSERT_EQ(t.gear_classes, 2);
+  ASSERT_EQ(t.pinion_classes, 1);
+  const int missing = t.gear_class[3], nominal = 1 - missing;
+  for (int side : {drive_side, coast_side})
+    {
+      EXPECT_TRUE(t.curves[side][std::size_t(missing)].offset.empty());
+      EXPECT_TRUE(t.curve(side, 0, 3).offset.empty());
+      const ToothPairCurve &c = t.curves[side][std::size_t(nominal)];
+      ASSERT_EQ(c.offset.size(), p.curves[side][0].offset.size());
+      for (std::size_t i = 0; i < c.offset.size(); ++i)
+        EXPECT_NEAR(c.offset[i], p.curves[side][0].offset[i], 1e-12);
+    }
 }
 
 TEST(ToothPairs, ClassPairsThatNeverMateHaveNoSamples)

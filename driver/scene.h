@@ -237,6 +237,9 @@ struct TrainBodyScene
   /// Axis position in the plane of the train [m] (optional): fixes the centre distances.
   bool   placed = false;
   double x = 0, y = 0;
+  /// A torsional shaft to another body (empty: none): stiffness [N m/rad], damping [N m s/rad].
+  std::string shaft_to;
+  double      shaft_stiffness = 0, shaft_damping = 0;
 };
 
 /// Where a mesh starts within its backlash.

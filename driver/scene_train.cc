@@ -74,6 +74,14 @@ declare_body(ParameterHandler &prm)
   prm.declare_entry("axis position", "", Patterns::List(Patterns::Double(-1e6, 1e6), 0, 2),
                     "[mm] x, y of the body's axis (optional): with both bodies of a mesh placed, "
                     "the mesh's centre distance must be their distance within 1 um.");
+  prm.declare_entry("shaft to", "", Patterns::Anything(),
+                    "A body joined to this one by a torsional shaft (both on one axis, turning "
+                    "together); empty: none. Its torque k (theta_other - theta) + c (w_other - "
+                    "w) acts on this body, the opposite on the other.");
+  prm.declare_entry("shaft stiffness", "0", Patterns::Double(0, 1e15),
+                    "[N m/rad] Torsional stiffness of that shaft (> 0 with shaft to).");
+  prm.declare_entry("shaft damping", "0", Patterns::Double(0, 1e15),
+                    "[N m s/rad] Torsional damping of that shaft.");
   in_subsection(prm, {"Crank slider"}, [&] {
     prm.declare_entry("crank radius", "0", Patterns::Double(0, 1e5),
                       "[mm] r; 0: the body drives no crank-slider.");
@@ -188,9 +196,9 @@ TrainScene::declare(ParameterHandler &prm, const std::vector<std::string> &bodie
     prm.declare_entry("integrator", "bdf", Patterns::Selection("bdf|adams"),
                       "CVODE method: bdf (stiff: the IMPACT damping acts in microseconds) or "
                       "adams.");
-    prm.declare_entry("relative tolerance", "1e-9", Patterns::Double(1e-15, 1e-2),
+    prm.declare_entry("relative tolerance", "1e-10", Patterns::Double(1e-15, 1e-2),
                       "CVODE relative tolerance (also of the energy balance's quadratures).");
-    prm.declare_entry("absolute tolerance", "1e-4", Patterns::Double(1e-12, 1e3),
+    prm.declare_entry("absolute tolerance", "1e-6", Patterns::Double(1e-12, 1e3),
                       "[um] Absolute tolerance as a length along the contact normals.");
     prm.declare_entry("energy tolerance", "0", Patterns::Double(0, 0.1),
                       "Error test of the energy balance's quadratures (work, dissipated energy), "
@@ -250,7 +258,10 @@ TrainScene::parse(ParameterHandler &prm)
         if (axis.size() == 1)
           throw InputError(here + "/axis position: one number is not allowed; expected x, y "
                                   "[mm] or nothing");
-        body.placed = axis.size() == 2;
+        body.placed          = axis.size() == 2;
+        body.shaft_to        = prm.get("shaft to");
+        body.shaft_stiffness = prm.get_double("shaft stiffness");
+        body.shaft_damping   = prm.get_double("shaft damping");
         if (body.placed)
           body.x = axis[0], body.y = axis[1];
         in_subsection(prm, {"Crank slider"}, [&] {
@@ -404,6 +415,10 @@ TrainScene::model(const Scene &scene) const
         m.bodies[std::size_t(mesh.driven)].inertia += gear->mass_properties().polar_inertia;
       m.meshes.push_back(mesh);
     }
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!bodies[i].shaft_to.empty())
+      m.shafts.push_back({int(i), body_index(bodies[i].shaft_to), bodies[i].shaft_stiffness,
+                          bodies[i].shaft_damping});
   // kinematic initial speeds from the first body with a number
   for (std::size_t i = 0; i < bodies.size(); ++i)
     if (!bodies[i].kinematic_speed)
@@ -469,9 +484,31 @@ TrainScene::check(const Scene &scene) const
   for (const TrainBodyScene &b : bodies)
     {
       const std::string here = "/Bodies/" + b.name;
+      if (b.shaft_to.empty())
+        continue;
+      if (body_index(b.shaft_to) < 0 || b.shaft_to == b.name)
+        {
+          std::string names;
+          for (const TrainBodyScene &o : bodies)
+            if (o.name != b.name)
+              names += (names.empty() ? "" : ", ") + o.name;
+          fail(here + "/shaft to: '" + b.shaft_to + "' is not allowed; expected another body of " +
+               where + "/bodies (" + names + ") or nothing");
+        }
+      if (!(b.shaft_stiffness > 0))
+        fail(here + "/shaft stiffness: " + number_text(b.shaft_stiffness) +
+             " N m/rad is not allowed with shaft to = " + b.shaft_to +
+             "; expected > 0 (a rigid shaft: one body)");
+      in_a_mesh.insert(b.name);
+      in_a_mesh.insert(b.shaft_to);
+    }
+  for (const TrainBodyScene &b : bodies)
+    {
+      const std::string here = "/Bodies/" + b.name;
       if (!in_a_mesh.count(b.name))
         fail("/bodies: '" + b.name +
-             "' is in no mesh, which is not allowed; every body meshes with another");
+             "' is in no mesh and on no shaft, which is not allowed; every body meshes with "
+             "another or is joined to one by a shaft");
       if (!b.inertia_auto && !(b.inertia > 0))
         fail(here + "/inertia: " + number_text(b.inertia) +
              " kg m^2 is not allowed; expected a number > 0 or auto");

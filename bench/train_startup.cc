@@ -1,17 +1,26 @@
 // Gear-train impact dynamics: run time against error for the integrator settings on seed 002's
-// 3 s start-up (T = 149.123 N m (1 - exp(-t / 100 ms)) on the input shaft), error = the peak
-// mesh forces of both stages and the final speeds against a tight-tolerance run; and a steady
+// 3 s start-up (the case cases/seed002_startup: T = 149.123 N m (1 - exp(-t / 100 ms)) on the
+// input shaft, no load but the crank-slider), errors against a tight-tolerance run; and a steady
 // stage-1 case swept over 200 input speeds.
 //
-// The train: stage 1 z 17/60 m 4 mm, stage 2 z 19/72 m 5 mm, 20 deg, face widths 20 / 25 mm,
-// backlash 0.05 / 0.08 mm by the centre distances, IMPACT 2e7 N/mm^2.2, e 2.2, damping 2e-4 K
-// per mm over 1e-7 mm; inertias: input 1.06e-3 kg m^2, intermediate 2.0e-2, output (gear D,
-// crank, flywheel) 40 kg m^2: the seed's run-up passes the rated input speed 167.5 rad/s at
-// about 350 ms, which asks for 0.225 kg m^2 referred to the input shaft.
+// The train (as the case): stage 1 z 17/60 m 4 mm, stage 2 z 19/72 m 5 mm, 20 deg, face widths
+// 20 / 25 mm, backlash 0.05 / 0.08 mm by the centre distances, IMPACT 2e7 N/mm^2.2, e 2.2,
+// c_max 10 N s/mm over 1e-7 mm, curves 200 um beyond the conjugate touch; inertias: input
+// 1.06e-3 kg m^2, intermediate gears B + C + 0.002, output gear D + 20.45 with the crank-slider
+// (r 100 mm, l 350 mm, rod 6 kg, 0.08 kg m^2 at 120 mm, piston 10 kg).
+//
+// The unloaded run-up accelerates for the whole 3 s, the meshes rattle from about 0.5 s on, and
+// which tooth hits when is chaotic: the largest force of the whole run differs by O(1) between
+// any two tolerances (two tight references included), so it measures nothing. The errors
+// reported are those of well-posed quantities: the largest force in the first 0.1 s and 0.5 s
+// (first contact and run-up under the torque ramp), the speeds at 3 s (what the torque's work
+// gives), the energy balance.
 #include "bench/timing.h"
 #include "dynamics/train.h"
 #include "tca/tooth_pairs.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -19,7 +28,15 @@ using namespace gearkit;
 
 namespace
 {
-TrainMesh
+constexpr double mm = 1e-3;
+
+struct Stage
+{
+  TrainMesh mesh;
+  double    pinion_inertia = 0, gear_inertia = 0;
+};
+
+Stage
 stage(const std::string &name, int driver, int z1, int z2, double module, double face,
       double backlash)
 {
@@ -28,33 +45,74 @@ stage(const std::string &name, int driver, int z1, int z2, double module, double
   p.normal_module = g.normal_module = module;
   p.face_width = g.face_width = face;
   auto [pinion, gear]         = create_pair(p, g);
-  const double a0             = working_centre_distance(*pinion, *gear);
-  const double alpha          = working_pressure_angle(*pinion, *gear);
-  const double a              = a0 + backlash / (2 * std::tan(alpha)); // circumferential backlash
-  TrainMesh    m;
+  ToothPairOptions o;
+  o.recess = 200e-6;
+  Stage s;
+  auto &m  = s.mesh;
   m.name   = name;
   m.driver = driver, m.driven = driver + 1;
   m.teeth              = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
-                                           std::make_shared<InvoluteMemberFlanks>(gear), a);
-  m.law                = ImpactLaw{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2,
-                    impact_stiffness_si(2e7 * 2e-4, 1.0, 1e-3), 1e-10};
+                                           std::make_shared<InvoluteMemberFlanks>(gear),
+                                           centre_distance_for_backlash(*pinion, *gear, backlash), {}, o);
+  m.law                = ImpactLaw{impact_stiffness_si(2e7, 2.2, mm), 2.2, 10 / mm, 1e-7 * mm};
   m.pinion_base_radius = pinion->base_radius;
   m.gear_base_radius   = gear->base_radius;
   m.gear_angle_0       = band_centre(m.teeth);
-  return m;
+  s.pinion_inertia     = pinion->mass_properties().polar_inertia;
+  s.gear_inertia       = gear->mass_properties().polar_inertia;
+  return s;
 }
 
 TrainModel
 seed002()
 {
-  TrainModel m;
+  const Stage a = stage("stage 1", 0, 17, 60, 4 * mm, 20 * mm, 0.05 * mm);
+  const Stage b = stage("stage 2", 1, 19, 72, 5 * mm, 25 * mm, 0.08 * mm);
+  TrainModel  m;
   m.bodies.resize(3);
   m.bodies[0].name = "input", m.bodies[0].inertia = 1.06e-3;
-  m.bodies[1].name = "intermediate", m.bodies[1].inertia = 2.0e-2;
-  m.bodies[2].name = "output", m.bodies[2].inertia = 40;
-  m.meshes = {stage("stage 1", 0, 17, 60, 4e-3, 20e-3, 0.05e-3),
-              stage("stage 2", 1, 19, 72, 5e-3, 25e-3, 0.08e-3)};
+  m.bodies[1].name = "intermediate", m.bodies[1].inertia = a.gear_inertia + b.pinion_inertia + 2e-3;
+  m.bodies[2].name = "output", m.bodies[2].inertia = b.gear_inertia + 20.45;
+  CrankSlider &k        = m.bodies[2].crank;
+  m.bodies[2].has_crank = true;
+  k.crank_radius = 100 * mm, k.rod_length = 350 * mm, k.rod_centre = 120 * mm;
+  k.rod_mass = 6, k.rod_inertia = 0.08, k.piston_mass = 10;
+  m.meshes = {a.mesh, b.mesh};
   return m;
+}
+
+/// Largest |force| of a mesh at the samples up to time `until`.
+double
+peak(const TrainResult &r, int mesh, double until)
+{
+  double f = 0;
+  for (std::size_t i = 0; i < r.t.size() && r.t[i] <= until + 1e-12; ++i)
+    f = std::max(f, std::abs(r.meshes[std::size_t(mesh)].force[i]));
+  return f;
+}
+
+struct Errors
+{
+  double peak_01 = 0, peak_05 = 0, peak_all = 0, speed = 0;
+};
+
+/// Relative errors of r against the reference (the larger of the two stages').
+Errors
+errors(const TrainResult &r, const TrainResult &ref)
+{
+  Errors e;
+  for (int m = 0; m < 2; ++m)
+    {
+      auto rel   = [](double a, double b) { return std::abs(a / b - 1); };
+      e.peak_01  = std::max(e.peak_01, rel(peak(r, m, 0.1), peak(ref, m, 0.1)));
+      e.peak_05  = std::max(e.peak_05, rel(peak(r, m, 0.5), peak(ref, m, 0.5)));
+      e.peak_all = std::max(e.peak_all, rel(r.meshes[std::size_t(m)].max_force,
+                                            ref.meshes[std::size_t(m)].max_force));
+    }
+  for (int b = 0; b < 3; ++b)
+    e.speed = std::max(
+        e.speed, std::abs(r.speed[std::size_t(b)].back() / ref.speed[std::size_t(b)].back() - 1));
+  return e;
 }
 } // namespace
 
@@ -62,43 +120,46 @@ int
 main(int argc, char **argv)
 {
   const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+  setvbuf(stdout, nullptr, _IOLBF, 0);
   // 0. the tooth pair tables of both stages (both sides, from the involute flanks)
   TrainModel   base;
   const double t_tables = bench::median_seconds([&] { base = seed002(); }, quick ? 1 : 3);
   std::printf("tooth pair tables of both stages, drive and coast: %.2f s\n", t_tables);
-  // 1. start-up: time against peak-force error
+
+  // 1. start-up: time against error
   TrainModel startup                     = base;
   startup.bodies[0].torque.step          = 149.123;
   startup.bodies[0].torque.time_constant = 0.1;
   TrainRunOptions reference;
-  reference.duration           = quick ? 0.3 : 3.0;
+  reference.duration           = quick ? 0.6 : 3.0;
   reference.sample_rate        = 20e3;
+  reference.method             = TrainIntegrator::adams;
   reference.relative_tolerance = 1e-12, reference.absolute_tolerance = 1e-13;
-  TrainResult  ref;
+  TrainResult  ref, bdf_ref;
   const double t_ref = bench::median_seconds([&] { ref = simulate_train(startup, reference); }, 1);
-  for (int m = 0; m < 2; ++m)
-    {
-      const auto &f = ref.meshes[m].force;
-      std::size_t k = 0;
-      for (std::size_t i = 0; i < f.size(); ++i)
-        if (std::abs(f[i]) > std::abs(f[k]))
-          k = i;
-      std::printf("stage %d: largest sampled force %.0f N at %.2f ms (input %.1f rad/s), "
-                  "%zu impacts\n",
-                  m + 1, f[k], 1e3 * ref.t[k], ref.speed[0][k], ref.meshes[m].impacts);
-    }
-  std::printf("first contact stage 1 at %.2f ms, stage 2 at %.2f ms\n",
-              1e3 * ref.meshes[0].first_contact, 1e3 * ref.meshes[1].first_contact);
-  std::printf(
-      "start-up %.1f s, reference (adams, rtol 1e-12, atol 1e-13 m): %.1f s, %zu steps, "
-      "peak forces %.1f / %.1f N, energy error %.1e, final speeds %.3f / %.3f / %.3f rad/s\n",
-      reference.duration, t_ref, ref.steps, ref.meshes[0].max_force, ref.meshes[1].max_force,
-      ref.energy_error, ref.speed[0].back(), ref.speed[1].back(), ref.speed[2].back());
-  std::printf("%-6s %8s %8s %10s %10s %12s %12s %10s\n", "method", "rtol", "atol[m]", "time[s]",
-              "steps", "peak err 1", "peak err 2", "energy");
-  for (TrainIntegrator method : {TrainIntegrator::adams, TrainIntegrator::bdf})
+  TrainRunOptions second = reference;
+  second.method          = TrainIntegrator::bdf;
+  const double t_second =
+      bench::median_seconds([&] { bdf_ref = simulate_train(startup, second); }, 1);
+  std::printf("first contact stage 1 at %.2f ms, stage 2 at %.2f ms; impacts %zu / %zu\n",
+              1e3 * ref.meshes[0].first_contact, 1e3 * ref.meshes[1].first_contact,
+              ref.meshes[0].impacts, ref.meshes[1].impacts);
+  std::printf("start-up %.1f s, reference (adams, rtol 1e-12, atol 1e-13 m): %.1f s, %zu steps, "
+              "peak forces 0.1 s %.0f / %.0f N, 0.5 s %.0f / %.0f N, all %.0f / %.0f N, energy "
+              "error %.1e, final speeds %.3f / %.3f / %.3f rad/s\n",
+              reference.duration, t_ref, ref.steps, peak(ref, 0, 0.1), peak(ref, 1, 0.1),
+              peak(ref, 0, 0.5), peak(ref, 1, 0.5), ref.meshes[0].max_force,
+              ref.meshes[1].max_force, ref.energy_error, ref.speed[0].back(), ref.speed[1].back(),
+              ref.speed[2].back());
+  const Errors s = errors(bdf_ref, ref);
+  std::printf("second reference (bdf, same tolerances): %.1f s, %zu steps; against the first: "
+              "peak 0.1 s %.1e, 0.5 s %.1e, whole run %.1e, final speeds %.1e\n",
+              t_second, bdf_ref.steps, s.peak_01, s.peak_05, s.peak_all, s.speed);
+  std::printf("%-6s %8s %8s %9s %9s %10s %10s %10s %10s %9s\n", "method", "rtol", "atol[m]",
+              "time[s]", "steps", "peak 0.1s", "peak 0.5s", "peak all", "speeds", "energy");
+  for (TrainIntegrator method : {TrainIntegrator::bdf, TrainIntegrator::adams})
     for (double rtol : {1e-6, 1e-8, 1e-10})
-      for (double atol : {1e-9, 1e-10, 1e-11})
+      for (double atol : {1e-10, 1e-12})
         {
           TrainRunOptions o    = reference;
           o.method             = method;
@@ -106,15 +167,14 @@ main(int argc, char **argv)
           TrainResult  r;
           const double t =
               bench::median_seconds([&] { r = simulate_train(startup, o); }, quick ? 1 : 3);
-          std::printf("%-6s %8.0e %8.0e %10.2f %10zu %12.2e %12.2e %10.1e\n",
+          const Errors e = errors(r, ref);
+          std::printf("%-6s %8.0e %8.0e %9.2f %9zu %10.1e %10.1e %10.1e %10.1e %9.1e\n",
                       method == TrainIntegrator::adams ? "adams" : "bdf", rtol, atol, t, r.steps,
-                      std::abs(r.meshes[0].max_force / ref.meshes[0].max_force - 1),
-                      std::abs(r.meshes[1].max_force / ref.meshes[1].max_force - 1),
-                      r.energy_error);
+                      e.peak_01, e.peak_05, e.peak_all, e.speed, r.energy_error);
         }
 
   // 2. steady stage 1 over 200 input speeds (0.1 s each, from the kinematic speeds, 1 %
-  // resistive torque on the intermediate and output shafts)
+  // resistive torque on the intermediate and output shafts), the default tolerances
   const int    speeds  = quick ? 10 : 200;
   TrainModel   steady  = base;
   std::size_t  steps   = 0;
@@ -125,7 +185,7 @@ main(int argc, char **argv)
             const double              w = 20 + 180.0 * i / (speeds - 1);
             const std::vector<double> k = train_speeds(steady, 0, w);
             for (int b = 0; b < 3; ++b)
-              steady.bodies[b].initial_speed = k[b];
+              steady.bodies[std::size_t(b)].initial_speed = k[std::size_t(b)];
             steady.bodies[0].constant_speed  = true;
             steady.bodies[1].torque.constant = -0.01 * 149.123 * 60 / 17;
             steady.bodies[2].torque.constant = -0.01 * 149.123 * 60 / 17 * 72 / 19;

@@ -10,8 +10,11 @@
 
 namespace gearkit
 {
+namespace
+{
+/// IMPACT's force from its elastic part K d^e (given: the caller has it).
 double
-impact_force(const ImpactLaw &law, double d, double d_rate)
+damped_impact_force(const ImpactLaw &law, double d, double d_rate, double elastic)
 {
   if (!(d > 0))
     return 0;
@@ -21,7 +24,14 @@ impact_force(const ImpactLaw &law, double d, double d_rate)
       const double x = d / law.depth;
       c *= x * x * (3 - 2 * x);
     }
-  return std::max(0.0, law.stiffness * std::pow(d, law.exponent) + c * d_rate);
+  return std::max(0.0, elastic + c * d_rate);
+}
+} // namespace
+
+double
+impact_force(const ImpactLaw &law, double d, double d_rate)
+{
+  return damped_impact_force(law, d, d_rate, law.stiffness * std::pow(d, law.exponent));
 }
 
 double
@@ -214,34 +224,62 @@ train_frequencies(const TrainModel &model, int body, double speed)
 
 namespace
 {
-/// Cubic Hermite interpolation of samples (slopes by central differences) with its derivative;
-/// false outside the samples.
-bool
-interpolate(const ToothPairCurve &c, const std::vector<double> &y, double x, double &value,
-            double &slope)
+/// Cubic Hermite interpolation of a curve's samples (slopes by central differences): where x
+/// falls and the basis there, shared by the curve's offsets and arms.
+struct Hermite
 {
-  const int n = int(y.size());
-  if (n < 2)
+  int    n = 0, i = 0;
+  double value[4] = {}, slope[4] = {}; ///< weights of y_i, m_i, y_i+1, m_i+1
+};
+
+/// false outside the samples
+bool
+hermite_at(const ToothPairCurve &c, double x, Hermite &h)
+{
+  h.n = int(c.offset.size());
+  if (h.n < 2)
     return false;
   const double s = (x - c.start) / c.step;
-  if (!(s >= 0) || s > n - 1)
+  if (!(s >= 0) || s > h.n - 1)
     return false;
-  const int    i = std::min(int(s), n - 2);
-  const double u = s - i;
-  auto         m = [&](int j) {
+  h.i            = std::min(int(s), h.n - 2);
+  const double u = s - h.i, u2 = u * u, u3 = u2 * u;
+  h.value[0] = 2 * u3 - 3 * u2 + 1;
+  h.value[1] = u3 - 2 * u2 + u;
+  h.value[2] = -2 * u3 + 3 * u2;
+  h.value[3] = u3 - u2;
+  h.slope[0] = 6 * u2 - 6 * u;
+  h.slope[1] = 3 * u2 - 4 * u + 1;
+  h.slope[2] = -6 * u2 + 6 * u;
+  h.slope[3] = 3 * u2 - 2 * u;
+  return true;
+}
+
+/// The interpolated value of samples y (of the curve h was found on) and its derivative by x.
+double
+hermite(const Hermite &h, const std::vector<double> &y, double step, double &slope)
+{
+  const int n = h.n;
+  auto      m = [&](int j) {
     if (j == 0)
       return y[1] - y[0];
     if (j == n - 1)
       return y[n - 1] - y[n - 2];
     return (y[j + 1] - y[j - 1]) / 2;
   };
-  const double m0 = m(i), m1 = m(i + 1), y0 = y[i], y1 = y[i + 1];
-  const double u2 = u * u, u3 = u2 * u;
-  value = (2 * u3 - 3 * u2 + 1) * y0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * y1 +
-          (u3 - u2) * m1;
-  slope = ((6 * u2 - 6 * u) * y0 + (3 * u2 - 4 * u + 1) * m0 + (-6 * u2 + 6 * u) * y1 +
-           (3 * u2 - 2 * u) * m1) /
-          c.step;
+  const double w[4] = {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
+  slope = (h.slope[0] * w[0] + h.slope[1] * w[1] + h.slope[2] * w[2] + h.slope[3] * w[3]) / step;
+  return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
+}
+
+/// The curve's offset at x with its slope; false outside the samples.
+bool
+interpolate_offset(const ToothPairCurve &c, double x, double &value, double &slope)
+{
+  Hermite h;
+  if (!hermite_at(c, x, h))
+    return false;
+  value = hermite(h, c.offset, c.step, slope);
   return true;
 }
 
@@ -275,9 +313,8 @@ band_edges(const ToothPairTables &t)
       d = &t.curves[drive_side][std::size_t(p * t.gear_classes + g)];
       c = &t.curves[coast_side][std::size_t(p * t.gear_classes + g)];
     }
-  double v[2], slope;
-  if (!interpolate(*d, d->offset, 0.0, v[0], slope) ||
-      !interpolate(*c, c->offset, 0.0, v[1], slope))
+  double v[2] = {0, 0}, slope = 0;
+  if (!interpolate_offset(*d, 0.0, v[0], slope) || !interpolate_offset(*c, 0.0, v[1], slope))
     require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
                   "curves that cover the pairing's centre (local angle 0)");
   return {v[0], v[1]};
@@ -360,10 +397,12 @@ public:
           {
             const int             j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
             const ToothPairCurve &c = t.curve(side, i, j);
-            double                o, o_slope, arm, arm_slope;
-            if (!interpolate(c, c.offset, phi_k, o, o_slope) ||
-                !interpolate(c, c.arm, phi_k, arm, arm_slope))
+            Hermite               h;
+            if (!hermite_at(c, phi_k, h))
               continue;
+            double       o_slope, arm_slope;
+            const double o          = hermite(h, c.offset, c.step, o_slope);
+            const double arm        = hermite(h, c.arm, c.step, arm_slope);
             const double gap        = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
             const double s          = side == drive_side ? 1.0 : -1.0;
             const double d          = s * arm * gap;
@@ -381,12 +420,12 @@ public:
                   deepest[side] = {d, dd_dphi, dd_dpsi, d_rate};
                 continue;
               }
-            const double F       = impact_force(m.law, d, d_rate);
             const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
+            const double F       = damped_impact_force(m.law, d, d_rate, elastic);
             e.torque_driver -= F * dd_dphi;
             e.torque_driven -= F * dd_dpsi;
             e.force[side] += F;
-            e.energy += impact_energy(m.law, d);
+            e.energy += elastic * d / (m.law.exponent + 1); // impact_energy
             e.dissipation_rate += (F - elastic) * d_rate;
             e.peak_rate += elastic / d * d_rate;
             e.peak_weight += elastic / d;

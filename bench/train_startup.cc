@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 using namespace gearkit;
 
@@ -119,7 +120,9 @@ errors(const TrainResult &r, const TrainResult &ref)
 int
 main(int argc, char **argv)
 {
-  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+  // --quick: 0.6 s, 10 speeds; --setting METHOD RTOL ATOL: that setting alone, no sweep
+  const bool quick   = argc > 1 && std::string(argv[1]) == "--quick";
+  const bool setting = argc == 5 && std::string(argv[1]) == "--setting";
   setvbuf(stdout, nullptr, _IOLBF, 0);
   // 0. the tooth pair tables of both stages (both sides, from the involute flanks)
   TrainModel   base;
@@ -157,9 +160,17 @@ main(int argc, char **argv)
               t_second, bdf_ref.steps, s.peak_01, s.peak_05, s.peak_all, s.speed);
   std::printf("%-6s %8s %8s %9s %9s %10s %10s %10s %10s %9s\n", "method", "rtol", "atol[m]",
               "time[s]", "steps", "peak 0.1s", "peak 0.5s", "peak all", "speeds", "energy");
-  for (TrainIntegrator method : {TrainIntegrator::bdf, TrainIntegrator::adams})
-    for (double rtol : {1e-6, 1e-8, 1e-10})
-      for (double atol : {1e-10, 1e-12})
+  std::vector<TrainIntegrator> methods = {TrainIntegrator::bdf, TrainIntegrator::adams};
+  std::vector<double>          rtols = {1e-6, 1e-8, 1e-10}, atols = {1e-10, 1e-12};
+  if (setting)
+    {
+      methods = {std::string(argv[2]) == "adams" ? TrainIntegrator::adams : TrainIntegrator::bdf};
+      rtols   = {std::stod(argv[3])};
+      atols   = {std::stod(argv[4])};
+    }
+  for (TrainIntegrator method : methods)
+    for (double rtol : rtols)
+      for (double atol : atols)
         {
           TrainRunOptions o    = reference;
           o.method             = method;
@@ -172,6 +183,9 @@ main(int argc, char **argv)
                       method == TrainIntegrator::adams ? "adams" : "bdf", rtol, atol, t, r.steps,
                       e.peak_01, e.peak_05, e.peak_all, e.speed, r.energy_error);
         }
+
+  if (setting)
+    return 0;
 
   // 2. steady stage 1 over 200 input speeds (0.1 s each, from the kinematic speeds, 1 %
   // resistive torque on the intermediate and output shafts), the default tolerances

@@ -66,7 +66,10 @@ DynamicsScene::declare(ParameterHandler &prm)
   prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
   prm.declare_entry("steady tolerance", "1e-4", Patterns::Double(0),
                     "Settled when the states at whole excitation periods repeat within this, "
-                    "relative to the static mesh deflection; 0: always settle cycles.");
+                    "relative to the static mesh deflection, over three whole periods of the "
+                    "motion (1 to 4 excitation periods; CVODE: at least 1e3 times its "
+                    "tolerance); settling goes on past settle cycles (up to five times) while "
+                    "the states still converge fast enough; 0: always settle cycles.");
   prm.declare_entry(
       "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");

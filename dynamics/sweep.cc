@@ -3,6 +3,7 @@
 #include "base/spectrum.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -25,30 +26,82 @@ peak_and_rms(const std::vector<double> &x, double &pp, double &rms)
     s += (xi - mean) * (xi - mean);
   rms = std::sqrt(s / double(x.size()));
 }
-/// Period (1 to 4 sections) with which the last Poincare points repeat, or 0. The train's
-/// rigid rotation may drift: displacements are compared through their increments per section.
-int
-repeat_period(const std::vector<PairVector> &q, const std::vector<PairVector> &v,
-              const PairVector &scale, double rate_scale, double tolerance)
+/// Largest mismatch of the last `count` Poincare points against those p sections earlier
+/// (relative to the scales; displacements through their increments per section: the train's
+/// rigid rotation may drift); infinite when there are too few points.
+double
+repeat_mismatch(const std::vector<PairVector> &q, const std::vector<PairVector> &v, int p,
+                int count, const PairVector &scale, double rate_scale)
 {
   const int n = int(q.size());
-  for (int p = 1; p <= 4; ++p)
+  if (n < count + p + 1)
+    return std::numeric_limits<double>::infinity();
+  double worst = 0;
+  for (int k = n - count; k < n; ++k)
     {
-      if (n < 2 * p + 2)
-        break;
-      double worst = 0;
-      for (int k = n - p; k < n; ++k) // the last p points against those a period earlier
-        {
-          const PairVector dq = (q[k] - q[k - 1]) - (q[k - p] - q[k - p - 1]);
-          worst               = std::max(worst, (dq.array() / scale.array()).abs().maxCoeff());
-          worst               = std::max(
-                            worst, ((v[k] - v[k - p]).array() / (rate_scale * scale.array())).abs().maxCoeff());
-        }
-      if (worst < tolerance)
-        return p;
+      const PairVector dq = (q[k] - q[k - 1]) - (q[k - p] - q[k - p - 1]);
+      worst               = std::max(worst, (dq.array() / scale.array()).abs().maxCoeff());
+      worst               = std::max(worst,
+                                     ((v[k] - v[k - p]).array() / (rate_scale * scale.array())).abs().maxCoeff());
+    }
+  return worst;
+}
+
+/// Mismatches of the last Poincare points against those 1 to 4 sections earlier (index p),
+/// each over three whole periods.
+using Mismatches = std::array<double, 5>;
+
+Mismatches
+mismatches(const std::vector<PairVector> &q, const std::vector<PairVector> &v,
+           const PairVector &scale, double rate_scale)
+{
+  Mismatches m;
+  m[0] = 0;
+  for (int p = 1; p <= 4; ++p)
+    m[std::size_t(p)] = repeat_mismatch(q, v, p, 3 * p, scale, rate_scale);
+  return m;
+}
+
+/// Period (1 to 4 sections) with which the Poincare points repeat over three whole periods, or
+/// 0 (not yet), from their mismatches now and ten periods before. A period p > 1 counts only
+/// when the mismatches of every shorter period hold still (within 0.1 %): a transient that
+/// decays while alternating between p states (a Floquet multiplier near a p-th root of unity)
+/// repeats after p sections sooner than after fewer and would pass for a subharmonic, but
+/// those shorter mismatches fall, while a subharmonic's stay. A subharmonic's points stand
+/// apart by a hundred times the tolerance at least (closer, it is not told from the scatter
+/// and a decaying transient) and repeat to the tolerance relative to their spread (the
+/// integrator's scatter grows with the motion).
+int
+repeat_period(const Mismatches &now, const Mismatches &before, double tolerance)
+{
+  if (now[1] < tolerance)
+    return 1;
+  if (now[1] < 100 * tolerance)
+    return 0; // near period 1: a subharmonic that close is not told from the scatter
+  const double subharmonic = tolerance * std::max(1.0, 10 * now[1]);
+  for (std::size_t p = 2; p <= 4; ++p)
+    {
+      const double shorter = now[p - 1], earlier = before[p - 1];
+      if (!std::isfinite(earlier) || std::abs(shorter - earlier) > 1e-3 * shorter)
+        return 0; // a shorter period's mismatch still moves: settle on
+      if (now[p] < subharmonic)
+        return int(p);
     }
   return 0;
 }
+
+/// The tolerance of the Poincare test: the sweep's, but no less than what the integrator can
+/// repeat: CVODE's Poincare points scatter by up to a thousand times its tolerances (relative
+/// to the same scales; measured on the Kahraman-Singh sweep: with 10 or 100 times, 1 in 4
+/// speeds never settles at 1e-8), Newmark's fixed steps repeat to rounding.
+double
+steady_tolerance(const SweepOptions &o, const RunOptions &r)
+{
+  if (r.method == Integrator::newmark)
+    return o.steady_tolerance;
+  return std::max(o.steady_tolerance, 1e3 * std::max(r.relative_tolerance, r.absolute_tolerance));
+}
+
 /// Index of the speed in the list nearest w.
 std::size_t
 nearest(const std::vector<double> &speeds, double w)
@@ -67,20 +120,29 @@ whole_periods(int cycles, int period)
 }
 /// Settles (q, v) at r.omega in chunks of whole periods of the excitation (each run starts
 /// at phase 0), watching the Poincare points (states at whole periods), until they repeat, the
-/// response diverges, or `most` mesh cycles.
+/// response diverges, or `most` mesh cycles - extended up to five times that while the
+/// mismatch of period 1 still falls geometrically fast enough to reach the tolerance within
+/// the extension (a slowly decaying transient near a parametric resonance, not a motion that
+/// never repeats).
 template <typename Beyond>
 void
 settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r,
        const SweepOptions &o, int most, const PairVector &scale, const Beyond &beyond, int &settled,
        int &period, bool &diverged)
 {
-  const int               K    = model.mesh().cycles();
-  const double            rate = model.parameters().pinion_teeth * r.omega / K; // [rad/s]
+  const int    K         = model.mesh().cycles();
+  const double rate      = model.parameters().pinion_teeth * r.omega / K; // [rad/s]
+  const double tolerance = steady_tolerance(o, r);
+  const int    chunk_len = whole_periods(10, K);
+  const int    hardest   = 5 * most;
+  int          limit     = most;
+  Mismatches   previous;
+  previous.fill(std::numeric_limits<double>::infinity());
   std::vector<PairVector> pq{q}, pv{v};
-  while (settled < most && period == 0 && !diverged)
+  while (settled < limit && period == 0 && !diverged)
     {
       RunOptions chunk        = r;
-      chunk.mesh_cycles       = std::min(whole_periods(10, K), most - settled);
+      chunk.mesh_cycles       = std::min(chunk_len, limit - settled);
       chunk.samples_per_cycle = 1;
       chunk.steps_per_cycle   = std::max(r.steps_per_cycle, 1);
       const Trajectory t      = simulate(model, q, v, chunk);
@@ -90,9 +152,21 @@ settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r
       settled += int(chunk.mesh_cycles);
       diverged = beyond(t);
       if (o.steady_tolerance > 0 && settled >= o.min_settle_cycles)
-        period = K * repeat_period(pq, pv, scale, rate, o.steady_tolerance);
-      if (pq.size() > 16) // keep the last points only
-        pq.erase(pq.begin(), pq.end() - 16), pv.erase(pv.begin(), pv.end() - 16);
+        {
+          const Mismatches now = mismatches(pq, pv, scale, rate);
+          period               = K * repeat_period(now, previous, tolerance);
+          if (period == 0 && settled >= limit && now[1] < previous[1] &&
+              std::isfinite(previous[1]) && int(chunk.mesh_cycles) == chunk_len)
+            {
+              // chunks to the tolerance at the last chunk's rate of decay
+              const double chunks = std::log(tolerance / now[1]) / std::log(now[1] / previous[1]);
+              if (chunks > 0 && settled + (std::ceil(chunks) + 1) * chunk_len <= hardest)
+                limit = settled + int(std::ceil(chunks) + 1) * chunk_len;
+            }
+          previous = now;
+        }
+      if (pq.size() > 24) // keep the last points only (three periods of 4 and more)
+        pq.erase(pq.begin(), pq.end() - 24), pv.erase(pv.begin(), pv.end() - 24);
     }
 }
 } // namespace

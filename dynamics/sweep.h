@@ -23,11 +23,16 @@ struct SweepOptions
 {
   std::vector<double> speeds; ///< pinion speeds [rad/s], in the order swept
   double              motor_torque = 0, load_torque = 0; ///< [N m]
-  /// Mesh cycles: settle at most this many, record this many (both rounded up to whole
-  /// periods of the excitation).
+  /// Mesh cycles: settle at most this many (up to five times as many while the Poincare
+  /// points still converge geometrically fast enough to repeat within them), record this many
+  /// (both rounded up to whole periods of the excitation).
   int settle_cycles = 200, record_cycles = 50;
   /// Steady when the Poincare points repeat within this (relative to the static deflection and
-  /// its rate at the mesh frequency); 0: always settle for settle_cycles.
+  /// its rate at the mesh frequency; CVODE: at least 1e3 times its tolerances, what its points
+  /// repeat to) over three whole periods (1 to 4 periods of the excitation; a period above 1
+  /// only while the shorter periods' mismatches hold still over ten periods: not a decaying
+  /// transient);
+  /// 0: always settle for settle_cycles.
   double steady_tolerance  = 1e-6;
   int    min_settle_cycles = 20;
   /// Diverged when |delta_D - E_t| exceeds this times (static deflection + half backlash) or is

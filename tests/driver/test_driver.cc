@@ -626,7 +626,7 @@ subsection Dynamics
     set speed from            = 500
     set speed to              = 6000
     set settle cycles         = 3000
-    set steady tolerance      = 1e-6
+    set steady tolerance      = 1e-5
     set record cycles         = 10
     set excitations           = theoretical, measured
     set time series speeds    = 2700
@@ -667,8 +667,12 @@ end
               }
             else
               {
-                // settled (the Poincare points repeat to 1e-6 of the static deflection, which
-                // leaves ~1e-5 of the first order's amplitude between the mesh orders)
+                // settled (the Poincare points repeat to 1e-5 of the static deflection over
+                // three periods, which leaves ~1e-5 of the first order's amplitude between the
+                // mesh orders; at 6000 rpm they wander by 2e-6 to 1e-5 without decaying over
+                // 3000 cycles - a lightly damped mode Newmark keeps ringing - so 1e-6 is more
+                // than this motion repeats to: the old one-period test took a chance dip below
+                // it for steady)
                 EXPECT_GE(period[i], 1) << speed[i];
                 for (std::size_t k = 1; k < R; ++k)
                   EXPECT_LT(a[k], 1e-4 * first) << speed[i] << " rpm, bin " << k;

@@ -1,6 +1,7 @@
 #include "dynamics/sweep.h"
 
 #include "base/spectrum.h"
+#include "dynamics/modes.h"
 
 #include <algorithm>
 #include <array>
@@ -171,6 +172,24 @@ settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r
 }
 } // namespace
 
+int
+newmark_steps_per_cycle(const PairModel &model, double omega, double accuracy, int orders,
+                        int least)
+{
+  require_value(accuracy > 0 && accuracy < 1, "pair dynamics", "accuracy", accuracy, "in (0, 1)");
+  const PairModes modes  = linear_modes(model);
+  const double    f_mesh = model.parameters().pinion_teeth * std::abs(omega) / (2 * pi);
+  double          band   = 0; // highest mesh-band mode [Hz]
+  for (std::size_t i = 0; i < modes.frequency.size(); ++i)
+    if (modes.mesh_energy[i] >= 0.05)
+      band = std::max(band, modes.frequency[i]);
+  const double ratio = f_mesh > 0 ? std::clamp(band / f_mesh, 1.0, double(std::max(orders, 1)))
+                                  : double(std::max(orders, 1));
+  const double zeta  = std::max(model.parameters().mesh_damping_ratio, 0.01);
+  const double per_mode_period = 2 * pi / std::sqrt(13.3 * zeta * accuracy);
+  return std::max(least, int(std::ceil(per_mode_period * ratio)));
+}
+
 std::vector<SweepPoint>
 sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &o)
 {
@@ -204,6 +223,9 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       const double omega = o.speeds[i];
       RunOptions   r     = o.run;
       r.omega            = omega;
+      if (o.accuracy > 0 && r.method == Integrator::newmark)
+        r.steps_per_cycle = newmark_steps_per_cycle(model, omega, o.accuracy, o.spectrum_orders,
+                                                    o.run.steps_per_cycle);
       r.motor_torque = o.motor_torque, r.load_torque = o.load_torque;
       int  settled = 0, period = 0;
       bool diverged = false;

@@ -263,3 +263,83 @@ TEST(KahramanSingh, SubharmonicsOfAStrongerVariationAreFound)
   const std::vector<double> unsettled = check_period_labels(Omegas, 0.02, 2);
   EXPECT_LE(unsettled.size(), 2u);
 }
+
+TEST(KahramanSingh, NewmarkStepsFromTheAccuracyHoldHalfAPercentUpAndDown)
+{
+  // Newmark with its steps per mesh cycle from the accuracy wanted (0.5 % of the DTE RMS): at
+  // every speed of Omega 0.3 - 2.0, up and down, against the oscillator integrated alone; 64
+  // steps a cycle for contrast (8 % off near Omega 0.3, where the mode sits at 3.3 mesh orders)
+  const double b = 10e-6, kbar = 1e8;
+  auto         p  = test_data::bevel_like_parameters(b);
+  p.motor_inertia = p.load_inertia = 0;
+  p.torsion_only                   = true;
+  p.mesh_damping_in_contact_only   = false;
+  p.mesh_damping_ratio             = zeta;
+  p.pinion_teeth                   = 1;
+  MeshCycleSamples t               = test_data::bevel_like_tables(32, kbar);
+  for (int i = 0; i < 32; ++i)
+    {
+      const double phase = double(i) / 32;
+      double       k = 1, e = 0;
+      for (int j = 1; j <= 3; ++j)
+        {
+          k -= kj[j - 1] * std::cos(2 * pi * j * phase);
+          e += Fe[j - 1] * b * std::cos(2 * pi * j * phase);
+        }
+      t.mesh_stiffness[i] = kbar * k, t.transmission_error[i] = e;
+    }
+  const PairModel model(p, t);
+  const double    wn = std::sqrt(kbar / model.mesh_mass());
+  const MeshState m  = model.mesh().mean();
+  const double    F  = Fm * kbar * b;
+  SweepOptions    o;
+  o.motor_torque = F * m.lp.z(), o.load_torque = F * m.lg.y();
+  o.settle_cycles = 400, o.record_cycles = 30, o.steady_tolerance = 0;
+  o.run.method = Integrator::newmark, o.run.steps_per_cycle = 64;
+  std::vector<double> Omegas;
+  for (double W = 0.3; W <= 2.001; W += 0.05)
+    Omegas.push_back(W);
+  double worst = 0, worst_64 = 0;
+  // the down sweeps go on from where the up sweeps end (the oscillator's too)
+  std::array<double, 2> y{1 + Fm, 0};
+  PairVector            q[2], v[2];
+  for (int a = 0; a < 2; ++a)
+    q[a] = model.static_equilibrium(o.load_torque).q, v[a] = PairVector::Zero();
+  for (bool up : {true, false})
+    {
+      std::vector<double> W = Omegas;
+      if (!up)
+        std::reverse(W.begin(), W.end());
+      o.speeds.clear();
+      for (double w : W)
+        o.speeds.push_back(w * wn);
+      std::vector<double> reference;
+      for (double w : W)
+        reference.push_back(oscillator(w, y, o.settle_cycles, o.record_cycles).first);
+      for (int a = 0; a < 2; ++a)
+        {
+          const double accuracy = a == 0 ? 0.005 : 0.0;
+          SweepOptions s        = o;
+          s.accuracy            = accuracy;
+          const auto points     = sweep(model, q[a], v[a], s);
+          for (std::size_t i = 0; i < W.size(); ++i)
+            {
+              const double error = std::abs(points[i].relative_rms / b / reference[i] - 1);
+              (accuracy > 0 ? worst : worst_64) = std::max(accuracy > 0 ? worst : worst_64, error);
+              if (accuracy > 0)
+                {
+                  EXPECT_LT(error, accuracy)
+                      << (up ? "up" : "down") << " Omega " << W[i] << ": "
+                      << newmark_steps_per_cycle(model, o.speeds[i], accuracy, 10, 64)
+                      << " steps a cycle";
+                }
+            }
+        }
+    }
+  std::printf("Newmark from the accuracy 0.5 %%: worst RMS error %.2e (64 steps a cycle: %.2e); "
+              "steps a cycle at Omega 0.3 / 1 / 2: %d / %d / %d\n",
+              worst, worst_64, newmark_steps_per_cycle(model, 0.3 * wn, 0.005, 10, 64),
+              newmark_steps_per_cycle(model, wn, 0.005, 10, 64),
+              newmark_steps_per_cycle(model, 2 * wn, 0.005, 10, 64));
+  EXPECT_GT(worst_64, 0.02); // the contrast: the fixed count is far off somewhere
+}

@@ -197,6 +197,7 @@ struct DynamicsScene
   double              steady_tolerance = 1e-4; ///< SweepOptions::steady_tolerance
   Integrator          integrator       = Integrator::newmark;
   int                 steps_per_cycle  = 64;
+  double              accuracy         = 0; ///< SweepOptions::accuracy (Newmark; 0: steps)
   /// Excitations swept: the theoretical flanks' tables, and the measured flanks' (needs the
   /// TCA of the measured flanks).
   bool theoretical = true, measured = false;

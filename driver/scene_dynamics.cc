@@ -73,7 +73,13 @@ DynamicsScene::declare(ParameterHandler &prm)
   prm.declare_entry(
       "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
-  prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000), "Newmark.");
+  prm.declare_entry("accuracy", "0", Patterns::Double(0, 0.5),
+                    "Newmark: the relative error of the DTE wanted; the steps per mesh cycle "
+                    "then follow at each speed from the highest mode of the mesh band and the "
+                    "mesh damping (dynamics/sweep.h: newmark_steps_per_cycle; 0.005 holds the "
+                    "Kahraman-Singh sweep to 0.27 %); 0: steps per mesh cycle at every speed.");
+  prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000),
+                    "Newmark: the least steps per mesh cycle (with accuracy 0: the steps).");
   prm.declare_entry("excitations", "theoretical",
                     Patterns::MultipleSelection("theoretical|measured"),
                     "Tables swept: the theoretical flanks', the measured flanks' (their TCA: "
@@ -137,6 +143,7 @@ DynamicsScene::parse(ParameterHandler &prm)
                             : integ == "cvode bdf" ? Integrator::cvode_bdf
                                                    : Integrator::cvode_adams;
   steps_per_cycle         = prm.get_integer("steps per mesh cycle");
+  accuracy                = prm.get_double("accuracy");
   const auto excitations  = split_list(prm.get("excitations"));
   auto       has          = [&](const char *what) {
     return std::find(excitations.begin(), excitations.end(), what) != excitations.end();

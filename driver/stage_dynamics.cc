@@ -349,6 +349,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             o.series_speeds         = d.series_speeds;
             o.run.method            = d.integrator;
             o.run.steps_per_cycle   = d.steps_per_cycle;
+            o.accuracy              = d.accuracy;
             o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
             o.speeds                = sweep_speeds(d);
             if (!up)

@@ -47,11 +47,11 @@ main(int argc, char **argv)
 
   // 1. time against error
   const std::vector<double> speeds{rpm(2000), rpm(5000), rpm(8000)};
-  auto                      dte_pp = [&](RunOptions r, double omega) {
+  auto                      dte_pp = [&](RunOptions r, double omega, double accuracy = 0) {
     r.omega = omega, r.motor_torque = TE, r.load_torque = TL;
     SweepOptions o;
     o.speeds = {omega}, o.motor_torque = TE, o.load_torque = TL;
-    o.settle_cycles = 200, o.record_cycles = 50, o.run = r;
+    o.settle_cycles = 200, o.record_cycles = 50, o.run = r, o.accuracy = accuracy;
     o.steady_tolerance = 0; // the same 200 cycles for every integrator
     PairVector q = s.q, v = PairVector::Zero();
     return sweep(model, q, v, o).front().dte_pp;
@@ -66,13 +66,13 @@ main(int argc, char **argv)
   std::printf(
       "| integrator | setting | time per speed (250 mesh cycles) | worst DTE p-p error |\n");
   std::printf("|---|---|---|---|\n");
-  auto row = [&](const char *name, const std::string &setting, RunOptions r) {
+  auto row = [&](const char *name, const std::string &setting, RunOptions r, double accuracy = 0) {
     double       worst = 0;
     const double t     = bench::median_seconds(
         [&] {
           worst = 0;
           for (std::size_t k = 0; k < speeds.size(); ++k)
-            worst = std::max(worst, std::abs(dte_pp(r, speeds[k]) / ref[k] - 1));
+            worst = std::max(worst, std::abs(dte_pp(r, speeds[k], accuracy) / ref[k] - 1));
         },
         3);
     std::printf("| %s | %s | %.3f s | %.2e |\n", name, setting.c_str(), t / speeds.size(), worst);
@@ -82,6 +82,17 @@ main(int argc, char **argv)
       RunOptions r;
       r.method = Integrator::newmark, r.steps_per_cycle = n, r.samples_per_cycle = std::min(n, 64);
       row("Newmark", std::to_string(n) + " steps / mesh cycle", r);
+    }
+  for (double accuracy : {0.02, 0.005, 0.001})
+    {
+      RunOptions r;
+      r.method = Integrator::newmark, r.steps_per_cycle = 16, r.samples_per_cycle = 16;
+      char setting[96];
+      std::snprintf(setting, sizeof setting, "accuracy %g (%d / %d / %d steps)", accuracy,
+                    newmark_steps_per_cycle(model, speeds[0], accuracy, 10, 16),
+                    newmark_steps_per_cycle(model, speeds[1], accuracy, 10, 16),
+                    newmark_steps_per_cycle(model, speeds[2], accuracy, 10, 16));
+      row("Newmark", setting, r, accuracy);
     }
   for (Integrator method : {Integrator::cvode_bdf, Integrator::cvode_adams})
     for (double tol : {1e-4, 1e-6, 1e-8})
@@ -102,9 +113,10 @@ main(int argc, char **argv)
   o.run.method = Integrator::newmark, o.run.steps_per_cycle = 32, o.run.samples_per_cycle = 32;
   for (int i = 0; i < n_speeds; ++i)
     o.speeds.push_back(rpm(100 + 11900.0 * i / (n_speeds - 1)));
-  for (double tolerance : {0.0, 1e-4})
+  for (const auto &[tolerance, accuracy] : {std::pair{0.0, 0.0}, {1e-4, 0.0}, {1e-4, 0.005}})
     {
       o.steady_tolerance = tolerance;
+      o.accuracy         = accuracy;
       SweepOptions down  = o;
       std::reverse(down.speeds.begin(), down.speeds.end());
       std::vector<SweepPoint> up_points, down_points;
@@ -119,11 +131,12 @@ main(int argc, char **argv)
       for (const auto &p : up_points)
         worst_dlf = std::max(worst_dlf, p.load_factor), settled += p.settled_cycles;
       std::printf("%d speeds 100-12000 rpm up and down (two threads), %s + 50 mesh cycles each, "
-                  "Newmark 32 steps / cycle: %.1f s; mean settling %.0f cycles; largest dynamic "
-                  "load factor %.2f\n",
-                  n_speeds, tolerance > 0 ? "settled to 1e-4 (at most 200)" : "200", t,
-                  settled / up_points.size(), worst_dlf);
-      if (tolerance == 0)
+                  "Newmark %s: %.1f s; mean settling %.0f cycles; largest dynamic load factor "
+                  "%.2f\n",
+                  n_speeds, tolerance > 0 ? "settled to 1e-4 (at most 200)" : "200",
+                  accuracy > 0 ? "steps from the accuracy 0.005" : "32 steps / cycle", t,
+                  settled / double(up_points.size()), worst_dlf);
+      if (tolerance == 0 || accuracy > 0)
         continue;
       // the up sweep again in blocks that start 3 speeds early (as the driver shares a sweep
       // among threads or MPI processes): the continuation regained?

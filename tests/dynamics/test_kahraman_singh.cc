@@ -58,37 +58,68 @@ oscillator(double Omega, std::array<double, 2> &y, int settle, int record)
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   return {std::sqrt(rms), *hi - *lo};
 }
+
+/// The 14-DOF model reduced to the oscillator (physical parameters chosen freely; the
+/// nondimensional groups are the benchmark's): supports held, no motor and load DOFs (torques
+/// straight on pinion and gear), one mesh cycle per pinion turn, mesh damping always on; its
+/// damping ratio and a factor on the stiffness variation given. `options` carry the torques
+/// that balance the mean mesh force F = Fm k b (T_E = F lambda_pz, T_L = F lambda_gy).
+struct Reduction
+{
+  static constexpr double b = 10e-6, kbar = 1e8;
+  PairModel               model;
+  double                  wn = 0; ///< [rad/s]
+  SweepOptions            options;
+
+  Reduction(double damping, double variation)
+      : model(parameters(damping), tables(variation))
+  {
+    wn                   = std::sqrt(kbar / model.mesh_mass());
+    const MeshState m    = model.mesh().mean();
+    const double    F    = Fm * kbar * b;
+    options.motor_torque = F * m.lp.z();
+    options.load_torque  = F * m.lg.y();
+  }
+
+  static PairModelParameters
+  parameters(double damping)
+  {
+    PairModelParameters p = test_data::bevel_like_parameters(b);
+    p.motor_inertia = p.load_inertia = 0;
+    p.torsion_only                   = true;
+    p.mesh_damping_in_contact_only   = false;
+    p.mesh_damping_ratio             = damping;
+    p.pinion_teeth                   = 1;
+    return p;
+  }
+
+  static MeshCycleSamples
+  tables(double variation)
+  {
+    MeshCycleSamples t = test_data::bevel_like_tables(32, kbar);
+    for (int i = 0; i < 32; ++i)
+      {
+        const double phase = double(i) / 32;
+        double       k = 1, e = 0;
+        for (int j = 1; j <= 3; ++j)
+          {
+            k -= variation * kj[j - 1] * std::cos(2 * pi * j * phase);
+            e += Fe[j - 1] * b * std::cos(2 * pi * j * phase);
+          }
+        t.mesh_stiffness[i] = kbar * k, t.transmission_error[i] = e;
+      }
+    return t;
+  }
+};
 } // namespace
 
 TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
 {
   // physical parameters chosen freely; the nondimensional groups are the benchmark's
-  const double b = 10e-6, kbar = 1e8;
-  auto         p  = test_data::bevel_like_parameters(b);
-  p.motor_inertia = p.load_inertia = 0; // torques straight on pinion and gear
-  p.torsion_only                   = true;
-  p.mesh_damping_in_contact_only   = false;
-  p.mesh_damping_ratio             = zeta;
-  p.pinion_teeth                   = 1; // one mesh cycle per pinion turn
-  MeshCycleSamples t               = test_data::bevel_like_tables(32, kbar);
-  for (int i = 0; i < 32; ++i)
-    {
-      const double phase = double(i) / 32;
-      double       k = 1, e = 0;
-      for (int j = 1; j <= 3; ++j)
-        {
-          k -= kj[j - 1] * std::cos(2 * pi * j * phase);
-          e += Fe[j - 1] * b * std::cos(2 * pi * j * phase);
-        }
-      t.mesh_stiffness[i] = kbar * k, t.transmission_error[i] = e;
-    }
-  const PairModel model(p, t);
-  const double    wn = std::sqrt(kbar / model.mesh_mass());
-  const MeshState m  = model.mesh().mean();
-  // F = Fm k b = T_E / lambda_pz, balanced by T_L = F lambda_gy
-  const double F = Fm * kbar * b;
-  SweepOptions o;
-  o.motor_torque = F * m.lp.z(), o.load_torque = F * m.lg.y();
+  const Reduction  ks(zeta, 1);
+  const PairModel &model = ks.model;
+  const double     b = Reduction::b, wn = ks.wn;
+  SweepOptions     o = ks.options;
   o.settle_cycles = 150, o.record_cycles = 30;
   o.run.method = Integrator::cvode_bdf, o.run.samples_per_cycle = 32;
   o.run.relative_tolerance = 1e-9, o.run.absolute_tolerance = 1e-9;
@@ -182,31 +213,10 @@ oscillator_period(const KahramanSingh &oscillator, std::array<double, 2> &y)
 std::vector<double>
 check_period_labels(const std::vector<double> &Omegas, double damping, double variation)
 {
-  const double b = 10e-6, kbar = 1e8;
-  auto         p  = test_data::bevel_like_parameters(b);
-  p.motor_inertia = p.load_inertia = 0;
-  p.torsion_only                   = true;
-  p.mesh_damping_in_contact_only   = false;
-  p.mesh_damping_ratio             = damping;
-  p.pinion_teeth                   = 1;
-  MeshCycleSamples t               = test_data::bevel_like_tables(32, kbar);
-  for (int i = 0; i < 32; ++i)
-    {
-      const double phase = double(i) / 32;
-      double       k = 1, e = 0;
-      for (int j = 1; j <= 3; ++j)
-        {
-          k -= variation * kj[j - 1] * std::cos(2 * pi * j * phase);
-          e += Fe[j - 1] * b * std::cos(2 * pi * j * phase);
-        }
-      t.mesh_stiffness[i] = kbar * k, t.transmission_error[i] = e;
-    }
-  const PairModel model(p, t);
-  const double    wn = std::sqrt(kbar / model.mesh_mass());
-  const MeshState m  = model.mesh().mean();
-  const double    F  = Fm * kbar * b;
-  SweepOptions    o;
-  o.motor_torque = F * m.lp.z(), o.load_torque = F * m.lg.y();
+  const Reduction  ks(damping, variation);
+  const PairModel &model = ks.model;
+  const double     wn    = ks.wn;
+  SweepOptions     o     = ks.options;
   for (double W : Omegas)
     o.speeds.push_back(W * wn);
   PairVector            q = model.static_equilibrium(o.load_torque).q, v = PairVector::Zero();
@@ -269,31 +279,10 @@ TEST(KahramanSingh, NewmarkStepsFromTheAccuracyHoldHalfAPercentUpAndDown)
   // Newmark with its steps per mesh cycle from the accuracy wanted (0.5 % of the DTE RMS): at
   // every speed of Omega 0.3 - 2.0, up and down, against the oscillator integrated alone; 64
   // steps a cycle for contrast (8 % off near Omega 0.3, where the mode sits at 3.3 mesh orders)
-  const double b = 10e-6, kbar = 1e8;
-  auto         p  = test_data::bevel_like_parameters(b);
-  p.motor_inertia = p.load_inertia = 0;
-  p.torsion_only                   = true;
-  p.mesh_damping_in_contact_only   = false;
-  p.mesh_damping_ratio             = zeta;
-  p.pinion_teeth                   = 1;
-  MeshCycleSamples t               = test_data::bevel_like_tables(32, kbar);
-  for (int i = 0; i < 32; ++i)
-    {
-      const double phase = double(i) / 32;
-      double       k = 1, e = 0;
-      for (int j = 1; j <= 3; ++j)
-        {
-          k -= kj[j - 1] * std::cos(2 * pi * j * phase);
-          e += Fe[j - 1] * b * std::cos(2 * pi * j * phase);
-        }
-      t.mesh_stiffness[i] = kbar * k, t.transmission_error[i] = e;
-    }
-  const PairModel model(p, t);
-  const double    wn = std::sqrt(kbar / model.mesh_mass());
-  const MeshState m  = model.mesh().mean();
-  const double    F  = Fm * kbar * b;
-  SweepOptions    o;
-  o.motor_torque = F * m.lp.z(), o.load_torque = F * m.lg.y();
+  const Reduction  ks(zeta, 1);
+  const PairModel &model = ks.model;
+  const double     b = Reduction::b, wn = ks.wn;
+  SweepOptions     o = ks.options;
   o.settle_cycles = 400, o.record_cycles = 30, o.steady_tolerance = 0;
   o.run.method = Integrator::newmark, o.run.steps_per_cycle = 64;
   std::vector<double> Omegas;

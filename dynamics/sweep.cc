@@ -64,7 +64,8 @@ mismatches(const std::vector<PairVector> &q, const std::vector<PairVector> &v,
 }
 
 /// Period (1 to 4 sections) with which the Poincare points repeat over three whole periods, or
-/// 0 (not yet), from their mismatches now and ten periods before. A period p > 1 counts only
+/// 0 (not yet), from their mismatches now and one settling chunk (ten mesh cycles or more)
+/// before. A period p > 1 counts only
 /// when the mismatches of every shorter period hold still (within 0.1 %): a transient that
 /// decays while alternating between p states (a Floquet multiplier near a p-th root of unity)
 /// repeats after p sections sooner than after fewer and would pass for a subharmonic, but

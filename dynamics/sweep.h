@@ -30,8 +30,8 @@ struct SweepOptions
   /// Steady when the Poincare points repeat within this (relative to the static deflection and
   /// its rate at the mesh frequency; CVODE: at least 1e3 times its tolerances, what its points
   /// repeat to) over three whole periods (1 to 4 periods of the excitation; a period above 1
-  /// only while the shorter periods' mismatches hold still over ten periods: not a decaying
-  /// transient);
+  /// only while the shorter periods' mismatches hold still over ten mesh cycles: not a
+  /// decaying transient);
   /// 0: always settle for settle_cycles.
   double steady_tolerance  = 1e-6;
   int    min_settle_cycles = 20;

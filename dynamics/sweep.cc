@@ -174,6 +174,23 @@ settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r
 } // namespace
 
 int
+excited_orders(const MeshCycleSamples &tables, int orders)
+{
+  int highest = 1;
+  for (const std::vector<double> *table : {&tables.transmission_error, &tables.mesh_stiffness})
+    {
+      if (table->size() < 2)
+        continue;
+      const std::vector<double> a       = mesh_order_amplitudes(*table, tables.cycles, orders);
+      const double              largest = *std::max_element(a.begin() + 1, a.end());
+      for (std::size_t k = 1; k < a.size(); ++k)
+        if (largest > 0 && a[k] >= 1e-2 * largest)
+          highest = std::max(highest, int(k));
+    }
+  return highest;
+}
+
+int
 newmark_steps_per_cycle(const PairModel &model, double omega, double accuracy, int orders,
                         int least)
 {
@@ -184,11 +201,15 @@ newmark_steps_per_cycle(const PairModel &model, double omega, double accuracy, i
   for (std::size_t i = 0; i < modes.frequency.size(); ++i)
     if (modes.mesh_energy[i] >= 0.05)
       band = std::max(band, modes.frequency[i]);
-  const double ratio = f_mesh > 0 ? std::clamp(band / f_mesh, 1.0, double(std::max(orders, 1)))
-                                  : double(std::max(orders, 1));
-  const double zeta  = std::max(model.parameters().mesh_damping_ratio, 0.01);
-  const double per_mode_period = 2 * pi / std::sqrt(13.3 * zeta * accuracy);
-  return std::max(least, int(std::ceil(per_mode_period * ratio)));
+  const int    excited = excited_orders(model.tables(), std::max(orders, 1));
+  const double ratio   = f_mesh > 0 ? band / f_mesh : HUGE_VAL; // the mode in mesh orders
+  const double zeta    = std::max(model.parameters().mesh_damping_ratio, 0.01);
+  double       steps   = 0;
+  if (ratio <= excited + 1) // an excited order (or its neighbour) can meet the mode
+    steps = 2 * pi / std::sqrt(13.3 * zeta * accuracy) * std::max(ratio, 1.0);
+  else // the mode above the excitation answers quasi-statically: resolve the excited orders
+    steps = 2 * pi / std::sqrt(6 * accuracy) * (excited + 1);
+  return std::max(least, int(std::ceil(steps)));
 }
 
 std::vector<SweepPoint>

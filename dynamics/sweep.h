@@ -53,15 +53,22 @@ struct SweepOptions
 };
 
 /// Newmark steps per mesh cycle for a relative DTE error `accuracy` at pinion speed omega
-/// [rad/s]: the average-acceleration rule lengthens a mode's period by (w h)^2 / 12, which near
+/// [rad/s]. The average-acceleration rule lengthens a mode's period by (w h)^2 / 12, which near
 /// a resonance moves the response by about that over 2 zeta (zeta: the mesh damping ratio, at
-/// least 0.01); the highest mode of the mesh band (mesh strain energy share >= 5 %, at most
-/// `orders` mesh orders up, at least one) gets (w h)^2 <= 13.3 zeta accuracy (half the error
-/// allowed; calibrated on the Kahraman-Singh oscillator, whose 64 steps a cycle at Omega 0.3
-/// leave 8 %). At least `least`.
+/// least 0.01). When the highest mode of the mesh band (mesh strain energy share >= 5 %) lies
+/// within one order of the excited mesh orders (excited_orders), it gets (w h)^2 <= 13.3 zeta
+/// accuracy (half the error allowed; calibrated on the Kahraman-Singh oscillator, whose 64 steps
+/// a cycle at Omega 0.3 leave 8 %); above them it answers quasi-statically (exact in the
+/// implicit rule's static limit) and the excited orders up to one beyond get
+/// (w h)^2 <= 6 accuracy. At least `least`.
 int
 newmark_steps_per_cycle(const PairModel &model, double omega, double accuracy, int orders,
                         int least);
+
+/// The highest mesh order (1 to `orders`) in which the tables' E_t or K_m has at least 1 % of
+/// its largest order's amplitude.
+int
+excited_orders(const MeshCycleSamples &tables, int orders);
 
 struct SweepPoint
 {

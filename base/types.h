@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,18 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 
 constexpr double pi = 3.14159265358979323846;
+
+/// A small rigid motion: a point x moves by at(x) = translation + rotation x (x - 0), the
+/// translation being that of the point at the origin [m], the rotation a vector [rad].
+struct RigidMotion
+{
+  Vec3 translation = Vec3::Zero(), rotation = Vec3::Zero();
+  Vec3
+  at(const Vec3 &x) const
+  {
+    return translation + rotation.cross(x);
+  }
+};
 
 /// Thrown for user input that cannot be used (a parameter out of range, a malformed file).
 /// The message names the parameter or file and what is allowed; the driver prints it and exits

@@ -198,6 +198,9 @@ struct DynamicsScene
   Integrator          integrator       = Integrator::newmark;
   int                 steps_per_cycle  = 64;
   double              accuracy         = 0; ///< SweepOptions::accuracy (Newmark; 0: steps)
+  /// The tables from the TCA at the position the static load deflects the pair to
+  /// (dynamics/deflection.h), else as assembled.
+  bool system_deflection = true;
   /// Excitations swept: the theoretical flanks' tables, and the measured flanks' (needs the
   /// TCA of the measured flanks).
   bool theoretical = true, measured = false;

@@ -80,6 +80,11 @@ DynamicsScene::declare(ParameterHandler &prm)
                     "Kahraman-Singh sweep to 0.27 %); 0: steps per mesh cycle at every speed.");
   prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000),
                     "Newmark: the least steps per mesh cycle (with accuracy 0: the steps).");
+  prm.declare_entry("system deflection", "true", Patterns::Bool(),
+                    "true: the static equilibrium's displacements and tilts of both members "
+                    "(bearings, shafts) move the pair: the TCA runs again at that misalignment, "
+                    "to a fixed point, and the dynamics runs on the deflected mesh's tables "
+                    "(with an analytic E_t: as assembled); false: the tables as assembled.");
   prm.declare_entry("excitations", "theoretical",
                     Patterns::MultipleSelection("theoretical|measured"),
                     "Tables swept: the theoretical flanks', the measured flanks' (their TCA: "
@@ -144,6 +149,7 @@ DynamicsScene::parse(ParameterHandler &prm)
                                                    : Integrator::cvode_adams;
   steps_per_cycle         = prm.get_integer("steps per mesh cycle");
   accuracy                = prm.get_double("accuracy");
+  system_deflection       = prm.get_bool("system deflection");
   const auto excitations  = split_list(prm.get("excitations"));
   auto       has          = [&](const char *what) {
     return std::find(excitations.begin(), excitations.end(), what) != excitations.end();

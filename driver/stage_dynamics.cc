@@ -6,8 +6,9 @@
 // excitation's period is the TCA's mesh cycles, interpolated by makima). The sweeps - per
 // excitation and direction, optionally in blocks of speeds - run on threads, and spread over
 // the MPI processes under mpirun; every process gathers all results.
-#include "driver/pair_members.h"
+#include "driver/pair_tca.h"
 #include "driver/stages.h"
+#include "dynamics/deflection.h"
 #include "dynamics/modes.h"
 #include "dynamics/sweep.h"
 
@@ -15,27 +16,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <optional>
+#include <sstream>
 #include <thread>
+#include <tuple>
 
 namespace gearkit
 {
 namespace
 {
-/// The TCA's contact tables as the ste stage stored them.
-ContactTables
-contact_tables(const H5Group &ste)
-{
-  ContactTables        t;
-  std::vector<hsize_t> shape;
-  t.normal_pinion      = ste.read_doubles("normal_pinion", &shape);
-  t.lambda_pinion      = ste.read_doubles("lambda_pinion");
-  t.lambda_gear        = ste.read_doubles("lambda_gear");
-  t.transmission_error = ste.read_doubles("transmission_error");
-  t.leading            = ste.read_ints("leading");
-  t.positions = shape[0], t.slots = shape[1];
-  return t;
-}
-
 // A sweep point as numbers (for the MPI gather) and back.
 void
 pack(const SweepPoint &p, std::vector<double> &out)
@@ -178,6 +168,86 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
       }
 }
 
+/// Mean contact point of the leading pairs on the gear flank, (radius, axial) in the gear's
+/// frame [m], from tables write_tca_tables wrote.
+Vec2
+pattern_centre(const H5Group &tables)
+{
+  std::vector<hsize_t> shape;
+  const auto           X    = tables.read_doubles("contact_in_gear_frame", &shape);
+  const auto           lead = tables.read_ints("leading");
+  Vec2                 c    = Vec2::Zero();
+  for (std::size_t i = 0; i < shape[0]; ++i)
+    {
+      const std::size_t at = ((i * shape[1] + std::size_t(std::max(lead[i], 0))) * 3) * 3;
+      c += Vec2(std::hypot(X[at], X[at + 1]), X[at + 2]);
+    }
+  return c / double(shape[0]);
+}
+
+/// The system deflection of one excitation: iterations, the gear's motion, the misalignment it
+/// amounts to, the deflected TCA's tables and the shifts of the contact pattern and of e_0.
+void
+write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &tca,
+                 const Misalignment &m, const PairMembers &moved, const TcaResult &deflected,
+                 const H5Group &aligned, std::ostream &log, const std::string &what)
+{
+  const hsize_t n = sd.change.size();
+  g.write("iterations", double(n), "1", "TCA runs at a deflected position");
+  g.write("converged", double(sd.converged), "1",
+          "1: the static motion changed by less than 1e-3 of its size in the last iteration");
+  g.write("change", sd.change, {n}, "m",
+          "per iteration, the change of the gear's motion: at its body point plus its rotation "
+          "times the largest mean moment arm");
+  const std::vector<double> t(sd.motion.translation.data(), sd.motion.translation.data() + 3),
+      w(sd.motion.rotation.data(), sd.motion.rotation.data() + 3);
+  g.write("gear_translation", t, {3}, "m",
+          "static motion of the gear relative to the pinion: of its point at the global origin");
+  g.write("gear_rotation", w, {3}, "rad", "static rotation of the gear relative to the pinion");
+  const Misalignment &s = tca.misalignment;
+  for (auto [name, value, units] :
+       {std::tuple{"offset", m.offset - s.offset, "m"},
+        {"centre_distance_error", m.centre_distance_error - s.centre_distance_error, "m"},
+        {"crossing_angle", m.crossing_angle - s.crossing_angle, "rad"},
+        {"intersecting_angle", m.intersecting_angle - s.intersecting_angle, "rad"},
+        {"pinion_axial_shift", m.pinion_axial_shift - s.pinion_axial_shift, "m"},
+        {"gear_axial_shift", m.gear_axial_shift - s.gear_axial_shift, "m"}})
+    g.write(name, value, units,
+            "the misalignment the deflection adds to the scene's (TCA/<pair>), as assembly.h "
+            "defines it");
+  const H5Group tables = g.group("tca");
+  write_tca_tables(deflected, tca, moved, tables);
+  const Vec2 shift = pattern_centre(tables) - pattern_centre(aligned);
+  const auto e0    = aligned.read_doubles("transmission_error"),
+             e1    = tables.read_doubles("transmission_error");
+  const double mean_shift =
+      (std::accumulate(e1.begin(), e1.end(), 0.0) - std::accumulate(e0.begin(), e0.end(), 0.0)) /
+      double(e0.size());
+  g.write("pattern_shift", std::vector<double>{shift.x(), shift.y()}, {2}, "m",
+          "shift of the mean contact point of the leading pairs on the gear flank, (radial, "
+          "axial) in the gear's frame, deflected minus as assembled");
+  g.write("transmission_error_mean_shift", mean_shift, "rad",
+          "mean e_0 deflected minus as assembled");
+  const bool bevel = moved.centre_distance == 0;
+  log << "  " << what << ": system deflection " << (sd.converged ? "converged" : "NOT converged")
+      << " in " << n << " TCA runs: ";
+  if (bevel)
+    log << "offset dE " << (m.offset - s.offset) * 1e6 << " um, pinion axial dP "
+        << (m.pinion_axial_shift - s.pinion_axial_shift) * 1e6 << " um, gear axial dG "
+        << (m.gear_axial_shift - s.gear_axial_shift) * 1e6 << " um, shaft angle "
+        << (m.intersecting_angle - s.intersecting_angle) * 1e3 << " mrad";
+  else
+    log << "centre distance " << (m.centre_distance_error - s.centre_distance_error) * 1e6
+        << " um, offset " << (m.offset - s.offset) * 1e6 << " um, crossing "
+        << (m.crossing_angle - s.crossing_angle) * 1e3 << " mrad, inclination "
+        << (m.intersecting_angle - s.intersecting_angle) * 1e3 << " mrad, gear axial "
+        << (m.gear_axial_shift - s.gear_axial_shift) * 1e6 << " um";
+  log << "; contact pattern moves " << shift.x() * 1e3 << " mm radially, " << shift.y() * 1e3
+      << " mm axially on the gear; e_0 peak-to-peak " << aligned.read_double("peak_to_peak") * 1e6
+      << " -> " << tables.read_double("peak_to_peak") * 1e6 << " urad, mean " << mean_shift * 1e6
+      << " urad\n";
+}
+
 /// The sweep's speeds [rad/s], ascending.
 std::vector<double>
 sweep_speeds(const DynamicsScene &d)
@@ -298,19 +368,66 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
           const int K =
               measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles)
                        : 1;
-          MeshCycleSamples tables = mesh_cycle_samples(
-              measured ? contact_tables(ste.group("measured")) : contact_tables(ste), n, K,
-              pinion_axis, stiffness(measured));
-          if (measured) // kinks and noise: no ringing between the samples
-            tables.interpolation = MeshInterpolation::makima;
-          if (!d.tca_transmission_error)
-            for (int i = 0; i < n * K; ++i)
-              tables.transmission_error[std::size_t(i)] =
-                  d.transmission_error_amplitude * std::sin(2 * pi * i / n);
-          Excitation e{label, std::make_unique<PairModel>(p, tables), {}, d.torque, 0};
-          e.TL             = balancing_load_torque(e.model->mesh(), e.TE, pinion_axis, gear_axis);
-          e.s              = e.model->static_equilibrium(e.TL);
-          const H5Group eg = g.group(label);
+          // the tables of an analysis; the system deflection's fixed point over them
+          std::optional<H5Group> measured_ste;
+          if (measured)
+            measured_ste.emplace(ste.group("measured"));
+          const H5Group &aligned   = measured ? *measured_ste : ste;
+          const auto     tables_of = [&](const ContactTables &c) {
+            MeshCycleSamples tables = mesh_cycle_samples(c, n, K, pinion_axis, stiffness(measured));
+            if (measured) // kinks and noise: no ringing between the samples
+              tables.interpolation = MeshInterpolation::makima;
+            if (!d.tca_transmission_error)
+              for (int i = 0; i < n * K; ++i)
+                tables.transmission_error[std::size_t(i)] =
+                    d.transmission_error_amplitude * std::sin(2 * pi * i / n);
+            return tables;
+          };
+          const auto flanks = measured ? measured_members(upstream.at("measured")->group(pair.name))
+                                       : std::pair{members.pinion, members.gear};
+          PairMembers  moved      = members;
+          Misalignment misaligned = tca.misalignment;
+          TcaResult    deflected;
+          const auto   tables_at = [&](const RigidMotion &u) {
+            DeflectedTables out;
+            if (u.translation.isZero(0) && u.rotation.isZero(0))
+              return out.tables = tables_of(contact_tables(aligned)), out;
+            TcaScene t     = tca;
+            t.misalignment = misalignment_after(members.assembly, tca.misalignment, u, &out.taken);
+            misaligned     = t.misalignment;
+            moved = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
+            try
+              {
+                deflected = pair_tca(measured ? flanks.first : moved.pinion,
+                                     measured ? flanks.second : moved.gear, moved.assembly, t,
+                                     measured, [] {});
+              }
+            catch (const InputError &e)
+              {
+                std::ostringstream msg;
+                msg << "Dynamics/" << pair.name << "/system deflection: the static load moves "
+                    << "the gear by " << u.translation.norm() * 1e6 << " um and "
+                    << u.rotation.norm() * 1e3 << " mrad relative to the pinion, and the TCA "
+                    << "there fails (" << e.what() << "); stiffen the supports (bearing and "
+                    << "axial stiffness), lower the torque, or set system deflection = false";
+                throw InputError(msg.str());
+              }
+            out.tables = tables_of(contact_tables(deflected));
+            return out;
+          };
+          SystemDeflectionOptions so;
+          so.motor_torque = d.torque;
+          so.pinion_axis = pinion_axis, so.gear_axis = gear_axis;
+          so.pinion_centre    = members.assembly.pinion_centre();
+          so.gear_centre      = members.assembly.gear_to_global(Vec3::Zero(), 0);
+          so.max_iterations   = d.system_deflection && d.tca_transmission_error ? 10 : 0;
+          SystemDeflection sd = system_deflection(p, tables_at, so);
+          Excitation       e{label, std::move(sd.model), sd.equilibrium, d.torque, sd.load_torque};
+          const MeshCycleSamples &tables = e.model->tables();
+          const H5Group           eg     = g.group(label);
+          if (so.max_iterations > 0)
+            write_deflection(eg.group("deflection"), sd, tca, misaligned, moved, deflected, aligned,
+                             log, pair.name + " " + label);
           eg.write("static_mesh_force", e.s.mesh_force, "N", "F_m in the static equilibrium");
           eg.write("static_deflection", e.s.deflection, "m", "delta_D - E_t - b_c, static");
           eg.write("load_torque", e.TL, "N m", "T_L balancing the pinion torque");

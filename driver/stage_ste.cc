@@ -1,173 +1,11 @@
 // Stage "ste": unloaded tooth contact analysis of every pair — static transmission error e_0,
 // its mesh-order harmonics, and per position and tooth pair the contact point, normals, moment
 // arms and separations (the tables the FE stiffness and the dynamics read).
-#include "base/spectrum.h"
-#include "driver/pair_members.h"
+#include "driver/pair_tca.h"
 #include "driver/stages.h"
-
-#include <Eigen/Geometry>
-
-#include <algorithm>
-#include <cmath>
 
 namespace gearkit
 {
-namespace
-{
-/// Classical (or fast discrete-point) TCA over the scene's positions.
-TcaResult
-analyse(const UnloadedTca &tca, const TcaScene &t, int z1, Progress &progress)
-{
-  TcaResult r;
-  r.mesh_angle = 2 * pi / z1;
-  const int n  = t.options.positions_per_mesh * t.options.mesh_cycles;
-  for (int i = 0; i < n; ++i)
-    {
-      r.positions.push_back(
-          tca.at(t.options.start_angle + r.mesh_angle * i / t.options.positions_per_mesh));
-      progress.step();
-    }
-  summarise(r);
-  return r;
-}
-
-/// Writes every table of `r` to `g`; returns the peak-to-peak and mean pairs in contact for the
-/// log.
-std::pair<double, double>
-write_tables(const TcaResult &r, const TcaScene &t, const PairMembers &members, int z1,
-             const H5Group &g)
-{
-  const int n = int(r.positions.size());
-
-  // Per-position tables; pair slots padded to the most pairs met at any position.
-  std::size_t slots = 0;
-  for (const TcaPosition &p : r.positions)
-    slots = std::max(slots, p.pairs.size());
-  std::vector<double> phi, psi, te, sep, u1, v1, u2, v2, X, np, ng, lp, lg, kmin, kmax, major, axes,
-      ellipse_gear;
-  std::vector<int> touching, leading, ptooth, gtooth, edge;
-  double           te_min = HUGE_VAL, te_max = -HUGE_VAL, pairs_sum = 0;
-  for (const TcaPosition &p : r.positions)
-    {
-      phi.push_back(p.pinion_angle);
-      psi.push_back(p.gear_angle);
-      te.push_back(p.transmission_error);
-      te_min = std::min(te_min, p.transmission_error);
-      te_max = std::max(te_max, p.transmission_error);
-      touching.push_back(p.touching);
-      leading.push_back(p.leading);
-      pairs_sum += p.touching;
-      for (std::size_t k = 0; k < slots; ++k)
-        {
-          const bool         used = k < p.pairs.size();
-          const PairContact  none;
-          const PairContact &c = used ? p.pairs[k] : none;
-          ptooth.push_back(used ? c.pinion_tooth : -1);
-          gtooth.push_back(used ? c.gear_tooth : -1);
-          edge.push_back(c.edge ? 1 : 0);
-          sep.push_back(c.separation);
-          u1.push_back(c.u1), v1.push_back(c.v1), u2.push_back(c.u2), v2.push_back(c.v2);
-          kmin.push_back(c.curvature_min), kmax.push_back(c.curvature_max);
-          const auto [a, b] = used ? contact_ellipse(c, t.elastic_approach) : std::pair{0.0, 0.0};
-          axes.insert(axes.end(), {a, b});
-          // contact point and ellipse semi-axis vectors in the gear's own frame (contact
-          // pattern on the gear flank)
-          const Eigen::Matrix3d turn    = Eigen::AngleAxisd(p.gear_angle, Vec3::UnitZ()).matrix();
-          const Vec3            minor   = c.normal_pinion.cross(c.major_direction);
-          const auto            to_gear = [&](const Vec3 &v) {
-            return Vec3(turn * members.assembly.global_to_gear_unrotated_vector(v));
-          };
-          const Vec3 Xg = used ? Vec3(turn * members.assembly.global_to_gear_unrotated(c.position))
-                               : Vec3::Zero();
-          const Vec3 A  = used ? to_gear(a * c.major_direction) : Vec3::Zero();
-          const Vec3 B  = used ? to_gear(b * minor) : Vec3::Zero();
-          for (const Vec3 *v : {&Xg, &A, &B})
-            ellipse_gear.insert(ellipse_gear.end(), v->data(), v->data() + 3);
-          for (auto [v, dest] : {std::pair{&c.position, &X},
-                                 {&c.normal_pinion, &np},
-                                 {&c.normal_gear, &ng},
-                                 {&c.lambda_pinion, &lp},
-                                 {&c.lambda_gear, &lg},
-                                 {&c.major_direction, &major}})
-            dest->insert(dest->end(), v->data(), v->data() + 3);
-        }
-    }
-  const hsize_t       N = n, S = slots;
-  const double        r_p = members.pitch_radius;
-  std::vector<double> te_pitch(te.size());
-  std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_p; });
-
-  if (members.centre_distance > 0)
-    g.write("centre_distance", members.centre_distance, "m",
-            "centre distance of the analysis (with its error added)");
-  g.write("pitch_radius", r_p, "m",
-          "pinion radius of transmission_error_pitch: operating pitch radius (parallel axes) or "
-          "mean pitch radius (bevel)");
-  g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi (counter-clockwise)");
-  g.write("gear_angle", psi, {N}, "rad", "gear rotation psi in its driven sense");
-  g.write("transmission_error", te, {N}, "rad",
-          "unloaded static transmission error e_0 = phi - (z2/z1) psi, pinion radians (zero for "
-          "perfect involutes at zero backlash)");
-  g.write("transmission_error_pitch", te_pitch, {N}, "m",
-          "e_0 as displacement at the pitch point, e_0 times pitch_radius");
-  g.write("peak_to_peak", te_max - te_min, "rad", "peak-to-peak of e_0");
-  const std::vector<double> h = mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
-  g.write("harmonics", h, {h.size()}, "m",
-          "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
-  if (t.hunting)
-    {
-      // The signal repeats after the hunting cycle: its fundamental is 1 / revolutions pinion
-      // orders, so gear-tooth errors (gear order 1 = pinion order z1 / z2) land on lines too.
-      const int                 revolutions = t.options.mesh_cycles / z1;
-      const std::vector<double> amplitude =
-          mesh_order_amplitudes(te_pitch, 1, revolutions * z1 * t.harmonics);
-      std::vector<double> order(amplitude.size());
-      for (std::size_t k = 0; k < order.size(); ++k)
-        order[k] = double(k) / revolutions;
-      g.write("shaft_order", order, {order.size()}, "1",
-              "pinion shaft orders of shaft_order_spectrum, k / (pinion revolutions in the "
-              "hunting cycle): mesh order m is pinion order m z1, gear order n is pinion "
-              "order n z1 / z2");
-      g.write("shaft_order_spectrum", amplitude, {amplitude.size()}, "m",
-              "amplitudes of e_0 at the pitch point over the hunting cycle at the pinion shaft "
-              "orders in shaft_order (0 .. z1 x harmonics)");
-    }
-  g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
-  g.write("mean_pairs_in_contact", pairs_sum / n, "1",
-          "mean number of touching pairs (the contact ratio for conjugate flanks)");
-  g.write("leading", leading, {N}, "1", "pair slot that carries the contact");
-  g.write("pinion_tooth", ptooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
-  g.write("gear_tooth", gtooth, {N, S}, "1", "gear tooth of each pair slot (-1: empty)");
-  g.write("edge_contact", edge, {N, S}, "1", "1 where the closest point lies on a flank edge");
-  g.write("separation", sep, {N, S}, "m",
-          "normal gap of each pair at the gear's position (0 for touching pairs)");
-  g.write("pinion_u", u1, {N, S}, "1", "pinion flank profile parameter");
-  g.write("pinion_v", v1, {N, S}, "1", "pinion flank face parameter");
-  g.write("gear_u", u2, {N, S}, "1", "gear flank profile parameter");
-  g.write("gear_v", v2, {N, S}, "1", "gear flank face parameter");
-  g.write("contact_point", X, {N, S, 3}, "m", "contact (closest) point, global frame");
-  g.write("normal_pinion", np, {N, S, 3}, "1", "n_p: pinion flank outward normal, global");
-  g.write("normal_gear", ng, {N, S, 3}, "1", "n_g: gear flank outward normal, global");
-  g.write("lambda_pinion", lp, {N, S, 3}, "m", "lambda_p = r_p x n_p about the pinion centre");
-  g.write("lambda_gear", lg, {N, S, 3}, "m", "lambda_g = r_g x n_g about the gear centre");
-  g.write("relative_curvature_min", kmin, {N, S}, "1/m",
-          "smaller principal relative curvature of the flanks at the contact (0: line contact)");
-  g.write("relative_curvature_max", kmax, {N, S}, "1/m",
-          "larger principal relative curvature of the flanks at the contact");
-  g.write("contact_ellipse_direction", major, {N, S, 3}, "1",
-          "direction of the contact ellipse's major axis (smaller relative curvature), global");
-  g.write("contact_ellipse_axes", axes, {N, S, 2}, "m",
-          "semi-axes (major, minor) of the contact ellipse at the elastic approach "
-          "elastic_approach, sqrt(2 delta / k); 1 m where the contact is a line");
-  g.write("contact_in_gear_frame", ellipse_gear, {N, S, 3, 3}, "m",
-          "contact point and the contact ellipse's major and minor semi-axis vectors in the gear "
-          "member's own frame (axis z), for the contact pattern on the gear flank");
-  g.write("elastic_approach", t.elastic_approach, "m",
-          "elastic approach delta of the contact ellipses");
-  return {te_max - te_min, pairs_sum / n};
-}
-} // namespace
-
 void
 run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, std::ostream &log)
 {
@@ -177,39 +15,30 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       const TcaScene &t = scene.tca.at(pair.name);
       total += t.options.positions_per_mesh * t.options.mesh_cycles * (t.measured ? 2 : 1);
     }
-  Progress progress(log, "ste", total);
+  Progress   progress(log, "ste", total);
+  const auto step = [&] { progress.step(); };
 
   for (const PairScene &pair : scene.pairs)
     {
       const TcaScene   &t = scene.tca.at(pair.name);
       const PairMembers members =
           theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
-      const int     z1 = members.pinion->teeth();
-      const H5Group g  = out.group(pair.name);
+      const H5Group g = out.group(pair.name);
       g.attribute("method", "classical TCA on the theoretical flanks");
-      const auto [pp, pairs] = write_tables(
-          analyse(UnloadedTca(members.pinion, members.gear, members.assembly, t.options), t, z1,
-                  progress),
-          t, members, z1, g);
+      const auto [pp, pairs] = write_tca_tables(
+          pair_tca(members.pinion, members.gear, members.assembly, t, false, step), t, members, g);
       log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
           << " urad, mean pairs in contact " << pairs << "\n";
       if (!t.measured)
         continue;
-      // Fast discrete-point STE on the measured flanks of this pair.
-      // (a measurement source is there: TcaScene::complete_and_check)
-      const H5Group m = upstream.at("measured")->group(pair.name);
-      const auto    mp =
-          std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("pinion"), "pinion"));
-      const auto mg =
-          std::make_shared<MeasuredMemberFlanks>(read_measured(m.group("gear"), "gear"));
-      const H5Group gm = g.group("measured");
-      TcaResult     r;
+      // STE on the measured flanks of this pair (a measurement source is there:
+      // TcaScene::complete_and_check)
+      const auto [mp, mg] = measured_members(upstream.at("measured")->group(pair.name));
+      const H5Group   gm  = g.group("measured");
+      PaperModeResult paper;
+      const TcaResult r = pair_tca(mp, mg, members.assembly, t, true, step, &paper);
       if (t.paper_mode)
         {
-          PaperModeOptions po         = t.paper;
-          po.on_position              = [&] { progress.step(); };
-          const PaperModeResult paper = paper_mode_ste(*mp, *mg, members.assembly, po);
-          r                           = paper.tca;
           gm.attribute("method", "paper mode (the seed's point-cloud method) on the measured "
                                  "flanks");
           gm.write("paper_tolerance", paper.tolerance, "m",
@@ -219,12 +48,9 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
                    "the seed's STE, relative to the first position");
         }
       else
-        {
-          r = analyse(UnloadedTca(mp, mg, members.assembly, t.options), t, z1, progress);
-          gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
-                                 "interpolated from the measured points");
-        }
-      const auto [mpp, mpairs] = write_tables(r, t, members, z1, gm);
+        gm.attribute("method", "fast discrete-point: exact contact search on the flanks "
+                               "interpolated from the measured points");
+      const auto [mpp, mpairs] = write_tca_tables(r, t, members, gm);
       log << "  " << pair.name << " measured (" << (t.paper_mode ? "paper mode" : "fast")
           << "): e_0 peak-to-peak " << mpp * 1e6 << " urad, mean pairs in contact " << mpairs
           << "\n";

@@ -5,6 +5,7 @@
 
 #include "driver/source_hashes.h"
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -113,10 +114,18 @@ stage_definitions()
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {
+         // K_m from the finite elements; the measured flanks for their deflected TCA
+         std::vector<std::string> up;
          for (const auto &[name, d] : scene.dynamics)
-           if (d.fe_stiffness)
-             return std::vector<std::string>{"stiffness"};
-         return std::vector<std::string>{};
+           {
+             if (d.fe_stiffness)
+               up.push_back("stiffness");
+             if (d.measured && d.system_deflection)
+               up.push_back("measured");
+           }
+         std::sort(up.begin(), up.end());
+         up.erase(std::unique(up.begin(), up.end()), up.end());
+         return up;
        }},
       {"train",
        "gear-train impact dynamics: tooth pair curves, IMPACT contact, CVODE run, spectra",

@@ -1,5 +1,6 @@
 #include "tca/assembly.h"
 
+#include <array>
 #include <cmath>
 
 namespace gearkit
@@ -82,5 +83,60 @@ Vec3
 Assembly::global_to_gear_unrotated_vector(const Vec3 &v) const
 {
   return rot_z(-phase) * (orientation.transpose() * v);
+}
+} // namespace gearkit
+
+namespace gearkit
+{
+Misalignment
+misalignment_after(const Assembly &assembly, const Misalignment &m, const RigidMotion &motion,
+                   RigidMotion *taken)
+{
+  // Six unknowns, each moving the gear relative to the pinion by a rigid motion (T; W) per
+  // unit: misalignment changes and turns of the members about their own axes; the motion is
+  // their sum. The gear frame turns about its origin C by Ry(intersecting) Rx(crossing), so a
+  // change of the crossing angle turns it about Ry(intersecting) e_x.
+  using Column = Eigen::Matrix<double, 6, 1>;
+  const Vec3 C = assembly.gear_centre(), a = assembly.gear_axis(), z = Vec3::UnitZ();
+  const auto turn = [](const Vec3 &w, const Vec3 &pivot) {
+    Column c;
+    c << -w.cross(pivot), w;
+    return c;
+  };
+  const auto shift = [](const Vec3 &t) {
+    Column c;
+    c << t, Vec3::Zero();
+    return c;
+  };
+  const Vec3 crossing_axis = Eigen::AngleAxisd(m.intersecting_angle, Vec3::UnitY()) * Vec3::UnitX();
+  Misalignment                               out = m;
+  std::array<std::pair<Column, double *>, 6> unknowns; // (motion per unit, entry; none: a turn)
+  if (a.cross(z).norm() < 0.1) // parallel axes (bevel shaft angles are far larger)
+    unknowns = {{{shift(Vec3::UnitX()), &out.centre_distance_error},
+                 {shift(Vec3::UnitY()), &out.offset},
+                 {turn(crossing_axis, C), &out.crossing_angle},
+                 {turn(Vec3::UnitY(), C), &out.intersecting_angle},
+                 {shift(a), &out.gear_axial_shift},
+                 {turn(a, C), nullptr}}}; // (the pinion's turn: the gear's and an offset)
+  else
+    unknowns = {{{shift(Vec3::UnitY()), &out.offset},
+                 {turn(Vec3::UnitY(), C), &out.intersecting_angle},
+                 {shift(a), &out.gear_axial_shift},
+                 {shift(-z), &out.pinion_axial_shift},
+                 {turn(a, C), nullptr},
+                 {turn(z, Vec3::Zero()), nullptr}}};
+  Eigen::Matrix<double, 6, 6> A;
+  for (int j = 0; j < 6; ++j)
+    A.col(j) = unknowns[std::size_t(j)].first;
+  Column u;
+  u << motion.translation, motion.rotation;
+  const Column x    = A.fullPivLu().solve(u);
+  Column       part = Column::Zero();
+  for (int j = 0; j < 6; ++j)
+    if (double *entry = unknowns[std::size_t(j)].second)
+      *entry += x[j], part += x[j] * A.col(j);
+  if (taken)
+    taken->translation = part.head<3>(), taken->rotation = part.tail<3>();
+  return out;
 }
 } // namespace gearkit

@@ -72,6 +72,13 @@ public:
     return orientation.col(2);
   }
 
+  /// Global position of the pinion frame's origin (the point its moment arms are taken about).
+  Vec3
+  pinion_centre() const
+  {
+    return Vec3(0, 0, pinion_shift);
+  }
+
 private:
   Assembly(const Vec3 &centre, const Eigen::Matrix3d &frame, double phase, const Misalignment &m);
 
@@ -81,4 +88,18 @@ private:
   double          pinion_shift;
   double          gear_shift;
 };
+
+/// The misalignment of the pair once the gear has made the small rigid motion `motion` relative
+/// to the pinion (the motion a static deflection of shafts and bearings gives, in the pinion's
+/// frame): `m` (the one `assembly` was built with) plus the change. Turns of either member about
+/// its own axis are transmission error, left to the contact analysis; the rest goes into
+/// - parallel axes: centre distance error, offset, crossing and intersecting angles and the
+///   gear's axial shift;
+/// - intersecting axes (bevel): offset, shaft angle error (intersecting angle) and both axial
+///   shifts.
+/// `taken`, if given, receives the part of the motion the change represents (first order: the
+/// change of the misalignment reproduces it exactly to first order in its size).
+Misalignment
+misalignment_after(const Assembly &assembly, const Misalignment &m, const RigidMotion &motion,
+                   RigidMotion *taken = nullptr);
 } // namespace gearkit

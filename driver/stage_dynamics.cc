@@ -383,19 +383,21 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                     d.transmission_error_amplitude * std::sin(2 * pi * i / n);
             return tables;
           };
-          const auto flanks = measured ? measured_members(upstream.at("measured")->group(pair.name))
-                                       : std::pair{members.pinion, members.gear};
-          PairMembers  moved      = members;
-          Misalignment misaligned = tca.misalignment;
-          TcaResult    deflected;
-          const auto   tables_at = [&](const RigidMotion &u) {
+          // the measured flanks, read when the deflection first needs them
+          std::pair<MemberPointer, MemberPointer> flanks;
+          PairMembers                             moved      = members;
+          Misalignment                            misaligned = tca.misalignment;
+          TcaResult                               deflected;
+          const auto                              tables_at = [&](const RigidMotion &u) {
             DeflectedTables out;
             if (u.translation.isZero(0) && u.rotation.isZero(0))
               return out.tables = tables_of(contact_tables(aligned)), out;
-            TcaScene t     = tca;
+            TcaScene t = tca;
             t.misalignment = misalignment_after(members.assembly, tca.misalignment, u, &out.taken);
-            misaligned     = t.misalignment;
+            misaligned = t.misalignment;
             moved = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
+            if (measured && !flanks.first)
+              flanks = measured_members(upstream.at("measured")->group(pair.name));
             try
               {
                 deflected = pair_tca(measured ? flanks.first : moved.pinion,

@@ -793,6 +793,54 @@ def plot_train_spectrograms(trains, out_dir):
     save(fig, os.path.join(out_dir, "train_spectrogram.png"))
 
 
+def plot_deflection(dyn, ste, flanks, out_dir):
+    """System deflection: e_0 and the contact path on the gear flank as assembled and in the
+    position the static load deflects the pair to, per pair and excitation."""
+    rows = [(name, label, dyn[name][label]["deflection"]) for name in dyn
+            for label in ("theoretical", "measured")
+            if label in dyn[name] and "deflection" in dyn[name][label]]
+    if not rows:
+        return
+    fig, axes = plt.subplots(len(rows), 2, figsize=(13, 4.2 * len(rows)), squeeze=False)
+    for (left, right), (name, label, d) in zip(axes, rows):
+        aligned = ste[name] if label == "theoretical" else ste[name]["measured"]
+        moved = d["tca"]
+        z1 = int(flanks[name]["pinion"]["number_of_teeth"][()])
+        shift = d["transmission_error_mean_shift"][()] * 1e6
+        for g, what in ((aligned, "as assembled"), (moved, "deflected")):
+            cycles = g["pinion_angle"][:] * z1 / (2 * np.pi)
+            te = g["transmission_error"][:] * 1e6
+            left.plot(cycles, te - te.mean(), ".-", ms=3, lw=0.8,
+                      label=f"{what}: p-p {g['peak_to_peak'][()] * 1e6:.3g} urad")
+        left.set_xlabel("pinion angle [mesh cycles]")
+        left.set_ylabel("e_0 - mean [urad]")
+        left.set_title(f"{name} ({label}): e_0, mean moved by {shift:.4g} urad", fontsize=10)
+        left.legend(fontsize=8)
+        left.grid(alpha=0.3)
+        for g, what, style in ((aligned, "as assembled", "k."), (moved, "deflected", "r.")):
+            lead = np.maximum(g["leading"][:], 0)
+            points = g["contact_in_gear_frame"][:][np.arange(len(lead)), lead, 0]
+            face, profile = gear_flank_coordinates(flanks, name, points)
+            right.plot(face, profile, style, ms=3, label=what)
+        if "centre_distance" in ste[name]:
+            text = (f"a {d['centre_distance_error'][()] * 1e6:+.3g} um, offset "
+                    f"{d['offset'][()] * 1e6:+.3g} um, crossing {d['crossing_angle'][()] * 1e3:+.3g}"
+                    f" mrad, inclination {d['intersecting_angle'][()] * 1e3:+.3g} mrad")
+        else:
+            text = (f"dE {d['offset'][()] * 1e6:+.3g} um, dP {d['pinion_axial_shift'][()] * 1e6:+.3g}"
+                    f" um, dG {d['gear_axial_shift'][()] * 1e6:+.3g} um, dgamma "
+                    f"{d['intersecting_angle'][()] * 1e3:+.3g} mrad")
+        right.set_title(f"contact path on the gear flank\ndeflection: {text}", fontsize=9)
+        right.set_xlabel("face [mm]" if not is_bevel(flanks[name])
+                         else "face: cone distance - A_m [mm] (toe to heel)")
+        right.set_ylabel("gear roll length L [mm]" if not is_bevel(flanks[name])
+                         else "height above the pitch cone [mm]")
+        right.legend(fontsize=8)
+        right.grid(alpha=0.3)
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, "deflection.png"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -813,6 +861,7 @@ def main():
             plot_stiffness(f["stiffness"], f["flanks"], out_dir)
         if "dynamics" in f:
             plot_dynamics(f["dynamics"], f["flanks"], out_dir)
+            plot_deflection(f["dynamics"], f["ste"], f["flanks"], out_dir)
         if "train" in f:
             plot_trains(f["train"], out_dir)
 

@@ -76,8 +76,16 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     assert 0 < np.count_nonzero(~stable) <= 5, rpm[~stable]
     assert np.all(up["period"][:][~stable] == 0) and np.all(down["period"][:][::-1][~stable] == 0)
     assert np.count_nonzero(up["period"][:] > 0) >= 110  # the rest settled
-    # no contact loss: where stable, one periodic response per speed, the same up and down
-    assert np.max((np.abs(pp - down["dte_peak_to_peak"][:][::-1]) / pp)[stable]) < 0.1
+    # no contact loss: where stable and settled, one periodic response per speed, the same up
+    # and down. Next to the unstable band a stable mesh may still not settle: a multiplier of
+    # 0.9999 per cycle decays by a third in 3000 cycles, and the down sweep can arrive there on
+    # a contact-losing motion that coexists with the one in contact (deflected mesh: 2400 and
+    # 2700 rpm) - allowed only within 200 rpm of an unstable speed
+    settled = (up["period"][:] > 0) & (down["period"][:][::-1] > 0)
+    for r in rpm[stable & ~settled]:
+        assert np.min(np.abs(rpm[~stable] - r)) <= 200, (r, rpm[~stable])
+    both_ways = stable & settled
+    assert np.max((np.abs(pp - down["dte_peak_to_peak"][:][::-1]) / pp)[both_ways]) < 0.1
     peaks = [rpm[i] for i in range(1, len(pp) - 1) if pp[i] > pp[i - 1] and pp[i] >= pp[i + 1]]
     for seed_peak in (700, 1400, 4600, 9300):
         assert any(abs(p / seed_peak - 1) < 0.1 for p in peaks), (seed_peak, peaks)
@@ -94,13 +102,20 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     thirds = np.isclose(3 * order, np.round(3 * order)) & ~integer
     share = spectrum[:, thirds].sum(axis=1) / spectrum[:, integer & (order > 0)].sum(axis=1)
     assert np.all(share > 0.3), share.min()
+    # system deflection (on by default): both excitations' fixed points converged; the soft
+    # supports move the gear by tenths of a millimetre in offset and the contact by millimetres
+    for excitation in (th, me):
+        d = excitation["deflection"]
+        assert d["converged"][()] == 1 and 1 <= d["iterations"][()] <= 10, d["change"][:]
+        assert 1e-4 < abs(d["offset"][()]) < 1e-3, d["offset"][()]
+        assert np.hypot(*d["pattern_shift"][:]) > 0.5e-3, d["pattern_shift"][:]
     # time series kept at the seed's resonances
     kept = sorted(s["speed"][()] for s in me["up"]["time_series"].values())
     assert np.allclose(kept, (1400, 4600, 9300)), kept
     for member, dofs in (("pinion", 131139), ("gear", 110727)):
         assert f["compliance"]["seed"][member]["dofs"][()] == dofs  # the mesh the README states
 for name in ("ste.png", "contact_pattern.png", "measured.png", "stiffness.png", "dynamics.png",
-             "dynamics_spectra.png", "dynamics_time.png"):
+             "dynamics_spectra.png", "dynamics_time.png", "deflection.png"):
     path = os.path.join(out, name)
     with open(path, "rb") as fh:
         assert fh.read(8) == b"\x89PNG\r\n\x1a\n", path

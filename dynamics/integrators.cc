@@ -108,7 +108,25 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
   const PairMatrix L =
       free.asDiagonal() * (4 / (h * h) * M + 2 / h * C + K) * free.asDiagonal() + held;
   const Eigen::LDLT<PairMatrix> Lf(L);
-  PairVector                    q = q0, v = v0, a;
+  // The phase advances by 1 / steps_per_cycle a step, so the mesh repeats after one period of
+  // the tables: its state, gradient and L^-1 g once for each step of that period (the tables'
+  // interpolation and a solve per step were most of a step's cost).
+  struct StepMesh
+  {
+    MeshState  m;
+    PairVector g, Lg;
+    double     gLg = 0;
+  };
+  std::vector<StepMesh> mesh(std::size_t(o.steps_per_cycle * model.mesh().cycles()));
+  for (std::size_t k = 0; k < mesh.size(); ++k)
+    {
+      StepMesh &s = mesh[k];
+      s.m         = model.mesh().at(double(k) / o.steps_per_cycle);
+      s.g         = PairModel::mesh_gradient(s.m).cwiseProduct(free);
+      s.Lg        = Lf.solve(s.g);
+      s.gLg       = s.g.dot(s.Lg);
+    }
+  PairVector q = q0, v = v0, a;
   {
     const MeshState  m  = model.mesh().at(0);
     const PairVector g  = PairModel::mesh_gradient(m).cwiseProduct(free);
@@ -120,12 +138,12 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
   const int every       = std::max(1, o.steps_per_cycle / o.samples_per_cycle);
   for (int n = 1; n <= steps_total; ++n)
     {
-      const double     t       = n * h;
-      const MeshState  m       = model.mesh().at(model.phase(t, o.omega));
-      const PairVector g       = PairModel::mesh_gradient(m).cwiseProduct(free);
-      const double     et_rate = m.det * z * o.omega / (2 * pi);
-      const PairVector Lg      = Lf.solve(g);
-      const double     gLg     = g.dot(Lg);
+      const double      t  = n * h;
+      const StepMesh   &sm = mesh[std::size_t(n) % mesh.size()];
+      const MeshState  &m  = sm.m;
+      const PairVector &g = sm.g, &Lg = sm.Lg;
+      const double      gLg     = sm.gLg;
+      const double      et_rate = m.det * z * o.omega / (2 * pi);
       // in increments (the rigid rotation of a torque-driven train grows without bound; the
       // step must not cancel it against itself): L dq = dq* - L^-1 g F_m
       const PairVector rhs   = (F_ext - K * q + M * (4 / h * v + a) + C * v).cwiseProduct(free);

@@ -528,20 +528,31 @@ end
     EXPECT_LT(std::abs(e), 1e-8);
 }
 
+namespace
+{
+/// The small scene run to its dynamics on a constant K_m: a 16-position TCA over one mesh cycle
+/// and these entries of Dynamics/p1.
+std::string
+small_dynamics_scene(const std::string &entries)
+{
+  return std::regex_replace(small_scene, std::regex("set outputs = flanks"),
+                            "set outputs = dynamics") +
+         "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 16\n    set mesh "
+         "cycles = 1\n  end\nend\n"
+         "subsection Dynamics\n  subsection p1\n    set mesh stiffness source = constant\n" +
+         entries + "  end\nend\n";
+}
+} // namespace
+
 TEST_F(DriverTest, DynamicsRunsOnTheMeshDeflectedByTheStaticLoad)
 {
   // Soft bearings (100 N/um) under 100 N m: the static motion of the gear relative to the
   // pinion becomes a misalignment of the pair, iterated with the TCA to a fixed point. The TCA
   // the dynamics stage ran there must be the ste stage's at that misalignment given in the
   // scene (the bookkeeping of dynamics/deflection.h and tca/assembly.h end to end).
-  const std::string dyn =
-      std::regex_replace(small_scene, std::regex("set outputs = flanks"),
-                         "set outputs = dynamics") +
-      "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 16\n    set mesh "
-      "cycles = 1\n  end\nend\n"
-      "subsection Dynamics\n  subsection p1\n    set mesh stiffness source = constant\n"
+  const std::string dyn = small_dynamics_scene(
       "    set pinion torque = 100\n    set bearing stiffness = 100\n    set speeds = 2\n"
-      "    set settle cycles = 10\n    set record cycles = 5\n  end\nend\n";
+      "    set settle cycles = 10\n    set record cycles = 5\n");
   ASSERT_EQ(run({scene(dyn)}), 0) << err.str();
   EXPECT_NE(out.str().find("system deflection converged"), std::string::npos) << out.str();
   const H5File  f = H5File::open((dir / "out/small/results.h5").string());
@@ -582,16 +593,11 @@ TEST_F(DriverTest, DynamicsRunsOnTheMeshDeflectedByTheStaticLoad)
 
 TEST_F(DriverTest, DynamicsWithConstantStiffnessSkipsTheFiniteElements)
 {
-  const std::string dyn =
-      std::regex_replace(small_scene, std::regex("set outputs = flanks"),
-                         "set outputs = dynamics") +
-      "subsection TCA\n  subsection p1\n    set positions per mesh cycle = 16\n    set mesh "
-      "cycles = 1\n  end\nend\n"
-      "subsection Dynamics\n  subsection p1\n    set mesh stiffness source = constant\n"
+  const std::string dyn = small_dynamics_scene(
       "    set mesh stiffness = 300\n    set mesh stiffness variation = 0.1\n"
       "    set pinion torque = 100\n    set speeds = 6\n    set speed from = 500\n"
       "    set speed to = 6000\n    set settle cycles = 30\n    set record cycles = 10\n"
-      "    set system deflection = false\n  end\nend\n";
+      "    set system deflection = false\n");
   const std::string file = scene(dyn);
   ASSERT_EQ(run({file}), 0) << err.str();
   EXPECT_NE(out.str().find("stage dynamics: ran"), std::string::npos) << out.str();

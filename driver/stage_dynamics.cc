@@ -186,7 +186,8 @@ pattern_centre(const H5Group &tables)
 }
 
 /// The system deflection of one excitation: iterations, the gear's motion, the misalignment it
-/// amounts to, the deflected TCA's tables and the shifts of the contact pattern and of e_0.
+/// adds to the scene's (`m` less `tca`'s), the deflected TCA's tables and the shifts of the
+/// contact pattern and of e_0.
 void
 write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &tca,
                  const Misalignment &m, const PairMembers &moved, const TcaResult &deflected,
@@ -205,47 +206,49 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
           "static motion of the gear relative to the pinion: of its point at the global origin");
   g.write("gear_rotation", w, {3}, "rad", "static rotation of the gear relative to the pinion");
   const Misalignment &s = tca.misalignment;
-  for (auto [name, value, units] :
-       {std::tuple{"offset", m.offset - s.offset, "m"},
-        {"centre_distance_error", m.centre_distance_error - s.centre_distance_error, "m"},
-        {"crossing_angle", m.crossing_angle - s.crossing_angle, "rad"},
-        {"intersecting_angle", m.intersecting_angle - s.intersecting_angle, "rad"},
-        {"pinion_axial_shift", m.pinion_axial_shift - s.pinion_axial_shift, "m"},
-        {"gear_axial_shift", m.gear_axial_shift - s.gear_axial_shift, "m"}})
+  Misalignment        added;
+  added.offset                = m.offset - s.offset;
+  added.centre_distance_error = m.centre_distance_error - s.centre_distance_error;
+  added.crossing_angle        = m.crossing_angle - s.crossing_angle;
+  added.intersecting_angle    = m.intersecting_angle - s.intersecting_angle;
+  added.pinion_axial_shift    = m.pinion_axial_shift - s.pinion_axial_shift;
+  added.gear_axial_shift      = m.gear_axial_shift - s.gear_axial_shift;
+  for (auto [name, value, units] : {std::tuple{"offset", added.offset, "m"},
+                                    {"centre_distance_error", added.centre_distance_error, "m"},
+                                    {"crossing_angle", added.crossing_angle, "rad"},
+                                    {"intersecting_angle", added.intersecting_angle, "rad"},
+                                    {"pinion_axial_shift", added.pinion_axial_shift, "m"},
+                                    {"gear_axial_shift", added.gear_axial_shift, "m"}})
     g.write(name, value, units,
             "the misalignment the deflection adds to the scene's (TCA/<pair>), as assembly.h "
             "defines it");
-  const H5Group tables = g.group("tca");
-  write_tca_tables(deflected, tca, moved, tables);
-  const Vec2 shift = pattern_centre(tables) - pattern_centre(aligned);
-  const auto e0    = aligned.read_doubles("transmission_error"),
-             e1    = tables.read_doubles("transmission_error");
-  const double mean_shift =
-      (std::accumulate(e1.begin(), e1.end(), 0.0) - std::accumulate(e0.begin(), e0.end(), 0.0)) /
-      double(e0.size());
+  const H5Group tables       = g.group("tca");
+  const double  peak_to_peak = write_tca_tables(deflected, tca, moved, tables).first;
+  const Vec2    shift        = pattern_centre(tables) - pattern_centre(aligned);
+  const auto    e0           = aligned.read_doubles("transmission_error");
+  double        mean_shift   = -std::accumulate(e0.begin(), e0.end(), 0.0);
+  for (const TcaPosition &p : deflected.positions)
+    mean_shift += p.transmission_error;
+  mean_shift /= double(e0.size());
   g.write("pattern_shift", std::vector<double>{shift.x(), shift.y()}, {2}, "m",
           "shift of the mean contact point of the leading pairs on the gear flank, (radial, "
           "axial) in the gear's frame, deflected minus as assembled");
   g.write("transmission_error_mean_shift", mean_shift, "rad",
           "mean e_0 deflected minus as assembled");
-  const bool bevel = moved.centre_distance == 0;
   log << "  " << what << ": system deflection " << (sd.converged ? "converged" : "NOT converged")
       << " in " << n << " TCA runs: ";
-  if (bevel)
-    log << "offset dE " << (m.offset - s.offset) * 1e6 << " um, pinion axial dP "
-        << (m.pinion_axial_shift - s.pinion_axial_shift) * 1e6 << " um, gear axial dG "
-        << (m.gear_axial_shift - s.gear_axial_shift) * 1e6 << " um, shaft angle "
-        << (m.intersecting_angle - s.intersecting_angle) * 1e3 << " mrad";
+  if (moved.centre_distance == 0) // bevel
+    log << "offset dE " << added.offset * 1e6 << " um, pinion axial dP "
+        << added.pinion_axial_shift * 1e6 << " um, gear axial dG " << added.gear_axial_shift * 1e6
+        << " um, shaft angle " << added.intersecting_angle * 1e3 << " mrad";
   else
-    log << "centre distance " << (m.centre_distance_error - s.centre_distance_error) * 1e6
-        << " um, offset " << (m.offset - s.offset) * 1e6 << " um, crossing "
-        << (m.crossing_angle - s.crossing_angle) * 1e3 << " mrad, inclination "
-        << (m.intersecting_angle - s.intersecting_angle) * 1e3 << " mrad, gear axial "
-        << (m.gear_axial_shift - s.gear_axial_shift) * 1e6 << " um";
+    log << "centre distance " << added.centre_distance_error * 1e6 << " um, offset "
+        << added.offset * 1e6 << " um, crossing " << added.crossing_angle * 1e3
+        << " mrad, inclination " << added.intersecting_angle * 1e3 << " mrad, gear axial "
+        << added.gear_axial_shift * 1e6 << " um";
   log << "; contact pattern moves " << shift.x() * 1e3 << " mm radially, " << shift.y() * 1e3
       << " mm axially on the gear; e_0 peak-to-peak " << aligned.read_double("peak_to_peak") * 1e6
-      << " -> " << tables.read_double("peak_to_peak") * 1e6 << " urad, mean " << mean_shift * 1e6
-      << " urad\n";
+      << " -> " << peak_to_peak * 1e6 << " urad, mean " << mean_shift * 1e6 << " urad\n";
 }
 
 /// The sweep's speeds [rad/s], ascending.

@@ -128,10 +128,10 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
     }
   PairVector q = q0, v = v0, a;
   {
-    const MeshState  m  = model.mesh().at(0);
-    const PairVector g  = PairModel::mesh_gradient(m).cwiseProduct(free);
-    const double     Fm = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
-    a                   = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
+    const MeshState  &m  = mesh.front().m;
+    const PairVector &g  = mesh.front().g;
+    const double      Fm = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
+    a                    = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
   }
   record(model, o, 0, q, v, out);
   const int steps_total = int(std::lround(o.mesh_cycles * o.steps_per_cycle));

@@ -64,12 +64,34 @@ oscillator(double Omega, std::array<double, 2> &y, int settle, int record)
 /// straight on pinion and gear), one mesh cycle per pinion turn, mesh damping always on; its
 /// damping ratio and a factor on the stiffness variation given. `options` carry the torques
 /// that balance the mean mesh force F = Fm k b (T_E = F lambda_pz, T_L = F lambda_gy).
+/// Omega = from, from + step, ... to `to` (inclusive within rounding), reversed when down.
+std::vector<double>
+omegas(double from, double to, double step, bool up = true)
+{
+  std::vector<double> W;
+  for (double x = from; x <= to + 1e-3 * step; x += step)
+    W.push_back(x);
+  if (!up)
+    std::reverse(W.begin(), W.end());
+  return W;
+}
+
 struct Reduction
 {
   static constexpr double b = 10e-6, kbar = 1e8;
   PairModel               model;
   double                  wn = 0; ///< [rad/s]
   SweepOptions            options;
+
+  /// Pinion speeds [rad/s] of the frequency ratios W (pinion speed = mesh frequency, z = 1).
+  std::vector<double>
+  speeds(const std::vector<double> &W) const
+  {
+    std::vector<double> w;
+    for (double x : W)
+      w.push_back(x * wn);
+    return w;
+  }
 
   Reduction(double damping, double variation)
       : model(parameters(damping), tables(variation))
@@ -118,25 +140,19 @@ TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
   // physical parameters chosen freely; the nondimensional groups are the benchmark's
   const Reduction  ks(zeta, 1);
   const PairModel &model = ks.model;
-  const double     b = Reduction::b, wn = ks.wn;
-  SweepOptions     o = ks.options;
+  const double     b     = Reduction::b;
+  SweepOptions     o     = ks.options;
   o.settle_cycles = 150, o.record_cycles = 30;
   o.run.method = Integrator::cvode_bdf, o.run.samples_per_cycle = 32;
   o.run.relative_tolerance = 1e-9, o.run.absolute_tolerance = 1e-9;
-  std::vector<double> Omegas;
-  for (double W = 0.6; W <= 1.401; W += 0.05)
-    Omegas.push_back(W);
+  const std::vector<double> Omegas = omegas(0.6, 1.4, 0.05);
 
   std::vector<double> up_rms, down_rms, newmark_rms;
   for (bool up : {true, false})
     {
-      std::vector<double> W = Omegas;
-      if (!up)
-        std::reverse(W.begin(), W.end());
-      o.speeds.clear();
-      for (double w : W)
-        o.speeds.push_back(w * wn); // pinion speed = mesh frequency (z = 1)
-      const StaticEquilibrium s = model.static_equilibrium(o.load_torque);
+      const std::vector<double> W = omegas(0.6, 1.4, 0.05, up);
+      o.speeds                    = ks.speeds(W);
+      const StaticEquilibrium s   = model.static_equilibrium(o.load_torque);
       PairVector              q = s.q, v = PairVector::Zero();
       const auto              points = sweep(model, q, v, o);
       std::array<double, 2>   y{1 + Fm, 0}; // the oscillator's static state
@@ -157,9 +173,7 @@ TEST(KahramanSingh, TorsionalReductionMatchesTheOscillatorUpAndDown)
   {
     SweepOptions n = o;
     n.run.method = Integrator::newmark, n.run.steps_per_cycle = 128;
-    n.speeds.clear();
-    for (double w : Omegas)
-      n.speeds.push_back(w * wn);
+    n.speeds     = ks.speeds(Omegas);
     PairVector q = model.static_equilibrium(o.load_torque).q, v = PairVector::Zero();
     const auto points = sweep(model, q, v, n);
     for (std::size_t i = 0; i < Omegas.size(); ++i)
@@ -214,11 +228,9 @@ std::vector<double>
 check_period_labels(const std::vector<double> &Omegas, double damping, double variation)
 {
   const Reduction  ks(damping, variation);
-  const PairModel &model = ks.model;
-  const double     wn    = ks.wn;
-  SweepOptions     o     = ks.options;
-  for (double W : Omegas)
-    o.speeds.push_back(W * wn);
+  const PairModel &model  = ks.model;
+  SweepOptions     o      = ks.options;
+  o.speeds                = ks.speeds(Omegas);
   PairVector            q = model.static_equilibrium(o.load_torque).q, v = PairVector::Zero();
   const auto            points = sweep(model, q, v, o);
   std::array<double, 2> y{1 + Fm, 0};
@@ -253,10 +265,7 @@ TEST(KahramanSingh, PeriodLabelsOfTheSweepMatchALongIndependentIntegration)
   // only. Before the three-period confirmation, the integrator-scaled tolerance, the still
   // period-1 mismatch asked of a subharmonic and the extension, 27 of the 86 labels were
   // wrong (transients taken for period 2 or 3, period-1 motions never found steady at 1e-8).
-  std::vector<double> Omegas;
-  for (double W = 0.3; W <= 2.001; W += 0.02)
-    Omegas.push_back(W);
-  const std::vector<double> unsettled = check_period_labels(Omegas, zeta, 1);
+  const std::vector<double> unsettled = check_period_labels(omegas(0.3, 2.0, 0.02), zeta, 1);
   EXPECT_LE(unsettled.size(), 2u);
   for (double W : unsettled)
     EXPECT_GE(W, 1.95) << "not steady within the settling at Omega " << W;
@@ -267,10 +276,7 @@ TEST(KahramanSingh, SubharmonicsOfAStrongerVariationAreFound)
   // twice the stiffness variation, zeta 0.02: period 4 over Omega 1.84 - 1.94, period 2 over
   // 1.98 - 2.18 (Poincare points 0.03 b apart), period 1 around them; the sweep's labels
   // against the oscillator's at every speed
-  std::vector<double> Omegas;
-  for (double W = 1.8; W <= 2.301; W += 0.02)
-    Omegas.push_back(W);
-  const std::vector<double> unsettled = check_period_labels(Omegas, 0.02, 2);
+  const std::vector<double> unsettled = check_period_labels(omegas(1.8, 2.3, 0.02), 0.02, 2);
   EXPECT_LE(unsettled.size(), 2u);
 }
 
@@ -285,9 +291,6 @@ TEST(KahramanSingh, NewmarkStepsFromTheAccuracyHoldHalfAPercentUpAndDown)
   SweepOptions     o = ks.options;
   o.settle_cycles = 400, o.record_cycles = 30, o.steady_tolerance = 0;
   o.run.method = Integrator::newmark, o.run.steps_per_cycle = 64;
-  std::vector<double> Omegas;
-  for (double W = 0.3; W <= 2.001; W += 0.05)
-    Omegas.push_back(W);
   double worst = 0, worst_64 = 0;
   // the down sweeps go on from where the up sweeps end (the oscillator's too)
   std::array<double, 2> y{1 + Fm, 0};
@@ -296,12 +299,8 @@ TEST(KahramanSingh, NewmarkStepsFromTheAccuracyHoldHalfAPercentUpAndDown)
     q[a] = model.static_equilibrium(o.load_torque).q, v[a] = PairVector::Zero();
   for (bool up : {true, false})
     {
-      std::vector<double> W = Omegas;
-      if (!up)
-        std::reverse(W.begin(), W.end());
-      o.speeds.clear();
-      for (double w : W)
-        o.speeds.push_back(w * wn);
+      const std::vector<double> W = omegas(0.3, 2.0, 0.05, up);
+      o.speeds                    = ks.speeds(W);
       std::vector<double> reference;
       for (double w : W)
         reference.push_back(oscillator(w, y, o.settle_cycles, o.record_cycles).first);

@@ -11,11 +11,11 @@
 
 namespace gearkit
 {
-std::vector<double>
-amplitude_spectrum(const std::vector<double> &samples, int max_bin)
+std::vector<std::complex<double>>
+fourier_coefficients(const std::vector<double> &samples)
 {
   const int n = int(samples.size());
-  if (n < 2 || max_bin < 0)
+  if (n < 2)
     throw InputError("a spectrum needs at least two samples");
   static std::mutex                 planner; // FFTW's planner is not thread-safe
   std::vector<double>               in(samples);
@@ -31,10 +31,20 @@ amplitude_spectrum(const std::vector<double> &samples, int max_bin)
     const std::lock_guard<std::mutex> lock(planner);
     fftw_destroy_plan(plan);
   }
-  std::vector<double> amplitude(std::size_t(max_bin) + 1, 0.0);
-  for (int k = 0; k <= std::min(max_bin, n / 2); ++k)
-    amplitude[std::size_t(k)] =
-        std::abs(out[std::size_t(k)]) * ((k == 0 || 2 * k == n) ? 1.0 / n : 2.0 / n);
+  for (int k = 0; k <= n / 2; ++k)
+    out[std::size_t(k)] *= (k == 0 || 2 * k == n) ? 1.0 / n : 2.0 / n;
+  return out;
+}
+
+std::vector<double>
+amplitude_spectrum(const std::vector<double> &samples, int max_bin)
+{
+  if (max_bin < 0)
+    throw InputError("a spectrum needs a highest bin >= 0");
+  const std::vector<std::complex<double>> c = fourier_coefficients(samples);
+  std::vector<double>                     amplitude(std::size_t(max_bin) + 1, 0.0);
+  for (std::size_t k = 0; k < std::min(amplitude.size(), c.size()); ++k)
+    amplitude[k] = std::abs(c[k]);
   return amplitude;
 }
 

@@ -3,10 +3,17 @@
 // frequencies; short-time spectra (spectrograms) for run-ups.
 #pragma once
 
+#include <complex>
 #include <vector>
 
 namespace gearkit
 {
+/// Single-sided Fourier coefficients c_0 .. c_{n/2} of n >= 2 uniformly spaced samples over one
+/// period: x_j = Re sum_k c_k exp(2 pi i k j / n) (c_0 the mean; |c_k| the amplitude of the
+/// sinusoid with k periods over the record). Thread-safe like amplitude_spectrum.
+std::vector<std::complex<double>>
+fourier_coefficients(const std::vector<double> &samples);
+
 /// Single-sided amplitude spectrum (same unit as the signal) of uniformly spaced `samples`,
 /// bins 0..max_bin (bin k: k periods over the whole record; 0 is the mean). Bins above the
 /// Nyquist limit are reported as 0. Safe to call from several threads (FFTW's planner is

@@ -5,6 +5,7 @@
 // backlash 10 um, K_m 300 N/um with 10 % and 5 % first and second mesh-order variation, E_t of
 // 4 and 1.5 um in the first two orders, 3000 N static mesh force.
 #include "bench/timing.h"
+#include "dynamics/newmark_error.h"
 #include "dynamics/sweep.h"
 #include "tests/dynamics/pair_fixture.h"
 
@@ -86,12 +87,13 @@ main(int argc, char **argv)
   for (double accuracy : {0.02, 0.005, 0.001})
     {
       RunOptions r;
-      r.method = Integrator::newmark, r.steps_per_cycle = 16, r.samples_per_cycle = 16;
-      char setting[96];
+      r.method = Integrator::newmark, r.steps_per_cycle = 32, r.samples_per_cycle = 32;
+      const NewmarkError e(model, TL);
+      char               setting[96];
       std::snprintf(setting, sizeof setting, "accuracy %g (%d / %d / %d steps)", accuracy,
-                    newmark_steps_per_cycle(model, speeds[0], accuracy, 10, 16),
-                    newmark_steps_per_cycle(model, speeds[1], accuracy, 10, 16),
-                    newmark_steps_per_cycle(model, speeds[2], accuracy, 10, 16));
+                    e.steps(speeds[0], accuracy / 2, 32, 32),
+                    e.steps(speeds[1], accuracy / 2, 32, 32),
+                    e.steps(speeds[2], accuracy / 2, 32, 32));
       row("Newmark", setting, r, accuracy);
     }
   for (Integrator method : {Integrator::cvode_bdf, Integrator::cvode_adams})

@@ -74,12 +74,15 @@ DynamicsScene::declare(ParameterHandler &prm)
       "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps (the fast path); cvode: adaptive, events at the backlash.");
   prm.declare_entry("accuracy", "0", Patterns::Double(0, 0.5),
-                    "Newmark: the relative error of the DTE wanted; the steps per mesh cycle "
-                    "then follow at each speed from the highest mode of the mesh band and the "
-                    "mesh damping (dynamics/sweep.h: newmark_steps_per_cycle; 0.005 holds the "
-                    "Kahraman-Singh sweep to 0.27 %); 0: steps per mesh cycle at every speed.");
+                    "Newmark: the relative RMS error of the DTE wanted; the steps per mesh "
+                    "cycle then follow at each speed from an estimate of the rule's error "
+                    "(dynamics/newmark_error.h: its frequency warping, for the tables' forcing "
+                    "and for the recorded motion's harmonics), written per speed beside the "
+                    "results; 0: steps per mesh cycle at every speed (the estimate still "
+                    "written).");
   prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000),
-                    "Newmark: the least steps per mesh cycle (with accuracy 0: the steps).");
+                    "Newmark: the least steps per mesh cycle (with accuracy 0: the steps); "
+                    "from 32 on a multiple of 32 (the samples recorded per mesh cycle).");
   prm.declare_entry("system deflection", "true", Patterns::Bool(),
                     "true: the static equilibrium's displacements and tilts of both members "
                     "(bearings, shafts) move the pair: the TCA runs again at that misalignment, "
@@ -170,6 +173,11 @@ DynamicsScene::check(const PairScene &pair, const TcaScene &tca) const
   const std::string where = "Dynamics/" + pair.name + "/";
   if (!theoretical && !measured)
     throw InputError(where + "excitations: none chosen; choose theoretical, measured or both");
+  if (steps_per_cycle > 32 && steps_per_cycle % 32 != 0)
+    throw InputError(where + "steps per mesh cycle: " + std::to_string(steps_per_cycle) +
+                     " is not a multiple of 32 (the samples recorded per mesh cycle); use " +
+                     std::to_string(32 * (steps_per_cycle / 32)) + " or " +
+                     std::to_string(32 * (steps_per_cycle / 32 + 1)));
   if (measured && !tca.measured)
     throw InputError(where + "excitations: measured needs the measured flanks' TCA (set TCA/" +
                      pair.name + "/measured flanks = true)");

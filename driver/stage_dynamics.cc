@@ -10,6 +10,7 @@
 #include "driver/stages.h"
 #include "dynamics/deflection.h"
 #include "dynamics/modes.h"
+#include "dynamics/newmark_error.h"
 #include "dynamics/sweep.h"
 
 #include <deal.II/base/mpi.h>
@@ -116,10 +117,11 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
 {
   const hsize_t       n = p.size();
   std::vector<double> rpm;
-  std::vector<int>    period, settled, diverged;
+  std::vector<int>    period, settled, diverged, steps;
   for (const SweepPoint &x : p)
     rpm.push_back(x.speed * 60 / (2 * pi)), period.push_back(x.period),
-        settled.push_back(x.settled_cycles), diverged.push_back(x.diverged);
+        settled.push_back(x.settled_cycles), diverged.push_back(x.diverged),
+        steps.push_back(x.steps_per_cycle);
   const std::string diverged_gap = "where the response diverged";
   g.write("speed", rpm, {n}, "rpm", "pinion speed, in the order swept");
   g.write_with_gaps("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m",
@@ -139,6 +141,14 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
   g.write("diverged", diverged, {n}, "1",
           "1: the response grew past 1000 times the static deflection and clearance (its results "
           "NaN; the next speed started from the static equilibrium)");
+  if (p.front().steps_per_cycle > 0) // Newmark
+    {
+      g.write("steps_per_cycle", steps, {n}, "1", "Newmark steps per mesh cycle");
+      g.write_with_gaps("error_estimate", column(p, &SweepPoint::error_estimate), {n}, "1",
+                        "estimated RMS error of delta_D over its RMS (dynamics/newmark_error.h: "
+                        "the larger of the tables' forcing's and the recorded harmonics')",
+                        diverged_gap);
+    }
 
   // the DTE spectrum: every speed recorded the same whole periods
   const int           R    = p.front().record_cycles;
@@ -292,14 +302,20 @@ void
 write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d, double TE,
                 double TL, std::ostream &log, const std::string &what)
 {
-  std::vector<double> rpm, radius;
-  std::string         unstable;
+  std::vector<double>         rpm, radius;
+  std::string                 unstable;
+  std::optional<NewmarkError> newmark; // the sweep's steps
+  if (d.integrator == Integrator::newmark && d.accuracy > 0)
+    newmark.emplace(model, TL);
   for (double w : sweep_speeds(d))
     {
       RunOptions r;
       r.omega        = w;
       r.motor_torque = TE, r.load_torque = TL;
       r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
+      r.samples_per_cycle = std::min(32, d.steps_per_cycle);
+      if (newmark)
+        r.steps_per_cycle = newmark->steps(w, d.accuracy, d.steps_per_cycle, r.samples_per_cycle);
       rpm.push_back(w * 60 / (2 * pi));
       radius.push_back(std::abs(floquet_multipliers(model, r).front()));
       if (radius.back() > 1)

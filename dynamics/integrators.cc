@@ -135,7 +135,7 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
   }
   record(model, o, 0, q, v, out);
   const int steps_total = int(std::lround(o.mesh_cycles * o.steps_per_cycle));
-  const int every       = std::max(1, o.steps_per_cycle / o.samples_per_cycle);
+  const int every       = o.steps_per_cycle / o.samples_per_cycle;
   for (int n = 1; n <= steps_total; ++n)
     {
       const double      t  = n * h;
@@ -194,8 +194,11 @@ simulate(const PairModel &model, const PairVector &q0, const PairVector &v0, con
   require(o.samples_per_cycle >= 1, "samples per mesh cycle", o.samples_per_cycle, ">= 1");
   require(o.relative_tolerance > 0 && o.absolute_tolerance > 0, "tolerance",
           std::min(o.relative_tolerance, o.absolute_tolerance), "> 0");
-  require(o.steps_per_cycle >= o.samples_per_cycle, "Newmark steps per mesh cycle",
-          o.steps_per_cycle, ">= the output samples per mesh cycle");
+  require(o.method != Integrator::newmark ||
+              (o.steps_per_cycle >= 1 && o.steps_per_cycle % o.samples_per_cycle == 0),
+          "Newmark steps per mesh cycle", o.steps_per_cycle,
+          "a multiple of the output samples per mesh cycle (" +
+              std::to_string(o.samples_per_cycle) + ")");
   require(q0.allFinite() && v0.allFinite(), "initial state (finite)", 0, "finite values");
   return o.method == Integrator::newmark ? run_newmark(model, q0, v0, o)
                                          : run_cvode(model, q0, v0, o);

@@ -46,29 +46,14 @@ struct SweepOptions
   /// Keep the recorded time series at the swept speeds nearest to these [rad/s].
   std::vector<double> series_speeds;
   RunOptions          run; ///< integrator, tolerances, samples / steps per mesh cycle
-  /// Newmark: the relative DTE error wanted (> 0) instead of a step count - the steps per mesh
-  /// cycle at each speed from newmark_steps_per_cycle (run.steps_per_cycle the least); 0: run's
-  /// steps per cycle at every speed.
+  /// Newmark: the relative RMS error of delta_D wanted (> 0) instead of a step count. At each
+  /// speed the steps per mesh cycle (multiples of run.samples_per_cycle, run.steps_per_cycle
+  /// the least) are the fewest whose error for the tables' forcing is within it
+  /// (NewmarkError::steps), then raised, the speed settled and recorded again (up to four
+  /// times), while the recorded motion's harmonics (NewmarkError::recorded: what contact loss
+  /// and K_m's variation add) say more than half of it; 0: run's steps at every speed.
   double accuracy = 0;
 };
-
-/// Newmark steps per mesh cycle for a relative DTE error `accuracy` at pinion speed omega
-/// [rad/s]. The average-acceleration rule lengthens a mode's period by (w h)^2 / 12, which near
-/// a resonance moves the response by about that over 2 zeta (zeta: the mesh damping ratio, at
-/// least 0.01). When the highest mode of the mesh band (mesh strain energy share >= 5 %) lies
-/// within one order of the excited mesh orders (excited_orders), it gets (w h)^2 <= 13.3 zeta
-/// accuracy (half the error allowed; calibrated on the Kahraman-Singh oscillator, whose 64 steps
-/// a cycle at Omega 0.3 leave 8 %); above them it answers quasi-statically (exact in the
-/// implicit rule's static limit) and the excited orders up to one beyond get
-/// (w h)^2 <= 6 accuracy. At least `least`.
-int
-newmark_steps_per_cycle(const PairModel &model, double omega, double accuracy, int orders,
-                        int least);
-
-/// The highest mesh order (1 to `orders`) in which the tables' E_t or K_m has at least 1 % of
-/// its largest order's amplitude.
-int
-excited_orders(const MeshCycleSamples &tables, int orders);
 
 struct SweepPoint
 {
@@ -76,11 +61,15 @@ struct SweepPoint
   double      dte_pp      = 0;                   ///< delta_D peak-to-peak [m]
   double      dte_rms     = 0;                   ///< RMS of delta_D about its mean [m]
   double      relative_pp = 0, relative_rms = 0; ///< the same for delta_D - E_t [m]
-  double      max_force      = 0;                ///< largest F_m [N]
-  double      load_factor    = 0;                ///< max F_m / static F_m
-  double      contact_loss   = 0;                ///< share of the recorded samples without contact
-  std::size_t events         = 0;                ///< backlash boundaries crossed while recording
-  int         settled_cycles = 0;                ///< mesh cycles spent settling
+  double      max_force       = 0;               ///< largest F_m [N]
+  double      load_factor     = 0;               ///< max F_m / static F_m
+  double      contact_loss    = 0;               ///< share of the recorded samples without contact
+  std::size_t events          = 0;               ///< backlash boundaries crossed while recording
+  int         settled_cycles  = 0;               ///< mesh cycles spent settling
+  int         steps_per_cycle = 0;               ///< Newmark's at this speed (0: CVODE)
+  /// Newmark: the larger of NewmarkError's estimates (forced, recorded) of delta_D's relative
+  /// RMS error; NaN for CVODE (its tolerances) and diverged points.
+  double error_estimate = 0;
   /// Mesh cycles after which the motion repeats (a multiple of the excitation's period; 1:
   /// periodic with the mesh); 0: not steady within settle_cycles (or not checked).
   int  period   = 0;

@@ -28,6 +28,27 @@ TEST(Harmonics, RecoversKnownMeshOrders)
   EXPECT_THROW(mesh_order_amplitudes({1.0}, 1, 2), InputError);
 }
 
+TEST(Harmonics, FourierCoefficientsCarryThePhase)
+{
+  // x_j = Re sum c_k exp(2 pi i k j / n): 2 + 5 cos(x + 0.3) + 0.7 sin(3 x) -> c_0 = 2,
+  // c_1 = 5 exp(0.3 i), c_3 = 0.7 exp(-i pi / 2); the Nyquist bin holds its cosine
+  const int           n = 64;
+  std::vector<double> s(n);
+  for (int j = 0; j < n; ++j)
+    {
+      const double x = 2 * pi * j / n;
+      s[j]           = 2 + 5 * std::cos(x + 0.3) + 0.7 * std::sin(3 * x) + 0.2 * std::cos(32 * x);
+    }
+  const auto c = fourier_coefficients(s);
+  ASSERT_EQ(c.size(), 33u);
+  EXPECT_NEAR(std::abs(c[0] - 2.0), 0, 1e-13);
+  EXPECT_NEAR(std::abs(c[1] - std::polar(5.0, 0.3)), 0, 1e-13);
+  EXPECT_NEAR(std::abs(c[3] - std::polar(0.7, -pi / 2)), 0, 1e-13);
+  EXPECT_NEAR(std::abs(c[32] - 0.2), 0, 1e-13);
+  for (int k : {2, 4, 5, 31})
+    EXPECT_NEAR(std::abs(c[std::size_t(k)]), 0, 1e-13);
+}
+
 TEST(FrequencySpectrum, HannInterpolationFindsALineBetweenBins)
 {
   // 453.19 Hz (GMF1 of seed 002) with sidebands at +-1.993 Hz, 4 s at 20 kHz

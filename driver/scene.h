@@ -197,7 +197,7 @@ struct DynamicsScene
   double              steady_tolerance = 1e-4; ///< SweepOptions::steady_tolerance
   Integrator          integrator       = Integrator::newmark;
   int                 steps_per_cycle  = 64;
-  double              accuracy         = 0; ///< SweepOptions::accuracy (Newmark; 0: steps)
+  double              accuracy         = 0.005; ///< SweepOptions::accuracy (Newmark; 0: steps)
   /// The tables from the TCA at the position the static load deflects the pair to
   /// (dynamics/deflection.h), else as assembled.
   bool system_deflection = true;

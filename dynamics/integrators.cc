@@ -126,7 +126,13 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
       s.Lg        = Lf.solve(s.g);
       s.gLg       = s.g.dot(s.Lg);
     }
-  PairVector q = q0, v = v0, a;
+  // dq* = L^-1 (F_ext - K q + M (4/h v + a) + C v) on the free DOFs, as one product
+  const PairMatrix                                F = free.asDiagonal();
+  Eigen::Matrix<double, pair_dofs, 3 * pair_dofs> P;
+  P << Lf.solve(-F * K), Lf.solve(F * (4 / h * M + C)), Lf.solve(F * M);
+  const PairVector                        base = Lf.solve(F_ext.cwiseProduct(free));
+  Eigen::Matrix<double, 3 * pair_dofs, 1> state;
+  PairVector                              q = q0, v = v0, a;
   {
     const MeshState  &m  = mesh.front().m;
     const PairVector &g  = mesh.front().g;
@@ -146,8 +152,8 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
       const double      et_rate = m.det * z * o.omega / (2 * pi);
       // in increments (the rigid rotation of a torque-driven train grows without bound; the
       // step must not cancel it against itself): L dq = dq* - L^-1 g F_m
-      const PairVector rhs   = (F_ext - K * q + M * (4 / h * v + a) + C * v).cwiseProduct(free);
-      const PairVector dqs   = Lf.solve(rhs);
+      state << q, v, a;
+      const PairVector dqs   = base + P * state;
       const double     dstar = g.dot(q) + g.dot(dqs);
       const double     D0    = -(2 / h * g.dot(q) + g.dot(v)); // delta' = 2/h delta + D0
       const double     c2h = 2 / h * c_m, damp0 = c_m * (D0 - et_rate);

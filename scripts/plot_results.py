@@ -487,10 +487,11 @@ EXCITATION_COLOURS = {"theoretical": "tab:blue", "measured": "tab:orange"}
 def plot_dynamics(dyn, flanks, out_dir):
     """Per pair: DTE peak-to-peak, DTE RMS and the dynamic load factor against the pinion speed,
     swept up and down (jumps show as the two curves part) for each excitation (theoretical and
-    measured flanks: the seed's comparison), and the Campbell diagram: the linear modes with
-    enough mesh strain energy against the first three mesh orders."""
+    measured flanks: the seed's comparison), the Campbell diagram: the linear modes with
+    enough mesh strain energy against the first three mesh orders, and the integrator's share:
+    Newmark's estimated DTE error and its steps per mesh cycle at each speed."""
     pairs = list(dyn.keys())
-    fig, axes = plt.subplots(len(pairs), 4, figsize=(24, 4.8 * len(pairs)), squeeze=False)
+    fig, axes = plt.subplots(len(pairs), 5, figsize=(30, 4.8 * len(pairs)), squeeze=False)
     for row, name in zip(axes, pairs):
         g = dyn[name]
         labels = [k for k in ("theoretical", "measured") if k in g]
@@ -546,6 +547,29 @@ def plot_dynamics(dyn, flanks, out_dir):
         ax.set_xlabel("pinion speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
         ax.set_title("Campbell: modes (red, width ~ mesh energy), mesh orders")
+        ax = row[4]
+        steps_ax = None
+        for label in labels:
+            for direction, style in (("up", "-"), ("down", "--")):
+                d = g[label][direction]
+                if "error_estimate" not in d:
+                    continue
+                kw = dict(lw=1.2, color=EXCITATION_COLOURS[label], label=f"{label}, {direction}")
+                ax.plot(d["speed"][:], d["error_estimate"][:] * 100, style, **kw)
+                steps_ax = steps_ax or ax.twinx()
+                steps_ax.plot(d["speed"][:], d["steps_per_cycle"][:], ":", lw=1,
+                              color=EXCITATION_COLOURS[label])
+        if steps_ax is None:
+            ax.text(0.5, 0.5, "CVODE: error held by its tolerances", ha="center",
+                    transform=ax.transAxes)
+        else:
+            ax.set_yscale("log")
+            steps_ax.set_yscale("log")
+            steps_ax.set_ylabel("Newmark steps per mesh cycle (dotted)")
+            ax.legend(fontsize=7)
+        ax.set_xlabel("pinion speed [rpm]")
+        ax.set_ylabel("estimated DTE error [% of its RMS]")
+        ax.set_title("integrator: Newmark's estimated error (dynamics/newmark_error.h)")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "dynamics.png"))
     plot_dynamics_spectra(dyn, out_dir)

@@ -923,6 +923,11 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
        "",
        "subsection Dynamics\n  subsection p1\n    set excitations = \n  end\nend\n",
        {"Dynamics/p1/excitations: none chosen"}},
+      // the record takes every (steps / 32)-th step: other counts shift its samples
+      {"Newmark steps per mesh cycle no multiple of the recorded samples",
+       "",
+       "subsection Dynamics\n  subsection p1\n    set steps per mesh cycle = 100\n  end\nend\n",
+       {"Dynamics/p1/steps per mesh cycle", "100", "multiple of 32", "96 or 128"}},
       {"a measured tooth the member does not have",
        "",
        "subsection Measured flanks\n  subsection p1\n    set source = virtual cmm\n    set "

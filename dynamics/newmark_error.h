@@ -11,9 +11,11 @@
 // g^T, C + c_m g g^T on the free DOFs), forced by the tables' variation about the static
 // equilibrium q_s: f(phase) = -g(phase) K_m(phase) (g(phase) . q_s - E_t(phase) - b_c) + g c_m
 // E_t'(phase) (the normals, arms and K_m varying over the cycle), whose harmonics come from the
-// tables' own interpolation sampled four times as densely as the tables. With delta_D = g . q
+// tables' own interpolation sampled eight times as densely as the tables. With delta_D = g . q
 // its harmonics are g(phase) . q_s (kinematic: no integrator error) plus g^T H(i W) f_k, so the
-// error of each harmonic is g^T (H(i W~) - H(i W)) f_k, exactly for that linear model. What it
+// error of each harmonic is g^T (H(i W~) - H(i W)) f_k, exactly for that linear model; a
+// harmonic at or past the Nyquist order is lost where it belongs and answered where it folds
+// (both counted, as in continuous time). What it
 // leaves out - K_m's parametric coupling, contact loss, impacts - makes new harmonics of the
 // response; `recorded` weighs a recorded delta_D's harmonics by the same warping of the mesh
 // receptance G(s) = g^T H(s) g: a harmonic D_k made at the mesh answers D_k (1 - G(i W_k) /
@@ -49,8 +51,9 @@ public:
   double
   forced(double omega, int steps) const;
 
-  /// The least multiple of `multiple` (>= 1), at least `least`, with forced() <= accuracy (at
-  /// most `most`, whatever its error).
+  /// The fewest steps, a multiple of `multiple` (>= 1) and at least `least`, with forced() <=
+  /// accuracy (at most `most`, whatever its error): walked up by the steps^-2 law, then bisected
+  /// to one multiple (the error need not fall monotonically where orders fold).
   int
   steps(double omega, double accuracy, int least, int multiple, int most = 1 << 16) const;
 

@@ -26,6 +26,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -130,6 +131,10 @@ struct ElasticSegment::Impl
   /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
   set_rigid_body_near_null_space();
+  /// Throws InputError when MUMPS's analysis estimates more memory for the factorisation on
+  /// some machine than it has available (options.memory_available, else MemAvailable).
+  void
+  check_factorisation_fits(const std::string &file) const;
   /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
   void
   local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell, FEValues<3> &values,
@@ -329,8 +334,70 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     m.set_rigid_body_near_null_space();
   if (std::string(chosen) == PCHYPRE)
     petsc_check(MatSetBlockSize(m.K, 3), "MatSetBlockSize"); // x, y, z of a node together
+  if (std::string(chosen) == PCCHOLESKY)
+    m.check_factorisation_fits(file);
   petsc_check(KSPSetUp(m.ksp), "KSPSetUp (factorisation: is the body held?)");
   m.factor_seconds = timer.wall_time();
+}
+
+namespace
+{
+/// MemAvailable of /proc/meminfo [bytes] (0 where it cannot be read).
+double
+memory_available_now()
+{
+  std::ifstream in("/proc/meminfo");
+  std::string   key;
+  double        kb = 0;
+  std::string   unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:")
+      return kb * 1024;
+  return 0;
+}
+} // namespace
+
+void
+ElasticSegment::Impl::check_factorisation_fits(const std::string &file) const
+{
+  // MUMPS's analysis alone (ordering, symbolic factorisation) on a factor of its own: its
+  // estimate of the in-core factorisation's memory, summed over the processes (INFOG(17), MB)
+  Mat F;
+  petsc_check(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F), "MatGetFactor");
+  petsc_check(MatSetOptionsPrefix(F, "gearkit_"), "MatSetOptionsPrefix");
+  MatFactorInfo info;
+  petsc_check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
+  petsc_check(MatCholeskyFactorSymbolic(F, K, nullptr, &info),
+              "MatCholeskyFactorSymbolic (MUMPS analysis)");
+  PetscInt most = 0, total = 0; // MB: the largest process's, all processes'
+  petsc_check(MatMumpsGetInfog(F, 16, &most), "MatMumpsGetInfog");
+  petsc_check(MatMumpsGetInfog(F, 17, &total), "MatMumpsGetInfog");
+  MatDestroy(&F);
+  // per machine: its processes (at most the largest's each) against what it has
+  MPI_Comm machine;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+  int here = 1;
+  MPI_Comm_size(machine, &here);
+  MPI_Comm_free(&machine);
+  const double need = double(most) * 1024 * 1024 * here;
+  const double have =
+      options.memory_available > 0 ? options.memory_available : memory_available_now();
+  const bool fits = !(have > 0) || need <= have;
+  if (Utilities::MPI::min(fits ? 1 : 0, comm) == 0)
+    {
+      const double       short_need = Utilities::MPI::max(fits ? 0.0 : need, comm);
+      const double       short_have = Utilities::MPI::min(fits ? HUGE_VAL : have, comm);
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "elastic segment: " << file << " has " << dofs.n_dofs()
+          << " degrees of freedom; its direct factorisation (MUMPS) needs about "
+          << double(total) / 1024 << " GB (" << short_need / 1e9 << " GB on a machine with "
+          << short_have / 1e9
+          << " GB available). Use coarser elements (fewer refinements, larger flank "
+             "elements), more machines under mpirun, or an iterative solver "
+             "(PETSC_OPTIONS=\"-gearkit_ksp_type cg -gearkit_pc_type gamg\")";
+      throw InputError(msg.str());
+    }
 }
 
 void

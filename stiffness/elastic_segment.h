@@ -4,6 +4,9 @@
 // as uniform tractions over small surface patches; displacements read at arbitrary points
 // through precomputed evaluation functionals. MPI-parallel (the owning rank evaluates a point).
 //
+// The direct factorisation is sized first (MUMPS's analysis) and refused with its estimate when
+// it would not fit in the memory available.
+//
 // Run-time solver options the PETSc way, prefix "gearkit_": e.g. PETSC_OPTIONS=
 // "-gearkit_pc_factor_mat_solver_type superlu_dist" or "-gearkit_ksp_type cg -gearkit_pc_type
 // gamg" replaces the direct factorisation by an iterative solve.
@@ -32,6 +35,11 @@ struct ElasticSegmentOptions
   std::vector<std::pair<int, int>> rollers;
   /// The processes that share the body (MPI_COMM_SELF: this process alone).
   MPI_Comm communicator = MPI_COMM_WORLD;
+  /// Memory the direct factorisation may take on each machine [bytes]; 0: what the machine
+  /// has available now (MemAvailable). Before factorising, MUMPS's analysis estimates its need
+  /// (per process, times the processes on the machine); a body that would not fit is refused
+  /// (InputError with the estimate) instead of being killed for want of memory half way.
+  double memory_available = 0;
 };
 
 /// A force F (vector) spread uniformly over the part of the boundary (ids `boundaries`) within

@@ -188,6 +188,30 @@ TEST(ElasticSegment, BadInputIsRefused)
     }
 }
 
+TEST(ElasticSegment, AFactorisationThatWouldNotFitIsRefusedBeforeItStarts)
+{
+  // MUMPS's analysis sizes the factorisation first: with less memory than it needs the body is
+  // refused with the estimate (never killed half way); with enough it is factorised and solves
+  ElasticSegmentOptions o;
+  o.clamped = {5}, o.degree = 2;
+  const std::string mesh = box("memory", Vec3(20e-3, 20e-3, 10e-3), 6, 6, 3);
+  o.memory_available     = 1e6; // 1 MB
+  try
+    {
+      ElasticSegment body(mesh, o);
+      ADD_FAILURE() << "a factorisation larger than 1 MB was started";
+    }
+  catch (const InputError &e)
+    {
+      const std::string what = e.what();
+      for (const char *part : {"degrees of freedom", "needs about", "GB available", "gamg"})
+        EXPECT_NE(what.find(part), std::string::npos) << what;
+    }
+  o.memory_available = 0; // the machine's
+  const ElasticSegment body(mesh, o);
+  EXPECT_GT(body.dofs(), 0u);
+}
+
 TEST(ElasticSegment, SolverFromTheRunTimeOptions)
 {
   // The direct Cholesky by default; CTest runs this again with PETSC_OPTIONS choosing CG with

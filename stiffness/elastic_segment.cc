@@ -361,7 +361,8 @@ void
 ElasticSegment::Impl::check_factorisation_fits(const std::string &file) const
 {
   // MUMPS's analysis alone (ordering, symbolic factorisation) on a factor of its own: its
-  // estimate of the in-core factorisation's memory, summed over the processes (INFOG(17), MB)
+  // estimates of the in-core factorisation's memory, the largest process's (INFOG(16)) and
+  // all processes' (INFOG(17)), in millions of bytes
   Mat F;
   petsc_check(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F), "MatGetFactor");
   petsc_check(MatSetOptionsPrefix(F, "gearkit_"), "MatSetOptionsPrefix");
@@ -379,7 +380,7 @@ ElasticSegment::Impl::check_factorisation_fits(const std::string &file) const
   int here = 1;
   MPI_Comm_size(machine, &here);
   MPI_Comm_free(&machine);
-  const double need = double(most) * 1024 * 1024 * here;
+  const double need = double(most) * 1e6 * here;
   const double have =
       options.memory_available > 0 ? options.memory_available : memory_available_now();
   const bool fits = !(have > 0) || need <= have;
@@ -391,7 +392,7 @@ ElasticSegment::Impl::check_factorisation_fits(const std::string &file) const
       msg.precision(3);
       msg << "elastic segment: " << file << " has " << dofs.n_dofs()
           << " degrees of freedom; its direct factorisation (MUMPS) needs about "
-          << double(total) / 1024 << " GB (" << short_need / 1e9 << " GB on a machine with "
+          << double(total) / 1e3 << " GB (" << short_need / 1e9 << " GB on a machine with "
           << short_have / 1e9
           << " GB available). Use coarser elements (fewer refinements, larger flank "
              "elements), more machines under mpirun, or an iterative solver "

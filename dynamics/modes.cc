@@ -16,12 +16,9 @@ linear_modes(const PairModel &model)
   const PairMatrix Km = m.km * g * g.transpose();
   const PairMatrix K  = model.stiffness() + Km;
   // on the free DOFs (a speed-controlled motor, a torsional model hold the others)
-  std::vector<int> index;
-  for (int i = 0; i < pair_dofs; ++i)
-    if (model.active()[i] > 0)
-      index.push_back(i);
-  const int       n = int(index.size());
-  Eigen::MatrixXd Kr(n, n), Mr(n, n), Kmr(n, n);
+  const std::vector<int> index = model.free_dofs();
+  const int              n     = int(index.size());
+  Eigen::MatrixXd        Kr(n, n), Mr(n, n), Kmr(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       Kr(i, j) = K(index[i], index[j]), Mr(i, j) = model.mass()(index[i], index[j]),
@@ -56,16 +53,13 @@ floquet_multipliers(const PairModel &model, const RunOptions &run)
   p.half_backlash                = 0;
   p.mesh_damping_in_contact_only = false;
   const PairModel linear(p, model.tables());
-  RunOptions      o     = run;
-  o.mesh_cycles         = model.mesh().cycles(); // one period of the tables
-  o.samples_per_cycle   = 1;
-  const PairVector q0   = linear.static_equilibrium(o.load_torque).q;
-  const Trajectory base = simulate(linear, q0, PairVector::Zero(), o);
-  std::vector<int> index;
-  for (int i = 0; i < pair_dofs; ++i)
-    if (model.active()[i] > 0)
-      index.push_back(i);
-  const int n = int(index.size());
+  RunOptions      o            = run;
+  o.mesh_cycles                = model.mesh().cycles(); // one period of the tables
+  o.samples_per_cycle          = 1;
+  const PairVector       q0    = linear.static_equilibrium(o.load_torque).q;
+  const Trajectory       base  = simulate(linear, q0, PairVector::Zero(), o);
+  const std::vector<int> index = model.free_dofs();
+  const int              n     = int(index.size());
   // perturbations of the static deflection's order (exact for any size: linear), per DOF
   const PairVector scale = linear.dof_scale(1e-6);
   const double     rate  = model.parameters().pinion_teeth * o.omega; // [rad/s]

@@ -15,16 +15,13 @@ namespace gearkit
 NewmarkError::NewmarkError(const PairModel &model, double load_torque, Evaluation evaluation)
     : pinion_teeth(model.parameters().pinion_teeth)
 {
-  std::vector<int> index; // the free DOFs
-  for (int i = 0; i < pair_dofs; ++i)
-    if (model.active()[i] > 0)
-      index.push_back(i);
-  const int        n  = int(index.size());
-  const MeshState  m0 = model.mesh().mean();
-  const PairVector g0 = PairModel::mesh_gradient(m0);
-  const double     cm = model.mesh_damping();
-  const PairMatrix Kt = model.stiffness() + m0.km * g0 * g0.transpose();
-  const PairMatrix Ct = model.damping() + cm * g0 * g0.transpose();
+  const std::vector<int> index = model.free_dofs();
+  const int              n     = int(index.size());
+  const MeshState        m0    = model.mesh().mean();
+  const PairVector       g0    = PairModel::mesh_gradient(m0);
+  const double           cm    = model.mesh_damping();
+  const PairMatrix       Kt    = model.stiffness() + m0.km * g0 * g0.transpose();
+  const PairMatrix       Ct    = model.damping() + cm * g0 * g0.transpose();
   M.resize(n, n), C.resize(n, n), K.resize(n, n), g.resize(n);
   for (int i = 0; i < n; ++i)
     {

@@ -173,6 +173,16 @@ public:
   {
     return free;
   }
+  /// The indices of the DOFs that move (active() 1), ascending.
+  std::vector<int>
+  free_dofs() const
+  {
+    std::vector<int> index;
+    for (int i = 0; i < pair_dofs; ++i)
+      if (free[i] > 0)
+        index.push_back(i);
+    return index;
+  }
   /// The external forces of the torques (motor torque on theta_E or the pinion's axis, load
   /// torque against theta_L or the gear's axis).
   PairVector

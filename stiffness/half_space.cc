@@ -1,13 +1,12 @@
 #include "stiffness/half_space.h"
 
 #include <cmath>
+#include <unsupported/Eigen/AutoDiff>
 
 namespace gearkit
 {
 namespace
 {
-constexpr double pi = 3.14159265358979323846;
-
 /// X asinh(Y / |X|) + Y asinh(X / |Y|): the corner term of the integral of 1/r over a rectangle
 /// (each product tends to 0 with its factor).
 double
@@ -45,5 +44,86 @@ point_load_displacement(double r, double z, double force, const Material &m)
   const double nu  = m.poisson_ratio;
   return force * (1 + nu) / (2 * pi * m.youngs_modulus) *
          (2 * (1 - nu) / rho + z * z / (rho * rho * rho));
+}
+
+DisplacementField
+point_force_field(const Vec3 &x, const Vec3 &origin, const Vec3 &direction, double force,
+                  const Material &m)
+{
+  // a right-handed frame (e1, e2, e3 = direction); the local field differentiated exactly
+  const Vec3      e3 = direction.normalized();
+  const Vec3      e1 = e3.unitOrthogonal(), e2 = e3.cross(e1);
+  Eigen::Matrix3d R;
+  R.col(0) = e1, R.col(1) = e2, R.col(2) = e3;
+  const Vec3 local = R.transpose() * (x - origin);
+
+  using Scalar = Eigen::AutoDiffScalar<Eigen::Vector3d>;
+  const Scalar X(local.x(), 3, 0), Y(local.y(), 3, 1), Z(local.z(), 3, 2);
+  const double nu  = m.poisson_ratio;
+  const double C   = force * (1 + nu) / (2 * pi * m.youngs_modulus); // F / (4 pi G)
+  const Scalar rho = sqrt(X * X + Y * Y + Z * Z);
+  const Scalar a   = Z / (rho * rho * rho) - (1 - 2 * nu) / (rho * (rho + Z)); // u_r / (C r)
+  const Scalar ux = C * X * a, uy = C * Y * a;
+  const Scalar uz = C * (Z * Z / (rho * rho * rho) + 2 * (1 - nu) / rho);
+
+  Eigen::Matrix3d g;
+  g.row(0) = ux.derivatives().transpose();
+  g.row(1) = uy.derivatives().transpose();
+  g.row(2) = uz.derivatives().transpose();
+  DisplacementField out;
+  out.u        = R * Vec3(ux.value(), uy.value(), uz.value());
+  out.gradient = R * g * R.transpose();
+  return out;
+}
+
+Cutoff
+radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer)
+{
+  Cutoff       c;
+  const Vec3   d = x - centre;
+  const double r = d.norm();
+  if (r <= inner)
+    {
+      c.value = 1;
+      return c;
+    }
+  if (r >= outer)
+    return c;
+  const double w = outer - inner, s = (r - inner) / w;
+  c.value         = 1 - s * s * s * (10 - 15 * s + 6 * s * s);
+  const double d1 = -30 * s * s * (1 - s) * (1 - s) / w;       // d chi / dr
+  const double d2 = -60 * s * (1 - s) * (1 - 2 * s) / (w * w); // d2 chi / dr2
+  const Vec3   e  = d / r;
+  c.gradient      = d1 * e;
+  c.hessian = d2 * e * e.transpose() + d1 / r * (Eigen::Matrix3d::Identity() - e * e.transpose());
+  return c;
+}
+
+Eigen::Matrix3d
+stress(const Eigen::Matrix3d &g, const Material &m)
+{
+  const double E = m.youngs_modulus, nu = m.poisson_ratio;
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  return lambda * g.trace() * Eigen::Matrix3d::Identity() + mu * (g + g.transpose());
+}
+
+NearField
+cut_off_near_field(const DisplacementField &f, const Cutoff &chi, const Vec3 &normal,
+                   const Material &m)
+{
+  const double E = m.youngs_modulus, nu = m.poisson_ratio;
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  const Vec3  &a = chi.gradient;
+  const auto  &G = f.gradient;
+  const auto  &H = chi.hessian;
+  NearField    out;
+  out.u = chi.value * f.u;
+  // grad(chi u) = chi grad u + u (grad chi)^T
+  out.traction = stress(chi.value * G + f.u * a.transpose(), m) * normal;
+  // div sigma(chi u) with div sigma(u) = 0: sigma(u) grad chi + lambda (H u + G^T a)
+  // + mu (H u + a tr G + G a + u tr H)
+  out.body = stress(G, m) * a + lambda * (H * f.u + G.transpose() * a) +
+             mu * (H * f.u + a * G.trace() + G * a + f.u * H.trace());
+  return out;
 }
 } // namespace gearkit

@@ -4,6 +4,10 @@
 // add: 1 / (pi E*), 1 / E* = (1 - nu1^2) / E1 + (1 - nu2^2) / E2.
 #pragma once
 
+#include "base/types.h"
+
+#include <Eigen/Core>
+
 namespace gearkit
 {
 struct Material
@@ -28,4 +32,49 @@ rectangle_displacement(double x, double y, double a, double b, double force, dou
 /// u_z = F (1 + nu) / (2 pi E) (2 (1 - nu) / rho + z^2 / rho^3), rho = sqrt(r^2 + z^2) [m].
 double
 point_load_displacement(double r, double z, double force, const Material &material);
+
+/// A displacement field at a point: u [m] and its gradient, gradient(i, j) = du_i / dx_j.
+struct DisplacementField
+{
+  Vec3            u        = Vec3::Zero();
+  Eigen::Matrix3d gradient = Eigen::Matrix3d::Zero();
+};
+
+/// Boussinesq's whole field of a normal point force F at `origin` on the surface of a
+/// half-space whose inward normal is `direction` (unit; the force pushes along it), at any
+/// point x: in the frame (e_r, e_z = direction) u_r = F / (4 pi G) (r z / rho^3 - (1 - 2 nu)
+/// r / (rho (rho + z))), u_z = F / (4 pi G) (z^2 / rho^3 + 2 (1 - nu) / rho) (Johnson eq.
+/// 3.21), in Cartesian components (smooth through the load's axis). Singular at the origin and
+/// on the ray outside the half-space opposite the force (rho + z = 0); x must avoid both.
+DisplacementField
+point_force_field(const Vec3 &x, const Vec3 &origin, const Vec3 &direction, double force,
+                  const Material &material);
+
+/// A smooth radial cut-off about a point: 1 within `inner`, 0 beyond `outer`, between them the
+/// quintic step (second derivatives continuous); value, gradient and Hessian at x.
+struct Cutoff
+{
+  double          value    = 0;
+  Vec3            gradient = Vec3::Zero();
+  Eigen::Matrix3d hessian  = Eigen::Matrix3d::Zero();
+};
+Cutoff
+radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer);
+
+/// Stress of a displacement gradient in an isotropic body (E, nu): lambda tr(eps) I + 2 mu eps.
+Eigen::Matrix3d
+stress(const Eigen::Matrix3d &gradient, const Material &material);
+
+/// The near field carried analytically, chi u with chi a cut-off and u the point force field,
+/// and what it leaves to the finite elements: its traction sigma(chi u) n on a surface of
+/// outward normal n, and the body force it needs, div sigma(chi u) (zero where chi is 1).
+struct NearField
+{
+  Vec3 u        = Vec3::Zero();
+  Vec3 traction = Vec3::Zero();
+  Vec3 body     = Vec3::Zero();
+};
+NearField
+cut_off_near_field(const DisplacementField &field, const Cutoff &chi, const Vec3 &normal,
+                   const Material &material);
 } // namespace gearkit

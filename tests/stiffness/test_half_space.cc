@@ -168,3 +168,92 @@ TEST(ContactSolver, ZeroLoadAndBadInput)
   p.lever = Eigen::Vector2d(1, 1);
   EXPECT_THROW(solve_contact(p), InputError);
 }
+
+namespace
+{
+/// div sigma of a field given by its gradient at points, by central differences [N/m^3].
+template <typename GradientOf>
+Vec3
+divergence_of_stress(const GradientOf &gradient_at, const Vec3 &x, const Material &m, double h)
+{
+  Vec3 div = Vec3::Zero();
+  for (int j = 0; j < 3; ++j)
+    {
+      const Vec3 e = h * Vec3::Unit(j);
+      div += (stress(gradient_at(x + e), m) - stress(gradient_at(x - e), m)).col(j) / (2 * h);
+    }
+  return div;
+}
+} // namespace
+
+TEST(HalfSpace, PointForceFieldIsBoussinesqs)
+{
+  // a tilted half-space: load at x0 pushing along d; the field in equilibrium everywhere
+  // inside, free of traction on the surface, u_z and u_r at the surface as Johnson 3.21, its
+  // gradient the derivative of u
+  const Material m{2.07e11, 0.29};
+  const Vec3     x0(1e-3, -2e-3, 0.5e-3), d = Vec3(0.3, -0.4, 0.87).normalized();
+  const double   F  = 3.0;
+  auto           at = [&](const Vec3 &x) { return point_force_field(x, x0, d, F, m); };
+  const Vec3     t1 = d.unitOrthogonal(), t2 = d.cross(t1);
+  const double   G = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+  for (const Vec3 &offset : {Vec3(0.7e-3 * t1 + 0.4e-3 * d), Vec3(-0.3e-3 * t2 + 1.5e-3 * d),
+                             Vec3(2e-3 * t1 - 1e-3 * t2 + 0.2e-3 * d)})
+    {
+      const Vec3              x = x0 + offset;
+      const DisplacementField f = at(x);
+      const double            h = 1e-7;
+      Eigen::Matrix3d         fd;
+      for (int j = 0; j < 3; ++j)
+        fd.col(j) = (at(x + h * Vec3::Unit(j)).u - at(x - h * Vec3::Unit(j)).u) / (2 * h);
+      EXPECT_LT((fd - f.gradient).norm(), 1e-7 * f.gradient.norm());
+      const Vec3 div =
+          divergence_of_stress([&](const Vec3 &y) { return at(y).gradient; }, x, m, 1e-7);
+      EXPECT_LT(div.norm() * offset.norm(), 1e-6 * stress(f.gradient, m).norm());
+    }
+  for (const double r : {0.1e-3, 1e-3, 7e-3})
+    {
+      const Vec3              x = x0 + r * (0.6 * t1 + 0.8 * t2);
+      const DisplacementField f = at(x);
+      EXPECT_LT((stress(f.gradient, m) * d).norm(), 1e-9 * stress(f.gradient, m).norm());
+      EXPECT_NEAR(f.u.dot(d) / point_load_displacement(r, 0, F, m), 1, 1e-12);
+      // u_r = -(1 - 2 nu) F / (4 pi G r): the surface moves toward the load
+      EXPECT_NEAR(f.u.dot(0.6 * t1 + 0.8 * t2) /
+                      (-(1 - 2 * m.poisson_ratio) * F / (4 * pi * G * r)),
+                  1, 1e-12);
+    }
+}
+
+TEST(HalfSpace, CutOffNearFieldBodyForceAndTraction)
+{
+  // chi u with a quintic cut-off: the body force div sigma(chi u) against central differences
+  // of sigma(chi u); 1 and 0 inside and outside; the traction sigma(chi u) n by definition
+  const Material m{2.1e11, 0.3};
+  const Vec3     x0 = Vec3::Zero(), d = Vec3::UnitZ();
+  const double   r1 = 1e-3, r2 = 2.5e-3;
+  auto           grad_chi_u = [&](const Vec3 &x) {
+    const DisplacementField f = point_force_field(x, x0, d, 1.0, m);
+    const Cutoff            c = radial_cutoff(x, x0, r1, r2);
+    return Eigen::Matrix3d(c.value * f.gradient + f.u * c.gradient.transpose());
+  };
+  for (const Vec3 &x :
+       {Vec3(1.2e-3, 0.3e-3, 0.5e-3), Vec3(-0.4e-3, 1.1e-3, 1.6e-3), Vec3(0.2e-3, -0.1e-3, 2.2e-3)})
+    {
+      const DisplacementField f    = point_force_field(x, x0, d, 1.0, m);
+      const Cutoff            c    = radial_cutoff(x, x0, r1, r2);
+      const NearField         near = cut_off_near_field(f, c, d, m);
+      const Vec3              fd   = divergence_of_stress(grad_chi_u, x, m, 1e-8);
+      EXPECT_LT((near.body - fd).norm(), 1e-5 * near.body.norm()) << x.transpose();
+      EXPECT_LT((near.traction - stress(grad_chi_u(x), m) * d).norm(),
+                1e-12 * near.traction.norm());
+    }
+  EXPECT_EQ(radial_cutoff(Vec3(0.9e-3, 0, 0), x0, r1, r2).value, 1);
+  EXPECT_EQ(radial_cutoff(Vec3(0, 0, 2.6e-3), x0, r1, r2).value, 0);
+  EXPECT_NEAR(radial_cutoff(Vec3(0, 1.75e-3, 0), x0, r1, r2).value, 0.5, 1e-15);
+  // inside the inner radius the field is Boussinesq's own: no body force
+  const Vec3 x(0.3e-3, 0.2e-3, 0.4e-3);
+  EXPECT_EQ(
+      cut_off_near_field(point_force_field(x, x0, d, 1.0, m), radial_cutoff(x, x0, r1, r2), d, m)
+          .body.norm(),
+      0);
+}

@@ -8,6 +8,7 @@
 //          [segment teeth = 3] [first position = 0] [last position = positions - 1]
 //          [fast grid n_u = 9] [n_v = 7] [reference flank size / m_n = 0.2] [reference: 1|0]
 //          [fast response depth in elements = 3] [fast other flanks and fillets size / m_n = same]
+//          [fast near field: 0 response depth, 1 analytic = 0] [near-field radius / m_n = 1]
 #include "stiffness/loaded_contact.h"
 #include "stiffness/member_compliance.h"
 #include "stiffness/reference_contact.h"
@@ -53,6 +54,8 @@ main(int argc, char **argv)
   const bool   reference = argc > 14 ? std::atoi(argv[14]) != 0 : true;
   const double depth     = argc > 15 ? std::atof(argv[15]) : 3;
   const double other     = argc > 16 ? std::atof(argv[16]) : 0;
+  const bool   analytic  = argc > 17 ? std::atoi(argv[17]) != 0 : false;
+  const double radius    = argc > 18 ? std::atof(argv[18]) : 1;
   try
     {
       const auto [pd, gd]      = test_data::fzg_c_pair();
@@ -78,8 +81,10 @@ main(int argc, char **argv)
         o.mesh.flank_size = fast_size * g.data().normal_module;
         o.material = steel, o.work_directory = dir;
         o.n_u = n_u, o.n_v = n_v;
-        o.depth_elements  = depth;
-        o.mesh.other_size = other * g.data().normal_module;
+        o.depth_elements      = depth;
+        o.mesh.other_size     = other * g.data().normal_module;
+        o.analytic_near_field = analytic;
+        o.near_field_radius   = radius * g.data().normal_module;
         return involute_member_compliance(g, f, o);
       };
       const FlankCompliance cp        = member(*pinion, *pf, segments.first);

@@ -25,11 +25,13 @@
 #include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <malloc.h>
 #include <map>
 #include <petscksp.h>
@@ -129,6 +131,13 @@ struct ElasticSegment::Impl
   {
   }
 
+  bool
+  held(int boundary) const
+  {
+    return options.clamped.count(boundary) ||
+           std::any_of(options.rollers.begin(), options.rollers.end(),
+                       [&](const auto &r) { return r.first == boundary; });
+  }
   /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
   set_rigid_body_near_null_space();
@@ -142,6 +151,9 @@ struct ElasticSegment::Impl
                FullMatrix<double> &local) const;
   PETScWrappers::MPI::Vector
   assemble_loads(const std::vector<PatchLoad> &loads) const;
+  /// The load vector of the remainder w of a near-field load (see remainder_response).
+  PETScWrappers::MPI::Vector
+  assemble_remainder_load(const NearFieldLoad &load) const;
   PETScWrappers::MPI::Vector
   solve(const PETScWrappers::MPI::Vector &rhs) const;
   /// Per probe: the owning rank's functional (dof indices, coefficients); empty elsewhere.
@@ -154,9 +166,10 @@ struct ElasticSegment::Impl
   evaluate(
       const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
       const PETScWrappers::MPI::Vector &u) const;
-  /// D(j, i): functional j of the displacement under load i alone.
+  /// D(j, i): functional j of the displacement under load vector i alone (n load vectors).
   Eigen::MatrixXd
-  responses(const std::vector<PatchLoad> &loads,
+  responses(std::size_t                                                     n,
+            const std::function<PETScWrappers::MPI::Vector(std::size_t i)> &load_vector,
             const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
                 &functionals) const;
 };
@@ -522,6 +535,18 @@ ElasticSegment::factorisation_seconds() const
   return impl->factor_seconds;
 }
 
+std::vector<double>
+ElasticSegment::distance_to_held(const std::vector<Vec3> &points) const
+{
+  std::vector<double> d(points.size(), HUGE_VAL);
+  for (const auto &face : impl->faces)
+    if (impl->held(face.boundary))
+      for (std::size_t j = 0; j < points.size(); ++j)
+        d[j] = std::min(d[j], face.centre.distance(point(points[j])) - face.diameter / 2);
+  Utilities::MPI::min(d, impl->comm, d);
+  return d;
+}
+
 std::vector<bool>
 ElasticSegment::contains(const std::vector<Vec3> &points) const
 {
@@ -745,37 +770,136 @@ Eigen::MatrixXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads,
                          const std::vector<Probe>     &probes) const
 {
-  return impl->responses(loads, impl->probe_functionals(probes));
+  return impl->responses(
+      loads.size(), [&](std::size_t i) { return impl->assemble_loads({loads[i]}); },
+      impl->probe_functionals(probes));
 }
 
 Eigen::MatrixXd
 ElasticSegment::patch_response(const std::vector<PatchLoad> &loads,
                                const std::vector<PatchLoad> &measures) const
 {
-  return impl->responses(loads, impl->load_functionals(measures));
+  return impl->responses(
+      loads.size(), [&](std::size_t i) { return impl->assemble_loads({loads[i]}); },
+      impl->load_functionals(measures));
+}
+
+Eigen::MatrixXd
+ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
+                                   const std::vector<Probe>         &probes) const
+{
+  return impl->responses(
+      loads.size(), [&](std::size_t i) { return impl->assemble_remainder_load(loads[i]); },
+      impl->probe_functionals(probes));
+}
+
+PETScWrappers::MPI::Vector
+ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
+{
+  if (!(load.inner > 0 && load.outer > load.inner) || !load.point.allFinite() ||
+      !(std::abs(load.direction.norm() - 1) < 1e-9))
+    throw InputError("elastic segment: a near-field load needs 0 < inner < outer radius, a "
+                     "finite point and a unit direction");
+  const Point<3> x0 = point(load.point);
+  for (const FaceData &d : faces)
+    if (held(d.boundary) && d.centre.distance(x0) < load.outer + d.diameter / 2)
+      {
+        std::ostringstream msg;
+        msg << "elastic segment: the near field of the load at (" << load.point.transpose() * 1e3
+            << ") mm reaches the held boundary " << d.boundary << " (cut-off radius "
+            << load.outer * 1e3 << " mm); expected a smaller radius";
+        throw InputError(msg.str());
+      }
+  const Material &material = options.material;
+  auto            near     = [&](const Point<3> &x, const Tensor<1, 3> &normal) {
+    const Vec3 y(x[0], x[1], x[2]);
+    return cut_off_near_field(point_force_field(y, load.point, load.direction, 1.0, material),
+                                             radial_cutoff(y, load.point, load.inner, load.outer),
+                                             Vec3(normal[0], normal[1], normal[2]), material);
+  };
+  PETScWrappers::MPI::Vector           f(owned, comm);
+  const unsigned                       n = fe.n_dofs_per_cell();
+  Vector<double>                       local(n);
+  std::vector<types::global_dof_index> indices(n);
+  // the body force lives in the shell between the radii; the traction on every boundary face
+  // within the outer radius, on faces near the force with a subdivided rule (the residual
+  // traction of a curved or tilted surface grows like 1/r toward the force)
+  const QGauss<3>    volume_rule(options.degree + 2);
+  const QGauss<2>    face_rule(options.degree + 2);
+  const QIterated<2> near_rule(QGauss<1>(options.degree + 1), 8);
+  FEValues<3>        values(mapping, fe, volume_rule,
+                            update_values | update_quadrature_points | update_JxW_values);
+  FEFaceValues<3>    face_values(mapping, fe, face_rule,
+                                 update_values | update_quadrature_points | update_JxW_values |
+                                     update_normal_vectors);
+  FEFaceValues<3>    near_face_values(mapping, fe, near_rule,
+                                      update_values | update_quadrature_points | update_JxW_values |
+                                          update_normal_vectors);
+  for (const auto &cell : dofs.active_cell_iterators())
+    {
+      if (!cell->is_locally_owned())
+        continue;
+      const double reach = cell->center().distance(x0), radius = cell->diameter() / 2;
+      if (reach - radius > load.outer)
+        continue;
+      local = 0;
+      if (reach + radius > load.inner)
+        {
+          values.reinit(cell);
+          for (unsigned q = 0; q < volume_rule.size(); ++q)
+            {
+              const Vec3 b = near(values.quadrature_point(q), Tensor<1, 3>()).body;
+              for (unsigned i = 0; i < n; ++i)
+                local(i) += values.shape_value(i, q) * b[fe.system_to_component_index(i).first] *
+                            values.JxW(q);
+            }
+        }
+      for (unsigned face = 0; face < GeometryInfo<3>::faces_per_cell; ++face)
+        if (cell->face(face)->at_boundary() &&
+            cell->face(face)->center().distance(x0) - cell->face(face)->diameter() / 2 < load.outer)
+          {
+            const bool close =
+                cell->face(face)->center().distance(x0) < 2 * cell->face(face)->diameter();
+            FEFaceValues<3> &v = close ? near_face_values : face_values;
+            v.reinit(cell, face);
+            for (unsigned q = 0; q < v.n_quadrature_points; ++q)
+              {
+                if (v.quadrature_point(q).distance(x0) < 1e-12 * cell->diameter())
+                  continue; // the force itself: its part is carried by chi u
+                const Vec3 t = near(v.quadrature_point(q), v.normal_vector(q)).traction;
+                for (unsigned i = 0; i < n; ++i)
+                  local(i) -=
+                      v.shape_value(i, q) * t[fe.system_to_component_index(i).first] * v.JxW(q);
+              }
+          }
+      cell->get_dof_indices(indices);
+      constraints.distribute_local_to_global(local, indices, f);
+    }
+  f.compress(VectorOperation::add);
+  return f;
 }
 
 Eigen::MatrixXd
 ElasticSegment::Impl::responses(
-    const std::vector<PatchLoad> &loads,
+    std::size_t n_loads, const std::function<PETScWrappers::MPI::Vector(std::size_t)> &load_vector,
     const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
         &functionals) const
 {
   const Impl     &m = *this;
-  Eigen::MatrixXd D(functionals.size(), loads.size());
+  Eigen::MatrixXd D(functionals.size(), Eigen::Index(n_loads));
   // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
   // factorisation does a block solve; an iterative run-time choice solves column by column).
   const PetscInt block = 64, local = PetscInt(m.owned.n_elements());
-  for (std::size_t first = 0; first < loads.size(); first += block)
+  for (std::size_t first = 0; first < n_loads; first += block)
     {
-      const PetscInt cols = PetscInt(std::min<std::size_t>(block, loads.size() - first));
+      const PetscInt cols = PetscInt(std::min<std::size_t>(block, n_loads - first));
       Mat            B, X;
       petsc_check(
           MatCreateDense(m.comm, local, PETSC_DECIDE, PetscInt(m.dofs.n_dofs()), cols, nullptr, &B),
           "MatCreateDense");
       for (PetscInt c = 0; c < cols; ++c)
         {
-          const PETScWrappers::MPI::Vector f = m.assemble_loads({loads[first + c]});
+          const PETScWrappers::MPI::Vector f = load_vector(first + c);
           Vec                              column;
           petsc_check(MatDenseGetColumnVecWrite(B, c, &column), "MatDenseGetColumnVecWrite");
           petsc_check(VecCopy(f, column), "VecCopy");

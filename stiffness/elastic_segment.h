@@ -55,6 +55,17 @@ struct PatchLoad
   Eigen::Matrix3d axes      = Eigen::Matrix3d::Identity();
 };
 
+/// A unit normal point force on the boundary whose near field is carried analytically:
+/// Boussinesq's field of the half-space tangent at `point` (inward normal `direction`, unit:
+/// the force pushes along it), cut off smoothly between the radii `inner` and `outer` about the
+/// point [m]. The cut-off sphere must not reach a held boundary, nor the ray outside the body
+/// opposite the force where it re-enters the body (the field is singular there).
+struct NearFieldLoad
+{
+  Vec3   point = Vec3::Zero(), direction = Vec3::Zero();
+  double inner = 0, outer = 0;
+};
+
 /// A displacement component to read: the displacement at `point` projected on `direction`.
 struct Probe
 {
@@ -81,6 +92,16 @@ public:
   Eigen::MatrixXd
   patch_response(const std::vector<PatchLoad> &loads, const std::vector<PatchLoad> &measures) const;
 
+  /// D(j, i): probe j's displacement under the unit point force i less the force's cut-off
+  /// half-space field chi u (half_space.h: cut_off_near_field), which the caller adds
+  /// analytically where it needs it. The finite elements solve only the smooth remainder w:
+  /// a(w, v) = -(boundary integral of sigma(chi u) n . v) + (integral of div sigma(chi u) . v),
+  /// so that no element has to resolve the 1/r field of the force; the total displacement is
+  /// chi u + w.
+  Eigen::MatrixXd
+  remainder_response(const std::vector<NearFieldLoad> &loads,
+                     const std::vector<Probe>         &probes) const;
+
   /// The same for one load set applied together; the sum of the reaction forces at the held
   /// boundaries equals minus the sum of the loads.
   Eigen::VectorXd
@@ -91,6 +112,11 @@ public:
   /// process with a .pvtu record when parallel), written via temporary names.
   void
   write_vtu(const std::vector<PatchLoad> &loads_together, const std::string &path) const;
+
+  /// For each point: a lower bound of its distance to the held boundaries (the nearest held
+  /// face's centre less half its diameter) [m]. Collective.
+  std::vector<double>
+  distance_to_held(const std::vector<Vec3> &points) const;
 
   /// For each point: does it lie in the body (on any process)? Collective.
   std::vector<bool>

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -102,6 +103,122 @@ response_depths(const FlankCompliance &table, const ElasticSegment &body, double
 }
 } // namespace
 
+namespace
+{
+MemberComplianceOptions
+with_radius(MemberComplianceOptions o, double module)
+{
+  if (!(o.near_field_radius > 0))
+    o.near_field_radius = module;
+  return o;
+}
+
+/// Where the body is crossed along a ray from x: the smallest s in (from, to] with
+/// x + s direction inside (its boundary, bisected to `tolerance`), or `to` when none of the
+/// samples at steps of `step` is.
+std::vector<double>
+first_crossing(const ElasticSegment &body, const std::vector<Vec3> &x,
+               const std::vector<Vec3> &direction, double from, double to, double step,
+               double tolerance, bool want_inside)
+{
+  const std::size_t   n = x.size();
+  std::vector<double> lo(n, from), hi(n, -1);
+  const int           steps = int(std::ceil((to - from) / step));
+  std::vector<Vec3>   samples;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 1; k <= steps; ++k)
+      samples.push_back(x[i] + std::min(to, from + k * step) * direction[i]);
+  const std::vector<bool> inside = body.contains(samples);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 1; k <= steps && hi[i] < 0; ++k)
+      {
+        if (inside[i * steps + k - 1] == want_inside)
+          hi[i] = std::min(to, from + k * step);
+        else
+          lo[i] = std::min(to, from + k * step);
+      }
+  while (true)
+    {
+      bool              done = true;
+      std::vector<Vec3> mid;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          done = done && (hi[i] < 0 || hi[i] - lo[i] <= tolerance);
+          mid.push_back(x[i] + (hi[i] < 0 ? lo[i] : (lo[i] + hi[i]) / 2) * direction[i]);
+        }
+      if (done)
+        break;
+      const std::vector<bool> in = body.contains(mid);
+      for (std::size_t i = 0; i < n; ++i)
+        if (hi[i] >= 0 && hi[i] - lo[i] > tolerance)
+          (in[i] == want_inside ? hi[i] : lo[i]) = (lo[i] + hi[i]) / 2;
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    if (hi[i] < 0)
+      hi[i] = to;
+  return hi;
+}
+
+/// The table with the near field carried analytically: each grid point moved along its
+/// inward normal onto the finite-element surface (the facets lie inside the curved flank by
+/// their sagitta), a unit force there with Boussinesq's field cut off between half and the
+/// whole of its radius, the finite elements' remainder read at every point, the analytic part
+/// added and the point-force half-space displacement of the same tooth taken out (the contact
+/// solver adds the exact half-space between cells).
+void
+fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body, double h,
+                              const MemberComplianceOptions &o, MemberComplianceInfo &out)
+{
+  const auto       &points = table.points();
+  const std::size_t n      = points.size();
+  std::vector<Vec3> x, in, outward;
+  for (const auto &p : points)
+    x.push_back(p.position - 0.5 * h * p.normal), in.push_back(-p.normal),
+        outward.push_back(p.normal);
+  // the surface: the first point outside going out from half an element inside
+  const std::vector<double> s = first_crossing(body, x, outward, 0, h, h / 4, 1e-6 * h, false);
+  std::vector<Vec3>         on(n);
+  for (std::size_t i = 0; i < n; ++i)
+    on[i] = x[i] + (s[i] - 2e-6 * h) * outward[i]; // just inside
+  // where the body comes back across the outward normal
+  const std::vector<double> back = first_crossing(
+      body, on, outward, 4e-6 * h, 1.25 * o.near_field_radius, h / 4, 1e-3 * h, true);
+  const std::vector<double>  held = body.distance_to_held(on);
+  std::vector<NearFieldLoad> loads;
+  std::vector<Probe>         probes;
+  double                     smallest = HUGE_VAL;
+  for (std::size_t i = 0; i < n; ++i)
+    {
+      const double outer = std::min({o.near_field_radius, 0.8 * back[i], 0.9 * held[i]});
+      smallest           = std::min(smallest, outer);
+      loads.push_back({on[i], in[i], outer / 2, outer});
+      probes.push_back({on[i], in[i]});
+    }
+  out.min_depth           = smallest; // reported as the smallest near-field radius
+  const Eigen::MatrixXd W = body.remainder_response(loads, probes);
+  Eigen::MatrixXd       S = W;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i)
+        {
+          // the analytic part along the load's own direction: along the other point's normal
+          // it would add the tilt of the normals, u_r theta -> (1 - 2 nu) / (4 pi G rho) cos^2,
+          // a term whose limit at the load depends on the direction; bilinear interpolation of
+          // the table would turn it into a ripple of the grid spacing (up to 0.5 % of K_m),
+          // while along a contact line (a straight generator of the flank, or nearly) it is nil
+          const NearFieldLoad &l   = loads[i];
+          const double         chi = radial_cutoff(on[j], l.point, l.inner, l.outer).value;
+          if (chi > 0)
+            S(j, i) +=
+                chi *
+                point_force_field(on[j], l.point, l.direction, 1.0, o.material).u.dot(l.direction);
+          if (points[i].tooth == points[j].tooth)
+            S(j, i) -= point_load_displacement((on[j] - on[i]).norm(), 0, 1.0, o.material);
+        }
+  table.set(S);
+}
+} // namespace
+
 SegmentMeshInfo
 segment_mesh_on_first_process(const SegmentMesher &mesher, const std::string &path, MPI_Comm comm)
 {
@@ -138,7 +255,8 @@ involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
   return member_compliance(
       flanks, gear.data().name,
       [&](const std::string &path) { return write_tooth_segment_mesh(gear, mesh, path); },
-      o.mesh.flank_size > 0 ? o.mesh.flank_size : gear.data().normal_module / 5, o, info);
+      o.mesh.flank_size > 0 ? o.mesh.flank_size : gear.data().normal_module / 5,
+      with_radius(o, gear.data().normal_module), info);
 }
 
 FlankCompliance
@@ -150,7 +268,7 @@ bevel_member_compliance(const BevelMemberFlanks &flanks, const std::string &name
   return member_compliance(
       flanks, name,
       [&](const std::string &path) { return write_bevel_segment_mesh(flanks, module, mesh, path); },
-      o.mesh.flank_size > 0 ? o.mesh.flank_size : module / 5, o, info);
+      o.mesh.flank_size > 0 ? o.mesh.flank_size : module / 5, with_radius(o, module), info);
 }
 
 FlankCompliance
@@ -216,6 +334,12 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
       probes.push_back({x, d});
     return body.response(patches, probes);
   };
+  if (o.analytic_near_field)
+    {
+      fill_with_analytic_near_field(table, body, h, o, out);
+      out.solve_seconds = seconds_since(t0);
+      return table;
+    }
   const std::vector<double> depths = response_depths(table, body, out.depth);
   out.min_depth                    = *std::min_element(depths.begin(), depths.end());
   out.shallow_points               = std::size_t(

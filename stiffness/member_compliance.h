@@ -27,7 +27,14 @@ struct MemberComplianceOptions
   double             depth_elements = 3;    ///< response depth in flank element sizes
   double             patch_elements = 1;    ///< patch load radius in flank element sizes
   bool               hold_cuts      = true; ///< radial cut faces held (else free; the bore always)
-  std::string        work_directory;        ///< where the segment mesh is written
+  /// The near field of each unit load: false, read a response depth below the flank and take
+  /// the half-space part above it out; true, carry Boussinesq's field analytically (cut off
+  /// within `near_field_radius`, less where the body comes back across the load's normal or a
+  /// held face is nearer) and solve only the smooth remainder with the finite elements, read
+  /// at the flank itself (ElasticSegment::remainder_response).
+  bool        analytic_near_field = false;
+  double      near_field_radius   = 0; ///< [m]; 0: the module
+  std::string work_directory;          ///< where the segment mesh is written
   /// The processes that share the finite elements: the first meshes the segment (gmsh), all
   /// solve it together; every process receives the whole table.
   MPI_Comm communicator = MPI_COMM_WORLD;

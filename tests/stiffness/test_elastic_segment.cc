@@ -141,6 +141,56 @@ TEST(ElasticSegment, BoussinesqNearFieldAndFactorisationReuse)
                 body.cells(), body.dofs(), t_factor, t_solves);
 }
 
+TEST(ElasticSegment, NearFieldCarriedAnalyticallyIsIndependentOfItsCutOff)
+{
+  // A unit force on the top of a 20 x 20 x 10 mm block (clamped below, Q2, 1.25 mm elements):
+  // the total displacement chi u + w must not depend on where Boussinesq's field is cut off
+  // (only the split between the analytic part and the finite elements' remainder does), and
+  // far from the force it must equal the plain finite-element answer to a small patch load.
+  const Vec3                L(20e-3, 20e-3, 10e-3);
+  const Vec3                top(L.x() / 2, L.y() / 2, L.z()), down = -Vec3::UnitZ();
+  const std::vector<double> radii{0, 1e-3, 2e-3, 4e-3, 6e-3};
+  std::vector<Probe>        probes;
+  for (double r : radii)
+    probes.push_back({top + Vec3(r, 0, 0), down});
+  const std::string     mesh = box("near", L, 16, 16, 8);
+  ElasticSegmentOptions o;
+  o.degree   = 2;
+  o.material = steel;
+  o.clamped  = {5};
+  const ElasticSegment                         body(mesh, o);
+  const std::vector<std::pair<double, double>> cuts{{2.5e-3, 5e-3}, {3.5e-3, 7e-3}};
+  std::vector<NearFieldLoad>                   loads;
+  for (auto [a, b] : cuts)
+    loads.push_back({top, down, a, b});
+  const Eigen::MatrixXd W = body.remainder_response(loads, probes);
+  const Eigen::MatrixXd P = body.response({PatchLoad{top, down, 0.5e-3, {6}}}, probes);
+  Eigen::MatrixXd       total(radii.size(), cuts.size());
+  for (std::size_t j = 0; j < radii.size(); ++j)
+    for (std::size_t k = 0; k < cuts.size(); ++k)
+      {
+        const Vec3 x = probes[j].point;
+        const auto c = radial_cutoff(x, top, cuts[k].first, cuts[k].second);
+        total(j, k) =
+            W(j, k) +
+            (radii[j] > 0 ? c.value * point_force_field(x, top, down, 1.0, steel).u.dot(down) : 0);
+        if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          std::printf("  r %.0f mm, cut-off %.1f-%.1f mm: remainder %+.4e total %.4e "
+                      "(patch load %.4e) m/N\n",
+                      radii[j] * 1e3, cuts[k].first * 1e3, cuts[k].second * 1e3, W(j, k),
+                      total(j, k), P(j, 0));
+      }
+  // between the cut-offs (4 mm) the remainder moves with the cut-off by more than the half
+  // of the whole displacement there ...
+  EXPECT_GT(std::abs(W(3, 0) - W(3, 1)), 0.5 * std::abs(total(3, 0)));
+  // ... the total does not (the remainder at the force, the structural part, included: to
+  // 1e-11 m/N, under 1 % of the displacement 1 mm from the force; measured 4e-12)
+  for (std::size_t j = 0; j < radii.size(); ++j)
+    EXPECT_NEAR(total(j, 0), total(j, 1), 1e-11) << radii[j];
+  for (std::size_t j = 3; j < radii.size(); ++j)
+    EXPECT_NEAR(total(j, 0) / P(j, 0), 1, 0.02) << radii[j];
+}
+
 TEST(ElasticSegment, BadInputIsRefused)
 {
   ElasticSegmentOptions o;

@@ -8,7 +8,7 @@
 //          [segment teeth = 3] [first position = 0] [last position = positions - 1]
 //          [fast grid n_u = 9] [n_v = 7] [reference flank size / m_n = 0.2] [reference: 1|0]
 //          [fast response depth in elements = 3] [fast other flanks and fillets size / m_n = same]
-//          [fast near field: 0 response depth, 1 analytic = 0] [near-field radius / m_n = 1]
+//          [fast near field: 0 response depth, 1 analytic = 0] [near-field radius / m_n = 2]
 #include "stiffness/loaded_contact.h"
 #include "stiffness/member_compliance.h"
 #include "stiffness/reference_contact.h"
@@ -55,7 +55,7 @@ main(int argc, char **argv)
   const double depth     = argc > 15 ? std::atof(argv[15]) : 3;
   const double other     = argc > 16 ? std::atof(argv[16]) : 0;
   const bool   analytic  = argc > 17 ? std::atoi(argv[17]) != 0 : false;
-  const double radius    = argc > 18 ? std::atof(argv[18]) : 1;
+  const double radius    = argc > 18 ? std::atof(argv[18]) : 2;
   try
     {
       const auto [pd, gd]      = test_data::fzg_c_pair();

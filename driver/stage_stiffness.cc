@@ -47,8 +47,10 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   o.material           = fe.material;
   o.side               = side;
   o.n_u = fe.n_u, o.n_v = fe.n_v;
-  o.depth_elements = fe.depth;
-  o.work_directory = dir;
+  o.depth_elements      = fe.depth;
+  o.analytic_near_field = fe.analytic_near_field;
+  o.near_field_radius   = fe.near_field_radius * module;
+  o.work_directory      = dir;
   // Unit loads only on the teeth that can carry load over the mesh cycle; the segment's other
   // teeth are there for the stiffness of the surroundings.
   for (int k = -(segment.teeth - 1) / 2; k <= (segment.teeth - 1) / 2; ++k)
@@ -105,24 +107,38 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
           const hsize_t       n = table.points().size();
           std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
           m.write("compliance", S, {n, n}, "m/N",
-                  "structural compliance S(i, j) (column-major: load j, response i) on the load "
-                  "grid, half-space part below the response depth removed");
+                  fe.analytic_near_field
+                      ? "structural compliance S(i, j) (column-major: load j, response i) on the "
+                        "load grid, the point-force half-space displacement of the same tooth "
+                        "removed"
+                      : "structural compliance S(i, j) (column-major: load j, response i) on the "
+                        "load grid, half-space part below the response depth removed");
           m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
           m.write("central_tooth", double(segment.central), "1",
                   "tooth in the middle of the segment");
           m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
           m.write("dofs", double(info.dofs), "1", "degrees of freedom");
-          m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
-          m.write("shallow_points", double(info.shallow_points), "1",
-                  "grid points read at half the chord through the tooth (thinner than twice "
-                  "the response depth there)");
-          m.write("min_response_depth", info.min_depth, "m", "smallest response depth used");
+          if (fe.analytic_near_field)
+            m.write("min_near_field_radius", info.min_near_field_radius, "m",
+                    "smallest radius within which a unit load's field is analytic");
+          else
+            {
+              m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
+              m.write("shallow_points", double(info.shallow_points), "1",
+                      "grid points read at half the chord through the tooth (thinner than "
+                      "twice the response depth there)");
+              m.write("min_response_depth", info.min_depth, "m", "smallest response depth used");
+            }
           m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
                   "mesh, assembly, factorisation and unit-load solves");
           log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << ": "
-              << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n << " unit loads ("
-              << info.shallow_points << " read shallower), "
-              << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s\n";
+              << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n << " unit loads (";
+          if (fe.analytic_near_field)
+            log << "near field analytic within " << info.min_near_field_radius * 1e3
+                << " mm or more), ";
+          else
+            log << info.shallow_points << " read shallower), ";
+          log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s\n";
         }
     }
 }

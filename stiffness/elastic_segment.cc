@@ -120,6 +120,15 @@ struct ElasticSegment::Impl
     std::array<Point<3>, 4>                      vertices;
   };
   std::vector<FaceData> faces;
+  /// Per (vertex, boundary id): the area-weighted mean outward normal of the boundary faces
+  /// with that id around the vertex; interpolated over a face, a smooth normal field of the
+  /// curved surface the facets approximate (see smooth_normal).
+  std::map<std::pair<unsigned, int>, Tensor<1, 3>> vertex_normals;
+  /// The smooth outward normal at a point of a boundary face (bilinear in the face's vertex
+  /// normals): the traction a curved surface would carry, without the facets' kinks.
+  Tensor<1, 3>
+  smooth_normal(const typename DoFHandler<3>::active_cell_iterator &cell, unsigned face,
+                const Point<3> &x) const;
   /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
   /// then do not jump with where its edge falls between the Gauss points).
   std::unique_ptr<FEFaceValues<3>> fine_face_values;
@@ -325,6 +334,20 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
                   }
               }
             m.faces.push_back(std::move(d));
+          }
+  for (const auto &cell : m.dofs.active_cell_iterators())
+    if (cell->is_locally_owned() || cell->is_ghost())
+      for (unsigned f = 0; f < GeometryInfo<3>::faces_per_cell; ++f)
+        if (cell->face(f)->at_boundary())
+          {
+            const auto         face = cell->face(f);
+            Tensor<1, 3>       a    = cross_product_3d(face->vertex(3) - face->vertex(0),
+                                                       face->vertex(2) - face->vertex(1));
+            const Tensor<1, 3> out  = face->center() - cell->center();
+            if (a * out < 0)
+              a = -a;
+            for (unsigned v = 0; v < 4; ++v)
+              m.vertex_normals[{face->vertex_index(v), int(face->boundary_id())}] += a;
           }
   m.fine_face_values = std::make_unique<FEFaceValues<3>>(
       m.mapping, m.fe, QIterated<2>(QGauss<1>(o.degree + 1), 8),
@@ -793,6 +816,38 @@ ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
       impl->probe_functionals(probes));
 }
 
+Tensor<1, 3>
+ElasticSegment::Impl::smooth_normal(const typename DoFHandler<3>::active_cell_iterator &cell,
+                                    unsigned f, const Point<3> &x) const
+{
+  // (xi, eta) of x on the bilinear face (vertices in the face's own lexicographic order) by
+  // Gauss-Newton, then the vertex normals interpolated with the same weights
+  const auto              face = cell->face(f);
+  std::array<Point<3>, 4> v;
+  for (unsigned k = 0; k < 4; ++k)
+    v[k] = face->vertex(k);
+  double xi = 0.5, eta = 0.5;
+  for (int it = 0; it < 8; ++it)
+    {
+      const Tensor<1, 3> r = v[0] * (1 - xi) * (1 - eta) + v[1] * xi * (1 - eta) +
+                             v[2] * (1 - xi) * eta + v[3] * xi * eta - x;
+      const Tensor<1, 3> dxi  = (v[1] - v[0]) * (1 - eta) + (v[3] - v[2]) * eta;
+      const Tensor<1, 3> deta = (v[2] - v[0]) * (1 - xi) + (v[3] - v[1]) * xi;
+      const double       a = dxi * dxi, b = dxi * deta, c = deta * deta;
+      const double       p = -(dxi * r), q = -(deta * r), det = a * c - b * b;
+      xi += (c * p - b * q) / det;
+      eta += (a * q - b * p) / det;
+    }
+  const double w[4] = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta, xi * eta};
+  Tensor<1, 3> n;
+  for (unsigned k = 0; k < 4; ++k)
+    {
+      const auto it = vertex_normals.find({face->vertex_index(k), int(face->boundary_id())});
+      n += w[k] * it->second / it->second.norm();
+    }
+  return n / n.norm();
+}
+
 PETScWrappers::MPI::Vector
 ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
 {
@@ -866,7 +921,9 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
               {
                 if (v.quadrature_point(q).distance(x0) < 1e-12 * cell->diameter())
                   continue; // the force itself: its part is carried by chi u
-                const Vec3 t = near(v.quadrature_point(q), v.normal_vector(q)).traction;
+                const Vec3 t =
+                    near(v.quadrature_point(q), smooth_normal(cell, face, v.quadrature_point(q)))
+                        .traction;
                 for (unsigned i = 0; i < n; ++i)
                   local(i) -=
                       v.shape_value(i, q) * t[fe.system_to_component_index(i).first] * v.JxW(q);

@@ -109,7 +109,7 @@ MemberComplianceOptions
 with_radius(MemberComplianceOptions o, double module)
 {
   if (!(o.near_field_radius > 0))
-    o.near_field_radius = module;
+    o.near_field_radius = 2 * module;
   return o;
 }
 
@@ -194,9 +194,9 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
       loads.push_back({on[i], in[i], outer / 2, outer});
       probes.push_back({on[i], in[i]});
     }
-  out.min_depth           = smallest; // reported as the smallest near-field radius
-  const Eigen::MatrixXd W = body.remainder_response(loads, probes);
-  Eigen::MatrixXd       S = W;
+  out.min_near_field_radius = smallest;
+  const Eigen::MatrixXd W   = body.remainder_response(loads, probes);
+  Eigen::MatrixXd       S   = W;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
       if (j != i)

@@ -32,8 +32,8 @@ struct MemberComplianceOptions
   /// within `near_field_radius`, less where the body comes back across the load's normal or a
   /// held face is nearer) and solve only the smooth remainder with the finite elements, read
   /// at the flank itself (ElasticSegment::remainder_response).
-  bool        analytic_near_field = false;
-  double      near_field_radius   = 0; ///< [m]; 0: the module
+  bool        analytic_near_field = true;
+  double      near_field_radius   = 0; ///< [m]; 0: twice the module
   std::string work_directory;          ///< where the segment mesh is written
   /// The processes that share the finite elements: the first meshes the segment (gmsh), all
   /// solve it together; every process receives the whole table.
@@ -49,7 +49,10 @@ struct MemberComplianceInfo
   /// the smallest depth used [m].
   std::size_t shallow_points = 0;
   double      min_depth      = 0;
-  double      mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
+  /// With the analytic near field: the smallest cut-off radius used [m] (less than the
+  /// option where the body comes back across a point's normal or a held face is near).
+  double min_near_field_radius = 0;
+  double mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
 };
 
 /// The segment a member needs: the teeth of the pairs that stand within `gap_band` of contact

@@ -21,7 +21,7 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     K_fast = g["mesh_stiffness"][()][:, pos]
     K_ref = ref["mesh_stiffness"][()]
     assert np.all(np.isfinite(K_ref)) and np.all(K_ref > 0), K_ref
-    assert np.all(np.abs(K_fast / K_ref - 1) < 0.08), (K_fast, K_ref)
+    assert np.all(np.abs(K_fast / K_ref - 1) < 0.02), (K_fast, K_ref)
     torque = g["torque"][()]
     lever = g["lever"][()][:, pos]
     assert np.allclose(ref["normal_force"][()] * lever, torque[:, None], rtol=5e-3)

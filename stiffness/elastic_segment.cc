@@ -124,11 +124,22 @@ struct ElasticSegment::Impl
   /// with that id around the vertex; interpolated over a face, a smooth normal field of the
   /// curved surface the facets approximate (see smooth_normal).
   std::map<std::pair<unsigned, int>, Tensor<1, 3>> vertex_normals;
+  /// A boundary face's corners and the mean normals there (summed, with their lengths).
+  struct FaceNormals
+  {
+    std::array<Point<3>, 4>     vertex;
+    std::array<Tensor<1, 3>, 4> sum;
+    std::array<double, 4>       length;
+  };
+  FaceNormals
+  face_normals(const typename DoFHandler<3>::active_cell_iterator &cell, unsigned face) const;
   /// The smooth outward normal at a point of a boundary face (bilinear in the face's vertex
   /// normals): the traction a curved surface would carry, without the facets' kinks.
-  Tensor<1, 3>
-  smooth_normal(const typename DoFHandler<3>::active_cell_iterator &cell, unsigned face,
-                const Point<3> &x) const;
+  static Tensor<1, 3>
+  smooth_normal(const FaceNormals &face, const Point<3> &x);
+  /// The remainder load's quadratures, built once (their shape values are costly to set up).
+  mutable std::unique_ptr<FEValues<3>>     remainder_volume;
+  mutable std::unique_ptr<FEFaceValues<3>> remainder_face, remainder_near_face;
   /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
   /// then do not jump with where its edge falls between the Gauss points).
   std::unique_ptr<FEFaceValues<3>> fine_face_values;
@@ -816,17 +827,28 @@ ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
       impl->probe_functionals(probes));
 }
 
+ElasticSegment::Impl::FaceNormals
+ElasticSegment::Impl::face_normals(const typename DoFHandler<3>::active_cell_iterator &cell,
+                                   unsigned                                            f) const
+{
+  const auto  face = cell->face(f);
+  FaceNormals out;
+  for (unsigned k = 0; k < 4; ++k)
+    {
+      out.vertex[k] = face->vertex(k);
+      out.sum[k]    = vertex_normals.at({face->vertex_index(k), int(face->boundary_id())});
+      out.length[k] = out.sum[k].norm();
+    }
+  return out;
+}
+
 Tensor<1, 3>
-ElasticSegment::Impl::smooth_normal(const typename DoFHandler<3>::active_cell_iterator &cell,
-                                    unsigned f, const Point<3> &x) const
+ElasticSegment::Impl::smooth_normal(const FaceNormals &face, const Point<3> &x)
 {
   // (xi, eta) of x on the bilinear face (vertices in the face's own lexicographic order) by
   // Gauss-Newton, then the vertex normals interpolated with the same weights
-  const auto              face = cell->face(f);
-  std::array<Point<3>, 4> v;
-  for (unsigned k = 0; k < 4; ++k)
-    v[k] = face->vertex(k);
-  double xi = 0.5, eta = 0.5;
+  const auto &v  = face.vertex;
+  double      xi = 0.5, eta = 0.5;
   for (int it = 0; it < 8; ++it)
     {
       const Tensor<1, 3> r = v[0] * (1 - xi) * (1 - eta) + v[1] * xi * (1 - eta) +
@@ -841,10 +863,7 @@ ElasticSegment::Impl::smooth_normal(const typename DoFHandler<3>::active_cell_it
   const double w[4] = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta, xi * eta};
   Tensor<1, 3> n;
   for (unsigned k = 0; k < 4; ++k)
-    {
-      const auto it = vertex_normals.find({face->vertex_index(k), int(face->boundary_id())});
-      n += w[k] * it->second / it->second.norm();
-    }
+    n += w[k] * face.sum[k] / face.length[k];
   return n / n.norm();
 }
 
@@ -879,17 +898,19 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
   // the body force lives in the shell between the radii; the traction on every boundary face
   // within the outer radius, on faces near the force with a subdivided rule (the residual
   // traction of a curved or tilted surface grows like 1/r toward the force)
-  const QGauss<3>    volume_rule(options.degree + 2);
-  const QGauss<2>    face_rule(options.degree + 2);
-  const QIterated<2> near_rule(QGauss<1>(options.degree + 1), 8);
-  FEValues<3>        values(mapping, fe, volume_rule,
-                            update_values | update_quadrature_points | update_JxW_values);
-  FEFaceValues<3>    face_values(mapping, fe, face_rule,
-                                 update_values | update_quadrature_points | update_JxW_values |
-                                     update_normal_vectors);
-  FEFaceValues<3>    near_face_values(mapping, fe, near_rule,
-                                      update_values | update_quadrature_points | update_JxW_values |
-                                          update_normal_vectors);
+  if (!remainder_volume)
+    {
+      remainder_volume = std::make_unique<FEValues<3>>(mapping, fe, QGauss<3>(options.degree + 2),
+                                                       update_values | update_quadrature_points |
+                                                           update_JxW_values);
+      remainder_face = std::make_unique<FEFaceValues<3>>(mapping, fe, QGauss<2>(options.degree + 2),
+                                                         update_values | update_quadrature_points |
+                                                             update_JxW_values);
+      remainder_near_face = std::make_unique<FEFaceValues<3>>(
+          mapping, fe, QIterated<2>(QGauss<1>(options.degree + 1), 8),
+          update_values | update_quadrature_points | update_JxW_values);
+    }
+  FEValues<3> &values = *remainder_volume;
   for (const auto &cell : dofs.active_cell_iterators())
     {
       if (!cell->is_locally_owned())
@@ -901,7 +922,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
       if (reach + radius > load.inner)
         {
           values.reinit(cell);
-          for (unsigned q = 0; q < volume_rule.size(); ++q)
+          for (unsigned q = 0; q < values.n_quadrature_points; ++q)
             {
               const Vec3 b = near(values.quadrature_point(q), Tensor<1, 3>()).body;
               for (unsigned i = 0; i < n; ++i)
@@ -915,14 +936,15 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
           {
             const bool close =
                 cell->face(face)->center().distance(x0) < 2 * cell->face(face)->diameter();
-            FEFaceValues<3> &v = close ? near_face_values : face_values;
+            FEFaceValues<3>  &v       = close ? *remainder_near_face : *remainder_face;
+            const FaceNormals normals = face_normals(cell, face);
             v.reinit(cell, face);
             for (unsigned q = 0; q < v.n_quadrature_points; ++q)
               {
                 if (v.quadrature_point(q).distance(x0) < 1e-12 * cell->diameter())
                   continue; // the force itself: its part is carried by chi u
                 const Vec3 t =
-                    near(v.quadrature_point(q), smooth_normal(cell, face, v.quadrature_point(q)))
+                    near(v.quadrature_point(q), smooth_normal(normals, v.quadrature_point(q)))
                         .traction;
                 for (unsigned i = 0; i < n; ++i)
                   local(i) -=

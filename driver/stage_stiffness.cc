@@ -107,12 +107,11 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
           const hsize_t       n = table.points().size();
           std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
           m.write("compliance", S, {n, n}, "m/N",
-                  fe.analytic_near_field
-                      ? "structural compliance S(i, j) (column-major: load j, response i) on the "
-                        "load grid, the point-force half-space displacement of the same tooth "
-                        "removed"
-                      : "structural compliance S(i, j) (column-major: load j, response i) on the "
-                        "load grid, half-space part below the response depth removed");
+                  std::string("structural compliance S(i, j) (column-major: load j, response i) "
+                              "on the load grid, ") +
+                      (fe.analytic_near_field
+                           ? "the point-force half-space displacement of the same tooth removed"
+                           : "half-space part below the response depth removed"));
           m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
           m.write("central_tooth", double(segment.central), "1",
                   "tooth in the middle of the segment");

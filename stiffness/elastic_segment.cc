@@ -158,6 +158,17 @@ struct ElasticSegment::Impl
            std::any_of(options.rollers.begin(), options.rollers.end(),
                        [&](const auto &r) { return r.first == boundary; });
   }
+  /// A lower bound of x's distance to this process's held faces (centre less half the
+  /// diameter; HUGE_VAL without any).
+  double
+  local_distance_to_held(const Point<3> &x) const
+  {
+    double d = HUGE_VAL;
+    for (const FaceData &face : faces)
+      if (held(face.boundary))
+        d = std::min(d, face.centre.distance(x) - face.diameter / 2);
+    return d;
+  }
   /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
   set_rigid_body_near_null_space();
@@ -204,12 +215,11 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     throw InputError("elastic segment: the material needs E > 0 and Poisson's ratio in (-1, 0.5)");
   if (!std::ifstream(file).good())
     throw InputError("elastic segment: cannot read the mesh file " + file);
-  impl           = std::make_unique<Impl>(o.degree, o.communicator);
-  Impl &m        = *impl;
-  m.options      = o;
-  const double E = o.material.youngs_modulus, nu = o.material.poisson_ratio;
-  m.lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-  m.mu     = E / (2 * (1 + nu));
+  impl      = std::make_unique<Impl>(o.degree, o.communicator);
+  Impl &m   = *impl;
+  m.options = o;
+  m.lambda  = lame(o.material).lambda;
+  m.mu      = lame(o.material).mu;
 
   Triangulation<3> coarse;
   {
@@ -572,11 +582,9 @@ ElasticSegment::factorisation_seconds() const
 std::vector<double>
 ElasticSegment::distance_to_held(const std::vector<Vec3> &points) const
 {
-  std::vector<double> d(points.size(), HUGE_VAL);
-  for (const auto &face : impl->faces)
-    if (impl->held(face.boundary))
-      for (std::size_t j = 0; j < points.size(); ++j)
-        d[j] = std::min(d[j], face.centre.distance(point(points[j])) - face.diameter / 2);
+  std::vector<double> d(points.size());
+  for (std::size_t j = 0; j < points.size(); ++j)
+    d[j] = impl->local_distance_to_held(point(points[j]));
   Utilities::MPI::min(d, impl->comm, d);
   return d;
 }
@@ -875,15 +883,16 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
     throw InputError("elastic segment: a near-field load needs 0 < inner < outer radius, a "
                      "finite point and a unit direction");
   const Point<3> x0 = point(load.point);
-  for (const FaceData &d : faces)
-    if (held(d.boundary) && d.centre.distance(x0) < load.outer + d.diameter / 2)
-      {
-        std::ostringstream msg;
-        msg << "elastic segment: the near field of the load at (" << load.point.transpose() * 1e3
-            << ") mm reaches the held boundary " << d.boundary << " (cut-off radius "
-            << load.outer * 1e3 << " mm); expected a smaller radius";
-        throw InputError(msg.str());
-      }
+  // on every process together (a throw on one alone would leave the others waiting)
+  if (const double held_at = Utilities::MPI::min(local_distance_to_held(x0), comm);
+      held_at < load.outer)
+    {
+      std::ostringstream msg;
+      msg << "elastic segment: the near field of the load at (" << load.point.transpose() * 1e3
+          << ") mm reaches a held boundary " << held_at * 1e3 << " mm away (cut-off radius "
+          << load.outer * 1e3 << " mm); expected a smaller radius";
+      throw InputError(msg.str());
+    }
   const Material &material = options.material;
   auto            near     = [&](const Point<3> &x, const Tensor<1, 3> &normal) {
     const Vec3 y(x[0], x[1], x[2]);

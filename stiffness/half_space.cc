@@ -99,11 +99,17 @@ radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer)
   return c;
 }
 
+Lame
+lame(const Material &m)
+{
+  const double E = m.youngs_modulus, nu = m.poisson_ratio;
+  return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+}
+
 Eigen::Matrix3d
 stress(const Eigen::Matrix3d &g, const Material &m)
 {
-  const double E = m.youngs_modulus, nu = m.poisson_ratio;
-  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  const auto [lambda, mu] = lame(m);
   return lambda * g.trace() * Eigen::Matrix3d::Identity() + mu * (g + g.transpose());
 }
 
@@ -111,12 +117,11 @@ NearField
 cut_off_near_field(const DisplacementField &f, const Cutoff &chi, const Vec3 &normal,
                    const Material &m)
 {
-  const double E = m.youngs_modulus, nu = m.poisson_ratio;
-  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-  const Vec3  &a = chi.gradient;
-  const auto  &G = f.gradient;
-  const auto  &H = chi.hessian;
-  NearField    out;
+  const auto [lambda, mu] = lame(m);
+  const Vec3 &a           = chi.gradient;
+  const auto &G           = f.gradient;
+  const auto &H           = chi.hessian;
+  NearField   out;
   out.u = chi.value * f.u;
   // grad(chi u) = chi grad u + u (grad chi)^T
   out.traction = stress(chi.value * G + f.u * a.transpose(), m) * normal;

@@ -16,6 +16,15 @@ struct Material
   double poisson_ratio  = 0.3;   ///< nu
 };
 
+/// Lamé's constants of the material: lambda = E nu / ((1 + nu) (1 - 2 nu)), mu = G = E / (2 (1 +
+/// nu)).
+struct Lame
+{
+  double lambda = 0, mu = 0;
+};
+Lame
+lame(const Material &material);
+
 /// Plane-strain modulus of the pair, E* with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 [Pa].
 double
 contact_modulus(const Material &a, const Material &b);

@@ -52,59 +52,6 @@ loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, doubl
 
 namespace
 {
-/// The depth at which each grid point's response is read: the nominal depth, or half the chord
-/// through the tooth along the point's response direction where the tooth is thinner (near the
-/// tip). The chord is bracketed on steps of a quarter of the depth and then bisected, so that
-/// neighbouring points get smoothly varying depths (a jump would show in the table).
-std::vector<double>
-response_depths(const FlankCompliance &table, const ElasticSegment &body, double depth)
-{
-  constexpr int     steps  = 8; // up to twice the nominal depth
-  const auto       &points = table.points();
-  const std::size_t n      = points.size();
-  std::vector<Vec3> samples;
-  for (const auto &p : points)
-    for (int k = 1; k <= steps; ++k)
-      samples.push_back(p.position + depth * k / 4.0 * response_offset(p));
-  const std::vector<bool> inside = body.contains(samples);
-  std::vector<double>     in(n), out(n, -1); // chord bracket; out < 0: beyond twice the depth
-  for (std::size_t i = 0; i < n; ++i)
-    {
-      int k = 0;
-      while (k < steps && inside[i * steps + k])
-        ++k;
-      if (k == 0)
-        {
-          std::ostringstream msg;
-          msg << "member compliance: the tooth at the flank point ("
-              << points[i].position.transpose() * 1e3 << ") mm is thinner than " << depth / 4 * 1e3
-              << " mm along its normal; use smaller flank elements";
-          throw InputError(msg.str());
-        }
-      in[i] = depth * k / 4.0;
-      if (k < steps)
-        out[i] = depth * (k + 1) / 4.0;
-    }
-  for (int it = 0; it < 8; ++it)
-    {
-      samples.clear();
-      for (std::size_t i = 0; i < n; ++i)
-        samples.push_back(points[i].position +
-                          (out[i] < 0 ? in[i] : (in[i] + out[i]) / 2) * response_offset(points[i]));
-      const std::vector<bool> mid_inside = body.contains(samples);
-      for (std::size_t i = 0; i < n; ++i)
-        if (out[i] >= 0)
-          (mid_inside[i] ? in[i] : out[i]) = (in[i] + out[i]) / 2;
-    }
-  std::vector<double> depths(n);
-  for (std::size_t i = 0; i < n; ++i)
-    depths[i] = out[i] < 0 ? depth : std::min(depth, (in[i] + out[i]) / 4); // half the chord
-  return depths;
-}
-} // namespace
-
-namespace
-{
 MemberComplianceOptions
 with_radius(MemberComplianceOptions o, double module)
 {
@@ -113,10 +60,11 @@ with_radius(MemberComplianceOptions o, double module)
   return o;
 }
 
-/// Where the body is crossed along a ray from x: the smallest s in (from, to] with
-/// x + s direction inside (its boundary, bisected to `tolerance`), or `to` when none of the
-/// samples at steps of `step` is.
-std::vector<double>
+/// Where the body is crossed along rays x + s direction: the samples at steps of `step` in
+/// (from, to] bracket the first s whose point is inside (`want_inside`) or outside, and
+/// bisection narrows the bracket to `tolerance`. Per ray (lo, hi): hi the first s found on the
+/// wanted side (or `to` when no sample is), lo the last s before it.
+std::vector<std::pair<double, double>>
 first_crossing(const ElasticSegment &body, const std::vector<Vec3> &x,
                const std::vector<Vec3> &direction, double from, double to, double step,
                double tolerance, bool want_inside)
@@ -131,12 +79,7 @@ first_crossing(const ElasticSegment &body, const std::vector<Vec3> &x,
   const std::vector<bool> inside = body.contains(samples);
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 1; k <= steps && hi[i] < 0; ++k)
-      {
-        if (inside[i * steps + k - 1] == want_inside)
-          hi[i] = std::min(to, from + k * step);
-        else
-          lo[i] = std::min(to, from + k * step);
-      }
+      (inside[i * steps + k - 1] == want_inside ? hi[i] : lo[i]) = std::min(to, from + k * step);
   while (true)
     {
       bool              done = true;
@@ -153,10 +96,41 @@ first_crossing(const ElasticSegment &body, const std::vector<Vec3> &x,
         if (hi[i] >= 0 && hi[i] - lo[i] > tolerance)
           (in[i] == want_inside ? hi[i] : lo[i]) = (lo[i] + hi[i]) / 2;
     }
+  std::vector<std::pair<double, double>> out(n);
   for (std::size_t i = 0; i < n; ++i)
-    if (hi[i] < 0)
-      hi[i] = to;
-  return hi;
+    out[i] = {lo[i], hi[i] < 0 ? to : hi[i]};
+  return out;
+}
+
+/// The depth at which each grid point's response is read: the nominal depth, or half the chord
+/// through the tooth along the point's response direction where the tooth is thinner (near the
+/// tip). The chord is bracketed on steps of a quarter of the depth up to twice the depth and
+/// then bisected eight times, so that neighbouring points get smoothly varying depths (a jump
+/// would show in the table).
+std::vector<double>
+response_depths(const FlankCompliance &table, const ElasticSegment &body, double depth)
+{
+  const auto       &points = table.points();
+  std::vector<Vec3> x, offset;
+  for (const auto &p : points)
+    x.push_back(p.position), offset.push_back(response_offset(p));
+  // the bracket of a quarter depth is halved while wider than depth / 1000: eight times
+  const auto chord = first_crossing(body, x, offset, 0, 2 * depth, depth / 4, depth / 1000, false);
+  std::vector<double> depths(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      const auto [in, out] = chord[i];
+      if (out <= depth / 4) // the first sample was outside
+        {
+          std::ostringstream msg;
+          msg << "member compliance: the tooth at the flank point ("
+              << points[i].position.transpose() * 1e3 << ") mm is thinner than " << depth / 4 * 1e3
+              << " mm along its normal; use smaller flank elements";
+          throw InputError(msg.str());
+        }
+      depths[i] = std::min(depth, (in + out) / 4); // half the chord (no crossing: the depth)
+    }
+  return depths;
 }
 
 /// The table with the near field carried analytically: each grid point moved along its
@@ -176,20 +150,20 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
     x.push_back(p.position - 0.5 * h * p.normal), in.push_back(-p.normal),
         outward.push_back(p.normal);
   // the surface: the first point outside going out from half an element inside
-  const std::vector<double> s = first_crossing(body, x, outward, 0, h, h / 4, 1e-6 * h, false);
-  std::vector<Vec3>         on(n);
+  const auto        surface = first_crossing(body, x, outward, 0, h, h / 4, 1e-6 * h, false);
+  std::vector<Vec3> on(n);
   for (std::size_t i = 0; i < n; ++i)
-    on[i] = x[i] + (s[i] - 2e-6 * h) * outward[i]; // just inside
+    on[i] = x[i] + (surface[i].second - 2e-6 * h) * outward[i]; // just inside
   // where the body comes back across the outward normal
-  const std::vector<double> back = first_crossing(
-      body, on, outward, 4e-6 * h, 1.25 * o.near_field_radius, h / 4, 1e-3 * h, true);
+  const auto back = first_crossing(body, on, outward, 4e-6 * h, 1.25 * o.near_field_radius, h / 4,
+                                   1e-3 * h, true);
   const std::vector<double>  held = body.distance_to_held(on);
   std::vector<NearFieldLoad> loads;
   std::vector<Probe>         probes;
   double                     smallest = HUGE_VAL;
   for (std::size_t i = 0; i < n; ++i)
     {
-      const double outer = std::min({o.near_field_radius, 0.8 * back[i], 0.9 * held[i]});
+      const double outer = std::min({o.near_field_radius, 0.8 * back[i].second, 0.9 * held[i]});
       smallest           = std::min(smallest, outer);
       loads.push_back({on[i], in[i], outer / 2, outer});
       probes.push_back({on[i], in[i]});

@@ -9,6 +9,7 @@
 //          [fast grid n_u = 9] [n_v = 7] [reference flank size / m_n = 0.2] [reference: 1|0]
 //          [fast response depth in elements = 3] [fast other flanks and fillets size / m_n = same]
 //          [fast near field: 0 response depth, 1 analytic = 0] [near-field radius / m_n = 2]
+//          [fast load grid: 0 uniform, 1 graded towards the flank's edges = 1]
 #include "stiffness/loaded_contact.h"
 #include "stiffness/member_compliance.h"
 #include "stiffness/reference_contact.h"
@@ -56,6 +57,7 @@ main(int argc, char **argv)
   const double other     = argc > 16 ? std::atof(argv[16]) : 0;
   const bool   analytic  = argc > 17 ? std::atoi(argv[17]) != 0 : false;
   const double radius    = argc > 18 ? std::atof(argv[18]) : 2;
+  const bool   graded    = argc > 19 ? std::atoi(argv[19]) != 0 : true;
   try
     {
       const auto [pd, gd]      = test_data::fzg_c_pair();
@@ -81,6 +83,7 @@ main(int argc, char **argv)
         o.mesh.flank_size = fast_size * g.data().normal_module;
         o.material = steel, o.work_directory = dir;
         o.n_u = n_u, o.n_v = n_v;
+        o.graded_grid         = graded;
         o.depth_elements      = depth;
         o.mesh.other_size     = other * g.data().normal_module;
         o.analytic_near_field = analytic;

@@ -154,7 +154,11 @@ struct FeScene
   bool     analytic_near_field = true; ///< near field = analytic (else: response depth)
   double   near_field_radius   = 2;    ///< [m_n]
   int      n_u = 9, n_v = 7;           ///< load grid per flank
-  Material material;                   ///< both members
+  bool     graded_grid = true;         ///< load grid clustered towards the flank's edges
+  /// Also the tables on a mesh of twice the element sizes at the flanks (coarsened(); 1.5 or
+  /// 1.25 times where that cannot be meshed): the stiffness stage estimates each K_m's error.
+  bool     error_estimate = true;
+  Material material; ///< both members
 
   static void
   declare(ParameterHandler &prm);
@@ -162,6 +166,10 @@ struct FeScene
   parse(ParameterHandler &prm);
   void
   check(const PairScene &pair) const;
+  /// The same with the element sizes at the flanks, fillets and other flanks times `factor`
+  /// (the far size at least the new flank size): what the error estimate changes.
+  FeScene
+  coarsened(double factor) const;
 };
 
 /// Loaded contact over the mesh cycle (stage "stiffness").

@@ -3,6 +3,8 @@
 #include "driver/scene.h"
 #include "driver/scene_parameters.h"
 
+#include <algorithm>
+
 namespace gearkit
 {
 void
@@ -45,6 +47,18 @@ FeScene::declare(ParameterHandler &prm)
                     "Unit-load points over the profile of each loaded flank.");
   prm.declare_entry("face grid points", "7", Patterns::Integer(2, 100),
                     "Unit-load points over the face of each loaded flank.");
+  prm.declare_entry("error estimate", "true", Patterns::Bool(),
+                    "Also compute the tables on a mesh of twice the element sizes at the flanks, "
+                    "fillets and other flanks (1.5 or 1.25 times where gmsh cannot mesh that; "
+                    "about a quarter more time) and write "
+                    "each K_m's and e_L's estimated discretisation error: the change to that "
+                    "mesh, |K(h) - K(c h)| / (c - 1), plus the change to half the contact cells "
+                    "across and along (upper estimates wherever the error falls at least "
+                    "linearly with the size).");
+  prm.declare_entry("load grid", "graded", Patterns::Selection("uniform|graded"),
+                    "Spacing of the unit-load points. graded: clustered towards the flank's "
+                    "edges (Chebyshev-Lobatto), where the compliance rises steeply near the "
+                    "face ends and the tip.");
   prm.declare_entry("Young's modulus", "206", Patterns::Double(1),
                     "[GPa] Young's modulus of both members.");
   prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(-0.99, 0.499),
@@ -65,7 +79,18 @@ FeScene::parse(ParameterHandler &prm)
   near_field_radius   = prm.get_double("near field radius");
   n_u                 = prm.get_integer("profile grid points");
   n_v                 = prm.get_integer("face grid points");
+  graded_grid         = prm.get("load grid") == "graded";
+  error_estimate      = prm.get_bool("error estimate");
   material = {prm.get_double("Young's modulus") * GPa, prm.get_double("Poisson's ratio")};
+}
+
+FeScene
+FeScene::coarsened(double factor) const
+{
+  FeScene c = *this;
+  c.flank_size *= factor, c.other_size *= factor;
+  c.far_size = std::max(far_size, c.flank_size);
+  return c;
 }
 
 void

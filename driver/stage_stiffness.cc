@@ -47,6 +47,7 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   o.material           = fe.material;
   o.side               = side;
   o.n_u = fe.n_u, o.n_v = fe.n_v;
+  o.graded_grid         = fe.graded_grid;
   o.depth_elements      = fe.depth;
   o.analytic_near_field = fe.analytic_near_field;
   o.near_field_radius   = fe.near_field_radius * module;
@@ -90,55 +91,97 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             t.at(tca.options.start_angle + 2 * pi / z1 * i / tca.options.positions_per_mesh));
       const auto segments = loaded_segments(positions, z1, members.gear->teeth(), segment_gap_band);
       const H5Group g     = out.group(pair.name);
+      // The tables on the scene's mesh, and for the error estimate on one of twice its element
+      // sizes at the flanks (FeScene::error_estimate).
+      // Both tables are computed before either is written: a failure leaves no half group.
+      using Tables = std::vector<std::pair<FlankCompliance, MemberComplianceInfo>>;
+      auto compute = [&](const FeScene &mesh_fe, const std::string &mesh_dir) {
+        Tables tables;
+        for (const bool is_pinion : {true, false})
+          {
+            const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
+            const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
+            MemberComplianceInfo info;
+            FlankCompliance      table =
+                compliance_table(pair, flanks, is_pinion,
+                                 member_options(member_module(pair), flanks.teeth(), mesh_fe, side,
+                                                segment, mesh_dir),
+                                 &info);
+            tables.emplace_back(std::move(table), info);
+          }
+        return tables;
+      };
+      auto write = [&](const Tables &tables, const H5Group &group, const std::string &label) {
+        for (const bool is_pinion : {true, false})
+          {
+            const auto &[table, info]    = tables[is_pinion ? 0 : 1];
+            const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
+            const H5Group        m       = group.group(is_pinion ? "pinion" : "gear");
+            std::vector<int>     teeth;
+            for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
+              teeth.push_back(table.points()[k].tooth);
+            const hsize_t       n = table.points().size();
+            std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
+            m.write("compliance", S, {n, n}, "m/N",
+                    std::string("structural compliance S(i, j) (column-major: load j, response "
+                                "i) on the load grid, ") +
+                        (fe.analytic_near_field
+                             ? "the point-force half-space displacement of the same tooth removed"
+                             : "half-space part below the response depth removed"));
+            m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
+            m.write("central_tooth", double(segment.central), "1",
+                    "tooth in the middle of the segment");
+            m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
+            m.write("dofs", double(info.dofs), "1", "degrees of freedom");
+            if (fe.analytic_near_field)
+              m.write("min_near_field_radius", info.min_near_field_radius, "m",
+                      "smallest radius within which a unit load's field is analytic");
+            else
+              {
+                m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
+                m.write("shallow_points", double(info.shallow_points), "1",
+                        "grid points read at half the chord through the tooth (thinner than "
+                        "twice the response depth there)");
+                m.write("min_response_depth", info.min_depth, "m", "smallest response depth used");
+              }
+            m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
+                    "mesh, assembly, factorisation and unit-load solves");
+            log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << label << ": "
+                << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n
+                << " unit loads (";
+            if (fe.analytic_near_field)
+              log << "near field analytic within " << info.min_near_field_radius * 1e3
+                  << " mm or more), ";
+            else
+              log << info.shallow_points << " read shallower), ";
+            log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s\n";
+          }
+      };
       // The segment meshes beside the cache file: every process reads them.
-      const std::string dir = stage_side_directory(out, "-mesh-" + pair.name);
-      for (const bool is_pinion : {true, false})
-        {
-          const MemberFlanks   &flanks  = is_pinion ? *members.pinion : *members.gear;
-          const SegmentChoice  &segment = is_pinion ? segments.first : segments.second;
-          MemberComplianceInfo  info;
-          const FlankCompliance table = compliance_table(
-              pair, flanks, is_pinion,
-              member_options(member_module(pair), flanks.teeth(), fe, side, segment, dir), &info);
-          const H5Group    m = g.group(is_pinion ? "pinion" : "gear");
-          std::vector<int> teeth;
-          for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
-            teeth.push_back(table.points()[k].tooth);
-          const hsize_t       n = table.points().size();
-          std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
-          m.write("compliance", S, {n, n}, "m/N",
-                  std::string("structural compliance S(i, j) (column-major: load j, response i) "
-                              "on the load grid, ") +
-                      (fe.analytic_near_field
-                           ? "the point-force half-space displacement of the same tooth removed"
-                           : "half-space part below the response depth removed"));
-          m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
-          m.write("central_tooth", double(segment.central), "1",
-                  "tooth in the middle of the segment");
-          m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
-          m.write("dofs", double(info.dofs), "1", "degrees of freedom");
-          if (fe.analytic_near_field)
-            m.write("min_near_field_radius", info.min_near_field_radius, "m",
-                    "smallest radius within which a unit load's field is analytic");
-          else
-            {
-              m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
-              m.write("shallow_points", double(info.shallow_points), "1",
-                      "grid points read at half the chord through the tooth (thinner than "
-                      "twice the response depth there)");
-              m.write("min_response_depth", info.min_depth, "m", "smallest response depth used");
-            }
-          m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
-                  "mesh, assembly, factorisation and unit-load solves");
-          log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << ": "
-              << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n << " unit loads (";
-          if (fe.analytic_near_field)
-            log << "near field analytic within " << info.min_near_field_radius * 1e3
-                << " mm or more), ";
-          else
-            log << info.shallow_points << " read shallower), ";
-          log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s\n";
-        }
+      write(compute(fe, stage_side_directory(out, "-mesh-" + pair.name)), g, "");
+      if (!fe.error_estimate)
+        continue;
+      // Twice the element sizes; where gmsh cannot mesh that well (a twisted helical segment
+      // with few layers can fold an element) or a load point lands across a held face, one and
+      // a half, then one and a quarter times; else no estimate.
+      for (const double factor : {2.0, 1.5, 1.25})
+        try
+          {
+            const Tables tables = compute(
+                fe.coarsened(factor), stage_side_directory(out, "-mesh-" + pair.name + "-coarse"));
+            const H5Group cg = g.group("coarse");
+            cg.attribute("method", "the same tables on a mesh of coarser elements at the flanks, "
+                                   "fillets and other flanks (error estimate)");
+            cg.write("coarsening", factor, "1", "element sizes of the coarse mesh / the scene's");
+            write(tables, cg, " (coarse)");
+            break;
+          }
+        catch (const InputError &e)
+          {
+            log << "  " << pair.name << ": the coarse mesh (element sizes x " << factor
+                << ") failed: " << e.what()
+                << (factor > 1.25 ? "; trying a finer one\n" : "; no error estimate\n");
+          }
     }
 }
 
@@ -158,12 +201,13 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const H5Group cg    = upstream.at("compliance")->group(pair.name);
 
       // The compliance tables as the compliance stage computed them.
-      auto table = [&](const MemberFlanks &flanks, const char *member) {
-        const H5Group m = cg.group(member);
+      auto table = [&](const MemberFlanks &flanks, const H5Group &tables, const char *member) {
+        const H5Group m = tables.group(member);
         FlankGridSpec spec;
         spec.teeth = m.read_ints("teeth");
         spec.side  = side;
         spec.n_u = fe.n_u, spec.n_v = fe.n_v;
+        spec.graded = fe.graded_grid;
         FlankCompliance           t(flanks, spec);
         std::vector<hsize_t>      shape;
         const std::vector<double> S = m.read_doubles("compliance", &shape);
@@ -171,14 +215,19 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                                                 Eigen::Index(shape[1])));
         return t;
       };
-      const FlankCompliance      cp  = table(*members.pinion, "pinion");
-      const FlankCompliance      cgr = table(*members.gear, "gear");
-      const StructuralCompliance sp  = [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+      const FlankCompliance cp  = table(*members.pinion, cg, "pinion");
+      const FlankCompliance cgr = table(*members.gear, cg, "gear");
+      auto pinion_compliance    = [](const FlankCompliance &t) -> StructuralCompliance {
+        return [&t](const ContactCell &i, const ContactCell &j) {
+          return t(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+        };
       };
-      const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
-        return cgr(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+      auto gear_compliance = [](const FlankCompliance &t) -> StructuralCompliance {
+        return [&t](const ContactCell &i, const ContactCell &j) {
+          return t(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+        };
       };
+      const StructuralCompliance sp = pinion_compliance(cp), sg = gear_compliance(cgr);
 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
@@ -218,6 +267,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
         g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
                 "unloaded contact ratio (eps_gamma for conjugate flanks)");
+        return c;
       };
 
       LoadedContactOptions lo;
@@ -226,8 +276,52 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.covered      = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
       const H5Group g = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
-      const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
-      analyse(theory, lo, g, "");
+      const UnloadedTca      theory(members.pinion, members.gear, members.assembly, tca.options);
+      const MeshCycleContact fine = analyse(theory, lo, g, "");
+
+      if (cg.has("coarse"))
+        {
+          // The discretisation error estimate (mesh_cycle_error): the same mesh cycle on the
+          // coarse mesh's tables (element sizes times c), and on half the contact cells.
+          const double          c    = cg.group("coarse").read_double("coarsening");
+          const FlankCompliance cp2  = table(*members.pinion, cg.group("coarse"), "pinion");
+          const FlankCompliance cgr2 = table(*members.gear, cg.group("coarse"), "gear");
+          LoadedContactOptions  half = lo;
+          half.cells                 = halved_cells(lo.cells);
+          Progress progress(log, "stiffness error estimate", 2 * lc.positions * lc.torques.size());
+          const auto           step = [&] { progress.step(); };
+          const MeshCycleError err  = mesh_cycle_error(
+               fine,
+               loaded_contact_cycle(theory, lc.positions, lc.torques, lo, pinion_compliance(cp2),
+                                    gear_compliance(cgr2), step),
+               c, loaded_contact_cycle(theory, lc.positions, lc.torques, half, sp, sg, step));
+          const std::size_t n = fine.positions, M = fine.torques;
+          const H5Group     e = g.group("error_estimate");
+          e.attribute("method", "|K(h) - K(c h)| / (c - 1) of the finite elements (the "
+                                "compliance tables on a mesh of c times the element sizes at "
+                                "the flanks, c = compliance/<pair>/coarse/coarsening, 2 unless "
+                                "that mesh failed) plus |K(cells) - K(cells / 2)| of the contact "
+                                "cells (half across and along); an upper estimate wherever the "
+                                "error falls at least linearly with the size");
+          e.write("mesh_stiffness", err.mesh_stiffness, {M, n}, "N/m", "estimated error of K_m");
+          e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n}, "N/m",
+                  "|K(h) - K(c h)| / (c - 1)");
+          e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n}, "N/m",
+                  "|K(cells) - K(cells / 2)|");
+          e.write("transmission_error_loaded", err.loaded_te, {M, n}, "rad",
+                  "estimated error of e_L (the same two changes)");
+          for (std::size_t k = 0; k < M; ++k)
+            {
+              double largest = 0, mean = 0;
+              for (std::size_t i = 0; i < n; ++i)
+                {
+                  const double r = err.mesh_stiffness[k * n + i] / fine.mesh_stiffness[k * n + i];
+                  largest        = std::max(largest, r), mean += r / n;
+                }
+              log << "  " << pair.name << ", " << lc.torques[k] << " N m: K_m error estimate mean "
+                  << mean * 100 << " %, largest " << largest * 100 << " %\n";
+            }
+        }
 
       if (!lc.reference_positions.empty())
         {

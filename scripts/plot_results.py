@@ -381,6 +381,12 @@ def plot_stiffness(st, flanks, out_dir):
             for k, t in enumerate(torques):
                 ax.plot(x, grp["transmission_error_loaded"][k] * 1e6, style, color=colours[k],
                         label=f"e_L {label}, {t:g} N m")
+        if "error_estimate" in g:
+            err = g["error_estimate"]["transmission_error_loaded"][()]
+            for k in range(len(torques)):
+                el = g["transmission_error_loaded"][k]
+                ax.fill_between(x, (el - err[k]) * 1e6, (el + err[k]) * 1e6, color=colours[k],
+                                alpha=0.25, lw=0)
         ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
         ax.set_ylabel("transmission error [urad, pinion]")
         ax.set_title(f"{name}: unloaded and loaded TE")
@@ -390,6 +396,13 @@ def plot_stiffness(st, flanks, out_dir):
             for k, t in enumerate(torques):
                 ax.plot(x, grp["mesh_stiffness"][k] * 1e-6, style, color=colours[k],
                         label=f"{label}, {t:g} N m")
+        if "error_estimate" in g:  # the discretisation error estimate as a band
+            err = g["error_estimate"]["mesh_stiffness"][()]
+            for k, t in enumerate(torques):
+                km = g["mesh_stiffness"][k]
+                ax.fill_between(x, (km - err[k]) * 1e-6, (km + err[k]) * 1e-6, color=colours[k],
+                                alpha=0.25, lw=0,
+                                label="estimated discretisation error" if k == 0 else None)
         if "reference" in g:  # reference mode at a few positions, as markers
             ref = g["reference"]
             xr = ref["pinion_angle"][()] / (2 * np.pi / z1) if z1 else ref["pinion_angle"][()]

@@ -171,20 +171,70 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
       if (!(dt > 0))
         continue; // the contact sits on a corner of the flank: no extent along the line
       for (int i = 0; i < o.cells_along; ++i)
-        for (int j = 0; j < o.cells_across; ++j)
-          {
-            ContactCell cell;
-            cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth, cell.gear_tooth = c.gear_tooth;
-            cell.dt = dt, cell.ds = ds;
-            cell.zone_edge      = w == w_band && (j == 0 || j == o.cells_across - 1);
-            const double s_cell = -w + (j + 0.5) * ds, t_cell = t0 + (i + 0.5) * dt;
-            if (!gap_at(c.position + s_cell * e_s + t_cell * e_t, s_cell, t_cell, cell))
-              continue;
-            cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;
-            cell.table_u2 = cell.u2, cell.table_v2 = cell.v2;
-            cell.lever = std::abs(Vec3::UnitZ().cross(cell.position).dot(cell.normal));
-            cells.push_back(cell);
-          }
+        {
+          const double t_cell = t0 + (i + 0.5) * dt;
+          // The column's part on both flanks, [s_lo, s_hi] within the band: where an edge of
+          // either flank (a tip) crosses the band, the column's cells share the part on the
+          // flanks - cells kept or dropped whole by their centres would gain or lose a row in
+          // steps as the contact line moves towards the edge, and a contact at a tip's corner
+          // (half its band off the flank) would lose half its resolution across.
+          ContactCell probe;
+          auto        on = [&](double s_) {
+            return gap_at(c.position + s_ * e_s + t_cell * e_t, s_, t_cell, probe);
+          };
+          // a point of the column on both flanks: the contact line, else (a contact point on
+          // an edge, where rounding can put the line just off) the nearest of the band's grid
+          double s_in = 0;
+          for (int j = 1; j < o.cells_across && !on(s_in); ++j)
+            s_in = (j % 2 ? 1 : -1) * ((j + 1) / 2) * ds;
+          if (!on(s_in))
+            continue;
+          double       s_lo = -w, s_hi = w;
+          const double tol = 1e-4 * ds;
+          for (double side : {-1.0, 1.0})
+            {
+              if (on(side * w))
+                continue;
+              double in = s_in, out = side * w;
+              while (std::abs(out - in) > tol)
+                {
+                  const double mid     = (in + out) / 2;
+                  (on(mid) ? in : out) = mid;
+                }
+              (side < 0 ? s_lo : s_hi) = in;
+            }
+          // Cut columns grade their cells towards the cut (half way to sine spacing, blended in
+          // as the cut reaches the contact line: the cell at the edge about half the others),
+          // where the pressure of a contact at a tip's corner peaks.
+          if (!(s_hi - s_lo > 1e-3 * ds))
+            continue; // the column only grazes the flanks
+          const bool   cut  = s_lo > -w || s_hi < w;
+          const double lo   = cut ? s_lo : -w;
+          const double span = cut ? s_hi - s_lo : 2 * w;
+          const double g_hi = std::min(1.0, (w - s_hi) / w), g_lo = std::min(1.0, (w + s_lo) / w);
+          auto         edge = [&](int j) {
+            const double x = double(j) / o.cells_across, q = pi / 2 * x;
+            return lo + span * (x + (g_hi * (std::sin(q) - x) + g_lo * (1 - std::cos(q) - x)) / 2);
+          };
+          for (int j = 0; j < o.cells_across; ++j)
+            {
+              const double a      = cut ? edge(j) : -w + j * ds,
+                           b      = cut ? edge(j + 1) : -w + (j + 1) * ds,
+                           s_cell = cut ? (a + b) / 2 : -w + (j + 0.5) * ds,
+                           size   = cut ? b - a : ds;
+              ContactCell cell;
+              cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth,
+              cell.gear_tooth = c.gear_tooth;
+              cell.dt = dt, cell.ds = size;
+              cell.zone_edge = w == w_band && (a <= -w + tol || b >= w - tol);
+              if (!gap_at(c.position + s_cell * e_s + t_cell * e_t, s_cell, t_cell, cell))
+                continue;
+              cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;
+              cell.table_u2 = cell.u2, cell.table_v2 = cell.v2;
+              cell.lever = std::abs(Vec3::UnitZ().cross(cell.position).dot(cell.normal));
+              cells.push_back(cell);
+            }
+        }
     }
   return cells;
 }

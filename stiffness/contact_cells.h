@@ -45,8 +45,10 @@ struct ContactCell
   bool zone_edge = false;
 };
 
-/// Cells of every pair of `position` that touches or stands within the gap band. Cells off
-/// either flank (or where the gear flank cannot reach the pinion point) are left out.
+/// Cells of every pair of `position` that touches or stands within the gap band. Where an edge
+/// of either flank (or where the gear flank cannot reach the pinion point) crosses the band,
+/// a column's cells share its part on the flanks equally (the same number across), so the
+/// zone follows the contact line continuously to the tips.
 std::vector<ContactCell>
 contact_cells(const UnloadedTca &tca, const TcaPosition &position,
               const ContactCellOptions &options = {});

@@ -13,6 +13,14 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
       !(spec.margin < 0.5))
     throw InputError("flank compliance grid: needs at least one tooth, n_u and n_v >= 2 and a "
                      "margin in [0, 0.5)");
+  auto nodes = [&](int n) {
+    std::vector<double> x(std::size_t(n), 0.0);
+    for (int i = 0; i < n; ++i)
+      x[std::size_t(i)] = spec.graded ? (1 - std::cos(pi * i / (n - 1))) / 2 : double(i) / (n - 1);
+    x.back() = 1;
+    return x;
+  };
+  u_nodes = nodes(spec.n_u), v_nodes = nodes(spec.n_v);
   for (int tooth : spec.teeth)
     {
       const Flank      &f  = flanks.flank(tooth, spec.side);
@@ -26,9 +34,9 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
             Point p;
             p.tooth = tooth;
             p.u     = u_range.back().first +
-                  (u_range.back().second - u_range.back().first) * i / (spec.n_u - 1);
+                  (u_range.back().second - u_range.back().first) * u_nodes[std::size_t(i)];
             p.v = v_range.back().first +
-                  (v_range.back().second - v_range.back().first) * j / (spec.n_v - 1);
+                  (v_range.back().second - v_range.back().first) * v_nodes[std::size_t(j)];
             const FlankPoint q = f.evaluate(p.u, p.v);
             p.position = q.position, p.normal = q.normal;
             p.face_direction = flanks.face_direction(q.position);
@@ -60,15 +68,17 @@ FlankCompliance::weights(int tooth, double u, double v) const
   if (it == spec.teeth.end())
     throw InputError("flank compliance: tooth " + std::to_string(tooth) +
                      " carries load but lies outside the finite-element segment's loaded teeth");
-  const int t    = int(it - spec.teeth.begin());
-  auto      frac = [](double x, double lo, double hi, int n, int &i0) {
-    const double f = std::clamp((x - lo) / (hi - lo), 0.0, 1.0) * (n - 1);
-    i0             = std::min(int(f), n - 2);
-    return f - i0;
+  const int t = int(it - spec.teeth.begin());
+  // the interval of the nodes x lies in, and the fraction along it
+  auto frac = [](double x, double lo, double hi, const std::vector<double> &nodes, int &i0) {
+    const double f = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+    i0 = std::clamp(int(std::upper_bound(nodes.begin(), nodes.end(), f) - nodes.begin()) - 1, 0,
+                    int(nodes.size()) - 2);
+    return (f - nodes[std::size_t(i0)]) / (nodes[std::size_t(i0) + 1] - nodes[std::size_t(i0)]);
   };
   int          iu, iv;
-  const double fu   = frac(u, u_range[t].first, u_range[t].second, spec.n_u, iu);
-  const double fv   = frac(v, v_range[t].first, v_range[t].second, spec.n_v, iv);
+  const double fu   = frac(u, u_range[t].first, u_range[t].second, u_nodes, iu);
+  const double fv   = frac(v, v_range[t].first, v_range[t].second, v_nodes, iv);
   const int    base = t * spec.n_u * spec.n_v;
   Weights      w;
   int          k = 0;

@@ -23,6 +23,11 @@ struct FlankGridSpec
   int              n_u    = 7;    ///< grid points over the profile (u)
   int              n_v    = 7;    ///< grid points over the face (v)
   double           margin = 0.02; ///< grid kept this fraction of each range inside the flank
+  /// Grid points clustered towards the flank's edges (Chebyshev-Lobatto in both directions:
+  /// x_j = (1 - cos(pi j / (n - 1))) / 2 of each range) rather than equally spaced: the
+  /// compliance rises steeply within a few tenths of a millimetre of a free face end or tip,
+  /// which equal spacing smears over a whole grid interval.
+  bool graded = true;
 };
 
 class FlankCompliance
@@ -72,7 +77,7 @@ private:
 
   FlankGridSpec       spec;
   std::vector<Point>  grid;
-  std::vector<double> us, vs; ///< per tooth: grid parameters (same domain for every tooth)
+  std::vector<double> u_nodes, v_nodes; ///< grid points as fractions of each range, in [0, 1]
   std::vector<std::pair<double, double>> u_range, v_range; ///< per tooth entry
   Eigen::MatrixXd                        S;
 };

@@ -208,4 +208,33 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   c.mean_pairs_in_contact = touching / n;
   return c;
 }
+
+MeshCycleError
+mesh_cycle_error(const MeshCycleContact &r, const MeshCycleContact &coarse, double c,
+                 const MeshCycleContact &half)
+{
+  const std::size_t n = r.mesh_stiffness.size();
+  if (!(c > 1) || coarse.mesh_stiffness.size() != n || half.mesh_stiffness.size() != n)
+    throw InputError("mesh cycle error: the coarsening must exceed 1 and the three cycles "
+                     "share their torques and positions");
+  MeshCycleError e;
+  for (std::size_t i = 0; i < n; ++i)
+    {
+      e.stiffness_by_elements.push_back(std::abs(r.mesh_stiffness[i] - coarse.mesh_stiffness[i]) /
+                                        (c - 1));
+      e.stiffness_by_cells.push_back(std::abs(r.mesh_stiffness[i] - half.mesh_stiffness[i]));
+      e.mesh_stiffness.push_back(e.stiffness_by_elements[i] + e.stiffness_by_cells[i]);
+      e.loaded_te.push_back(std::abs(r.loaded_te[i] - coarse.loaded_te[i]) / (c - 1) +
+                            std::abs(r.loaded_te[i] - half.loaded_te[i]));
+    }
+  return e;
+}
+
+ContactCellOptions
+halved_cells(ContactCellOptions cells)
+{
+  cells.cells_across = (cells.cells_across / 2) | 1;
+  cells.cells_along  = std::max(1, cells.cells_along / 2);
+  return cells;
+}
 } // namespace gearkit

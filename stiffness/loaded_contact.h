@@ -102,4 +102,21 @@ MeshCycleContact
 loaded_contact_cycle(const UnloadedTca &tca, int positions, const std::vector<double> &torques,
                      const LoadedContactOptions &options, const StructuralCompliance &pinion,
                      const StructuralCompliance &gear, const std::function<void()> &step = {});
+
+/// The discretisation error estimate of a mesh cycle's K_m and e_L [M][N], from the same cycle
+/// on compliance tables of elements `coarsening` (c > 1) times larger and on half the contact
+/// cells (halved_cells): |K(h) - K(c h)| / (c - 1) + |K(cells) - K(cells / 2)|, each an upper
+/// estimate wherever the error falls at least linearly with the size.
+struct MeshCycleError
+{
+  std::vector<double> mesh_stiffness, loaded_te;                 ///< the estimates [N/m], [rad]
+  std::vector<double> stiffness_by_elements, stiffness_by_cells; ///< its two parts [N/m]
+};
+MeshCycleError
+mesh_cycle_error(const MeshCycleContact &result, const MeshCycleContact &coarse_elements,
+                 double coarsening, const MeshCycleContact &half_cells);
+
+/// The cells of the error estimate: half as many across (odd) and along.
+ContactCellOptions
+halved_cells(ContactCellOptions cells);
 } // namespace gearkit

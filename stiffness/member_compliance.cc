@@ -164,7 +164,17 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
   for (std::size_t i = 0; i < n; ++i)
     {
       const double outer = std::min({o.near_field_radius, 0.8 * back[i].second, 0.9 * held[i]});
-      smallest           = std::min(smallest, outer);
+      if (!(outer > 0))
+        {
+          std::ostringstream msg;
+          msg << "member compliance: no room for the analytic near field of the unit load at "
+              << "tooth " << points[i].tooth << " (u, v) = (" << points[i].u << ", "
+              << points[i].v << "), " << on[i].transpose() * 1e3 << " mm: the body comes back "
+              << "across its normal after " << back[i].second * 1e3 << " mm, a held face is "
+              << held[i] * 1e3 << " mm away (elements of " << h * 1e3 << " mm)";
+          throw InputError(msg.str());
+        }
+      smallest = std::min(smallest, outer);
       loads.push_back({on[i], in[i], outer / 2, outer});
       probes.push_back({on[i], in[i]});
     }
@@ -273,6 +283,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   spec.teeth = o.loaded_teeth.empty() ? segment.member_teeth : o.loaded_teeth;
   spec.side  = o.side;
   spec.n_u = o.n_u, spec.n_v = o.n_v;
+  spec.graded = o.graded_grid;
   for (int t : spec.teeth)
     if (std::find(segment.member_teeth.begin(), segment.member_teeth.end(), t) ==
         segment.member_teeth.end())

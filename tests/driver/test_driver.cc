@@ -1452,3 +1452,55 @@ TEST_F(DriverTest, BadTrainsAreRefusedBeforeAnyStage)
       EXPECT_FALSE(fs::exists(dir / "out/small/results.h5")) << c.what;
     }
 }
+
+// The K_m table's error estimate (Finite elements/<pair>/error estimate, on by default): its
+// element part is the change to the same scene on twice the flank element size, its cells part
+// the change to half the contact cells across and along - each run here on its own as a scene
+// of that size must give the same tables - and the estimate is their sum.
+TEST_F(DriverTest, MeshStiffnessErrorEstimateIsTheChangeToCoarserElementsAndCells)
+{
+  auto variant = [&](const std::string &name, const std::string &fe, const std::string &cells) {
+    std::string text = std::regex_replace(fe_train_scene, std::regex("set name    = fe_train"),
+                                          "set name    = " + name);
+    text = std::regex_replace(text, std::regex("set outputs = train"), "set outputs = stiffness");
+    text = std::regex_replace(text, std::regex("  set trains  = t\n"), "");
+    text = text.substr(0, text.find("subsection Train"));
+    text = std::regex_replace(text, std::regex("set flank element size = 0.5"), fe);
+    text = std::regex_replace(text,
+                              std::regex("set cells across             = 9\n    set "
+                                         "cells along              = 12"),
+                              cells);
+    return scene(text, name + ".prm");
+  };
+  const std::string cells = "set cells across = 9\n    set cells along = 12";
+  ASSERT_EQ(run({variant("fine", "set flank element size = 0.5", cells)}), 0) << err.str();
+  EXPECT_NE(out.str().find("K_m error estimate"), std::string::npos) << out.str();
+  ASSERT_EQ(run({variant("coarse_mesh",
+                         "set flank element size = 1\n    set error estimate = false", cells)}),
+            0)
+      << err.str();
+  ASSERT_EQ(
+      run({variant("coarse_cells", "set flank element size = 0.5\n    set error estimate = false",
+                   "set cells across = 5\n    set cells along = 6")}),
+      0)
+      << err.str();
+  auto K = [&](const std::string &name, const std::string &dataset) {
+    const H5File f = H5File::open((dir / ("out/" + name + "/results.h5")).string());
+    return f.root().group("stiffness/fzg").read_doubles(dataset);
+  };
+  const auto fine = K("fine", "mesh_stiffness"), mesh = K("coarse_mesh", "mesh_stiffness"),
+             half     = K("coarse_cells", "mesh_stiffness");
+  const auto total    = K("fine", "error_estimate/mesh_stiffness"),
+             elements = K("fine", "error_estimate/mesh_stiffness_elements"),
+             by_cells = K("fine", "error_estimate/mesh_stiffness_cells");
+  ASSERT_EQ(total.size(), fine.size());
+  double largest = 0;
+  for (std::size_t i = 0; i < fine.size(); ++i)
+    {
+      EXPECT_NEAR(elements[i], std::abs(fine[i] - mesh[i]), 1e-9 * fine[i]) << i;
+      EXPECT_NEAR(by_cells[i], std::abs(fine[i] - half[i]), 1e-9 * fine[i]) << i;
+      EXPECT_DOUBLE_EQ(total[i], elements[i] + by_cells[i]);
+      largest = std::max(largest, total[i] / fine[i]);
+    }
+  EXPECT_GT(largest, 1e-4); // a real estimate, not zeros
+}

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
+
 using namespace gearkit;
 
 TEST(ContactCells, SpurPairLeversGapsAndExtent)
@@ -52,4 +55,59 @@ TEST(ContactCells, SpurPairLeversGapsAndExtent)
       EXPECT_EQ(touching_cells % o.cells_along, 0);
       EXPECT_GE(touching_cells, o.cells_along);
     }
+}
+
+// As a pair's contact line runs onto the pinion's tip, the band of cells across it is cut at the
+// flank's edge: the zone's area falls continuously with the pinion angle (rows kept or dropped
+// whole by their centres made steps of 1/17 of it, a row at a time), stays on the flank and
+// keeps its number of cells (a contact at the corner keeps its resolution across).
+TEST(ContactCells, ZoneCutAtTheTipContinuously)
+{
+  const auto [pd, gd]             = test_data::fzg_c_pair();
+  const auto               pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+  const UnloadedTca        tca(pinion, gear, working_centre_distance(*pinion, *gear));
+  const double             mesh = 2 * pi / pd.teeth;
+  const ContactCellOptions o;
+  // the zone's area of the pair of pinion tooth 0 [m^2], and its outermost cell's radius
+  auto zone = [&](double phi, double *outer_radius = nullptr) {
+    double area = 0;
+    int    n    = 0;
+    for (const ContactCell &c : contact_cells(tca, tca.at(phi), o))
+      if (c.pinion_tooth == 0)
+        {
+          area += c.ds * c.dt, ++n;
+          if (outer_radius)
+            *outer_radius = std::max(*outer_radius, c.position.head<2>().norm());
+        }
+    EXPECT_TRUE(n == 0 || n == o.cells_across * o.cells_along) << n;
+    return area;
+  };
+  // coarse: the first angle where the zone is cut short by the tip, after it was whole
+  const int coarse = 120;
+  double    full = 0, first_cut = -1;
+  for (int k = 0; k < coarse && first_cut < 0; ++k)
+    {
+      const double phi = 2 * mesh * k / coarse, a = zone(phi);
+      if (a < 0.95 * full)
+        first_cut = phi;
+      full = std::max(full, a);
+    }
+  ASSERT_GT(first_cut, 0);
+  // fine: a zone half-width (~0.4 mm on the line of action) rolls over in ~40 steps
+  const double step     = 0.01e-3 / pinion->base_radius;
+  double       previous = zone(first_cut - 2 * mesh / coarse), largest_step = 0, least = full;
+  for (int k = 1; k <= 200; ++k)
+    {
+      double       r = 0;
+      const double a = zone(first_cut - 2 * mesh / coarse + k * step, &r);
+      if (a == 0)
+        break;
+      largest_step = std::max(largest_step, std::abs(a - previous));
+      least        = std::min(least, a);
+      previous     = a;
+      EXPECT_LE(r, pinion->tip_radius * (1 + 1e-9));
+    }
+  EXPECT_LT(least, 0.5 * full);          // the sweep does run the zone off the tip
+  EXPECT_LT(largest_step, 0.01 * full);  // whole rows would be 1/17 = 0.059
+  EXPECT_GT(largest_step, 0.001 * full); // and it does move
 }

@@ -12,26 +12,37 @@ TEST(FlankCompliance, BilinearDataInterpolatedExactly)
 {
   const auto                 gear = InvoluteGear::create(test_data::fzg_c_pair().first);
   const InvoluteMemberFlanks flanks(gear);
-  FlankGridSpec              spec;
-  spec.teeth = {15, 0, 1};
-  FlankCompliance table(flanks, spec);
-  const auto     &pts = table.points();
-  ASSERT_EQ(pts.size(), 3u * 7 * 7);
-  auto f = [](int tooth, double u, double v) { return (1 + tooth) * (2 + 3 * u) * (1 - 40 * v); };
-  Eigen::MatrixXd S(pts.size(), pts.size());
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    for (std::size_t j = 0; j < pts.size(); ++j)
-      S(j, i) = f(pts[i].tooth, pts[i].u, pts[i].v) * f(pts[j].tooth, pts[j].u, pts[j].v) * 1e-9;
-  table.set(S);
-  const FlankDomain d = flanks.flank(0, FlankSide::drive).domain();
-  for (double a : {0.13, 0.5, 0.91})
+  for (const bool graded : {false, true})
     {
-      const double u        = d.u_min + a * (d.u_max - d.u_min),
-                   v        = d.v_min + (1 - a) * (d.v_max - d.v_min);
-      const double expected = f(1, u, v) * f(15, u, v) * 1e-9;
-      EXPECT_NEAR(table(1, u, v, 15, u, v), expected, 1e-12 * std::abs(expected));
+      FlankGridSpec spec;
+      spec.teeth  = {15, 0, 1};
+      spec.graded = graded;
+      FlankCompliance table(flanks, spec);
+      const auto     &pts = table.points();
+      ASSERT_EQ(pts.size(), 3u * 7 * 7);
+      auto f = [](int tooth, double u, double v) {
+        return (1 + tooth) * (2 + 3 * u) * (1 - 40 * v);
+      };
+      Eigen::MatrixXd S(pts.size(), pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        for (std::size_t j = 0; j < pts.size(); ++j)
+          S(j, i) =
+              f(pts[i].tooth, pts[i].u, pts[i].v) * f(pts[j].tooth, pts[j].u, pts[j].v) * 1e-9;
+      table.set(S);
+      const FlankDomain d = flanks.flank(0, FlankSide::drive).domain();
+      for (double a : {0.13, 0.5, 0.91})
+        {
+          const double u        = d.u_min + a * (d.u_max - d.u_min),
+                       v        = d.v_min + (1 - a) * (d.v_max - d.v_min);
+          const double expected = f(1, u, v) * f(15, u, v) * 1e-9;
+          EXPECT_NEAR(table(1, u, v, 15, u, v), expected, 1e-12 * std::abs(expected));
+        }
+      EXPECT_THROW(table(5, d.u_min, 0, 0, d.u_min, 0), InputError);
+      // graded (Chebyshev-Lobatto, 7 points): the first face interval (1 - cos(pi / 6)) / 2 of
+      // the range, the middle ones (cos(pi / 2) - cos(2 pi / 3)) / 2 = 1/4; equal: 1/6 each
+      const double first = pts[1].v - pts[0].v, middle = pts[4].v - pts[3].v;
+      EXPECT_NEAR(first / middle, graded ? (1 - std::cos(pi / 6)) / 2 / 0.25 : 1.0, 1e-9);
     }
-  EXPECT_THROW(table(5, d.u_min, 0, 0, d.u_min, 0), InputError);
 }
 
 TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
@@ -95,8 +106,10 @@ TEST(FlankCompliance, DiskLoadAtDepthAgainstBruteForce)
       EXPECT_NEAR(disk_load_displacement(r, z, R, steel) / (sum / count), 1, 2e-4) << r << " " << z;
       // under its centre the disk displaces the depth less than the point force does
       if (r == 0)
-        EXPECT_LT(disk_load_displacement(r, z, R, steel),
-                  point_load_displacement(r, z, 1.0, steel));
+        {
+          EXPECT_LT(disk_load_displacement(r, z, R, steel),
+                    point_load_displacement(r, z, 1.0, steel));
+        }
     }
   EXPECT_EQ(disk_load_displacement(1e-3, 2e-3, 0, steel),
             point_load_displacement(1e-3, 2e-3, 1.0, steel));

@@ -203,11 +203,11 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
                 }
               (side < 0 ? s_lo : s_hi) = in;
             }
+          if (!(s_hi - s_lo > 1e-3 * ds))
+            continue; // the column only grazes the flanks
           // Cut columns grade their cells towards the cut (half way to sine spacing, blended in
           // as the cut reaches the contact line: the cell at the edge about half the others),
           // where the pressure of a contact at a tip's corner peaks.
-          if (!(s_hi - s_lo > 1e-3 * ds))
-            continue; // the column only grazes the flanks
           const bool   cut  = s_lo > -w || s_hi < w;
           const double lo   = cut ? s_lo : -w;
           const double span = cut ? s_hi - s_lo : 2 * w;

@@ -184,10 +184,11 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
           };
           // a point of the column on both flanks: the contact line, else (a contact point on
           // an edge, where rounding can put the line just off) the nearest of the band's grid
-          double s_in = 0;
-          for (int j = 1; j < o.cells_across && !on(s_in); ++j)
-            s_in = (j % 2 ? 1 : -1) * ((j + 1) / 2) * ds;
-          if (!on(s_in))
+          double s_in  = 0;
+          bool   found = on(s_in);
+          for (int j = 1; j < o.cells_across && !found; ++j)
+            s_in = (j % 2 ? 1 : -1) * ((j + 1) / 2) * ds, found = on(s_in);
+          if (!found)
             continue;
           double       s_lo = -w, s_hi = w;
           const double tol = 1e-4 * ds;

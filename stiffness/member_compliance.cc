@@ -168,8 +168,8 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
         {
           std::ostringstream msg;
           msg << "member compliance: no room for the analytic near field of the unit load at "
-              << "tooth " << points[i].tooth << " (u, v) = (" << points[i].u << ", "
-              << points[i].v << "), " << on[i].transpose() * 1e3 << " mm: the body comes back "
+              << "tooth " << points[i].tooth << " (u, v) = (" << points[i].u << ", " << points[i].v
+              << "), " << on[i].transpose() * 1e3 << " mm: the body comes back "
               << "across its normal after " << back[i].second * 1e3 << " mm, a held face is "
               << held[i] * 1e3 << " mm away (elements of " << h * 1e3 << " mm)";
           throw InputError(msg.str());

@@ -22,12 +22,12 @@ struct MemberComplianceOptions
   unsigned           degree = 2; ///< FE_Q degree
   Material           material;
   FlankSide          side = FlankSide::drive;
-  std::vector<int>   loaded_teeth;           ///< member teeth with load grids; empty: the segment's
-  int                n_u = 9, n_v = 7;       ///< grid over profile and face
-  bool               graded_grid    = true;  ///< grid clustered towards the edges (FlankGridSpec)
-  double             depth_elements = 3;     ///< response depth in flank element sizes
-  double             patch_elements = 1;     ///< patch load radius in flank element sizes
-  bool               hold_cuts      = true;  ///< radial cut faces held (else free; the bore always)
+  std::vector<int>   loaded_teeth;          ///< member teeth with load grids; empty: the segment's
+  int                n_u = 9, n_v = 7;      ///< grid over profile and face
+  bool               graded_grid    = true; ///< grid clustered towards the edges (FlankGridSpec)
+  double             depth_elements = 3;    ///< response depth in flank element sizes
+  double             patch_elements = 1;    ///< patch load radius in flank element sizes
+  bool               hold_cuts      = true; ///< radial cut faces held (else free; the bore always)
   /// The near field of each unit load: false, read a response depth below the flank and take
   /// the half-space part above it out; true, carry Boussinesq's field analytically (cut off
   /// within `near_field_radius`, less where the body comes back across the load's normal or a

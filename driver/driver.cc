@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -172,6 +173,20 @@ options:
   --output-root DIR       where scene result folders go (default: out)
   --plot                  also draw the PNG pictures of the results (scripts/plot_results.py)
 )";
+
+/// OpenBLAS (the dense fronts of the direct solver) on this process's share of the cores,
+/// unless OPENBLAS_NUM_THREADS says otherwise: by default it takes every core in every process
+/// and crowds itself under mpirun.
+void
+set_blas_threads()
+{
+  if (std::getenv("OPENBLAS_NUM_THREADS"))
+    return;
+  using SetThreads = void (*)(int);
+  if (const auto set =
+          reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+    set(int(cores_per_process()));
+}
 } // namespace
 
 int
@@ -179,8 +194,9 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
 {
   // Under mpirun every process parses the same arguments and meets the same errors: only the
   // first one speaks.
-  std::ostream  silent(nullptr);
-  const bool    first       = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  std::ostream silent(nullptr);
+  const bool   first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  set_blas_threads();
   std::ostream &out         = first ? out_0 : silent;
   std::ostream &err         = first ? err_0 : silent;
   std::string   output_root = "out", scene_file;

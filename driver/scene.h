@@ -157,7 +157,11 @@ struct FeScene
   bool     graded_grid = true;         ///< load grid clustered towards the flank's edges
   /// Also the tables on a mesh of twice the element sizes at the flanks (coarsened(); 1.5 or
   /// 1.25 times where that cannot be meshed): the stiffness stage estimates each K_m's error.
-  bool     error_estimate = true;
+  bool error_estimate = true;
+  /// deal.II refinements at the loaded flanks of a segment meshed 2^k times coarser, and the
+  /// depth they reach [unrefined flank element sizes] (MemberComplianceOptions).
+  unsigned local_refinements = 0;
+  double   refine_depth      = 1;
   Material material; ///< both members
 
   static void

@@ -59,6 +59,14 @@ FeScene::declare(ParameterHandler &prm)
                     "Spacing of the unit-load points. graded: clustered towards the flank's "
                     "edges (Chebyshev-Lobatto), where the compliance rises steeply near the "
                     "face ends and the tip.");
+  prm.declare_entry("local refinements", "0", Patterns::Integer(0, 3),
+                    "k > 0: gmsh meshes the segment with every element size 2^k times larger and "
+                    "deal.II refines the elements near the loaded flanks k times (hanging "
+                    "nodes, new vertices on the exact flanks): the loaded flanks keep the sizes "
+                    "above, the other teeth and the rim's face layers are coarse.");
+  prm.declare_entry("refine depth", "1", Patterns::Double(0, 20),
+                    "With local refinements: the elements within this many (unrefined) flank "
+                    "element sizes of the loaded flanks are refined.");
   prm.declare_entry("Young's modulus", "206", Patterns::Double(1),
                     "[GPa] Young's modulus of both members.");
   prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(-0.99, 0.499),
@@ -81,6 +89,8 @@ FeScene::parse(ParameterHandler &prm)
   n_v                 = prm.get_integer("face grid points");
   graded_grid         = prm.get("load grid") == "graded";
   error_estimate      = prm.get_bool("error estimate");
+  local_refinements   = unsigned(prm.get_integer("local refinements"));
+  refine_depth        = prm.get_double("refine depth");
   material = {prm.get_double("Young's modulus") * GPa, prm.get_double("Poisson's ratio")};
 }
 

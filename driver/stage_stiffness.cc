@@ -51,6 +51,8 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   o.depth_elements      = fe.depth;
   o.analytic_near_field = fe.analytic_near_field;
   o.near_field_radius   = fe.near_field_radius * module;
+  o.local_refinements   = fe.local_refinements;
+  o.refine_depth        = fe.refine_depth;
   o.work_directory      = dir;
   // Unit loads only on the teeth that can carry load over the mesh cycle; the segment's other
   // teeth are there for the stiffness of the surroundings.
@@ -154,7 +156,9 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
                   << " mm or more), ";
             else
               log << info.shallow_points << " read shallower), ";
-            log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s\n";
+            log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s (mesh "
+                << info.mesh_seconds << ", assembly and factorisation " << info.setup_seconds
+                << ", unit loads " << info.solve_seconds << ")\n";
           }
       };
       // The segment meshes beside the cache file: every process reads them.
@@ -274,6 +278,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.cells           = lc.cells;
       lo.pinion_material = lo.gear_material = fe.material;
       lo.covered      = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
+      lo.threads      = cores_per_process();
       const H5Group g = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
       const UnloadedTca      theory(members.pinion, members.gear, members.assembly, tca.options);

@@ -9,9 +9,11 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <mpi.h>
 #include <ostream>
 #include <set>
 #include <sstream>
+#include <thread>
 
 namespace gearkit
 {
@@ -219,4 +221,14 @@ stage_key(const Scene &scene, const std::string &stage)
   return hex.str();
 }
 
+unsigned
+cores_per_process()
+{
+  MPI_Comm machine;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+  int here = 1;
+  MPI_Comm_size(machine, &here);
+  MPI_Comm_free(&machine);
+  return std::max(1u, std::thread::hardware_concurrency() / unsigned(std::max(1, here)));
+}
 } // namespace gearkit

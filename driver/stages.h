@@ -32,6 +32,11 @@ private:
   std::chrono::steady_clock::time_point last;
 };
 
+/// The cores of this machine per process of MPI_COMM_WORLD running on it (at least 1): the
+/// threads a process may use without crowding the others.
+unsigned
+cores_per_process();
+
 /// Upstream results a stage may read: stage name -> its group in its cache file.
 using Upstream = std::map<std::string, const H5Group *>;
 

@@ -57,6 +57,42 @@ point(const Vec3 &x)
   return Point<3>(x.x(), x.y(), x.z());
 }
 
+/// The new vertices of a refined boundary face or edge placed on the exact surface: the
+/// flat average of their parents, projected.
+class ProjectedSurface : public Manifold<3>
+{
+public:
+  ProjectedSurface(int boundary, std::function<Vec3(int, const Vec3 &)> project)
+      : boundary(boundary)
+      , project(std::move(project))
+  {
+  }
+  std::unique_ptr<Manifold<3>>
+  clone() const override
+  {
+    return std::make_unique<ProjectedSurface>(boundary, project);
+  }
+  Point<3>
+  get_new_point(const ArrayView<const Point<3>> &points,
+                const ArrayView<const double>   &weights) const override
+  {
+    Vec3 x = Vec3::Zero();
+    for (std::size_t i = 0; i < points.size(); ++i)
+      x += weights[i] * Vec3(points[i][0], points[i][1], points[i][2]);
+    const Vec3 y = project(boundary, x);
+    if (!y.allFinite())
+      throw InputError("elastic segment: the surface of boundary " + std::to_string(boundary) +
+                       " has no point for a refined vertex near (" + std::to_string(x.x() * 1e3) +
+                       ", " + std::to_string(x.y() * 1e3) + ", " + std::to_string(x.z() * 1e3) +
+                       ") mm");
+    return point(y);
+  }
+
+private:
+  int                                    boundary;
+  std::function<Vec3(int, const Vec3 &)> project;
+};
+
 /// von Mises stress from the displacement gradient.
 class VonMises : public DataPostprocessorScalar<3>
 {
@@ -87,6 +123,44 @@ public:
 private:
   double lambda, mu;
 };
+/// Refines (options.local_refinements times) the cells of `tria` with a vertex within
+/// options.refine_distance of a vertex or face centre of the faces of `mesh` (the mesh read,
+/// whole on every process) with one of options.refine_boundaries.
+void
+refine_near_boundaries(const Triangulation<3> &mesh, parallel::distributed::Triangulation<3> &tria,
+                       const ElasticSegmentOptions &options)
+{
+  if (!(options.refine_distance >= 0) || options.refine_boundaries.empty())
+    throw InputError("elastic segment: local refinement needs boundaries and a distance >= 0");
+  std::vector<Point<3>> samples;
+  for (const auto &face : mesh.active_face_iterators())
+    if (face->at_boundary() && options.refine_boundaries.count(int(face->boundary_id())))
+      {
+        samples.push_back(face->center());
+        for (unsigned v = 0; v < 4; ++v)
+          samples.push_back(face->vertex(v));
+      }
+  if (samples.empty())
+    throw InputError("elastic segment: none of the boundaries to refine near is in the mesh");
+  const auto tree = pack_rtree(samples);
+  for (unsigned pass = 0; pass < options.local_refinements; ++pass)
+    {
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (unsigned v = 0; v < GeometryInfo<3>::vertices_per_cell; ++v)
+            {
+              std::vector<Point<3>> nearest;
+              tree.query(boost::geometry::index::nearest(cell->vertex(v), 1),
+                         std::back_inserter(nearest));
+              if (nearest[0].distance(cell->vertex(v)) <= options.refine_distance)
+                {
+                  cell->set_refine_flag();
+                  break;
+                }
+            }
+      tria.execute_coarsening_and_refinement();
+    }
+}
 } // namespace
 
 struct ElasticSegment::Impl
@@ -101,9 +175,12 @@ struct ElasticSegment::Impl
   IndexSet                                owned, relevant;
   AffineConstraints<double>               constraints;
   PETScWrappers::MPI::SparseMatrix        K;
-  KSP                                     ksp            = nullptr;
-  double                                  factor_seconds = 0;
-  double                                  lambda = 0, mu = 0;
+  KSP                                     ksp = nullptr;
+  /// The MUMPS Cholesky factor (the default); null where run-time options chose another solver
+  /// (the KSP then solves).
+  Mat    factor         = nullptr;
+  double factor_seconds = 0;
+  double lambda = 0, mu = 0;
 
   /// Boundary quadrature of the faces with a boundary id, cached for fast load assembly.
   struct FaceData
@@ -150,6 +227,13 @@ struct ElasticSegment::Impl
       , fe(FE_Q<3>(degree), 3)
   {
   }
+  ~Impl()
+  {
+    if (factor)
+      MatDestroy(&factor);
+    if (ksp)
+      KSPDestroy(&ksp);
+  }
 
   bool
   held(int boundary) const
@@ -172,10 +256,11 @@ struct ElasticSegment::Impl
   /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
   set_rigid_body_near_null_space();
-  /// Throws InputError when MUMPS's analysis estimates more memory for the factorisation on
-  /// some machine than it has available (options.memory_available, else MemAvailable).
+  /// The MUMPS Cholesky factor of K; throws InputError when MUMPS's analysis estimates more
+  /// memory for it on some machine than the machine has available (options.memory_available,
+  /// else MemAvailable), before factorising.
   void
-  check_factorisation_fits(const std::string &file) const;
+  factorise(const std::string &file);
   /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
   void
   local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell, FEValues<3> &values,
@@ -261,8 +346,17 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
           }
       }
   }
+  // The refined boundaries' faces and edges on their exact surface (manifold id = boundary id).
+  if (o.local_refinements > 0 && o.boundary_surface)
+    for (int id : o.refine_boundaries)
+      coarse.set_all_manifold_ids_on_boundary(types::boundary_id(id), types::manifold_id(id));
   m.tria.copy_triangulation(coarse);
+  if (o.local_refinements > 0 && o.boundary_surface)
+    for (int id : o.refine_boundaries)
+      m.tria.set_manifold(types::manifold_id(id), ProjectedSurface(id, o.boundary_surface));
   m.tria.refine_global(o.refinements);
+  if (o.local_refinements > 0)
+    refine_near_boundaries(coarse, m.tria, o);
   m.cache_ptr = std::make_unique<GridTools::Cache<3>>(m.tria, m.mapping);
 
   std::set<types::boundary_id> present;
@@ -392,9 +486,13 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     m.set_rigid_body_near_null_space();
   if (std::string(chosen) == PCHYPRE)
     petsc_check(MatSetBlockSize(m.K, 3), "MatSetBlockSize"); // x, y, z of a node together
+  MatSolverType solver_type = nullptr;
   if (std::string(chosen) == PCCHOLESKY)
-    m.check_factorisation_fits(file);
-  petsc_check(KSPSetUp(m.ksp), "KSPSetUp (factorisation: is the body held?)");
+    petsc_check(PCFactorGetMatSolverType(pc, &solver_type), "PCFactorGetMatSolverType");
+  if (solver_type && std::string(solver_type) == MATSOLVERMUMPS)
+    m.factorise(file); // MUMPS's analysis once, for the memory check and the factorisation
+  else
+    petsc_check(KSPSetUp(m.ksp), "KSPSetUp (factorisation: is the body held?)");
   m.factor_seconds = timer.wall_time();
 }
 
@@ -420,22 +518,20 @@ memory_available_now()
 } // namespace
 
 void
-ElasticSegment::Impl::check_factorisation_fits(const std::string &file) const
+ElasticSegment::Impl::factorise(const std::string &file)
 {
-  // MUMPS's analysis alone (ordering, symbolic factorisation) on a factor of its own: its
-  // estimates of the in-core factorisation's memory, the largest process's (INFOG(16)) and
-  // all processes' (INFOG(17)), in millions of bytes
-  Mat F;
-  petsc_check(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F), "MatGetFactor");
-  petsc_check(MatSetOptionsPrefix(F, "gearkit_"), "MatSetOptionsPrefix");
+  // MUMPS's analysis (ordering, symbolic factorisation) first: its estimates of the in-core
+  // factorisation's memory, the largest process's (INFOG(16)) and all processes' (INFOG(17)),
+  // in millions of bytes
+  petsc_check(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &factor), "MatGetFactor");
+  petsc_check(MatSetOptionsPrefix(factor, "gearkit_"), "MatSetOptionsPrefix");
   MatFactorInfo info;
   petsc_check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
-  petsc_check(MatCholeskyFactorSymbolic(F, K, nullptr, &info),
+  petsc_check(MatCholeskyFactorSymbolic(factor, K, nullptr, &info),
               "MatCholeskyFactorSymbolic (MUMPS analysis)");
   PetscInt most = 0, total = 0; // MB: the largest process's, all processes'
-  petsc_check(MatMumpsGetInfog(F, 16, &most), "MatMumpsGetInfog");
-  petsc_check(MatMumpsGetInfog(F, 17, &total), "MatMumpsGetInfog");
-  MatDestroy(&F);
+  petsc_check(MatMumpsGetInfog(factor, 16, &most), "MatMumpsGetInfog");
+  petsc_check(MatMumpsGetInfog(factor, 17, &total), "MatMumpsGetInfog");
   // per machine: its processes (at most the largest's each) against what it has
   MPI_Comm machine;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
@@ -461,6 +557,8 @@ ElasticSegment::Impl::check_factorisation_fits(const std::string &file) const
              "(PETSC_OPTIONS=\"-gearkit_ksp_type cg -gearkit_pc_type gamg\")";
       throw InputError(msg.str());
     }
+  petsc_check(MatCholeskyFactorNumeric(factor, K, &info),
+              "MatCholeskyFactorNumeric (factorisation: is the body held?)");
 }
 
 void
@@ -536,30 +634,40 @@ void
 ElasticSegment::Impl::local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell,
                                    FEValues<3> &values, FullMatrix<double> &local) const
 {
+  // Shape function i moves component c_i by phi_i: with g = grad phi, tr eps_i = g_i[c_i] and
+  // 2 eps_i : eps_j = delta(c_i, c_j) g_i . g_j + g_i[c_j] g_j[c_i].
   values.reinit(cell);
-  local                                = 0;
-  const unsigned                     n = fe.n_dofs_per_cell();
-  const FEValuesExtractors::Vector   u(0);
-  std::vector<SymmetricTensor<2, 3>> eps(n);
+  local                   = 0;
+  const unsigned        n = fe.n_dofs_per_cell();
+  std::vector<unsigned> component(n);
+  for (unsigned i = 0; i < n; ++i)
+    component[i] = fe.system_to_component_index(i).first;
+  std::vector<Tensor<1, 3>> g(n);
   for (unsigned q = 0; q < values.n_quadrature_points; ++q)
     {
+      const double w = values.JxW(q);
       for (unsigned i = 0; i < n; ++i)
-        eps[i] = values[u].symmetric_gradient(i, q);
+        g[i] = values.shape_grad(i, q) * w;
       for (unsigned i = 0; i < n; ++i)
-        for (unsigned j = 0; j <= i; ++j)
-          local(i, j) +=
-              (lambda * trace(eps[i]) * trace(eps[j]) + 2 * mu * (eps[i] * eps[j])) * values.JxW(q);
+        {
+          const unsigned     ci = component[i];
+          const Tensor<1, 3> gi = values.shape_grad(i, q);
+          for (unsigned j = 0; j <= i; ++j)
+            {
+              const unsigned cj = component[j];
+              double         k  = lambda * gi[ci] * g[j][cj] + mu * gi[cj] * g[j][ci];
+              if (ci == cj)
+                k += mu * (gi * g[j]);
+              local(i, j) += k;
+            }
+        }
     }
   for (unsigned i = 0; i < n; ++i)
     for (unsigned j = i + 1; j < n; ++j)
       local(i, j) = local(j, i);
 }
 
-ElasticSegment::~ElasticSegment()
-{
-  if (impl && impl->ksp)
-    KSPDestroy(&impl->ksp);
-}
+ElasticSegment::~ElasticSegment() = default;
 
 std::size_t
 ElasticSegment::cells() const
@@ -717,12 +825,17 @@ PETScWrappers::MPI::Vector
 ElasticSegment::Impl::solve(const PETScWrappers::MPI::Vector &rhs) const
 {
   PETScWrappers::MPI::Vector x(owned, comm);
-  petsc_check(KSPSolve(ksp, rhs, x), "KSPSolve");
-  KSPConvergedReason reason;
-  KSPGetConvergedReason(ksp, &reason);
-  if (reason < 0)
-    throw InputError("elastic segment: the linear solver did not converge (PETSc reason " +
-                     std::to_string(int(reason)) + ")");
+  if (factor)
+    petsc_check(MatSolve(factor, rhs, x), "MatSolve");
+  else
+    {
+      petsc_check(KSPSolve(ksp, rhs, x), "KSPSolve");
+      KSPConvergedReason reason;
+      KSPGetConvergedReason(ksp, &reason);
+      if (reason < 0)
+        throw InputError("elastic segment: the linear solver did not converge (PETSc reason " +
+                         std::to_string(int(reason)) + ")");
+    }
   constraints.distribute(x);
   PETScWrappers::MPI::Vector ghosted(owned, relevant, comm);
   ghosted = x;
@@ -865,8 +978,11 @@ ElasticSegment::Impl::smooth_normal(const FaceNormals &face, const Point<3> &x)
       const Tensor<1, 3> deta = (v[2] - v[0]) * (1 - xi) + (v[3] - v[1]) * xi;
       const double       a = dxi * dxi, b = dxi * deta, c = deta * deta;
       const double       p = -(dxi * r), q = -(deta * r), det = a * c - b * b;
-      xi += (c * p - b * q) / det;
-      eta += (a * q - b * p) / det;
+      const double       step_xi = (c * p - b * q) / det, step_eta = (a * q - b * p) / det;
+      xi += step_xi;
+      eta += step_eta;
+      if (std::abs(step_xi) + std::abs(step_eta) < 1e-13)
+        break;
     }
   const double w[4] = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta, xi * eta};
   Tensor<1, 3> n;
@@ -920,10 +1036,18 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
           update_values | update_quadrature_points | update_JxW_values);
     }
   FEValues<3> &values = *remainder_volume;
-  for (const auto &cell : dofs.active_cell_iterators())
+  // the cells whose bounding boxes meet the cube about the outer sphere
+  Point<3> low = x0, high = x0;
+  for (unsigned d = 0; d < 3; ++d)
+    low[d] -= load.outer, high[d] += load.outer;
+  std::vector<std::pair<BoundingBox<3>, typename Triangulation<3>::active_cell_iterator>>
+      near_cells;
+  cache_ptr->get_locally_owned_cell_bounding_boxes_rtree().query(
+      boost::geometry::index::intersects(BoundingBox<3>(std::make_pair(low, high))),
+      std::back_inserter(near_cells));
+  for (const auto &[box, tria_cell] : near_cells)
     {
-      if (!cell->is_locally_owned())
-        continue;
+      const typename DoFHandler<3>::active_cell_iterator cell(*tria_cell, &dofs);
       const double reach = cell->center().distance(x0), radius = cell->diameter() / 2;
       if (reach - radius > load.outer)
         continue;
@@ -976,8 +1100,12 @@ ElasticSegment::Impl::responses(
   const Impl     &m = *this;
   Eigen::MatrixXd D(functionals.size(), Eigen::Index(n_loads));
   // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
-  // factorisation does a block solve; an iterative run-time choice solves column by column).
-  const PetscInt block = 64, local = PetscInt(m.owned.n_elements());
+  // factorisation does a block solve: one pass over the factor per block; an iterative
+  // run-time choice solves column by column); a block's right-hand sides and solutions take
+  // at most about 1 GB together (at least 16 columns).
+  const std::size_t block =
+      std::max<std::size_t>(16, (std::size_t(1) << 30) / (16 * m.dofs.n_dofs()));
+  const PetscInt local = PetscInt(m.owned.n_elements());
   for (std::size_t first = 0; first < n_loads; first += block)
     {
       const PetscInt cols = PetscInt(std::min<std::size_t>(block, n_loads - first));
@@ -997,7 +1125,10 @@ ElasticSegment::Impl::responses(
       petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
       petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
       petsc_check(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X), "MatDuplicate");
-      petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
+      if (m.factor)
+        petsc_check(MatMatSolve(m.factor, B, X), "MatMatSolve");
+      else
+        petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
       for (PetscInt c = 0; c < cols; ++c)
         {
           PETScWrappers::MPI::Vector x(m.owned, m.comm);

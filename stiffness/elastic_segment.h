@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <memory>
 #include <mpi.h>
 #include <set>
@@ -35,6 +36,16 @@ struct ElasticSegmentOptions
   std::vector<std::pair<int, int>> rollers;
   /// The processes that share the body (MPI_COMM_SELF: this process alone).
   MPI_Comm communicator = MPI_COMM_WORLD;
+  /// Local refinement (hanging nodes), after the global refinements: `local_refinements` times
+  /// the cells with a vertex within `refine_distance` [m] of the boundaries `refine_boundaries`
+  /// (of a vertex or centre of their faces in the mesh read).
+  std::set<int> refine_boundaries;
+  double        refine_distance   = 0;
+  unsigned      local_refinements = 0;
+  /// Where a new vertex on one of the `refine_boundaries` goes, given the boundary id and the
+  /// point between its parents: onto the exact surface the mesh's facets approximate. Empty:
+  /// between its parents (on the facets).
+  std::function<Vec3(int boundary, const Vec3 &)> boundary_surface;
   /// Memory the direct factorisation may take on each machine [bytes]; 0: what the machine
   /// has available now (MemAvailable). Before factorising, MUMPS's analysis estimates its need
   /// (per process, times the processes on the machine); a body that would not fit is refused

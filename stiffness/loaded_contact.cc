@@ -3,7 +3,11 @@
 #include "stiffness/contact_solver.h"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 namespace gearkit
 {
@@ -172,15 +176,49 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   for (const TcaPosition &p : positions)
     for (std::size_t s = 0; s < c.slots; ++s)
       c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
-  std::vector<std::vector<LoadedPosition>> results(m);
-  for (int k = 0; k < m; ++k)
-    for (int i = 0; i < n; ++i)
+  // Every (torque, position) on its own: a few threads take them in turn.
+  std::vector<std::vector<LoadedPosition>> results(
+      static_cast<std::size_t>(m), std::vector<LoadedPosition>(static_cast<std::size_t>(n)));
+  std::atomic<int>   next{0};
+  std::mutex         guard; // the progress callback and the first failure
+  std::exception_ptr failure;
+  const auto         work = [&] {
+    for (int job = next++; job < m * n; job = next++)
       {
-        results[k].push_back(loaded_contact(t, positions[i], torques[k], lo, sp, sg));
-        c.cells = std::max(c.cells, results[k].back().cells.size());
+        try
+          {
+            results[std::size_t(job / n)][std::size_t(job % n)] = loaded_contact(
+                        t, positions[std::size_t(job % n)], torques[std::size_t(job / n)], lo, sp, sg);
+          }
+        catch (...)
+          {
+            const std::lock_guard<std::mutex> lock(guard);
+            if (!failure)
+              failure = std::current_exception();
+            next = m * n;
+            return;
+          }
         if (step)
-          step();
+          {
+            const std::lock_guard<std::mutex> lock(guard);
+            step();
+          }
       }
+  };
+  const unsigned threads =
+      std::min(unsigned(m * n),
+               lo.threads > 0 ? lo.threads : std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> helpers;
+  for (unsigned h = 1; h < threads; ++h)
+    helpers.emplace_back(work);
+  work();
+  for (std::thread &h : helpers)
+    h.join();
+  if (failure)
+    std::rethrow_exception(failure);
+  for (const auto &torque : results)
+    for (const LoadedPosition &r : torque)
+      c.cells = std::max(c.cells, r.cells.size());
   for (int i = 0; i < n; ++i)
     c.pinion_angle.push_back(positions[i].pinion_angle),
         c.unloaded_te.push_back(positions[i].transmission_error);

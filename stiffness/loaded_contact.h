@@ -33,6 +33,9 @@ struct LoadedContactOptions
   /// Whether the compliance tables cover a tooth pair (pinion tooth, gear tooth); pairs they do
   /// not cover are left out while they stand apart, and refused when they touch.
   std::function<bool(int, int)> covered;
+  /// Positions loaded_contact_cycle solves at once (threads; the results do not depend on it);
+  /// 0: as many as the hardware runs.
+  unsigned threads = 0;
 };
 
 struct LoadedPosition

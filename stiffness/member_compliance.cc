@@ -60,6 +60,22 @@ with_radius(MemberComplianceOptions o, double module)
   return o;
 }
 
+/// The segment mesh's options: the loaded flanks get the flank element size; with local
+/// refinements k, every size 2^k times larger (deal.II refines at the loaded flanks).
+SegmentMeshOptions
+base_mesh(const MemberComplianceOptions &o, double module)
+{
+  SegmentMeshOptions mesh = o.mesh;
+  mesh.fine_side          = o.side;
+  if (o.local_refinements == 0)
+    return mesh;
+  const double scale = std::ldexp(1.0, int(o.local_refinements));
+  mesh.flank_size    = (o.mesh.flank_size > 0 ? o.mesh.flank_size : module / 5) * scale;
+  mesh.other_size *= scale;
+  mesh.far_size = std::max(o.mesh.far_size > 0 ? o.mesh.far_size : module, mesh.flank_size);
+  return mesh;
+}
+
 /// Where the body is crossed along rays x + s direction: the samples at steps of `step` in
 /// (from, to] bracket the first s whose point is inside (`want_inside`) or outside, and
 /// bisection narrows the bracket to `tolerance`. Per ray (lo, hi): hi the first s found on the
@@ -234,8 +250,7 @@ FlankCompliance
 involute_member_compliance(const InvoluteGear &gear, const MemberFlanks &flanks,
                            const MemberComplianceOptions &o, MemberComplianceInfo *info)
 {
-  SegmentMeshOptions mesh = o.mesh;
-  mesh.fine_side          = o.side; // the loaded flanks get the flank element size
+  const SegmentMeshOptions mesh = base_mesh(o, gear.data().normal_module);
   return member_compliance(
       flanks, gear.data().name,
       [&](const std::string &path) { return write_tooth_segment_mesh(gear, mesh, path); },
@@ -247,8 +262,7 @@ FlankCompliance
 bevel_member_compliance(const BevelMemberFlanks &flanks, const std::string &name, double module,
                         const MemberComplianceOptions &o, MemberComplianceInfo *info)
 {
-  SegmentMeshOptions mesh = o.mesh;
-  mesh.fine_side          = o.side;
+  const SegmentMeshOptions mesh = base_mesh(o, module);
   return member_compliance(
       flanks, name,
       [&](const std::string &path) { return write_bevel_segment_mesh(flanks, module, mesh, path); },
@@ -299,7 +313,23 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   eo.clamped      = {boundary::bore};
   if (o.hold_cuts)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
+  if (o.local_refinements > 0)
+    {
+      for (int t : spec.teeth)
+        eo.refine_boundaries.insert(boundary::flank(
+            int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(), t) -
+                segment.member_teeth.begin()),
+            o.side));
+      eo.local_refinements = o.local_refinements;
+      eo.refine_distance   = o.refine_depth * std::ldexp(h, int(o.local_refinements));
+      eo.boundary_surface  = [&](int id, const Vec3 &x) {
+        const int tooth = segment.member_teeth[std::size_t((id - boundary::flank(0, o.side)) / 2)];
+        const auto [u, v] = flanks.rotational_parameters(x);
+        return flanks.flank(tooth, o.side).evaluate(u, v).position;
+      };
+    }
   const ElasticSegment body(mesh_file, eo);
+  out.hexahedra     = body.cells(); // after the local refinement
   out.dofs          = body.dofs();
   out.setup_seconds = seconds_since(t0);
 

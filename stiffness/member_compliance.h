@@ -33,9 +33,16 @@ struct MemberComplianceOptions
   /// within `near_field_radius`, less where the body comes back across the load's normal or a
   /// held face is nearer) and solve only the smooth remainder with the finite elements, read
   /// at the flank itself (ElasticSegment::remainder_response).
-  bool        analytic_near_field = true;
-  double      near_field_radius   = 0; ///< [m]; 0: twice the module
-  std::string work_directory;          ///< where the segment mesh is written
+  bool   analytic_near_field = true;
+  double near_field_radius   = 0; ///< [m]; 0: twice the module
+  /// Local refinement: the segment meshed with every element size 2^k times larger and the
+  /// elements within `refine_depth` of those sizes of the loaded flanks refined k times by
+  /// deal.II (hanging nodes; new flank vertices on the exact flank), so that the loaded flanks
+  /// have the element sizes asked for and the rest of the segment (the other teeth, the face
+  /// layers of the rim) is coarse.
+  unsigned    local_refinements = 0;
+  double      refine_depth      = 1;
+  std::string work_directory; ///< where the segment mesh is written
   /// The processes that share the finite elements: the first meshes the segment (gmsh), all
   /// solve it together; every process receives the whole table.
   MPI_Comm communicator = MPI_COMM_WORLD;
@@ -43,7 +50,7 @@ struct MemberComplianceOptions
 
 struct MemberComplianceInfo
 {
-  std::size_t hexahedra = 0, dofs = 0;
+  std::size_t hexahedra = 0, dofs = 0;     ///< elements (after the local refinement), dofs
   double      depth = 0, patch_radius = 0; ///< [m]
   /// Grid points whose response depth was limited to half the chord through the tooth along
   /// their response direction (near a thin tip the nominal depth would leave the tooth), and

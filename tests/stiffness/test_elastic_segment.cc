@@ -66,6 +66,75 @@ TEST(ElasticSegment, PatchTestUniformTension)
     }
 }
 
+TEST(ElasticSegment, PatchTestHoldsAcrossLocalRefinement)
+{
+  // Uniform tension again, with the elements near the loaded face refined once and twice:
+  // hanging nodes between refined and coarse elements must not disturb the exact solution.
+  const Vec3        L(20e-3, 10e-3, 8e-3);
+  const std::string mesh  = box("patch-refined", L, 4, 2, 2);
+  const double      sigma = 50e6, E = steel.youngs_modulus, nu = steel.poisson_ratio;
+  for (unsigned degree : {1u, 2u})
+    for (unsigned refinements : {1u, 2u})
+      {
+        ElasticSegmentOptions o;
+        o.degree            = degree;
+        o.material          = steel;
+        o.rollers           = {{1, 0}, {3, 1}, {5, 2}};
+        o.refine_boundaries = {2};
+        o.refine_distance   = 3e-3;
+        o.local_refinements = refinements;
+        const ElasticSegment body(mesh, o);
+        // refined near x = Lx only: more than the 16 elements read, fewer than all refined
+        EXPECT_GT(body.cells(), 16u);
+        EXPECT_LT(body.cells(), 16u << (3 * refinements));
+        const PatchLoad load{
+            Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(sigma * L.y() * L.z(), 0, 0), 1.0, {2}};
+        std::vector<Probe> probes;
+        for (const Vec3 x : {Vec3(14e-3, 2.6e-3, 3.1e-3), Vec3(16.2e-3, 9e-3, 7.5e-3), L})
+          for (int c = 0; c < 3; ++c)
+            probes.push_back({x, Vec3::Unit(c)});
+        const Eigen::VectorXd u = body.response({load}, probes, nullptr);
+        for (std::size_t j = 0; j < probes.size(); ++j)
+          {
+            const Vec3 x = probes[j].point;
+            const Vec3 exact(sigma * x.x() / E, -nu * sigma * x.y() / E, -nu * sigma * x.z() / E);
+            EXPECT_NEAR(u[j], exact.dot(probes[j].direction), 1e-10 * sigma * L.x() / E)
+                << degree << " " << refinements << " " << j;
+          }
+      }
+}
+
+TEST(ElasticSegment, RefinedBoundaryVerticesGoOnTheExactSurface)
+{
+  // The face x = Lx of a box taken for a bulging surface x = Lx + a sin(pi y / Ly)
+  // sin(pi z / Lz): one refinement puts the new vertices of that face on it (the corners
+  // read stay), so a point a quarter of the bulge out at a new vertex lies in the body; without
+  // the surface the new vertices stay on the flat face and it does not.
+  const Vec3        L(20e-3, 10e-3, 8e-3);
+  const double      a    = 1e-3;
+  const std::string mesh = box("bulge", L, 4, 2, 2);
+  for (bool exact : {true, false})
+    {
+      ElasticSegmentOptions o;
+      o.clamped           = {1};
+      o.refine_boundaries = {2};
+      o.refine_distance   = 1e-3;
+      o.local_refinements = 1;
+      if (exact)
+        o.boundary_surface = [&](int id, const Vec3 &x) {
+          EXPECT_EQ(id, 2);
+          return Vec3(L.x() + a * std::sin(pi * x.y() / L.y()) * std::sin(pi * x.z() / L.z()),
+                      x.y(), x.z());
+        };
+      const ElasticSegment body(mesh, o);
+      // (y, z) = (Ly / 4, Lz / 4): a new vertex, where the surface is a / 2 out
+      const std::vector<bool> inside = body.contains(
+          {Vec3(L.x() + a / 4, L.y() / 4, L.z() / 4), Vec3(L.x() + 0.6 * a, L.y() / 4, L.z() / 4)});
+      EXPECT_EQ(inside[0], exact);
+      EXPECT_FALSE(inside[1]);
+    }
+}
+
 TEST(ElasticSegment, CantileverAgainstTimoshenko)
 {
   // 100 x 10 x 10 mm steel beam clamped at x = 0, shear force P on the end face: tip deflection

@@ -12,6 +12,26 @@
 
 using namespace gearkit;
 
+namespace
+{
+/// K_m at a position under 200 N m from the members' tables.
+double
+mesh_stiffness(const UnloadedTca &tca, const TcaPosition &at, const FlankCompliance &cp,
+               const FlankCompliance &cg)
+{
+  const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
+    return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+  };
+  const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
+    return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+  };
+  LoadedContactOptions lo;
+  lo.pinion_material = lo.gear_material = {206e9, 0.3};
+  lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
+  return loaded_contact(tca, at, 200, lo, sp, sg).mesh_stiffness;
+}
+} // namespace
+
 TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
 {
   const auto [pd, gd]      = test_data::fzg_c_pair();
@@ -51,19 +71,8 @@ TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
   EXPECT_LT((g_all.matrix() - g_one.matrix()).norm(), 1e-9 * g_one.matrix().norm());
   EXPECT_GT(p_one.matrix().norm(), 0);
 
-  auto mesh_stiffness = [&](const FlankCompliance &cp, const FlankCompliance &cg) {
-    const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
-      return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-    };
-    const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
-      return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-    };
-    LoadedContactOptions lo;
-    lo.pinion_material = lo.gear_material = {206e9, 0.3};
-    lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
-    return loaded_contact(tca, at, 200, lo, sp, sg).mesh_stiffness;
-  };
-  const double K_all = mesh_stiffness(p_all, g_all), K_one = mesh_stiffness(p_one, g_one);
+  const double K_all = mesh_stiffness(tca, at, p_all, g_all);
+  const double K_one = mesh_stiffness(tca, at, p_one, g_one);
   EXPECT_NEAR(K_all / K_one, 1, 1e-9);
   // a tooth pair of steel spur gears: of the order of 10-20 N/(mm um) per face width
   EXPECT_GT(K_one, 5e9 * pd.face_width);
@@ -100,4 +109,48 @@ TEST(MemberCompliance, NearFieldRadiusOption)
   const double by_default = smallest_radius(0);
   EXPECT_GT(by_default, 1.5e-3);
   EXPECT_LE(by_default, 2 * pd.normal_module);
+}
+
+// The loaded flanks' elements refined by deal.II on a pinion segment meshed twice as coarse,
+// against the segment meshed at the fine size throughout: the same mesh stiffness from fewer
+// degrees of freedom (the coarse far field costs little accuracy).
+TEST(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
+{
+  const auto [pd, gd]      = test_data::fzg_c_pair();
+  const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+  const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
+  const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
+  const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
+  const TcaPosition at       = tca.at(0);
+  const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
+  const std::string dir      = std::filesystem::temp_directory_path() / "gearkit-test-local-refine";
+  std::filesystem::create_directories(dir);
+  std::size_t dofs[2] = {0, 0}; // of the pinion's segments
+  auto        member  = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s,
+                    unsigned refinements) {
+    MemberComplianceOptions o;
+    o.mesh.teeth         = s.teeth + 2; // an unloaded tooth on either side
+    o.mesh.central_tooth = s.central;
+    o.mesh.flank_size    = g.data().normal_module / 3;
+    for (int k = -(s.teeth - 1) / 2; k <= (s.teeth - 1) / 2; ++k)
+      o.loaded_teeth.push_back((s.central + k + g.teeth()) % g.teeth());
+    o.n_u = 5, o.n_v = 4;
+    o.material          = {206e9, 0.3};
+    o.work_directory    = dir;
+    o.local_refinements = refinements;
+    MemberComplianceInfo info;
+    FlankCompliance      table = involute_member_compliance(g, f, o, &info);
+    if (&g == pinion.get())
+      dofs[refinements] = info.dofs;
+    return table;
+  };
+  // the gear's table the same in both: the pinion's change alone is measured
+  const FlankCompliance gear_table = member(*gear, *gf, segments.second, 0);
+  const double fine = mesh_stiffness(tca, at, member(*pinion, *pf, segments.first, 0), gear_table);
+  const double refined =
+      mesh_stiffness(tca, at, member(*pinion, *pf, segments.first, 1), gear_table);
+  std::printf("K_m %.5g N/um (%zu dofs), refined %.5g N/um (%zu dofs)\n", fine / 1e6, dofs[0],
+              refined / 1e6, dofs[1]);
+  EXPECT_LT(dofs[1], dofs[0]);
+  EXPECT_NEAR(refined / fine, 1, 0.01);
 }

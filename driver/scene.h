@@ -171,7 +171,8 @@ struct FeScene
   void
   check(const PairScene &pair) const;
   /// The same with the element sizes at the flanks, fillets and other flanks times `factor`
-  /// (the far size at least the new flank size): what the error estimate changes.
+  /// (the far size at least the new flank size): what the error estimate changes. With local
+  /// refinements and factor 2: one refinement less of the same segment mesh.
   FeScene
   coarsened(double factor) const;
 };

@@ -100,6 +100,9 @@ FeScene::coarsened(double factor) const
   FeScene c = *this;
   c.flank_size *= factor, c.other_size *= factor;
   c.far_size = std::max(far_size, c.flank_size);
+  // twice the sizes with local refinements: the same segment mesh refined once less
+  if (factor == 2 && local_refinements > 0)
+    c.local_refinements = local_refinements - 1;
   return c;
 }
 

@@ -51,6 +51,7 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   o.depth_elements      = fe.depth;
   o.analytic_near_field = fe.analytic_near_field;
   o.near_field_radius   = fe.near_field_radius * module;
+  o.threads             = cores_per_process();
   o.local_refinements   = fe.local_refinements;
   o.refine_depth        = fe.refine_depth;
   o.work_directory      = dir;

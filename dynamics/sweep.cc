@@ -1,17 +1,15 @@
 #include "dynamics/sweep.h"
 
+#include "base/parallel.h"
 #include "base/spectrum.h"
 #include "dynamics/newmark_error.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <thread>
 
 namespace gearkit
 {
@@ -323,33 +321,11 @@ split_sweep(const SweepOptions &o, int blocks, int warmup)
 std::vector<std::vector<SweepPoint>>
 run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads)
 {
-  if (threads == 0)
-    threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, unsigned(tasks.size()));
   std::vector<std::vector<SweepPoint>> results(tasks.size());
-  std::vector<std::exception_ptr>      errors(tasks.size());
-  std::atomic<std::size_t>             next{0};
-  auto                                 work = [&] {
-    for (std::size_t i; (i = next++) < tasks.size();)
-      try
-        {
-          PairVector q = tasks[i].q, v = tasks[i].v;
-          results[i] = sweep(*tasks[i].model, q, v, tasks[i].options);
-        }
-      catch (...)
-        {
-          errors[i] = std::current_exception();
-        }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned k = 1; k < threads; ++k)
-    pool.emplace_back(work);
-  work();
-  for (std::thread &t : pool)
-    t.join();
-  for (const std::exception_ptr &e : errors)
-    if (e)
-      std::rethrow_exception(e);
+  parallel_for(tasks.size(), threads, [&](std::size_t i) {
+    PairVector q = tasks[i].q, v = tasks[i].v;
+    results[i] = sweep(*tasks[i].model, q, v, tasks[i].options);
+  });
   return results;
 }
 } // namespace gearkit

@@ -1,5 +1,7 @@
 #include "stiffness/elastic_segment.h"
 
+#include "base/parallel.h"
+
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -214,9 +216,15 @@ struct ElasticSegment::Impl
   /// normals): the traction a curved surface would carry, without the facets' kinks.
   static Tensor<1, 3>
   smooth_normal(const FaceNormals &face, const Point<3> &x);
-  /// The remainder load's quadratures, built once (their shape values are costly to set up).
-  mutable std::unique_ptr<FEValues<3>>     remainder_volume;
-  mutable std::unique_ptr<FEFaceValues<3>> remainder_face, remainder_near_face;
+  /// What one thread needs to assemble remainder loads: their quadratures (built once per
+  /// thread, their shape values are costly to set up) and a load vector over all dofs.
+  struct RemainderScratch
+  {
+    FEValues<3>     volume;
+    FEFaceValues<3> face, near_face;
+    Vector<double>  f;
+    explicit RemainderScratch(const Impl &m);
+  };
   /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
   /// then do not jump with where its edge falls between the Gauss points).
   std::unique_ptr<FEFaceValues<3>> fine_face_values;
@@ -267,9 +275,14 @@ struct ElasticSegment::Impl
                FullMatrix<double> &local) const;
   PETScWrappers::MPI::Vector
   assemble_loads(const std::vector<PatchLoad> &loads) const;
-  /// The load vector of the remainder w of a near-field load (see remainder_response).
-  PETScWrappers::MPI::Vector
-  assemble_remainder_load(const NearFieldLoad &load) const;
+  /// Refuses (InputError, on every process) a near-field load with bad data or whose cut-off
+  /// sphere reaches a held boundary. Collective.
+  void
+  check_near_field_loads(const std::vector<NearFieldLoad> &loads) const;
+  /// Adds this process's cells' part of the load vector of the remainder w of a near-field
+  /// load (see remainder_response) to scratch.f. Thread-safe (no MPI).
+  void
+  assemble_remainder_load(const NearFieldLoad &load, RemainderScratch &scratch) const;
   PETScWrappers::MPI::Vector
   solve(const PETScWrappers::MPI::Vector &rhs) const;
   /// Per probe: the owning rank's functional (dof indices, coefficients); empty elsewhere.
@@ -282,10 +295,12 @@ struct ElasticSegment::Impl
   evaluate(
       const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
       const PETScWrappers::MPI::Vector &u) const;
+  /// Sets columns 0 .. cols - 1 of the dense matrix B to the load vectors first .. first +
+  /// cols - 1 (B zero before, assembled after).
+  using BlockFill = std::function<void(std::size_t first, PetscInt cols, Mat B)>;
   /// D(j, i): functional j of the displacement under load vector i alone (n load vectors).
   Eigen::MatrixXd
-  responses(std::size_t                                                     n,
-            const std::function<PETScWrappers::MPI::Vector(std::size_t i)> &load_vector,
+  responses(std::size_t n, const BlockFill &fill,
             const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
                 &functionals) const;
 };
@@ -921,12 +936,33 @@ ElasticSegment::Impl::load_functionals(const std::vector<PatchLoad> &loads) cons
   return out;
 }
 
+namespace
+{
+/// Patch loads one after the other (their assembly is collective).
+std::function<void(std::size_t, PetscInt, Mat)>
+patch_columns(const std::function<PETScWrappers::MPI::Vector(std::size_t)> &load_vector)
+{
+  return [load_vector](std::size_t first, PetscInt cols, Mat B) {
+    for (PetscInt c = 0; c < cols; ++c)
+      {
+        const PETScWrappers::MPI::Vector f = load_vector(first + std::size_t(c));
+        Vec                              column;
+        petsc_check(MatDenseGetColumnVecWrite(B, c, &column), "MatDenseGetColumnVecWrite");
+        petsc_check(VecCopy(f, column), "VecCopy");
+        petsc_check(MatDenseRestoreColumnVecWrite(B, c, &column), "MatDenseRestoreColumnVecWrite");
+      }
+    petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  };
+}
+} // namespace
+
 Eigen::MatrixXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads,
                          const std::vector<Probe>     &probes) const
 {
   return impl->responses(
-      loads.size(), [&](std::size_t i) { return impl->assemble_loads({loads[i]}); },
+      loads.size(), patch_columns([&](std::size_t i) { return impl->assemble_loads({loads[i]}); }),
       impl->probe_functionals(probes));
 }
 
@@ -935,7 +971,7 @@ ElasticSegment::patch_response(const std::vector<PatchLoad> &loads,
                                const std::vector<PatchLoad> &measures) const
 {
   return impl->responses(
-      loads.size(), [&](std::size_t i) { return impl->assemble_loads({loads[i]}); },
+      loads.size(), patch_columns([&](std::size_t i) { return impl->assemble_loads({loads[i]}); }),
       impl->load_functionals(measures));
 }
 
@@ -943,9 +979,32 @@ Eigen::MatrixXd
 ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
                                    const std::vector<Probe>         &probes) const
 {
-  return impl->responses(
-      loads.size(), [&](std::size_t i) { return impl->assemble_remainder_load(loads[i]); },
-      impl->probe_functionals(probes));
+  const Impl &m = *impl;
+  m.check_near_field_loads(loads);
+  m.cache_ptr->get_locally_owned_cell_bounding_boxes_rtree(); // built here, read by threads
+  // A block's load vectors on threads (each its own quadratures and vector over all dofs),
+  // their entries then added to B (entries of other processes' dofs travel with the assembly).
+  const auto fill = [&](std::size_t first, PetscInt cols, Mat B) {
+    std::vector<std::vector<PetscInt>> rows(static_cast<std::size_t>(cols));
+    std::vector<std::vector<double>>   values(static_cast<std::size_t>(cols));
+    parallel_for(
+        std::size_t(cols), m.options.threads, [&] { return Impl::RemainderScratch(m); },
+        [&](Impl::RemainderScratch &scratch, std::size_t c) {
+          scratch.f = 0;
+          m.assemble_remainder_load(loads[first + c], scratch);
+          for (types::global_dof_index i = 0; i < scratch.f.size(); ++i)
+            if (scratch.f(i) != 0)
+              rows[c].push_back(PetscInt(i)), values[c].push_back(scratch.f(i));
+        });
+    for (PetscInt c = 0; c < cols; ++c)
+      petsc_check(MatSetValues(B, PetscInt(rows[std::size_t(c)].size()),
+                               rows[std::size_t(c)].data(), 1, &c, values[std::size_t(c)].data(),
+                               ADD_VALUES),
+                  "MatSetValues");
+    petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  };
+  return m.responses(loads.size(), fill, m.probe_functionals(probes));
 }
 
 ElasticSegment::Impl::FaceNormals
@@ -991,24 +1050,47 @@ ElasticSegment::Impl::smooth_normal(const FaceNormals &face, const Point<3> &x)
   return n / n.norm();
 }
 
-PETScWrappers::MPI::Vector
-ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
+ElasticSegment::Impl::RemainderScratch::RemainderScratch(const Impl &m)
+    : volume(m.mapping, m.fe, QGauss<3>(m.options.degree + 2),
+             update_values | update_quadrature_points | update_JxW_values)
+    , face(m.mapping, m.fe, QGauss<2>(m.options.degree + 2),
+           update_values | update_quadrature_points | update_JxW_values)
+    , near_face(m.mapping, m.fe, QIterated<2>(QGauss<1>(m.options.degree + 1), 8),
+                update_values | update_quadrature_points | update_JxW_values)
+    , f(m.dofs.n_dofs())
 {
-  if (!(load.inner > 0 && load.outer > load.inner) || !load.point.allFinite() ||
-      !(std::abs(load.direction.norm() - 1) < 1e-9))
-    throw InputError("elastic segment: a near-field load needs 0 < inner < outer radius, a "
-                     "finite point and a unit direction");
-  const Point<3> x0 = point(load.point);
+}
+
+void
+ElasticSegment::Impl::check_near_field_loads(const std::vector<NearFieldLoad> &loads) const
+{
+  for (const NearFieldLoad &load : loads)
+    if (!(load.inner > 0 && load.outer > load.inner) || !load.point.allFinite() ||
+        !(std::abs(load.direction.norm() - 1) < 1e-9))
+      throw InputError("elastic segment: a near-field load needs 0 < inner < outer radius, a "
+                       "finite point and a unit direction");
   // on every process together (a throw on one alone would leave the others waiting)
-  if (const double held_at = Utilities::MPI::min(local_distance_to_held(x0), comm);
-      held_at < load.outer)
-    {
-      std::ostringstream msg;
-      msg << "elastic segment: the near field of the load at (" << load.point.transpose() * 1e3
-          << ") mm reaches a held boundary " << held_at * 1e3 << " mm away (cut-off radius "
-          << load.outer * 1e3 << " mm); expected a smaller radius";
-      throw InputError(msg.str());
-    }
+  std::vector<double> held_at(loads.size());
+  for (std::size_t i = 0; i < loads.size(); ++i)
+    held_at[i] = local_distance_to_held(point(loads[i].point));
+  Utilities::MPI::min(held_at, comm, held_at);
+  for (std::size_t i = 0; i < loads.size(); ++i)
+    if (held_at[i] < loads[i].outer)
+      {
+        std::ostringstream msg;
+        msg << "elastic segment: the near field of the load at ("
+            << loads[i].point.transpose() * 1e3 << ") mm reaches a held boundary "
+            << held_at[i] * 1e3 << " mm away (cut-off radius " << loads[i].outer * 1e3
+            << " mm); expected a smaller radius";
+        throw InputError(msg.str());
+      }
+}
+
+void
+ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
+                                              RemainderScratch    &scratch) const
+{
+  const Point<3>  x0       = point(load.point);
   const Material &material = options.material;
   auto            near     = [&](const Point<3> &x, const Tensor<1, 3> &normal) {
     const Vec3 y(x[0], x[1], x[2]);
@@ -1016,26 +1098,13 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
                                              radial_cutoff(y, load.point, load.inner, load.outer),
                                              Vec3(normal[0], normal[1], normal[2]), material);
   };
-  PETScWrappers::MPI::Vector           f(owned, comm);
   const unsigned                       n = fe.n_dofs_per_cell();
   Vector<double>                       local(n);
   std::vector<types::global_dof_index> indices(n);
   // the body force lives in the shell between the radii; the traction on every boundary face
   // within the outer radius, on faces near the force with a subdivided rule (the residual
   // traction of a curved or tilted surface grows like 1/r toward the force)
-  if (!remainder_volume)
-    {
-      remainder_volume = std::make_unique<FEValues<3>>(mapping, fe, QGauss<3>(options.degree + 2),
-                                                       update_values | update_quadrature_points |
-                                                           update_JxW_values);
-      remainder_face = std::make_unique<FEFaceValues<3>>(mapping, fe, QGauss<2>(options.degree + 2),
-                                                         update_values | update_quadrature_points |
-                                                             update_JxW_values);
-      remainder_near_face = std::make_unique<FEFaceValues<3>>(
-          mapping, fe, QIterated<2>(QGauss<1>(options.degree + 1), 8),
-          update_values | update_quadrature_points | update_JxW_values);
-    }
-  FEValues<3> &values = *remainder_volume;
+  FEValues<3> &values = scratch.volume;
   // the cells whose bounding boxes meet the cube about the outer sphere
   Point<3> low = x0, high = x0;
   for (unsigned d = 0; d < 3; ++d)
@@ -1069,7 +1138,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
           {
             const bool close =
                 cell->face(face)->center().distance(x0) < 2 * cell->face(face)->diameter();
-            FEFaceValues<3>  &v       = close ? *remainder_near_face : *remainder_face;
+            FEFaceValues<3>  &v       = close ? scratch.near_face : scratch.face;
             const FaceNormals normals = face_normals(cell, face);
             v.reinit(cell, face);
             for (unsigned q = 0; q < v.n_quadrature_points; ++q)
@@ -1085,15 +1154,13 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load) const
               }
           }
       cell->get_dof_indices(indices);
-      constraints.distribute_local_to_global(local, indices, f);
+      constraints.distribute_local_to_global(local, indices, scratch.f);
     }
-  f.compress(VectorOperation::add);
-  return f;
 }
 
 Eigen::MatrixXd
 ElasticSegment::Impl::responses(
-    std::size_t n_loads, const std::function<PETScWrappers::MPI::Vector(std::size_t)> &load_vector,
+    std::size_t n_loads, const BlockFill &fill,
     const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
         &functionals) const
 {
@@ -1113,17 +1180,7 @@ ElasticSegment::Impl::responses(
       petsc_check(
           MatCreateDense(m.comm, local, PETSC_DECIDE, PetscInt(m.dofs.n_dofs()), cols, nullptr, &B),
           "MatCreateDense");
-      for (PetscInt c = 0; c < cols; ++c)
-        {
-          const PETScWrappers::MPI::Vector f = load_vector(first + c);
-          Vec                              column;
-          petsc_check(MatDenseGetColumnVecWrite(B, c, &column), "MatDenseGetColumnVecWrite");
-          petsc_check(VecCopy(f, column), "VecCopy");
-          petsc_check(MatDenseRestoreColumnVecWrite(B, c, &column),
-                      "MatDenseRestoreColumnVecWrite");
-        }
-      petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-      petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+      fill(first, cols, B);
       petsc_check(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X), "MatDuplicate");
       if (m.factor)
         petsc_check(MatMatSolve(m.factor, B, X), "MatMatSolve");

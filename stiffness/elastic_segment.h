@@ -46,6 +46,9 @@ struct ElasticSegmentOptions
   /// point between its parents: onto the exact surface the mesh's facets approximate. Empty:
   /// between its parents (on the facets).
   std::function<Vec3(int boundary, const Vec3 &)> boundary_surface;
+  /// Threads that assemble the remainder loads (remainder_response); 0: as many as the
+  /// hardware runs.
+  unsigned threads = 0;
   /// Memory the direct factorisation may take on each machine [bytes]; 0: what the machine
   /// has available now (MemAvailable). Before factorising, MUMPS's analysis estimates its need
   /// (per process, times the processes on the machine); a body that would not fit is refused

@@ -1,13 +1,11 @@
 #include "stiffness/loaded_contact.h"
 
+#include "base/parallel.h"
 #include "stiffness/contact_solver.h"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 namespace gearkit
 {
@@ -176,46 +174,19 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   for (const TcaPosition &p : positions)
     for (std::size_t s = 0; s < c.slots; ++s)
       c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
-  // Every (torque, position) on its own: a few threads take them in turn.
+  // Every (torque, position) on its own, on a few threads.
   std::vector<std::vector<LoadedPosition>> results(
       static_cast<std::size_t>(m), std::vector<LoadedPosition>(static_cast<std::size_t>(n)));
-  std::atomic<int>   next{0};
-  std::mutex         guard; // the progress callback and the first failure
-  std::exception_ptr failure;
-  const auto         work = [&] {
-    for (int job = next++; job < m * n; job = next++)
+  std::mutex progress;
+  parallel_for(std::size_t(m * n), lo.threads, [&](std::size_t job) {
+    results[job / std::size_t(n)][job % std::size_t(n)] = loaded_contact(
+        t, positions[job % std::size_t(n)], torques[job / std::size_t(n)], lo, sp, sg);
+    if (step)
       {
-        try
-          {
-            results[std::size_t(job / n)][std::size_t(job % n)] = loaded_contact(
-                        t, positions[std::size_t(job % n)], torques[std::size_t(job / n)], lo, sp, sg);
-          }
-        catch (...)
-          {
-            const std::lock_guard<std::mutex> lock(guard);
-            if (!failure)
-              failure = std::current_exception();
-            next = m * n;
-            return;
-          }
-        if (step)
-          {
-            const std::lock_guard<std::mutex> lock(guard);
-            step();
-          }
+        const std::lock_guard<std::mutex> lock(progress);
+        step();
       }
-  };
-  const unsigned threads =
-      std::min(unsigned(m * n),
-               lo.threads > 0 ? lo.threads : std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> helpers;
-  for (unsigned h = 1; h < threads; ++h)
-    helpers.emplace_back(work);
-  work();
-  for (std::thread &h : helpers)
-    h.join();
-  if (failure)
-    std::rethrow_exception(failure);
+  });
   for (const auto &torque : results)
     for (const LoadedPosition &r : torque)
       c.cells = std::max(c.cells, r.cells.size());

@@ -310,6 +310,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   eo.degree       = o.degree;
   eo.material     = o.material;
   eo.communicator = o.communicator;
+  eo.threads      = o.threads;
   eo.clamped      = {boundary::bore};
   if (o.hold_cuts)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});

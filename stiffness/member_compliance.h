@@ -46,6 +46,7 @@ struct MemberComplianceOptions
   /// The processes that share the finite elements: the first meshes the segment (gmsh), all
   /// solve it together; every process receives the whole table.
   MPI_Comm communicator = MPI_COMM_WORLD;
+  unsigned threads      = 0; ///< threads per process for the unit loads; 0: the hardware's
 };
 
 struct MemberComplianceInfo

@@ -49,7 +49,7 @@ TEST(ElasticSegment, PatchTestUniformTension)
       const PatchLoad load{
           Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(sigma * L.y() * L.z(), 0, 0), 1.0, {2}};
       std::vector<Probe> probes;
-      for (const Vec3 x : {Vec3(3e-3, 2e-3, 1e-3), Vec3(17e-3, 9e-3, 7.5e-3), L})
+      for (const Vec3 &x : {Vec3(3e-3, 2e-3, 1e-3), Vec3(17e-3, 9e-3, 7.5e-3), L})
         for (int c = 0; c < 3; ++c)
           probes.push_back({x, Vec3::Unit(c)});
       Vec3                  reaction;
@@ -90,7 +90,7 @@ TEST(ElasticSegment, PatchTestHoldsAcrossLocalRefinement)
         const PatchLoad load{
             Vec3(L.x(), L.y() / 2, L.z() / 2), Vec3(sigma * L.y() * L.z(), 0, 0), 1.0, {2}};
         std::vector<Probe> probes;
-        for (const Vec3 x : {Vec3(14e-3, 2.6e-3, 3.1e-3), Vec3(16.2e-3, 9e-3, 7.5e-3), L})
+        for (const Vec3 &x : {Vec3(14e-3, 2.6e-3, 3.1e-3), Vec3(16.2e-3, 9e-3, 7.5e-3), L})
           for (int c = 0; c < 3; ++c)
             probes.push_back({x, Vec3::Unit(c)});
         const Eigen::VectorXd u = body.response({load}, probes, nullptr);

@@ -1,0 +1,75 @@
+// Independent jobs on a few threads: speed sweeps, the loaded positions of a mesh cycle, the
+// unit loads of a compliance table. Each thread takes the next job in turn; the results do not
+// depend on the number of threads (each job writes only its own output).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace gearkit
+{
+/// Runs job(state, i) for i = 0 .. n - 1 on `threads` threads (0: as many as the hardware
+/// runs; never more than n), the calling thread among them. Each thread first makes its own
+/// state with make_state() (scratch it reuses over its jobs). After a job throws, no further job
+/// starts; once all threads stop, the exception of the lowest failed job is rethrown.
+template <class MakeState, class Job>
+void
+parallel_for(std::size_t n, unsigned threads, const MakeState &make_state, const Job &job)
+{
+  if (threads == 0)
+    threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = unsigned(std::min<std::size_t>(threads, n));
+  std::atomic<std::size_t> next{0};
+  std::mutex               guard;
+  std::exception_ptr       failure;
+  std::size_t              failed = n; // the failed job (n: making a state)
+  const auto               fail   = [&](std::size_t i) {
+    const std::lock_guard<std::mutex> lock(guard);
+    if (!failure || i < failed)
+      failure = std::current_exception(), failed = i;
+    next = n;
+  };
+  const auto work = [&] {
+    try
+      {
+        auto state = make_state();
+        for (std::size_t i = next++; i < n; i = next++)
+          try
+            {
+              job(state, i);
+            }
+          catch (...)
+            {
+              fail(i);
+            }
+      }
+    catch (...)
+      {
+        fail(n);
+      }
+  };
+  std::vector<std::thread> helpers;
+  for (unsigned t = 1; t < threads; ++t)
+    helpers.emplace_back(work);
+  if (n > 0)
+    work();
+  for (std::thread &t : helpers)
+    t.join();
+  if (failure)
+    std::rethrow_exception(failure);
+}
+
+/// The same without per-thread state: job(i).
+template <class Job>
+void
+parallel_for(std::size_t n, unsigned threads, const Job &job)
+{
+  parallel_for(
+      n, threads, [] { return 0; }, [&](int, std::size_t i) { job(i); });
+}
+} // namespace gearkit

@@ -1,8 +1,9 @@
 // The structural compliance table of a member from finite elements: a tooth segment (gmsh)
-// around the loaded teeth (bore and radial cuts held), deal.II/PETSc with one
-// factorisation, unit normal patch loads at the flank grid points, responses a few elements
-// below the flank (where the elements resolve the Boussinesq field, but at most half the chord
-// through the tooth) with the half-space part taken out (flank_compliance.h).
+// around the loaded teeth (bore and radial cuts held; optionally meshed coarser and refined by
+// deal.II near the loaded flanks), deal.II/PETSc with one factorisation, unit normal loads at
+// the flank grid points: by default point forces whose near field is carried analytically,
+// the elements solving the smooth remainder, read at the flank; optionally patch loads read a
+// few elements below the flank with the half-space part above taken out (flank_compliance.h).
 #pragma once
 
 #include "meshes/bevel_segment.h"

@@ -1504,3 +1504,52 @@ TEST_F(DriverTest, MeshStiffnessErrorEstimateIsTheChangeToCoarserElementsAndCell
     }
   EXPECT_GT(largest, 1e-4); // a real estimate, not zeros
 }
+
+// With local refinements the error estimate's coarse tables are the same gmsh segment refined
+// once less: the scene at twice the flank size without local refinement gives them exactly.
+TEST_F(DriverTest, LocallyRefinedTablesEstimateOnTheSameSegmentRefinedOnceLess)
+{
+  auto variant = [&](const std::string &name, const std::string &fe) {
+    std::string text = std::regex_replace(fe_train_scene, std::regex("set name    = fe_train"),
+                                          "set name    = " + name);
+    text = std::regex_replace(text, std::regex("set outputs = train"), "set outputs = stiffness");
+    text = std::regex_replace(text, std::regex("  set trains  = t\n"), "");
+    text = text.substr(0, text.find("subsection Train"));
+    text = std::regex_replace(text, std::regex("set flank element size = 0.5"), fe);
+    return scene(text, name + ".prm");
+  };
+  ASSERT_EQ(
+      run({variant("refined", "set flank element size = 0.4\n    set local refinements = 1")}), 0)
+      << err.str();
+  ASSERT_EQ(run({variant("base", "set flank element size = 0.8\n    set error estimate = false")}),
+            0)
+      << err.str();
+  auto read = [&](const std::string &name, const std::string &dataset) {
+    const H5File f = H5File::open((dir / ("out/" + name + "/results.h5")).string());
+    return f.root().read_doubles(dataset);
+  };
+  EXPECT_EQ(read("refined", "compliance/fzg/coarse/coarsening"), std::vector<double>{2.0});
+  for (const std::string member : {"pinion", "gear"})
+    {
+      const auto coarse = read("refined", "compliance/fzg/coarse/" + member + "/compliance");
+      const auto base   = read("base", "compliance/fzg/" + member + "/compliance");
+      const auto fine   = read("refined", "compliance/fzg/" + member + "/compliance");
+      ASSERT_EQ(coarse.size(), base.size());
+      double largest = 0, change = 0;
+      for (std::size_t i = 0; i < base.size(); ++i)
+        largest = std::max(largest, std::abs(base[i])),
+        change  = std::max(change, std::abs(fine[i] - base[i]));
+      for (std::size_t i = 0; i < base.size(); ++i)
+        EXPECT_NEAR(coarse[i], base[i], 1e-12 * largest) << member << " " << i;
+      EXPECT_GT(change, 1e-3 * largest) << member; // the refinement changes the table
+      EXPECT_LT(read("refined", "compliance/fzg/" + member + "/dofs")[0] /
+                    read("base", "compliance/fzg/" + member + "/dofs")[0],
+                8)
+          << member; // refined near the loaded flanks only
+    }
+  const auto fine     = read("refined", "stiffness/fzg/mesh_stiffness"),
+             base     = read("base", "stiffness/fzg/mesh_stiffness"),
+             elements = read("refined", "stiffness/fzg/error_estimate/mesh_stiffness_elements");
+  for (std::size_t i = 0; i < fine.size(); ++i)
+    EXPECT_NEAR(elements[i], std::abs(fine[i] - base[i]), 1e-9 * fine[i]) << i;
+}

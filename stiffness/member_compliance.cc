@@ -298,11 +298,16 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   spec.side  = o.side;
   spec.n_u = o.n_u, spec.n_v = o.n_v;
   spec.graded = o.graded_grid;
-  for (int t : spec.teeth)
-    if (std::find(segment.member_teeth.begin(), segment.member_teeth.end(), t) ==
-        segment.member_teeth.end())
-      throw InputError("member compliance: loaded tooth " + std::to_string(t) +
+  // the loaded flank of a member tooth: its boundary id in the segment mesh
+  const auto loaded_flank = [&](int tooth) {
+    const auto at = std::find(segment.member_teeth.begin(), segment.member_teeth.end(), tooth);
+    if (at == segment.member_teeth.end())
+      throw InputError("member compliance: loaded tooth " + std::to_string(tooth) +
                        " is not in the finite-element segment of " + member_name);
+    return boundary::flank(int(at - segment.member_teeth.begin()), o.side);
+  };
+  for (int t : spec.teeth)
+    loaded_flank(t);
   FlankCompliance table(flanks, spec);
 
   t0 = std::chrono::steady_clock::now();
@@ -317,10 +322,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   if (o.local_refinements > 0)
     {
       for (int t : spec.teeth)
-        eo.refine_boundaries.insert(boundary::flank(
-            int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(), t) -
-                segment.member_teeth.begin()),
-            o.side));
+        eo.refine_boundaries.insert(loaded_flank(t));
       eo.local_refinements = o.local_refinements;
       eo.refine_distance   = o.refine_depth * std::ldexp(h, int(o.local_refinements));
       eo.boundary_surface  = [&](int id, const Vec3 &x) {
@@ -339,12 +341,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
                                     const std::vector<std::pair<Vec3, Vec3>> &responses) {
     std::vector<PatchLoad> patches;
     for (const FlankLoad &l : loads)
-      {
-        const int i =
-            int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(), l.tooth) -
-                segment.member_teeth.begin());
-        patches.push_back({l.point, l.direction, out.patch_radius, {boundary::flank(i, o.side)}});
-      }
+      patches.push_back({l.point, l.direction, out.patch_radius, {loaded_flank(l.tooth)}});
     std::vector<Probe> probes;
     for (const auto &[x, d] : responses)
       probes.push_back({x, d});

@@ -264,6 +264,11 @@ struct ElasticSegment::Impl
   /// The six rigid-body motions as the near-null space of K (for smoothed aggregation AMG).
   void
   set_rigid_body_near_null_space();
+  /// Throws InputError when the sparsity pattern, the matrix and the direct solver's copy of
+  /// it (about 40 bytes per nonzero, the nonzeros estimated from the element's couplings) would
+  /// not fit in the memory available on some machine: refused before they are built.
+  void
+  check_assembly_fits(const std::string &file) const;
   /// The MUMPS Cholesky factor of K; throws InputError when MUMPS's analysis estimates more
   /// memory for it on some machine than the machine has available (options.memory_available,
   /// else MemAvailable), before factorising.
@@ -389,6 +394,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   m.dofs.reinit(m.tria);
   m.dofs.distribute_dofs(m.fe);
   m.owned = m.dofs.locally_owned_dofs();
+  m.check_assembly_fits(file);
   DoFTools::extract_locally_relevant_dofs(m.dofs, m.relevant);
   m.constraints.reinit(m.relevant);
   DoFTools::make_hanging_node_constraints(m.dofs, m.constraints);
@@ -532,6 +538,52 @@ memory_available_now()
 }
 } // namespace
 
+namespace
+{
+/// The bytes that `need` (this process's) add up to over the processes on each machine, and
+/// whether every machine has them (`have`: its available memory; <= 0: unknown, fits).
+std::pair<double, bool>
+machine_need(double need, double have, MPI_Comm comm)
+{
+  MPI_Comm machine;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+  const double here = Utilities::MPI::sum(need, machine);
+  MPI_Comm_free(&machine);
+  const bool fits = !(have > 0) || here <= have;
+  return {here, Utilities::MPI::min(fits ? 1 : 0, comm) == 1};
+}
+} // namespace
+
+void
+ElasticSegment::Impl::check_assembly_fits(const std::string &file) const
+{
+  // A node of a hexahedral FE_Q(p) mesh couples with the nodes of the elements around it:
+  // (2p + 1)^3 for a vertex, (2p + 1)^2 (p + 1) for an edge node, (2p + 1) (p + 1)^2 for a face
+  // node and (p + 1)^3 for an interior one; per element 1, 3 (p - 1), 3 (p - 1)^2 and (p - 1)^3
+  // of them (64 couplings per node on average for Q2).
+  const double p = options.degree, a = 2 * p + 1, b = p + 1;
+  const double per_node = (a * a * a + 3 * (p - 1) * a * a * b + 3 * (p - 1) * (p - 1) * a * b * b +
+                           (p - 1) * (p - 1) * (p - 1) * b * b * b) /
+                          (p * p * p);
+  const double bytes_per_nonzero = 40; // pattern, PETSc's matrix, MUMPS's copy
+  const double need              = double(owned.n_elements()) * 3 * per_node * bytes_per_nonzero;
+  const double have =
+      options.memory_available > 0 ? options.memory_available : memory_available_now();
+  const auto [here, fits] = machine_need(need, have, comm);
+  if (!fits)
+    {
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "elastic segment: " << file << " has " << dofs.n_dofs()
+          << " degrees of freedom; assembling its stiffness matrix needs about "
+          << Utilities::MPI::max(here, comm) / 1e9 << " GB on a machine with "
+          << Utilities::MPI::min(have, comm) / 1e9
+          << " GB available. Use coarser elements (fewer refinements, larger flank elements) "
+             "or more machines under mpirun";
+      throw InputError(msg.str());
+    }
+}
+
 void
 ElasticSegment::Impl::factorise(const std::string &file)
 {
@@ -548,19 +600,13 @@ ElasticSegment::Impl::factorise(const std::string &file)
   petsc_check(MatMumpsGetInfog(factor, 16, &most), "MatMumpsGetInfog");
   petsc_check(MatMumpsGetInfog(factor, 17, &total), "MatMumpsGetInfog");
   // per machine: its processes (at most the largest's each) against what it has
-  MPI_Comm machine;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
-  int here = 1;
-  MPI_Comm_size(machine, &here);
-  MPI_Comm_free(&machine);
-  const double need = double(most) * 1e6 * here;
   const double have =
       options.memory_available > 0 ? options.memory_available : memory_available_now();
-  const bool fits = !(have > 0) || need <= have;
-  if (Utilities::MPI::min(fits ? 1 : 0, comm) == 0)
+  const auto [need, fits] = machine_need(double(most) * 1e6, have, comm);
+  if (!fits)
     {
-      const double       short_need = Utilities::MPI::max(fits ? 0.0 : need, comm);
-      const double       short_have = Utilities::MPI::min(fits ? HUGE_VAL : have, comm);
+      const double       short_need = Utilities::MPI::max(need, comm);
+      const double       short_have = Utilities::MPI::min(have, comm);
       std::ostringstream msg;
       msg.precision(3);
       msg << "elastic segment: " << file << " has " << dofs.n_dofs()

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <petscsys.h>
 
 using namespace gearkit;
 
@@ -307,25 +308,45 @@ TEST(ElasticSegment, BadInputIsRefused)
     }
 }
 
-TEST(ElasticSegment, AFactorisationThatWouldNotFitIsRefusedBeforeItStarts)
+TEST(ElasticSegment, ABodyThatWouldNotFitIsRefusedBeforeItIsBuilt)
 {
-  // MUMPS's analysis sizes the factorisation first: with less memory than it needs the body is
-  // refused with the estimate (never killed half way); with enough it is factorised and solves
+  // Two checks, each with its estimate in the message (never killed half way): the matrix
+  // (about 40 bytes per nonzero) before it is built, then MUMPS's analysis sizes the
+  // factorisation before it starts; with enough memory the body is factorised and solves.
   ElasticSegmentOptions o;
   o.clamped = {5}, o.degree = 2;
-  const std::string mesh = box("memory", Vec3(20e-3, 20e-3, 10e-3), 6, 6, 3);
-  o.memory_available     = 1e6; // 1 MB
-  try
-    {
-      ElasticSegment body(mesh, o);
-      ADD_FAILURE() << "a factorisation larger than 1 MB was started";
-    }
-  catch (const InputError &e)
-    {
-      const std::string what = e.what();
-      for (const char *part : {"degrees of freedom", "needs about", "GB available", "gamg"})
-        EXPECT_NE(what.find(part), std::string::npos) << what;
-    }
+  const std::string mesh    = box("memory", Vec3(20e-3, 20e-3, 10e-3), 6, 6, 3);
+  auto              refusal = [&](double memory) {
+    o.memory_available = memory;
+    try
+      {
+        ElasticSegment body(mesh, o);
+      }
+    catch (const InputError &e)
+      {
+        return std::string(e.what());
+      }
+    return std::string();
+  };
+  // 3549 dofs, 64 couplings per node: 3549 * 192 * 40 bytes = 27.3 MB for the matrix
+  const std::string matrix = refusal(27e6);
+  for (const char *part :
+       {"3549 degrees of freedom", "assembling", "needs about 0.0273 GB", "0.027 GB available"})
+    EXPECT_NE(matrix.find(part), std::string::npos) << matrix;
+  // the matrix fits in 28 MB (on one process the factorisation does too; MUMPS on two
+  // processes needs twice its largest process's share, 44 MB, and says so)
+  const std::string enough = refusal(28e6);
+  EXPECT_EQ(enough.find("assembling"), std::string::npos) << enough;
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1)
+    EXPECT_EQ(enough, "");
+  // MUMPS asked for a hundred times its working space (ICNTL(14), run-time option): its
+  // analysis now sizes the factorisation above the memory, which the matrix still fits
+  PetscOptionsSetValue(nullptr, "-gearkit_mat_mumps_icntl_14", "10000");
+  const std::string factor = refusal(28e6);
+  PetscOptionsClearValue(nullptr, "-gearkit_mat_mumps_icntl_14");
+  for (const char *part :
+       {"degrees of freedom", "factorisation (MUMPS) needs about", "GB available", "gamg"})
+    EXPECT_NE(factor.find(part), std::string::npos) << factor;
   o.memory_available = 0; // the machine's
   const ElasticSegment body(mesh, o);
   EXPECT_GT(body.dofs(), 0u);

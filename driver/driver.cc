@@ -194,9 +194,9 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
 {
   // Under mpirun every process parses the same arguments and meets the same errors: only the
   // first one speaks.
-  std::ostream silent(nullptr);
-  const bool   first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   set_blas_threads();
+  std::ostream  silent(nullptr);
+  const bool    first       = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   std::ostream &out         = first ? out_0 : silent;
   std::ostream &err         = first ? err_0 : silent;
   std::string   output_root = "out", scene_file;

@@ -50,6 +50,7 @@ FeScene::declare(ParameterHandler &prm)
   prm.declare_entry("error estimate", "true", Patterns::Bool(),
                     "Also compute the tables on a mesh of twice the element sizes at the flanks, "
                     "fillets and other flanks (1.5 or 1.25 times where gmsh cannot mesh that; "
+                    "with local refinements the same segment refined once less; "
                     "about a quarter more time) and write "
                     "each K_m's and e_L's estimated discretisation error: the change to that "
                     "mesh, |K(h) - K(c h)| / (c - 1), plus the change to half the contact cells "

@@ -224,11 +224,15 @@ stage_key(const Scene &scene, const std::string &stage)
 unsigned
 cores_per_process()
 {
-  MPI_Comm machine;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
-  int here = 1;
-  MPI_Comm_size(machine, &here);
-  MPI_Comm_free(&machine);
-  return std::max(1u, std::thread::hardware_concurrency() / unsigned(std::max(1, here)));
+  // counted once (collectively: gearkit_main asks first, on every process)
+  static const unsigned cores = [] {
+    MPI_Comm machine;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+    int here = 1;
+    MPI_Comm_size(machine, &here);
+    MPI_Comm_free(&machine);
+    return std::max(1u, std::thread::hardware_concurrency() / unsigned(std::max(1, here)));
+  }();
+  return cores;
 }
 } // namespace gearkit

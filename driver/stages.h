@@ -33,7 +33,8 @@ private:
 };
 
 /// The cores of this machine per process of MPI_COMM_WORLD running on it (at least 1): the
-/// threads a process may use without crowding the others.
+/// threads a process may use without crowding the others. The first call is collective (every
+/// process makes it: gearkit_main does); later ones return the count.
 unsigned
 cores_per_process();
 

@@ -1266,6 +1266,22 @@ subsection Train
 end
 )";
 
+namespace
+{
+/// fe_train_scene as a scene of its own name that stops at the stiffness stage, the line
+/// "set flank element size = 0.5" replaced by `fe` (finite-element settings).
+std::string
+fe_stiffness_scene(const std::string &name, const std::string &fe)
+{
+  std::string text = std::regex_replace(fe_train_scene, std::regex("set name    = fe_train"),
+                                        "set name    = " + name);
+  text = std::regex_replace(text, std::regex("set outputs = train"), "set outputs = stiffness");
+  text = std::regex_replace(text, std::regex("  set trains  = t\n"), "");
+  text = text.substr(0, text.find("subsection Train"));
+  return std::regex_replace(text, std::regex("set flank element size = 0.5"), fe);
+}
+} // namespace
+
 TEST_F(DriverTest, TrainOnTheFiniteElementMeshStiffnessHasItsLoadedTransmissionError)
 {
   const std::string file   = scene(fe_train_scene);
@@ -1460,16 +1476,11 @@ TEST_F(DriverTest, BadTrainsAreRefusedBeforeAnyStage)
 TEST_F(DriverTest, MeshStiffnessErrorEstimateIsTheChangeToCoarserElementsAndCells)
 {
   auto variant = [&](const std::string &name, const std::string &fe, const std::string &cells) {
-    std::string text = std::regex_replace(fe_train_scene, std::regex("set name    = fe_train"),
-                                          "set name    = " + name);
-    text = std::regex_replace(text, std::regex("set outputs = train"), "set outputs = stiffness");
-    text = std::regex_replace(text, std::regex("  set trains  = t\n"), "");
-    text = text.substr(0, text.find("subsection Train"));
-    text = std::regex_replace(text, std::regex("set flank element size = 0.5"), fe);
-    text = std::regex_replace(text,
-                              std::regex("set cells across             = 9\n    set "
-                                         "cells along              = 12"),
-                              cells);
+    const std::string text =
+        std::regex_replace(fe_stiffness_scene(name, fe),
+                           std::regex("set cells across             = 9\n    set "
+                                      "cells along              = 12"),
+                           cells);
     return scene(text, name + ".prm");
   };
   const std::string cells = "set cells across = 9\n    set cells along = 12";
@@ -1510,13 +1521,7 @@ TEST_F(DriverTest, MeshStiffnessErrorEstimateIsTheChangeToCoarserElementsAndCell
 TEST_F(DriverTest, LocallyRefinedTablesEstimateOnTheSameSegmentRefinedOnceLess)
 {
   auto variant = [&](const std::string &name, const std::string &fe) {
-    std::string text = std::regex_replace(fe_train_scene, std::regex("set name    = fe_train"),
-                                          "set name    = " + name);
-    text = std::regex_replace(text, std::regex("set outputs = train"), "set outputs = stiffness");
-    text = std::regex_replace(text, std::regex("  set trains  = t\n"), "");
-    text = text.substr(0, text.find("subsection Train"));
-    text = std::regex_replace(text, std::regex("set flank element size = 0.5"), fe);
-    return scene(text, name + ".prm");
+    return scene(fe_stiffness_scene(name, fe), name + ".prm");
   };
   ASSERT_EQ(
       run({variant("refined", "set flank element size = 0.4\n    set local refinements = 1")}), 0)

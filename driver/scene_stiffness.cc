@@ -18,6 +18,12 @@ FeScene::declare(ParameterHandler &prm)
   prm.declare_entry("hold cuts", "true", Patterns::Bool(),
                     "Hold the segment's radial cut faces (true) or leave them free (false: "
                     "softer than the whole gear; held and free bracket it).");
+  prm.declare_entry("whole gears", "false", Patterns::Bool(),
+                    "Model each member whole: all teeth on the rim, the bore held, no cuts "
+                    "(spur and helical pairs). The teeth that carry load over the mesh cycle get "
+                    "the flank sizes, the others the far size; segment teeth and hold cuts are "
+                    "then not used. The support the segments approximate (bench/README.md: "
+                    "segment -> whole gear).");
   prm.declare_entry("flank element size", "0.25", Patterns::Double(0.02, 2),
                     "Element size at the flanks and fillets / m_n.");
   prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
@@ -82,6 +88,7 @@ FeScene::parse(ParameterHandler &prm)
 {
   segment_teeth       = prm.get_integer("segment teeth");
   hold_cuts           = prm.get_bool("hold cuts");
+  whole_gears         = prm.get_bool("whole gears");
   flank_size          = prm.get_double("flank element size");
   far_size            = prm.get_double("far element size");
   other_size          = prm.get_double("other element size");
@@ -117,6 +124,10 @@ FeScene::check(const PairScene &pair) const
   if (segment_teeth % 2 == 0)
     throw InputError(where + std::to_string(segment_teeth) +
                      " is not allowed; expected an odd number");
+  if (whole_gears && pair.type != PairType::involute)
+    throw InputError("Finite elements/" + pair.name +
+                     "/whole gears = true is not allowed for this pair; whole gears are meshed "
+                     "for spur and helical pairs (spiral bevel pairs: segments)");
   const int z = std::min(pair_teeth(pair).first, pair_teeth(pair).second);
   if (segment_teeth > z)
     throw InputError(where + std::to_string(segment_teeth) +
@@ -141,9 +152,9 @@ LoadedScene::declare(ParameterHandler &prm)
                     "the largest elastic approach.");
   prm.declare_entry("reference positions", "", Patterns::List(Patterns::Integer(0), 0, 1000),
                     "Positions of the mesh cycle (0 = the first) solved again in reference mode "
-                    "(spur pairs: both members meshed for the position, finite elements alone, "
-                    "minutes per position), with VTU files of displacement and stress in "
-                    "<output>/vtu/.");
+                    "(both members meshed for the position and refined about its contact "
+                    "cells, finite elements alone, minutes per position), with VTU files of "
+                    "displacement and stress in <output>/vtu/.");
   prm.declare_entry("reference elements per cell", "0.5", Patterns::Double(0.1, 4),
                     "Reference mode: element size at the contact = cell width / this.");
   prm.declare_entry("measured flanks", "false", Patterns::Bool(),
@@ -173,11 +184,6 @@ LoadedScene::check(const PairScene &pair, const MeasuredScene &measured_flanks) 
       throw InputError(where + "reference positions: " + std::to_string(i) +
                        " is not a position of the mesh cycle (allowed: 0 to " +
                        std::to_string(positions - 1) + ")");
-  if (!reference_positions.empty() &&
-      (pair.type != PairType::involute || pair.pinion.helix_angle != 0))
-    throw InputError(where + "reference positions: the reference mode (both members meshed per "
-                             "position) handles spur pairs; leave it empty for helical and "
-                             "spiral bevel pairs");
   if (measured && measured_flanks.source == MeasuredSource::none)
     throw InputError(where + "measured flanks = true needs measured flanks: set Measured flanks/" +
                      pair.name + "/source");

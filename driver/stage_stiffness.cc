@@ -37,7 +37,8 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
                const SegmentChoice &segment, const std::string &dir)
 {
   MemberComplianceOptions o;
-  o.mesh.teeth         = std::max(fe.segment_teeth, segment.teeth);
+  o.mesh.teeth         = fe.whole_gears ? z : std::max(fe.segment_teeth, segment.teeth);
+  o.mesh.fine_teeth    = fe.whole_gears ? segment.teeth : 0;
   o.mesh.central_tooth = segment.central;
   o.hold_cuts          = fe.hold_cuts;
   o.mesh.flank_size    = fe.flank_size * module;
@@ -331,7 +332,17 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       if (!lc.reference_positions.empty())
         {
-          const InvoluteGear &pinion = involute(*members.pinion), &gear = involute(*members.gear);
+          const int             z1 = members.pinion->teeth(), z2 = members.gear->teeth();
+          const ReferenceMember ref_pinion =
+              bevel ? bevel_reference_member(
+                          dynamic_cast<const BevelMemberFlanks &>(theory.pinion_flanks()),
+                          member_module(pair))
+                    : involute_reference_member(involute(*members.pinion), theory.pinion_flanks());
+          const ReferenceMember ref_gear =
+              bevel ? bevel_reference_member(
+                          dynamic_cast<const BevelMemberFlanks &>(theory.gear_flanks()),
+                          member_module(pair))
+                    : involute_reference_member(involute(*members.gear), theory.gear_flanks());
           // Reference mode at the chosen positions on the compliance stage's segments; VTU
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
           const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
@@ -342,14 +353,14 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           ro.hold_cuts         = fe.hold_cuts;
           ro.elements_per_cell = lc.reference_elements_per_cell;
           ro.work_directory    = vtu.string();
-          auto segment         = [&](const char *member) {
+          auto segment         = [&](const char *member, int z) {
             const H5Group m = cg.group(member);
             return SegmentChoice{int(m.read_doubles("central_tooth").front()),
-                                 int(m.read_ints("teeth").size())};
+                                 fe.whole_gears ? z : int(m.read_ints("teeth").size())};
           };
-          ro.pinion_segment = segment("pinion"), ro.gear_segment = segment("gear");
-          ro.flank_size         = fe.flank_size * pair.pinion.normal_module;
-          ro.far_size           = fe.far_size * pair.pinion.normal_module;
+          ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
+          ro.flank_size         = fe.flank_size * member_module(pair);
+          ro.far_size           = fe.far_size * member_module(pair);
           const std::size_t   P = lc.reference_positions.size(), M = lc.torques.size();
           std::vector<double> phi, eL, K, F, dofs, seconds;
           for (std::size_t k = 0; k < P; ++k)
@@ -358,9 +369,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
               ro.vtu_prefix = (vtu / (pair.name + "_position" + std::to_string(i))).string();
               ReferenceContactInfo              info;
               const std::vector<LoadedPosition> r = reference_contact(
-                  pinion, gear, theory,
-                  theory.at(tca.options.start_angle + 2 * pi / pinion.teeth() * i / lc.positions),
-                  lc.torques, ro, &info);
+                  ref_pinion, ref_gear, theory,
+                  theory.at(tca.options.start_angle + 2 * pi / z1 * i / lc.positions), lc.torques,
+                  ro, &info);
               phi.push_back(r.front().pinion_angle);
               for (const LoadedPosition &p : r)
                 eL.push_back(p.eL), K.push_back(p.mesh_stiffness), F.push_back(p.normal_force);
@@ -380,8 +391,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
             return t;
           };
           const H5Group rg = g.group("reference");
-          rg.attribute("method", "reference mode: both members meshed per position, graded to "
-                                 "the contact lines, finite elements alone");
+          rg.attribute("method", "reference mode: both members meshed per position, refined "
+                                 "about its contact cells, finite elements alone");
           rg.write("position", lc.reference_positions, {P}, "1",
                    "index of the position in the mesh cycle");
           rg.write("pinion_angle", phi, {P}, "rad", "pinion rotation phi");

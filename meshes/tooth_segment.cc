@@ -83,7 +83,10 @@ public:
     add(gmsh::model::geo::addSpline(tags), group, true);
   }
 
-  std::vector<int> curves, groups, fine;
+  /// Curves in order, their groups, and the fine ones (flanks and fillets) with their segment
+  /// tooth (set `tooth` before adding a tooth's curves).
+  std::vector<int> curves, groups, fine, fine_tooth;
+  int              tooth = -1;
 
 private:
   void
@@ -92,7 +95,7 @@ private:
     curves.push_back(curve);
     groups.push_back(group);
     if (is_fine)
-      fine.push_back(curve);
+      fine.push_back(curve), fine_tooth.push_back(tooth);
   }
   double z0;
   int    centre;
@@ -128,17 +131,22 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   const double dphi    = gear.helix_sign * std::tan(d.helix_angle) / gear.reference_radius;
   const double phi0    = -dphi * b / 2; // the section at z = -b/2
   const double pitch   = 2 * pi / z;
-  const int    half_n  = (o.teeth - 1) / 2;
+  const bool   whole   = o.teeth == z;
+  const int    half_n  = whole ? z / 2 : (o.teeth - 1) / 2;
   const double a_start = phi0 + pitch * (o.central_tooth - half_n) - pitch / 2;
   const double a_end   = a_start + pitch * o.teeth;
   const double ri = info.rim_inner_radius, rf = gear.root_radius;
+  info.whole = whole;
 
   SectionBuilder s(-b / 2);
-  // Counter-clockwise: cut at the start, root arcs and teeth, cut at the end, bore back.
+  // Counter-clockwise: cut at the start, root arcs and teeth, cut at the end, bore back. The
+  // whole gear: the teeth all round, then the bore as a hole.
   const Vec2 bore_start = polar(ri, a_start), root_start = polar(rf, a_start);
   const Vec2 root_end = polar(rf, a_end), bore_end = polar(ri, a_end);
-  const int  p_bore_start = s.point(bore_start), p_root_start = s.point(root_start);
-  s.line(p_bore_start, p_root_start, boundary::cut_start);
+  const int  p_root_start = s.point(root_start);
+  const int  p_bore_start = whole ? 0 : s.point(bore_start);
+  if (!whole)
+    s.line(p_bore_start, p_root_start, boundary::cut_start);
   int  previous    = p_root_start;
   Vec2 previous_xy = root_start;
   for (int i = 0; i < o.teeth; ++i)
@@ -146,6 +154,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       const int    k = ((o.central_tooth - half_n + i) % z + z) % z;
       const double a = phi0 + pitch * (o.central_tooth - half_n + i);
       info.member_teeth.push_back(k);
+      s.tooth                              = i;
       const std::vector<Vec2> coast_fillet = mirror(fillet), coast_involute = mirror(involute);
       const Vec2 c0 = rotate(coast_fillet.front(), a), c1 = rotate(coast_fillet.back(), a);
       const Vec2 c2 = rotate(coast_involute.back(), a);
@@ -161,22 +170,48 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       s.spline(pd1, inner(fillet, a, true), pd0, boundary::free);
       previous = pd0, previous_xy = d0;
     }
-  const int p_root_end = s.point(root_end), p_bore_end = s.point(bore_end);
-  s.arc(previous, previous_xy, p_root_end, root_end, boundary::free);
-  s.line(p_root_end, p_bore_end, boundary::cut_end);
-  s.arc(p_bore_end, bore_end, p_bore_start, bore_start, boundary::bore);
-
-  const int loop    = gmsh::model::geo::addCurveLoop(s.curves);
-  const int section = gmsh::model::geo::addPlaneSurface({loop});
+  s.tooth = -1;
+  std::vector<int> loops;
+  if (whole)
+    {
+      s.arc(previous, previous_xy, p_root_start, root_start, boundary::free);
+      loops.push_back(gmsh::model::geo::addCurveLoop(s.curves));
+      // the bore: three arcs of 120 degrees
+      const std::size_t outer = s.curves.size();
+      std::vector<int>  p;
+      std::vector<Vec2> xy;
+      for (int k = 0; k < 3; ++k)
+        xy.push_back(polar(ri, a_start + 2 * pi * k / 3)), p.push_back(s.point(xy.back()));
+      for (int k = 0; k < 3; ++k)
+        s.arc(p[k], xy[k], p[(k + 1) % 3], xy[(k + 1) % 3], boundary::bore);
+      loops.push_back(gmsh::model::geo::addCurveLoop(
+          std::vector<int>(s.curves.begin() + std::ptrdiff_t(outer), s.curves.end())));
+    }
+  else
+    {
+      const int p_root_end = s.point(root_end), p_bore_end = s.point(bore_end);
+      s.arc(previous, previous_xy, p_root_end, root_end, boundary::free);
+      s.line(p_root_end, p_bore_end, boundary::cut_end);
+      s.arc(p_bore_end, bore_end, p_bore_start, bore_start, boundary::bore);
+      loops.push_back(gmsh::model::geo::addCurveLoop(s.curves));
+    }
+  const int section = gmsh::model::geo::addPlaneSurface(loops);
   gmsh::model::geo::synchronize();
 
   // Fine at the flanks and fillets, coarse toward the bore: distance threshold fields, the
   // loaded side's flanks at the flank size, the other flanks and the fillets at theirs.
   const double        other_size = o.other_size > 0 ? o.other_size : flank_size;
   std::vector<double> loaded, others;
+  const int           fine_half = o.fine_teeth > 0 ? (o.fine_teeth - 1) / 2 : o.teeth;
+  std::vector<double> away; // the flanks and fillets of the teeth away from the loaded ones
   for (std::size_t c = 0; c < s.curves.size(); ++c)
-    if (std::find(s.fine.begin(), s.fine.end(), s.curves[c]) != s.fine.end())
+    if (const auto f = std::find(s.fine.begin(), s.fine.end(), s.curves[c]); f != s.fine.end())
       {
+        if (std::abs(s.fine_tooth[std::size_t(f - s.fine.begin())] - half_n) > fine_half)
+          {
+            away.push_back(s.curves[c]);
+            continue;
+          }
         bool on_loaded = false;
         for (int i = 0; i < o.teeth; ++i)
           on_loaded = on_loaded || s.groups[c] == boundary::flank(i, o.fine_side);
@@ -198,6 +233,9 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   threshold_about(loaded, flank_size);
   if (!others.empty())
     threshold_about(others, other_size);
+  // a tooth needs a few elements across (coarser ones fold at the fillets)
+  if (!away.empty())
+    threshold_about(away, std::max(other_size, std::min(far_size, mn / 2)));
   for (const Vec2 &c : o.refine_points)
     {
       std::ostringstream distance_to;
@@ -337,8 +375,13 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
   const InvoluteGearData &d  = gear.data();
   const int               z  = d.teeth;
   const double            mn = d.normal_module, b = d.face_width;
-  check(o.teeth >= 1 && o.teeth % 2 == 1 && o.teeth < z && 2 * pi * o.teeth / z <= pi + 1e-12,
-        "teeth in the segment", o.teeth, "an odd number >= 1 spanning at most half the gear");
+  check(o.teeth == z ||
+            (o.teeth >= 1 && o.teeth % 2 == 1 && o.teeth < z && 2 * pi * o.teeth / z <= pi + 1e-12),
+        "teeth in the segment", o.teeth,
+        "an odd number >= 1 spanning at most half the gear, or all " + std::to_string(z) +
+            " (the whole gear)");
+  check(o.fine_teeth == 0 || (o.fine_teeth % 2 == 1 && o.fine_teeth <= o.teeth), "fine teeth",
+        o.fine_teeth, "0 (all) or an odd number up to the segment's teeth");
   check(o.central_tooth >= 0 && o.central_tooth < z, "central tooth", o.central_tooth,
         "a tooth index in [0, z - 1]");
   check(o.flank_size >= 0 && o.far_size >= 0 && o.face_layers >= 0, "element size / layers",

@@ -6,7 +6,8 @@
 //
 // Physical groups (the numbers are the boundary ids deal.II reads; names as in the .msh):
 //   volume 1 "body";
-//   surfaces 1 "bore", 2 "cut_start" (the radial cut at the smaller polar angle), 3 "cut_end",
+//   surfaces 1 "bore", 2 "cut_start" (the radial cut at the smaller polar angle), 3 "cut_end"
+//   (no cuts when the segment is the whole gear),
 //   4 "end_front" (z = -b/2), 5 "end_back" (z = +b/2), 6 "free" (tip lands, root lands, fillets),
 //   10 + 2 i "tooth<i>_drive" and 11 + 2 i "tooth<i>_coast" for the i-th tooth of the segment
 //   (i = 0 .. teeth - 1 in counter-clockwise order; member tooth central - (teeth - 1) / 2 + i).
@@ -36,7 +37,9 @@ name(int id);
 
 struct SegmentMeshOptions
 {
-  int teeth         = 3; ///< teeth in the segment (odd, >= 1, < number of teeth)
+  /// Teeth in the segment: odd, >= 1, spanning at most half the gear; or the gear's number of
+  /// teeth: the whole gear (rim and bore all round, no cuts).
+  int teeth         = 3;
   int central_tooth = 0; ///< member tooth in the middle of the segment
   /// Inner radius of the rim [m]: 0 = the bore if the gear has one, else a shaft seat
   /// 3.5 m_n below the root circle (ISO 6336 rim thickness).
@@ -46,11 +49,14 @@ struct SegmentMeshOptions
   double flank_size    = 0; ///< element size at the flanks and fillets [m]; 0 = m_n / 5
   /// Element size at the fillets and the flanks of the side other than `fine_side` [m]; 0 = the
   /// flank size. Only the loaded flanks need the fine elements for the compliance.
-  double    other_size   = 0;
-  FlankSide fine_side    = FlankSide::drive;
-  double    far_size     = 0;  ///< element size far from them [m]; 0 = m_n
-  int       face_layers  = 0;  ///< elements over the face width; 0 = b / (2 flank_size)
-  int       curve_points = 40; ///< spline points per fillet and per involute
+  double    other_size = 0;
+  FlankSide fine_side  = FlankSide::drive;
+  /// Teeth about the central one whose flanks and fillets get the sizes above (odd); the others
+  /// get the far size. 0: all teeth of the segment.
+  int    fine_teeth   = 0;
+  double far_size     = 0;  ///< element size far from them [m]; 0 = m_n
+  int    face_layers  = 0;  ///< elements over the face width; 0 = b / (2 flank_size)
+  int    curve_points = 40; ///< spline points per fillet and per involute
   /// Local refinement (spur segments: the contact lines of one mesh position run along z):
   /// element size `refine_size` within `refine_radius` of these transverse-section points,
   /// growing by at most 1/4 of the distance beyond it up to the flank size.
@@ -64,6 +70,7 @@ struct SegmentMeshInfo
   double           analytic_volume  = 0; ///< nominal segment volume [m^3]
   double           rim_inner_radius = 0; ///< the one used [m]
   std::vector<int> member_teeth;         ///< member tooth of each segment tooth
+  bool             whole = false;        ///< the whole gear: no cut faces
 };
 
 /// The .json sidecar of a segment mesh (for scripts/check_mesh.py): the member's name, the

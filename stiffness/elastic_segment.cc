@@ -125,27 +125,120 @@ public:
 private:
   double lambda, mu;
 };
+/// MemAvailable of /proc/meminfo [bytes] (0 where it cannot be read), after handing the
+/// process's own freed heap back to the system: a body factorised before (the other member)
+/// leaves gigabytes freed but held by malloc, which this process would reuse (62/62 pair,
+/// 1.04M dofs a member: 5.3 GB available before the trim with 18 GB of it free in the heap).
+double
+memory_available_now()
+{
+  malloc_trim(0);
+  std::ifstream in("/proc/meminfo");
+  std::string   key;
+  double        kb = 0;
+  std::string   unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:")
+      return kb * 1024;
+  return 0;
+}
+
+/// The bytes that `need` (this process's) add up to over the processes on each machine, and
+/// whether every machine has them (`have`: its available memory; <= 0: unknown, fits).
+std::pair<double, bool>
+machine_need(double need, double have, MPI_Comm comm)
+{
+  MPI_Comm machine;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+  const double here = Utilities::MPI::sum(need, machine);
+  MPI_Comm_free(&machine);
+  const bool fits = !(have > 0) || here <= have;
+  return {here, Utilities::MPI::min(fits ? 1 : 0, comm) == 1};
+}
+
+/// Bytes of the assembled system per degree of freedom (FE_Q(p) hexahedra): a node couples with
+/// the nodes of the elements around it, (2p + 1)^3 for a vertex, (2p + 1)^2 (p + 1) for an edge
+/// node, (2p + 1) (p + 1)^2 for a face node and (p + 1)^3 for an interior one; per element 1,
+/// 3 (p - 1), 3 (p - 1)^2 and (p - 1)^3 of them (64 couplings per node on average for Q2);
+/// about 40 bytes per nonzero (pattern, PETSc's matrix, MUMPS's copy).
+double
+matrix_bytes_per_dof(unsigned degree)
+{
+  const double p = degree, a = 2 * p + 1, b = p + 1;
+  const double per_node = (a * a * a + 3 * (p - 1) * a * a * b + 3 * (p - 1) * (p - 1) * a * b * b +
+                           (p - 1) * (p - 1) * (p - 1) * b * b * b) /
+                          (p * p * p);
+  return 3 * per_node * 40;
+}
+
 /// Refines (options.local_refinements times) the cells of `tria` with a vertex within
-/// options.refine_distance of a vertex or face centre of the faces of `mesh` (the mesh read,
-/// whole on every process) with one of options.refine_boundaries.
+/// options.refine_distance (halved per pass if asked) of the samples of the faces of `mesh` (the
+/// mesh read, whole on every process) with one of options.refine_boundaries (and inside one of
+/// options.refine_boxes, if any).
 void
 refine_near_boundaries(const Triangulation<3> &mesh, parallel::distributed::Triangulation<3> &tria,
                        const ElasticSegmentOptions &options)
 {
   if (!(options.refine_distance >= 0) || options.refine_boundaries.empty())
     throw InputError("elastic segment: local refinement needs boundaries and a distance >= 0");
+  // the boxes' centres in an R-tree; a point is in a box if it is in one of the nearest eight's
+  std::vector<std::pair<Point<3>, std::size_t>> centres;
+  for (std::size_t i = 0; i < options.refine_boxes.size(); ++i)
+    centres.emplace_back(point(options.refine_boxes[i].centre), i);
+  const auto centre_tree = pack_rtree(centres);
+  auto       in_a_box    = [&](const Point<3> &x, double margin) {
+    if (centres.empty())
+      return true;
+    std::vector<std::pair<Point<3>, std::size_t>> nearest;
+    centre_tree.query(boost::geometry::index::nearest(x, 8), std::back_inserter(nearest));
+    for (const auto &[c, i] : nearest)
+      {
+        const ElasticSegmentOptions::Box &b     = options.refine_boxes[i];
+        const Vec3                        local = b.axes * (Vec3(x[0], x[1], x[2]) - b.centre);
+        if ((local.cwiseAbs() - b.half_size).maxCoeff() <= margin)
+          return true;
+      }
+    return false;
+  };
+  // the faces sampled at their vertices and centre; with halving distances or boxes on a grid
+  // at most half the last pass's distance apart (the finest cells must all find the boundary)
+  const double last = options.refine_distance *
+                      (options.halve_refine_distance
+                           ? std::ldexp(1.0, 1 - int(std::max(1u, options.local_refinements)))
+                           : 1);
   std::vector<Point<3>> samples;
   for (const auto &face : mesh.active_face_iterators())
-    if (face->at_boundary() && options.refine_boundaries.count(int(face->boundary_id())))
+    if (face->at_boundary() && options.refine_boundaries.count(int(face->boundary_id())) &&
+        in_a_box(face->center(), face->diameter()))
       {
-        samples.push_back(face->center());
+        std::vector<Point<3>> x{face->center()};
         for (unsigned v = 0; v < 4; ++v)
-          samples.push_back(face->vertex(v));
+          x.push_back(face->vertex(v));
+        const int n = options.halve_refine_distance || !centres.empty()
+                          ? std::max(1, int(std::ceil(2 * face->diameter() / last)))
+                          : 1;
+        if (n > 1)
+          for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= n; ++j)
+              {
+                const double a = double(i) / n, b = double(j) / n; // bilinear on the face
+                x.push_back(Point<3>((1 - a) * (1 - b) * face->vertex(0) +
+                                     a * (1 - b) * face->vertex(1) + (1 - a) * b * face->vertex(2) +
+                                     a * b * face->vertex(3)));
+              }
+        std::copy_if(x.begin(), x.end(), std::back_inserter(samples),
+                     [&](const Point<3> &y) { return in_a_box(y, 0); });
       }
   if (samples.empty())
-    throw InputError("elastic segment: none of the boundaries to refine near is in the mesh");
-  const auto tree = pack_rtree(samples);
-  for (unsigned pass = 0; pass < options.local_refinements; ++pass)
+    throw InputError("elastic segment: none of the boundaries to refine near is in the mesh" +
+                     std::string(centres.empty() ? "" : " within the boxes given"));
+  const auto     tree     = pack_rtree(samples);
+  double         distance = options.refine_distance;
+  const MPI_Comm comm     = tria.get_communicator();
+  const double   have =
+      options.memory_available > 0 ? options.memory_available : memory_available_now();
+  for (unsigned pass = 0; pass < options.local_refinements;
+       ++pass, distance *= options.halve_refine_distance ? 0.5 : 1)
     {
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -154,12 +247,35 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::distributed::Tria
               std::vector<Point<3>> nearest;
               tree.query(boost::geometry::index::nearest(cell->vertex(v), 1),
                          std::back_inserter(nearest));
-              if (nearest[0].distance(cell->vertex(v)) <= options.refine_distance)
+              if (nearest[0].distance(cell->vertex(v)) <= distance)
                 {
                   cell->set_refine_flag();
                   break;
                 }
             }
+      // refused before the pass when the refined body's matrix would not fit (the same
+      // estimate as before the assembly; each refined cell becomes eight)
+      std::size_t flagged = 0;
+      for (const auto &cell : tria.active_cell_iterators())
+        flagged += cell->is_locally_owned() && cell->refine_flag_set();
+      const double cells_after = double(tria.n_locally_owned_active_cells() + 7 * flagged);
+      const double p           = options.degree;
+      const auto [here, fits]  = machine_need(
+           cells_after * 3 * p * p * p * matrix_bytes_per_dof(options.degree), have, comm);
+      if (!fits)
+        {
+          std::ostringstream msg;
+          msg.precision(3);
+          msg << "elastic segment: local refinement pass " << pass + 1 << " of "
+              << options.local_refinements << " would make about "
+              << Utilities::MPI::sum(cells_after, comm)
+              << " elements, whose stiffness matrix needs about "
+              << Utilities::MPI::max(here, comm) / 1e9 << " GB on a machine with "
+              << Utilities::MPI::min(have, comm) / 1e9
+              << " GB available. Use fewer refinements (larger elements at the contact) or "
+                 "more machines under mpirun";
+          throw InputError(msg.str());
+        }
       tria.execute_coarsening_and_refinement();
     }
 }
@@ -517,56 +633,10 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   m.factor_seconds = timer.wall_time();
 }
 
-namespace
-{
-/// MemAvailable of /proc/meminfo [bytes] (0 where it cannot be read), after handing the
-/// process's own freed heap back to the system: a body factorised before (the other member)
-/// leaves gigabytes freed but held by malloc, which this process would reuse (62/62 pair,
-/// 1.04M dofs a member: 5.3 GB available before the trim with 18 GB of it free in the heap).
-double
-memory_available_now()
-{
-  malloc_trim(0);
-  std::ifstream in("/proc/meminfo");
-  std::string   key;
-  double        kb = 0;
-  std::string   unit;
-  while (in >> key >> kb >> unit)
-    if (key == "MemAvailable:")
-      return kb * 1024;
-  return 0;
-}
-} // namespace
-
-namespace
-{
-/// The bytes that `need` (this process's) add up to over the processes on each machine, and
-/// whether every machine has them (`have`: its available memory; <= 0: unknown, fits).
-std::pair<double, bool>
-machine_need(double need, double have, MPI_Comm comm)
-{
-  MPI_Comm machine;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
-  const double here = Utilities::MPI::sum(need, machine);
-  MPI_Comm_free(&machine);
-  const bool fits = !(have > 0) || here <= have;
-  return {here, Utilities::MPI::min(fits ? 1 : 0, comm) == 1};
-}
-} // namespace
-
 void
 ElasticSegment::Impl::check_assembly_fits(const std::string &file) const
 {
-  // A node of a hexahedral FE_Q(p) mesh couples with the nodes of the elements around it:
-  // (2p + 1)^3 for a vertex, (2p + 1)^2 (p + 1) for an edge node, (2p + 1) (p + 1)^2 for a face
-  // node and (p + 1)^3 for an interior one; per element 1, 3 (p - 1), 3 (p - 1)^2 and (p - 1)^3
-  // of them (64 couplings per node on average for Q2).
-  const double p = options.degree, a = 2 * p + 1, b = p + 1;
-  const double per_node = (a * a * a + 3 * (p - 1) * a * a * b + 3 * (p - 1) * (p - 1) * a * b * b +
-                           (p - 1) * (p - 1) * (p - 1) * b * b * b) /
-                          (p * p * p);
-  const double bytes_per_nonzero = 40; // pattern, PETSc's matrix, MUMPS's copy
-  const double need              = double(owned.n_elements()) * 3 * per_node * bytes_per_nonzero;
+  const double need = double(owned.n_elements()) * matrix_bytes_per_dof(options.degree);
   const double have =
       options.memory_available > 0 ? options.memory_available : memory_available_now();
   const auto [here, fits] = machine_need(need, have, comm);

@@ -42,6 +42,17 @@ struct ElasticSegmentOptions
   std::set<int> refine_boundaries;
   double        refine_distance   = 0;
   unsigned      local_refinements = 0;
+  /// Only within these boxes (centre, half sizes along the rows of `axes`, orthonormal): the
+  /// boundaries' faces with a sample point in one of them (empty: the whole boundaries).
+  struct Box
+  {
+    Vec3            centre = Vec3::Zero(), half_size = Vec3::Zero();
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  };
+  std::vector<Box> refine_boxes;
+  /// Each pass within half the previous pass's distance (the cells it refines are half as
+  /// large): a graded zone whose finest layer is as thick as its elements, not the first pass's.
+  bool halve_refine_distance = false;
   /// Where a new vertex on one of the `refine_boundaries` goes, given the boundary id and the
   /// point between its parents: onto the exact surface the mesh's facets approximate. Empty:
   /// between its parents (on the facets).

@@ -238,12 +238,23 @@ segment_mesh_on_first_process(const SegmentMesher &mesher, const std::string &pa
   if (!error.empty())
     throw InputError(error);
   std::vector<double> numbers{double(info.hexahedra), double(info.nodes), info.analytic_volume,
-                              info.rim_inner_radius};
+                              info.rim_inner_radius, double(info.whole)};
   numbers           = dealii::Utilities::MPI::broadcast(comm, numbers, 0);
   info.member_teeth = dealii::Utilities::MPI::broadcast(comm, info.member_teeth, 0);
   info.hexahedra = std::size_t(numbers[0]), info.nodes = std::size_t(numbers[1]);
   info.analytic_volume = numbers[2], info.rim_inner_radius = numbers[3];
+  info.whole = numbers[4] != 0;
   return info;
+}
+
+std::function<Vec3(int, const Vec3 &)>
+flank_surface(const MemberFlanks &flanks, const std::vector<int> &member_teeth, FlankSide side)
+{
+  return [&flanks, member_teeth, side](int id, const Vec3 &x) {
+    const int tooth   = member_teeth.at(std::size_t((id - boundary::flank(0, side)) / 2));
+    const auto [u, v] = flanks.rotational_parameters(x);
+    return flanks.flank(tooth, side).evaluate(u, v).position;
+  };
 }
 
 FlankCompliance
@@ -317,7 +328,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   eo.communicator = o.communicator;
   eo.threads      = o.threads;
   eo.clamped      = {boundary::bore};
-  if (o.hold_cuts)
+  if (o.hold_cuts && !segment.whole)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
   if (o.local_refinements > 0)
     {
@@ -325,11 +336,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
         eo.refine_boundaries.insert(loaded_flank(t));
       eo.local_refinements = o.local_refinements;
       eo.refine_distance   = o.refine_depth * std::ldexp(h, int(o.local_refinements));
-      eo.boundary_surface  = [&](int id, const Vec3 &x) {
-        const int tooth = segment.member_teeth[std::size_t((id - boundary::flank(0, o.side)) / 2)];
-        const auto [u, v] = flanks.rotational_parameters(x);
-        return flanks.flank(tooth, o.side).evaluate(u, v).position;
-      };
+      eo.boundary_surface  = flank_surface(flanks, segment.member_teeth, o.side);
     }
   const ElasticSegment body(mesh_file, eo);
   out.hexahedra     = body.cells(); // after the local refinement

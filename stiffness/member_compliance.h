@@ -28,7 +28,8 @@ struct MemberComplianceOptions
   bool               graded_grid    = true; ///< grid clustered towards the edges (FlankGridSpec)
   double             depth_elements = 3;    ///< response depth in flank element sizes
   double             patch_elements = 1;    ///< patch load radius in flank element sizes
-  bool               hold_cuts      = true; ///< radial cut faces held (else free; the bore always)
+  /// Radial cut faces held (else free; the bore always; a whole gear has none).
+  bool hold_cuts = true;
   /// The near field of each unit load: false, read a response depth below the flank and take
   /// the half-space part above it out; true, carry Boussinesq's field analytically (cut off
   /// within `near_field_radius`, less where the body comes back across the load's normal or a
@@ -76,6 +77,12 @@ struct SegmentChoice
 std::pair<SegmentChoice, SegmentChoice>
 loaded_segments(const std::vector<TcaPosition> &positions, int pinion_teeth, int gear_teeth,
                 double gap_band);
+
+/// Where a refined vertex of a segment's loaded flank goes (ElasticSegmentOptions::
+/// boundary_surface): onto the exact flank of its segment tooth (`member_teeth` as in the
+/// segment's description) at the point's rotational parameters. Keeps a reference to `flanks`.
+std::function<Vec3(int, const Vec3 &)>
+flank_surface(const MemberFlanks &flanks, const std::vector<int> &member_teeth, FlankSide side);
 
 /// Writes a member's segment mesh to the path given and describes it.
 using SegmentMesher = std::function<SegmentMeshInfo(const std::string &path)>;

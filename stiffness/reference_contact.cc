@@ -60,18 +60,51 @@ segment_for(const SegmentChoice &asked, const SegmentChoice &near, int min_teeth
 }
 } // namespace
 
+ReferenceMember
+involute_reference_member(const InvoluteGear &gear, const MemberFlanks &flanks)
+{
+  ReferenceMember m;
+  m.flanks = &flanks;
+  m.mesher = [&gear](const SegmentMeshOptions &o, const std::string &path) {
+    return write_tooth_segment_mesh(gear, o, path);
+  };
+  m.module         = gear.data().normal_module;
+  m.face_width     = gear.data().face_width;
+  m.straight_lines = gear.data().helix_angle == 0;
+  return m;
+}
+
+ReferenceMember
+bevel_reference_member(const BevelMemberFlanks &flanks, double module)
+{
+  ReferenceMember m;
+  m.flanks = &flanks;
+  m.mesher = [&flanks, module](const SegmentMeshOptions &o, const std::string &path) {
+    return write_bevel_segment_mesh(flanks, module, o, path);
+  };
+  m.module = module;
+  return m;
+}
+
 std::vector<LoadedPosition>
 reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const UnloadedTca &tca,
                   const TcaPosition &position, const std::vector<double> &torques,
                   const ReferenceContactOptions &o, ReferenceContactInfo *info)
 {
+  return reference_contact(involute_reference_member(pinion, tca.pinion_flanks()),
+                           involute_reference_member(gear, tca.gear_flanks()), tca, position,
+                           torques, o, info);
+}
+
+std::vector<LoadedPosition>
+reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
+                  const UnloadedTca &tca, const TcaPosition &position,
+                  const std::vector<double> &torques, const ReferenceContactOptions &o,
+                  ReferenceContactInfo *info)
+{
   ReferenceContactInfo  local;
   ReferenceContactInfo &out = info ? *info : local;
   out                       = ReferenceContactInfo{};
-  if (pinion.data().helix_angle != 0 || gear.data().helix_angle != 0)
-    throw InputError("reference contact: spur pairs only (helix angle " +
-                     std::to_string(pinion.data().helix_angle) +
-                     " rad); use the fast mode for helical pairs");
   if (o.work_directory.empty() || !std::filesystem::is_directory(o.work_directory))
     throw InputError("reference contact: the work directory '" + o.work_directory +
                      "' does not exist");
@@ -84,10 +117,10 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
                        std::to_string(T) + " N m)");
 
   const FlankSide side = tca.options_data().side;
-  const auto      near =
-      loaded_segments({position}, pinion.teeth(), gear.teeth(), o.cells.cells.gap_band);
-  out.pinion_segment = segment_for(o.pinion_segment, near.first, o.min_segment_teeth);
-  out.gear_segment   = segment_for(o.gear_segment, near.second, o.min_segment_teeth);
+  const int       z1 = pinion.flanks->teeth(), z2 = gear.flanks->teeth();
+  const auto      near = loaded_segments({position}, z1, z2, o.cells.cells.gap_band);
+  out.pinion_segment   = segment_for(o.pinion_segment, near.first, o.min_segment_teeth);
+  out.gear_segment     = segment_for(o.gear_segment, near.second, o.min_segment_teeth);
 
   // The segments carry every cell: pairs outside them are refused when they touch.
   auto in_segment = [](const SegmentChoice &s, int z, int tooth) {
@@ -96,8 +129,7 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
   };
   LoadedContactOptions lo = o.cells;
   lo.covered              = [&](int p, int g) {
-    return in_segment(out.pinion_segment, pinion.teeth(), p) &&
-           in_segment(out.gear_segment, gear.teeth(), g);
+    return in_segment(out.pinion_segment, z1, p) && in_segment(out.gear_segment, z2, g);
   };
   lo.table_parameters            = nullptr;
   std::vector<ContactCell> cells = loaded_cells(tca, position, lo);
@@ -106,56 +138,74 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
   Eigen::MatrixXd                              C = Eigen::MatrixXd::Zero(n, n);
   std::vector<std::vector<PatchLoad>>          member_loads(2);
   std::vector<std::unique_ptr<ElasticSegment>> bodies;
-  std::vector<std::vector<int>>                segment_teeth;
   for (int member = 0; member < 2; ++member)
     {
       const bool              is_pinion = member == 0;
-      const InvoluteGear     &g         = is_pinion ? pinion : gear;
-      const MemberFlanks     &flanks    = is_pinion ? tca.pinion_flanks() : tca.gear_flanks();
+      const ReferenceMember  &m         = is_pinion ? pinion : gear;
       std::vector<MemberCell> mc;
       for (const ContactCell &c : cells)
-        mc.push_back(is_pinion ? member_cell(flanks, side, c.pinion_tooth, c.u1, c.v1, c)
-                               : member_cell(flanks, side, c.gear_tooth, c.u2, c.v2, c));
+        mc.push_back(is_pinion ? member_cell(*m.flanks, side, c.pinion_tooth, c.u1, c.v1, c)
+                               : member_cell(*m.flanks, side, c.gear_tooth, c.u2, c.v2, c));
 
-      // Refinement about each pair's contact line: the cell nearest the line (smallest |s|)
-      // marks it, the cells' reach across sets the radius.
       SegmentMeshOptions   mesh;
-      const SegmentChoice &seg                  = is_pinion ? out.pinion_segment : out.gear_segment;
-      mesh.teeth                                = seg.teeth;
-      mesh.central_tooth                        = seg.central;
-      mesh.flank_size                           = o.flank_size;
-      mesh.far_size                             = o.far_size;
-      double                                 ds = HUGE_VAL, dt = HUGE_VAL, reach = 0;
-      std::map<int, std::pair<double, Vec2>> line; // pair -> (|s|, section point)
-      for (Eigen::Index i = 0; i < n; ++i)
+      const SegmentChoice &seg = is_pinion ? out.pinion_segment : out.gear_segment;
+      mesh.teeth               = seg.teeth;
+      mesh.central_tooth       = seg.central;
+      mesh.flank_size          = o.flank_size;
+      mesh.far_size            = o.far_size;
+      mesh.fine_side           = side;
+      if (seg.teeth == m.flanks->teeth()) // the whole gear: fine about this position's pairs
         {
-          const ContactCell &c = cells[i];
-          ds = std::min(ds, c.ds), dt = std::min(dt, c.dt);
-          reach   = std::max(reach, std::abs(c.s) + c.ds);
-          auto it = line.find(c.pair);
-          if (it == line.end() || std::abs(c.s) < it->second.first)
-            line[c.pair] = {std::abs(c.s), mc[i].position.head<2>()};
+          const SegmentChoice &loaded = is_pinion ? near.first : near.second;
+          mesh.central_tooth = loaded.central, mesh.fine_teeth = loaded.teeth;
         }
-      for (const auto &[pair, l] : line)
-        mesh.refine_points.push_back(l.second);
+      // the cells' widths across and along: the smallest (the graded section resolves every
+      // cell) and the median (cells cut at a tip's edge are narrower)
+      double              ds = HUGE_VAL, dt = HUGE_VAL, reach = 0;
+      std::vector<double> widths;
+      for (const ContactCell &c : cells)
+        {
+          ds = std::min(ds, c.ds), dt = std::min(dt, c.dt);
+          reach = std::max(reach, std::abs(c.s) + c.ds);
+          widths.push_back(c.ds);
+        }
+      std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
+      const double median_ds = widths[widths.size() / 2];
       // never coarser than the flank elements around it (a coarser "refinement" folds the
       // graded quadrilaterals at the root)
-      const double flank_size = o.flank_size > 0 ? o.flank_size : g.data().normal_module / 5;
-      mesh.refine_size        = std::min(ds / o.elements_per_cell, flank_size);
-      mesh.refine_radius      = reach;
-      mesh.face_layers =
-          std::max(2, int(std::lround(g.data().face_width / dt)) * o.layers_per_cell);
+      const double flank_size   = o.flank_size > 0 ? o.flank_size : m.module / 5;
+      const bool   graded_lines = m.straight_lines && !o.local_refinement;
+      const double contact =
+          std::min((graded_lines ? ds : median_ds) / o.elements_per_cell, flank_size);
+      if (graded_lines)
+        {
+          // Refinement about each pair's contact line: the cell nearest the line (smallest
+          // |s|) marks it, the cells' reach across sets the radius.
+          std::map<int, std::pair<double, Vec2>> line; // pair -> (|s|, section point)
+          for (Eigen::Index i = 0; i < n; ++i)
+            {
+              auto it = line.find(cells[i].pair);
+              if (it == line.end() || std::abs(cells[i].s) < it->second.first)
+                line[cells[i].pair] = {std::abs(cells[i].s), mc[i].position.head<2>()};
+            }
+          for (const auto &[pair, l] : line)
+            mesh.refine_points.push_back(l.second);
+          mesh.refine_size   = contact;
+          mesh.refine_radius = reach;
+          mesh.face_layers   = std::max(2, int(std::lround(m.face_width / dt)) * o.layers_per_cell);
+        }
       const std::string file =
           (std::filesystem::path(o.work_directory) /
            (std::string(is_pinion ? "reference_pinion" : "reference_gear") + ".msh"))
               .string();
       auto                  t0      = std::chrono::steady_clock::now();
       const SegmentMeshInfo segment = segment_mesh_on_first_process(
-          [&](const std::string &path) { return write_tooth_segment_mesh(g, mesh, path); }, file,
-          o.communicator);
+          [&](const std::string &path) { return m.mesher(mesh, path); }, file, o.communicator);
       out.mesh_seconds += seconds_since(t0);
-      out.hexahedra += segment.hexahedra;
-      segment_teeth.push_back(segment.member_teeth);
+      auto flank_id = [&](int tooth) {
+        const auto at = std::find(segment.member_teeth.begin(), segment.member_teeth.end(), tooth);
+        return boundary::flank(int(at - segment.member_teeth.begin()), side);
+      };
 
       t0 = std::chrono::steady_clock::now();
       ElasticSegmentOptions eo;
@@ -163,23 +213,41 @@ reference_contact(const InvoluteGear &pinion, const InvoluteGear &gear, const Un
       eo.communicator = o.communicator;
       eo.material     = is_pinion ? o.cells.pinion_material : o.cells.gear_material;
       eo.clamped      = {boundary::bore};
-      if (o.hold_cuts)
+      if (o.hold_cuts && !segment.whole)
         eo.clamped.insert({boundary::cut_start, boundary::cut_end});
+      if (!graded_lines)
+        {
+          // deal.II halves the elements about the cells until they are the contact size: pass j
+          // within flank_size / 2^j of the flank within the cells (and a contact element
+          // around them)
+          eo.local_refinements =
+              unsigned(std::max(1.0, std::ceil(std::log2(flank_size / contact) - 1e-9)));
+          eo.refine_distance       = flank_size;
+          eo.halve_refine_distance = true;
+          for (const MemberCell &c : mc)
+            {
+              eo.refine_boundaries.insert(flank_id(c.tooth));
+              // the cell and one contact element around it, up to a flank element off the flank
+              eo.refine_boxes.push_back(
+                  {c.position,
+                   Vec3(c.half_size.x() + contact, c.half_size.y() + contact, flank_size), c.axes});
+            }
+          eo.boundary_surface   = flank_surface(*m.flanks, segment.member_teeth, side);
+          out.local_refinements = eo.local_refinements;
+        }
       bodies.push_back(std::make_unique<ElasticSegment>(file, eo));
+      out.hexahedra += bodies.back()->cells();
       out.dofs += bodies.back()->dofs();
 
       std::vector<PatchLoad> &loads = member_loads[member];
-      for (const MemberCell &m : mc)
+      for (const MemberCell &c : mc)
         {
-          const int i =
-              int(std::find(segment.member_teeth.begin(), segment.member_teeth.end(), m.tooth) -
-                  segment.member_teeth.begin());
           PatchLoad l;
-          l.point      = m.position;
-          l.force      = -m.normal; // a unit force pressing into the material
-          l.boundaries = {boundary::flank(i, side)};
-          l.half_size  = m.half_size;
-          l.axes       = m.axes;
+          l.point      = c.position;
+          l.force      = -c.normal; // a unit force pressing into the material
+          l.boundaries = {flank_id(c.tooth)};
+          l.half_size  = c.half_size;
+          l.axes       = c.axes;
           loads.push_back(l);
         }
       // approach of each cell = its mean normal displacement (the cells' load work)

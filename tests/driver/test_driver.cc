@@ -894,13 +894,11 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
        "modifications\n        set tip relief = 10\n        set tip relief length = 50\n      "
        "end\n    end\n  end\nend\n",
        {"Flanks/p1/Pinion coast flank", "tip relief length = 50 mm", "active profile"}},
-      {"reference mode on a helical pair",
+      {"a reference position outside the mesh cycle",
        "",
-       "subsection Flanks\n  subsection p1\n    subsection Pinion\n      set helix angle = 15\n"
-       "    end\n    subsection Gear\n      set helix angle = 15\n      set hand = left\n    "
-       "end\n  end\nend\nsubsection Loaded contact\n  subsection p1\n    set reference "
-       "positions = 0\n  end\nend\n",
-       {"Loaded contact/p1/reference positions", "spur pairs"}},
+       "subsection Loaded contact\n  subsection p1\n    set reference positions = 9999\n  "
+       "end\nend\n",
+       {"Loaded contact/p1/reference positions", "9999", "not a position of the mesh cycle"}},
       {"measured loaded contact without measured flanks",
        "",
        "subsection Loaded contact\n  subsection p1\n    set measured flanks = true\n  "

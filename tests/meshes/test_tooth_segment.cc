@@ -25,6 +25,25 @@ namespace
 class ToothSegmentMesh : public test_data::TempDirectoryTest
 {
 };
+
+/// The mean volume of the hexahedra with a node in the group.
+double
+mean_volume_at(const MeshFile &m, int group)
+{
+  const std::set<std::size_t> nodes(m.group_nodes.at(group).begin(), m.group_nodes.at(group).end());
+  double                      v = 0;
+  int                         n = 0;
+  for (const auto &h : m.hexahedra)
+    {
+      std::array<Vec3, 8> x;
+      bool                on = false;
+      for (int k = 0; k < 8; ++k)
+        x[k] = m.nodes.at(h[k]), on |= nodes.count(h[k]) > 0;
+      if (on)
+        v += hex_volume_and_min_jacobian(x).first, ++n;
+    }
+  return v / n;
+}
 } // namespace
 
 TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
@@ -186,33 +205,73 @@ TEST_F(ToothSegmentMesh, FineOnlyAtTheLoadedFlanks)
   o.teeth = 3, o.flank_size = 0.1 * 4.5e-3, o.face_layers = 4;
   const SegmentMeshInfo uniform =
       write_tooth_segment_mesh(*gear, o, (dir / "uniform.msh").string());
-  o.other_size                      = 0.4 * 4.5e-3;
-  const std::string     path        = (dir / "loaded_fine.msh").string();
-  const SegmentMeshInfo info        = write_tooth_segment_mesh(*gear, o, path);
-  const MeshFile        m           = read(path);
-  auto                  mean_volume = [&](int group) {
-    const std::set<std::size_t> nodes(m.group_nodes.at(group).begin(),
-                                                       m.group_nodes.at(group).end());
-    double                      v = 0;
-    int                         n = 0;
-    for (const auto &h : m.hexahedra)
-      {
-        std::array<Vec3, 8> x;
-        bool                on = false;
-        for (int k = 0; k < 8; ++k)
-          x[k] = m.nodes.at(h[k]), on |= nodes.count(h[k]) > 0;
-        if (on)
-          v += hex_volume_and_min_jacobian(x).first, ++n;
-      }
-    return v / n;
-  };
+  o.other_size               = 0.4 * 4.5e-3;
+  const std::string     path = (dir / "loaded_fine.msh").string();
+  const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
+  const MeshFile        m    = read(path);
   // sizes 1:4 asked; the drive flank's grading reaches across the thin tooth, so the coast
   // cells come out about 2.2 times larger in the section (same layers): volumes ~1:5
-  EXPECT_GT(mean_volume(boundary::flank(1, FlankSide::coast)),
-            3 * mean_volume(boundary::flank(1, FlankSide::drive)));
+  EXPECT_GT(mean_volume_at(m, boundary::flank(1, FlankSide::coast)),
+            3 * mean_volume_at(m, boundary::flank(1, FlankSide::drive)));
   EXPECT_LT(info.hexahedra, uniform.hexahedra * 2 / 3);
   EXPECT_NEAR(info.analytic_volume, uniform.analytic_volume, 1e-15);
   SegmentMeshOptions bad = o;
   bad.other_size         = -1;
   EXPECT_THROW(write_tooth_segment_mesh(*gear, bad, path), InputError);
+}
+
+TEST_F(ToothSegmentMesh, TheWholeGearIsARingWithoutCutsFineAtTheLoadedTeeth)
+{
+  // teeth = z: every tooth on the rim, the bore a hole all round, no cut faces; only the
+  // `fine_teeth` about the central tooth get the flank size.
+  for (double beta : {0.0, 15 * pi / 180})
+    {
+      const auto         gear = InvoluteGear::create(test_data::fzg_c_pair(beta).first);
+      SegmentMeshOptions o;
+      o.teeth = 16, o.fine_teeth = 3, o.central_tooth = 5, o.face_layers = 4;
+      const std::string     path = (dir / "whole.msh").string();
+      const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
+      EXPECT_TRUE(info.whole);
+      ASSERT_EQ(info.member_teeth.size(), 16u);
+      EXPECT_EQ(std::set<int>(info.member_teeth.begin(), info.member_teeth.end()).size(), 16u);
+      EXPECT_EQ(info.member_teeth[8], 5); // the central tooth in the middle, as in a segment
+      const MeshFile m = read(path);
+      EXPECT_TRUE(m.other_element_types.empty());
+      double volume = 0, min_j = HUGE_VAL;
+      for (const auto &h : m.hexahedra)
+        {
+          std::array<Vec3, 8> x;
+          for (int k = 0; k < 8; ++k)
+            x[k] = m.nodes.at(h[k]);
+          const auto [v, j] = hex_volume_and_min_jacobian(x);
+          volume += v, min_j = std::min(min_j, j);
+        }
+      EXPECT_GT(min_j, 0) << beta;
+      EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
+      EXPECT_EQ(m.group_nodes.count(boundary::cut_start) + m.group_nodes.count(boundary::cut_end),
+                0u);
+      // the bore all round at its radius
+      double r_lo = HUGE_VAL, r_hi = 0, a_lo = HUGE_VAL, a_hi = -HUGE_VAL;
+      for (std::size_t tag : m.group_nodes.at(boundary::bore))
+        {
+          const Vec3   x = m.nodes.at(tag);
+          const double r = std::hypot(x.x(), x.y()), a = std::atan2(x.y(), x.x());
+          r_lo = std::min(r_lo, r), r_hi = std::max(r_hi, r);
+          a_lo = std::min(a_lo, a), a_hi = std::max(a_hi, a);
+        }
+      EXPECT_NEAR(r_lo / info.rim_inner_radius, 1, 1e-8); // on the circle (the file's digits)
+      EXPECT_NEAR(r_hi / info.rim_inner_radius, 1, 1e-8);
+      EXPECT_GT(a_hi - a_lo, 1.9 * pi);
+      for (int i = 0; i < 16; ++i)
+        EXPECT_TRUE(m.group_nodes.count(boundary::flank(i, FlankSide::drive))) << i;
+      // the loaded teeth (segment teeth 7..9) fine, the far ones coarse
+      EXPECT_GT(mean_volume_at(m, boundary::flank(0, FlankSide::drive)),
+                4 * mean_volume_at(m, boundary::flank(8, FlankSide::drive)))
+          << beta;
+    }
+  SegmentMeshOptions bad;
+  bad.teeth = 16, bad.fine_teeth = 2;
+  EXPECT_THROW(write_tooth_segment_mesh(*InvoluteGear::create(test_data::fzg_c_pair().first), bad,
+                                        (dir / "bad.msh").string()),
+               InputError);
 }

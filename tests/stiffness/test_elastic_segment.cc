@@ -347,7 +347,15 @@ TEST(ElasticSegment, ABodyThatWouldNotFitIsRefusedBeforeItIsBuilt)
   for (const char *part :
        {"degrees of freedom", "factorisation (MUMPS) needs about", "GB available", "gamg"})
     EXPECT_NE(factor.find(part), std::string::npos) << factor;
-  o.memory_available = 0; // the machine's
+  // local refinement: refused before the pass that would make the matrix too large (every
+  // one of the 108 elements within reach of face 6: 864 after the first pass, 159 MB)
+  o.refine_boundaries = {6}, o.refine_distance = 1, o.local_refinements = 3;
+  const std::string refined = refusal(100e6);
+  for (const char *part :
+       {"local refinement pass 1 of 3", "about 864 elements", "0.1 GB available"})
+    EXPECT_NE(refined.find(part), std::string::npos) << refined;
+  o.local_refinements = 0;
+  o.memory_available  = 0; // the machine's
   const ElasticSegment body(mesh, o);
   EXPECT_GT(body.dofs(), 0u);
 }

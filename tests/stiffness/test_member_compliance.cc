@@ -154,3 +154,50 @@ TEST(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
   EXPECT_LT(dofs[1], dofs[0]);
   EXPECT_NEAR(refined / fine, 1, 0.01);
 }
+
+// Segment -> whole gear: held radial cuts stiffen the loaded teeth, free cuts soften them, and
+// both close in on the whole gear (all teeth on the rim, the bore held, no cuts) as the segment
+// grows (bench/README.md: FZG C, 3 / 7 teeth). The pinion's support alone changes.
+TEST(MemberCompliance, TheWholeGearLiesBetweenHeldAndFreeCuts)
+{
+  const auto [pd, gd]      = test_data::fzg_c_pair();
+  const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+  const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
+  const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
+  const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
+  const TcaPosition at       = tca.at(0);
+  const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
+  const std::string dir      = std::filesystem::temp_directory_path() / "gearkit-test-whole-gear";
+  std::filesystem::create_directories(dir);
+  auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s, int teeth,
+                    bool hold_cuts) {
+    MemberComplianceOptions o;
+    o.mesh.teeth         = teeth;
+    o.mesh.fine_teeth    = s.teeth;
+    o.mesh.central_tooth = s.central;
+    o.mesh.flank_size    = g.data().normal_module / 3;
+    o.hold_cuts          = hold_cuts;
+    for (int k = -(s.teeth - 1) / 2; k <= (s.teeth - 1) / 2; ++k)
+      o.loaded_teeth.push_back((s.central + k + g.teeth()) % g.teeth());
+    o.degree = 1;
+    o.n_u = 5, o.n_v = 4;
+    o.material       = {206e9, 0.3};
+    o.work_directory = dir;
+    return involute_member_compliance(g, f, o);
+  };
+  const FlankCompliance gear_table = member(*gear, *gf, segments.second, 5, true);
+  auto                  pinion_on  = [&](int teeth, bool hold_cuts) {
+    return mesh_stiffness(tca, at, member(*pinion, *pf, segments.first, teeth, hold_cuts),
+                                            gear_table);
+  };
+  const double held3 = pinion_on(3, true), held7 = pinion_on(7, true);
+  const double free3 = pinion_on(3, false), free7 = pinion_on(7, false);
+  const double whole = pinion_on(pd.teeth, true);
+  std::printf("K_m [N/um]: cuts held 3 / 7 teeth %.1f / %.1f, whole gear %.1f, cuts free 7 / 3 "
+              "teeth %.1f / %.1f\n",
+              held3 / 1e6, held7 / 1e6, whole / 1e6, free7 / 1e6, free3 / 1e6);
+  EXPECT_GT(held3, held7);
+  EXPECT_GT(held7, whole);
+  EXPECT_GT(whole, free7);
+  EXPECT_GT(free7, free3);
+}

@@ -140,9 +140,86 @@ TEST(ReferenceContact, BadInputIsRefused)
   o.elements_per_cell = 1;
   o.work_directory    = "/nonexistent/gearkit";
   EXPECT_THROW(reference_contact(*s.pinion, *s.gear, *s.tca, s.position, {1.0}, o), InputError);
-  const auto [pd, gd]  = test_data::fzg_c_pair(15 * pi / 180);
-  const auto        hp = InvoluteGear::create(pd), hg = InvoluteGear::create(gd);
-  const UnloadedTca helical(hp, hg, working_centre_distance(*hp, *hg));
-  o.work_directory = work_directory("reference-bad");
-  EXPECT_THROW(reference_contact(*hp, *hg, helical, helical.at(0), {1.0}, o), InputError);
+}
+
+TEST(ReferenceContact, RefinedAboutTheCellsAsOnTheGradedSection)
+{
+  // The same spur position two ways: gmsh grading the transverse section to the contact lines
+  // (the spur default), and deal.II refining a segment at the flank size about the contact
+  // cells (the way of helical and bevel pairs). Independent meshes of the same problem.
+  const Pitch             s;
+  ReferenceContactOptions o;
+  o.cells.cells.cells_across = 11, o.cells.cells.cells_along = 4;
+  o.cells.cells.gap_band = 8e-6;
+  o.min_segment_teeth    = 1;
+  o.elements_per_cell    = 0.5;
+  o.far_size             = 2 * s.pinion->data().normal_module;
+  o.work_directory       = work_directory("reference-local");
+  const double         T = 5912 * s.pinion->base_radius;
+  ReferenceContactInfo graded_info, local_info;
+  const double         graded =
+      reference_contact(*s.pinion, *s.gear, *s.tca, s.position, {T}, o, &graded_info)
+          .front()
+          .mesh_stiffness;
+  o.local_refinement = true;
+  const LoadedPosition local =
+      reference_contact(*s.pinion, *s.gear, *s.tca, s.position, {T}, o, &local_info).front();
+  std::printf("reference K_m graded %.2f N/um (%zu dofs), refined about the cells %.2f N/um "
+              "(%zu dofs, %u refinements)\n",
+              graded * 1e-6, graded_info.dofs, local.mesh_stiffness * 1e-6, local_info.dofs,
+              local_info.local_refinements);
+  EXPECT_EQ(graded_info.local_refinements, 0u);
+  EXPECT_GE(local_info.local_refinements, 2u);
+  EXPECT_NEAR(local.normal_force * local.lever, T, 1e-9 * T);
+  EXPECT_NEAR(local.mesh_stiffness / graded, 1, 0.02);
+}
+
+TEST(ReferenceContact, HelicalTorqueBalanceAndTheFastMode)
+{
+  // FZG C with a 15 degree helix: inclined contact lines, so the segments are refined about the
+  // contact cells by deal.II. Torque balance, compressive cell forces, and the fast mode on the
+  // same segments (FE tables + half-space) within a few per cent.
+  const auto [pd, gd]        = test_data::fzg_c_pair(15 * pi / 180);
+  const auto              hp = InvoluteGear::create(pd), hg = InvoluteGear::create(gd);
+  const UnloadedTca       tca(hp, hg, working_centre_distance(*hp, *hg));
+  const TcaPosition       position = tca.at(0);
+  ReferenceContactOptions o;
+  o.cells.cells.cells_across = 11, o.cells.cells.cells_along = 8;
+  o.cells.cells.gap_band = 8e-6;
+  o.min_segment_teeth    = 1;
+  o.elements_per_cell    = 0.25; // 0.5: 686k dofs, 8 GB, fast / reference 0.994
+  o.far_size             = 2 * hp->data().normal_module;
+  o.work_directory       = work_directory("reference-helical");
+  const double         T = 200;
+  ReferenceContactInfo info;
+  const LoadedPosition r = reference_contact(*hp, *hg, tca, position, {T}, o, &info).front();
+  EXPECT_GE(info.local_refinements, 2u);
+  EXPECT_NEAR(r.normal_force * r.lever, T, 1e-9 * T);
+  EXPECT_GE(r.force.minCoeff(), 0);
+  EXPECT_GT(r.force.maxCoeff(), 0);
+
+  auto table = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &seg) {
+    MemberComplianceOptions mo;
+    mo.mesh.teeth = seg.teeth, mo.mesh.central_tooth = seg.central;
+    mo.work_directory = o.work_directory;
+    return involute_member_compliance(g, f, mo);
+  };
+  const FlankCompliance cp  = table(*hp, tca.pinion_flanks(), info.pinion_segment);
+  const FlankCompliance cg  = table(*hg, tca.gear_flanks(), info.gear_segment);
+  LoadedContactOptions  lo  = o.cells;
+  lo.covered                = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
+  const LoadedPosition fast = loaded_contact(
+      tca, position, T, lo,
+      [&](const ContactCell &i, const ContactCell &j) {
+        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+      },
+      [&](const ContactCell &i, const ContactCell &j) {
+        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+      });
+  std::printf("helical FZG C, reference K_m %.2f N/um (%zu dofs, %u refinements, %.0f s), fast / "
+              "reference %.4f\n",
+              r.mesh_stiffness * 1e-6, info.dofs, info.local_refinements,
+              info.mesh_seconds + info.solve_seconds + info.contact_seconds,
+              fast.mesh_stiffness / r.mesh_stiffness);
+  EXPECT_NEAR(fast.mesh_stiffness / r.mesh_stiffness, 1, 0.06);
 }

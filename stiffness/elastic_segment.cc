@@ -6,7 +6,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/distributed/tria.h>
+#include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
@@ -176,7 +176,7 @@ matrix_bytes_per_dof(unsigned degree)
 /// mesh read, whole on every process) with one of options.refine_boundaries (and inside one of
 /// options.refine_boxes, if any).
 void
-refine_near_boundaries(const Triangulation<3> &mesh, parallel::distributed::Triangulation<3> &tria,
+refine_near_boundaries(const Triangulation<3> &mesh, parallel::shared::Triangulation<3> &tria,
                        const ElasticSegmentOptions &options)
 {
   if (!(options.refine_distance >= 0) || options.refine_boundaries.empty())
@@ -240,35 +240,36 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::distributed::Tria
   for (unsigned pass = 0; pass < options.local_refinements;
        ++pass, distance *= options.halve_refine_distance ? 0.5 : 1)
     {
+      // every process flags every cell alike (each refines the whole mesh)
       for (const auto &cell : tria.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (unsigned v = 0; v < GeometryInfo<3>::vertices_per_cell; ++v)
-            {
-              std::vector<Point<3>> nearest;
-              tree.query(boost::geometry::index::nearest(cell->vertex(v), 1),
-                         std::back_inserter(nearest));
-              if (nearest[0].distance(cell->vertex(v)) <= distance)
-                {
-                  cell->set_refine_flag();
-                  break;
-                }
-            }
+        for (unsigned v = 0; v < GeometryInfo<3>::vertices_per_cell; ++v)
+          {
+            std::vector<Point<3>> nearest;
+            tree.query(boost::geometry::index::nearest(cell->vertex(v), 1),
+                       std::back_inserter(nearest));
+            if (nearest[0].distance(cell->vertex(v)) <= distance)
+              {
+                cell->set_refine_flag();
+                break;
+              }
+          }
       // refused before the pass when the refined body's matrix would not fit (the same
       // estimate as before the assembly; each refined cell becomes eight)
       std::size_t flagged = 0;
       for (const auto &cell : tria.active_cell_iterators())
-        flagged += cell->is_locally_owned() && cell->refine_flag_set();
-      const double cells_after = double(tria.n_locally_owned_active_cells() + 7 * flagged);
+        flagged += cell->refine_flag_set() ? 1 : 0; // (a RefinementCase: 7 for isotropic)
+      const double cells_after = double(tria.n_active_cells() + 7 * flagged);
       const double p           = options.degree;
-      const auto [here, fits]  = machine_need(
-           cells_after * 3 * p * p * p * matrix_bytes_per_dof(options.degree), have, comm);
+      const auto [here, fits] =
+          machine_need(cells_after * 3 * p * p * p * matrix_bytes_per_dof(options.degree) /
+                           Utilities::MPI::n_mpi_processes(comm),
+                       have, comm);
       if (!fits)
         {
           std::ostringstream msg;
           msg.precision(3);
           msg << "elastic segment: local refinement pass " << pass + 1 << " of "
-              << options.local_refinements << " would make about "
-              << Utilities::MPI::sum(cells_after, comm)
+              << options.local_refinements << " would make about " << cells_after
               << " elements, whose stiffness matrix needs about "
               << Utilities::MPI::max(here, comm) / 1e9 << " GB on a machine with "
               << Utilities::MPI::min(have, comm) / 1e9
@@ -283,17 +284,19 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::distributed::Tria
 
 struct ElasticSegment::Impl
 {
-  MPI_Comm                                comm;
-  ElasticSegmentOptions                   options;
-  parallel::distributed::Triangulation<3> tria;
-  FESystem<3>                             fe;
-  DoFHandler<3>                           dofs;
-  MappingQ1<3>                            mapping;
-  std::unique_ptr<GridTools::Cache<3>>    cache_ptr; ///< cell search (R-tree) for probes
-  IndexSet                                owned, relevant;
-  AffineConstraints<double>               constraints;
-  PETScWrappers::MPI::SparseMatrix        K;
-  KSP                                     ksp = nullptr;
+  MPI_Comm              comm;
+  ElasticSegmentOptions options;
+  /// The whole mesh on every process, each owning a part (deal.II refines it: p4est's balance
+  /// crashed on twisted helical segments refined about contact cells)
+  parallel::shared::Triangulation<3>   tria;
+  FESystem<3>                          fe;
+  DoFHandler<3>                        dofs;
+  MappingQ1<3>                         mapping;
+  std::unique_ptr<GridTools::Cache<3>> cache_ptr; ///< cell search (R-tree) for probes
+  IndexSet                             owned, relevant;
+  AffineConstraints<double>            constraints;
+  PETScWrappers::MPI::SparseMatrix     K;
+  KSP                                  ksp = nullptr;
   /// The MUMPS Cholesky factor (the default); null where run-time options chose another solver
   /// (the KSP then solves).
   Mat    factor         = nullptr;
@@ -347,7 +350,8 @@ struct ElasticSegment::Impl
 
   Impl(unsigned degree, MPI_Comm communicator)
       : comm(communicator)
-      , tria(communicator)
+      , tria(communicator, Triangulation<3>::none, false,
+             parallel::shared::Triangulation<3>::partition_zorder)
       , fe(FE_Q<3>(degree), 3)
   {
   }

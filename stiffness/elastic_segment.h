@@ -1,5 +1,6 @@
 // Linear elasticity of one meshed body (a tooth segment, a cylinder slice, a test block) with
-// deal.II on a distributed triangulation and PETSc: the stiffness matrix assembled once,
+// deal.II on a shared triangulation (the mesh on every process, each owning a part; deal.II
+// refines it) and PETSc with distributed matrices: the stiffness matrix assembled once,
 // factorised once (MUMPS Cholesky) and reused for many load cases; concentrated loads applied
 // as uniform tractions over small surface patches; displacements read at arbitrary points
 // through precomputed evaluation functionals. MPI-parallel (the owning rank evaluates a point).

@@ -246,8 +246,12 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
           l.point      = c.position;
           l.force      = -c.normal; // a unit force pressing into the material
           l.boundaries = {flank_id(c.tooth)};
-          l.half_size  = c.half_size;
-          l.axes       = c.axes;
+          // refined about the cells: a cell narrower than the contact elements (cut at a tip's
+          // edge) spreads its traction over one element, so that it meets the quadrature
+          l.half_size = graded_lines
+                            ? c.half_size
+                            : c.half_size.cwiseMax(Vec3(contact / 2, contact / 2, contact));
+          l.axes      = c.axes;
           loads.push_back(l);
         }
       // approach of each cell = its mean normal displacement (the cells' load work)

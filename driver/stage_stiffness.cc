@@ -353,10 +353,13 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           ro.hold_cuts         = fe.hold_cuts;
           ro.elements_per_cell = lc.reference_elements_per_cell;
           ro.work_directory    = vtu.string();
-          auto segment         = [&](const char *member, int z) {
+          // the segments of the fast mode (member_options): the loaded teeth, at least the
+          // scene's segment teeth, or the whole gear
+          auto segment = [&](const char *member, int z) {
             const H5Group m = cg.group(member);
-            return SegmentChoice{int(m.read_doubles("central_tooth").front()),
-                                 fe.whole_gears ? z : int(m.read_ints("teeth").size())};
+            return SegmentChoice{
+                int(m.read_doubles("central_tooth").front()),
+                fe.whole_gears ? z : std::max(fe.segment_teeth, int(m.read_ints("teeth").size()))};
           };
           ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
           ro.flank_size         = fe.flank_size * member_module(pair);

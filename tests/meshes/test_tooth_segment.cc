@@ -44,6 +44,22 @@ mean_volume_at(const MeshFile &m, int group)
     }
   return v / n;
 }
+
+/// The mesh's volume and its hexahedra's smallest corner Jacobian.
+std::pair<double, double>
+volume_and_min_jacobian(const MeshFile &m)
+{
+  double volume = 0, min_j = HUGE_VAL;
+  for (const auto &h : m.hexahedra)
+    {
+      std::array<Vec3, 8> x;
+      for (int k = 0; k < 8; ++k)
+        x[k] = m.nodes.at(h[k]);
+      const auto [v, j] = hex_volume_and_min_jacobian(x);
+      volume += v, min_j = std::min(min_j, j);
+    }
+  return {volume, min_j};
+}
 } // namespace
 
 TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
@@ -62,15 +78,7 @@ TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
       EXPECT_TRUE(m.other_element_types.empty());
       ASSERT_EQ(m.hexahedra.size(), info.hexahedra);
 
-      double volume = 0, min_j = HUGE_VAL;
-      for (const auto &h : m.hexahedra)
-        {
-          std::array<Vec3, 8> x;
-          for (int k = 0; k < 8; ++k)
-            x[k] = m.nodes.at(h[k]);
-          const auto [v, j] = hex_volume_and_min_jacobian(x);
-          volume += v, min_j = std::min(min_j, j);
-        }
+      const auto [volume, min_j] = volume_and_min_jacobian(m);
       EXPECT_GT(min_j, 0) << beta;
       EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
 
@@ -237,15 +245,7 @@ TEST_F(ToothSegmentMesh, TheWholeGearIsARingWithoutCutsFineAtTheLoadedTeeth)
       EXPECT_EQ(info.member_teeth[8], 5); // the central tooth in the middle, as in a segment
       const MeshFile m = read(path);
       EXPECT_TRUE(m.other_element_types.empty());
-      double volume = 0, min_j = HUGE_VAL;
-      for (const auto &h : m.hexahedra)
-        {
-          std::array<Vec3, 8> x;
-          for (int k = 0; k < 8; ++k)
-            x[k] = m.nodes.at(h[k]);
-          const auto [v, j] = hex_volume_and_min_jacobian(x);
-          volume += v, min_j = std::min(min_j, j);
-        }
+      const auto [volume, min_j] = volume_and_min_jacobian(m);
       EXPECT_GT(min_j, 0) << beta;
       EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
       EXPECT_EQ(m.group_nodes.count(boundary::cut_start) + m.group_nodes.count(boundary::cut_end),

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <tuple>
 
 using namespace gearkit;
 
@@ -30,19 +31,38 @@ mesh_stiffness(const UnloadedTca &tca, const TcaPosition &at, const FlankComplia
   lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
   return loaded_contact(tca, at, 200, lo, sp, sg).mesh_stiffness;
 }
+
+/// FZG C at its first position, the segments of the teeth in contact there.
+struct FzgAtZero
+{
+  std::shared_ptr<const InvoluteGear>     pinion, gear;
+  std::shared_ptr<InvoluteMemberFlanks>   pf, gf;
+  std::unique_ptr<UnloadedTca>            tca;
+  TcaPosition                             at;
+  std::pair<SegmentChoice, SegmentChoice> segments;
+  FzgAtZero()
+  {
+    const auto [pd, gd] = test_data::fzg_c_pair();
+    pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+    pf       = std::make_shared<InvoluteMemberFlanks>(pinion);
+    gf       = std::make_shared<InvoluteMemberFlanks>(gear);
+    tca      = std::make_unique<UnloadedTca>(pf, gf, working_centre_distance(*pinion, *gear));
+    at       = tca->at(0);
+    segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
+  }
+};
 } // namespace
 
 TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
 {
-  const auto [pd, gd]      = test_data::fzg_c_pair();
-  const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-  const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
-  const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
-  const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
-  const TcaPosition at       = tca.at(0);
-  const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
-  const unsigned    rank     = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  const unsigned    size     = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const FzgAtZero s;
+  const auto &[pinion, gear, pf, gf] = std::tie(s.pinion, s.gear, s.pf, s.gf);
+  const auto &[pd, gd]               = std::tie(s.pinion->data(), s.gear->data());
+  const UnloadedTca &tca             = *s.tca;
+  const TcaPosition &at              = s.at;
+  const auto        &segments        = s.segments;
+  const unsigned     rank            = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const unsigned     size            = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
 
   // Coarse Q1 segments of 3 teeth: the point is the parallel solve, not the accuracy.
   auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s,
@@ -116,14 +136,12 @@ TEST(MemberCompliance, NearFieldRadiusOption)
 // degrees of freedom (the coarse far field costs little accuracy).
 TEST(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
 {
-  const auto [pd, gd]      = test_data::fzg_c_pair();
-  const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-  const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
-  const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
-  const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
-  const TcaPosition at       = tca.at(0);
-  const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
-  const std::string dir      = std::filesystem::temp_directory_path() / "gearkit-test-local-refine";
+  const FzgAtZero s;
+  const auto &[pinion, gear, pf, gf] = std::tie(s.pinion, s.gear, s.pf, s.gf);
+  const UnloadedTca &tca             = *s.tca;
+  const TcaPosition &at              = s.at;
+  const auto        &segments        = s.segments;
+  const std::string  dir = std::filesystem::temp_directory_path() / "gearkit-test-local-refine";
   std::filesystem::create_directories(dir);
   std::size_t dofs[2] = {0, 0}; // of the pinion's segments
   auto        member  = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s,
@@ -160,14 +178,13 @@ TEST(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
 // grows (bench/README.md: FZG C, 3 / 7 teeth). The pinion's support alone changes.
 TEST(MemberCompliance, TheWholeGearLiesBetweenHeldAndFreeCuts)
 {
-  const auto [pd, gd]      = test_data::fzg_c_pair();
-  const auto        pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
-  const auto        pf = std::make_shared<InvoluteMemberFlanks>(pinion);
-  const auto        gf = std::make_shared<InvoluteMemberFlanks>(gear);
-  const UnloadedTca tca(pf, gf, working_centre_distance(*pinion, *gear));
-  const TcaPosition at       = tca.at(0);
-  const auto        segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
-  const std::string dir      = std::filesystem::temp_directory_path() / "gearkit-test-whole-gear";
+  const FzgAtZero s;
+  const auto &[pinion, gear, pf, gf] = std::tie(s.pinion, s.gear, s.pf, s.gf);
+  const auto &[pd, gd]               = std::tie(s.pinion->data(), s.gear->data());
+  const UnloadedTca &tca             = *s.tca;
+  const TcaPosition &at              = s.at;
+  const auto        &segments        = s.segments;
+  const std::string  dir = std::filesystem::temp_directory_path() / "gearkit-test-whole-gear";
   std::filesystem::create_directories(dir);
   auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s, int teeth,
                     bool hold_cuts) {

@@ -49,6 +49,33 @@ work_directory(const std::string &name)
   std::filesystem::create_directories(dir);
   return dir.string();
 }
+
+/// The fast mode (FE tables of the members on the reference's segments, default meshes, and
+/// the half-space between the cells) at the same position, torque and cells.
+LoadedPosition
+fast_mode(const InvoluteGear &pinion, const InvoluteGear &gear, const UnloadedTca &tca,
+          const TcaPosition &position, double torque, const ReferenceContactOptions &o,
+          const ReferenceContactInfo &info, const Material &material)
+{
+  auto table = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &seg) {
+    MemberComplianceOptions mo;
+    mo.mesh.teeth = seg.teeth, mo.mesh.central_tooth = seg.central;
+    mo.material = material, mo.work_directory = o.work_directory;
+    return involute_member_compliance(g, f, mo);
+  };
+  const FlankCompliance cp = table(pinion, tca.pinion_flanks(), info.pinion_segment);
+  const FlankCompliance cg = table(gear, tca.gear_flanks(), info.gear_segment);
+  LoadedContactOptions  lo = o.cells;
+  lo.covered               = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
+  return loaded_contact(
+      tca, position, torque, lo,
+      [&](const ContactCell &i, const ContactCell &j) {
+        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
+      },
+      [&](const ContactCell &i, const ContactCell &j) {
+        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
+      });
+}
 } // namespace
 
 TEST(ReferenceContact, HertzStripTorqueBalanceAndTheFastMode)
@@ -107,24 +134,7 @@ TEST(ReferenceContact, HertzStripTorqueBalanceAndTheFastMode)
               info.mesh_seconds + info.solve_seconds + info.contact_seconds);
 
   // The fast mode on the same segments (FE tables + half-space) within a few per cent.
-  auto table = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &seg) {
-    MemberComplianceOptions mo;
-    mo.mesh.teeth = seg.teeth, mo.mesh.central_tooth = seg.central;
-    mo.material = steel, mo.work_directory = o.work_directory;
-    return involute_member_compliance(g, f, mo);
-  };
-  const FlankCompliance cp  = table(*s.pinion, s.tca->pinion_flanks(), info.pinion_segment);
-  const FlankCompliance cg  = table(*s.gear, s.tca->gear_flanks(), info.gear_segment);
-  LoadedContactOptions  lo  = o.cells;
-  lo.covered                = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
-  const LoadedPosition fast = loaded_contact(
-      *s.tca, s.position, T, lo,
-      [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-      },
-      [&](const ContactCell &i, const ContactCell &j) {
-        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-      });
+  const LoadedPosition fast = fast_mode(*s.pinion, *s.gear, *s.tca, s.position, T, o, info, steel);
   std::printf("K_m fast / reference %.4f\n", fast.mesh_stiffness / r[2].mesh_stiffness);
   EXPECT_NEAR(fast.mesh_stiffness / r[2].mesh_stiffness, 1, 0.06);
 }
@@ -198,24 +208,7 @@ TEST(ReferenceContact, HelicalTorqueBalanceAndTheFastMode)
   EXPECT_GE(r.force.minCoeff(), 0);
   EXPECT_GT(r.force.maxCoeff(), 0);
 
-  auto table = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &seg) {
-    MemberComplianceOptions mo;
-    mo.mesh.teeth = seg.teeth, mo.mesh.central_tooth = seg.central;
-    mo.work_directory = o.work_directory;
-    return involute_member_compliance(g, f, mo);
-  };
-  const FlankCompliance cp  = table(*hp, tca.pinion_flanks(), info.pinion_segment);
-  const FlankCompliance cg  = table(*hg, tca.gear_flanks(), info.gear_segment);
-  LoadedContactOptions  lo  = o.cells;
-  lo.covered                = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
-  const LoadedPosition fast = loaded_contact(
-      tca, position, T, lo,
-      [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-      },
-      [&](const ContactCell &i, const ContactCell &j) {
-        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-      });
+  const LoadedPosition fast = fast_mode(*hp, *hg, tca, position, T, o, info, Material{});
   std::printf("helical FZG C, reference K_m %.2f N/um (%zu dofs, %u refinements, %.0f s), fast / "
               "reference %.4f\n",
               r.mesh_stiffness * 1e-6, info.dofs, info.local_refinements,

@@ -134,6 +134,9 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
   lo.table_parameters            = nullptr;
   std::vector<ContactCell> cells = loaded_cells(tca, position, lo);
   const Eigen::Index       n     = Eigen::Index(cells.size());
+  if (n == 0)
+    throw InputError("reference contact: no flank pair comes within the gap band (" +
+                     std::to_string(o.cells.cells.gap_band * 1e6) + " um) at this position");
 
   Eigen::MatrixXd                              C = Eigen::MatrixXd::Zero(n, n);
   std::vector<std::vector<PatchLoad>>          member_loads(2);

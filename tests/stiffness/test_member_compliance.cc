@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <tuple>
 
 using namespace gearkit;
 
@@ -33,36 +32,39 @@ mesh_stiffness(const UnloadedTca &tca, const TcaPosition &at, const FlankComplia
 }
 
 /// FZG C at its first position, the segments of the teeth in contact there.
-struct FzgAtZero
+class MemberCompliance : public ::testing::Test
 {
-  std::shared_ptr<const InvoluteGear>     pinion, gear;
-  std::shared_ptr<InvoluteMemberFlanks>   pf, gf;
-  std::unique_ptr<UnloadedTca>            tca;
-  TcaPosition                             at;
-  std::pair<SegmentChoice, SegmentChoice> segments;
-  FzgAtZero()
+protected:
+  MemberCompliance()
   {
-    const auto [pd, gd] = test_data::fzg_c_pair();
+    const auto [p, g] = test_data::fzg_c_pair();
+    pd = p, gd = g;
     pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
     pf       = std::make_shared<InvoluteMemberFlanks>(pinion);
     gf       = std::make_shared<InvoluteMemberFlanks>(gear);
-    tca      = std::make_unique<UnloadedTca>(pf, gf, working_centre_distance(*pinion, *gear));
-    at       = tca->at(0);
+    tca_ptr  = std::make_unique<UnloadedTca>(pf, gf, working_centre_distance(*pinion, *gear));
+    at       = tca_ptr->at(0);
     segments = loaded_segments({at}, pd.teeth, gd.teeth, 20e-6);
+  }
+  InvoluteGearData                        pd, gd;
+  std::shared_ptr<const InvoluteGear>     pinion, gear;
+  std::shared_ptr<InvoluteMemberFlanks>   pf, gf;
+  std::unique_ptr<UnloadedTca>            tca_ptr;
+  TcaPosition                             at;
+  std::pair<SegmentChoice, SegmentChoice> segments;
+  const UnloadedTca &
+  tca() const
+  {
+    return *tca_ptr;
   }
 };
 } // namespace
 
-TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
+TEST_F(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
 {
-  const FzgAtZero s;
-  const auto &[pinion, gear, pf, gf] = std::tie(s.pinion, s.gear, s.pf, s.gf);
-  const auto &[pd, gd]               = std::tie(s.pinion->data(), s.gear->data());
-  const UnloadedTca &tca             = *s.tca;
-  const TcaPosition &at              = s.at;
-  const auto        &segments        = s.segments;
-  const unsigned     rank            = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  const unsigned     size            = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const UnloadedTca &tca  = this->tca();
+  const unsigned     rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const unsigned     size = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
 
   // Coarse Q1 segments of 3 teeth: the point is the parallel solve, not the accuracy.
   auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s,
@@ -103,12 +105,9 @@ TEST(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
 // every table used twice the module): on the FZG C pinion's segment the geometry (a held face,
 // the body coming back across a normal) leaves more than 1.5 mm at every grid point, so a 1 mm
 // option is the smallest radius used, and with the default (2 m_n) it is larger.
-TEST(MemberCompliance, NearFieldRadiusOption)
+TEST_F(MemberCompliance, NearFieldRadiusOption)
 {
-  const auto [pd, gd]      = test_data::fzg_c_pair();
-  const auto        pinion = InvoluteGear::create(pd);
-  const auto        pf     = std::make_shared<InvoluteMemberFlanks>(pinion);
-  const std::string dir    = std::filesystem::temp_directory_path() / "gearkit-test-near-field";
+  const std::string dir = std::filesystem::temp_directory_path() / "gearkit-test-near-field";
   std::filesystem::create_directories(dir);
   auto smallest_radius = [&](double radius) {
     MemberComplianceOptions o;
@@ -134,13 +133,9 @@ TEST(MemberCompliance, NearFieldRadiusOption)
 // The loaded flanks' elements refined by deal.II on a pinion segment meshed twice as coarse,
 // against the segment meshed at the fine size throughout: the same mesh stiffness from fewer
 // degrees of freedom (the coarse far field costs little accuracy).
-TEST(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
+TEST_F(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
 {
-  const FzgAtZero s;
-  const auto &[pinion, gear, pf, gf] = std::tie(s.pinion, s.gear, s.pf, s.gf);
-  const UnloadedTca &tca             = *s.tca;
-  const TcaPosition &at              = s.at;
-  const auto        &segments        = s.segments;
+  const UnloadedTca &tca = this->tca();
   const std::string  dir = std::filesystem::temp_directory_path() / "gearkit-test-local-refine";
   std::filesystem::create_directories(dir);
   std::size_t dofs[2] = {0, 0}; // of the pinion's segments
@@ -176,14 +171,9 @@ TEST(MemberCompliance, LocalRefinementAgreesWithTheFineMesh)
 // Segment -> whole gear: held radial cuts stiffen the loaded teeth, free cuts soften them, and
 // both close in on the whole gear (all teeth on the rim, the bore held, no cuts) as the segment
 // grows (bench/README.md: FZG C, 3 / 7 teeth). The pinion's support alone changes.
-TEST(MemberCompliance, TheWholeGearLiesBetweenHeldAndFreeCuts)
+TEST_F(MemberCompliance, TheWholeGearLiesBetweenHeldAndFreeCuts)
 {
-  const FzgAtZero s;
-  const auto &[pinion, gear, pf, gf] = std::tie(s.pinion, s.gear, s.pf, s.gf);
-  const auto &[pd, gd]               = std::tie(s.pinion->data(), s.gear->data());
-  const UnloadedTca &tca             = *s.tca;
-  const TcaPosition &at              = s.at;
-  const auto        &segments        = s.segments;
+  const UnloadedTca &tca = this->tca();
   const std::string  dir = std::filesystem::temp_directory_path() / "gearkit-test-whole-gear";
   std::filesystem::create_directories(dir);
   auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s, int teeth,

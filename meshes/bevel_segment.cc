@@ -297,12 +297,18 @@ public:
           std::array<std::size_t, 8> h{node(k, q[0]),     node(k, q[1]),     node(k, q[2]),
                                        node(k, q[3]),     node(k + 1, q[0]), node(k + 1, q[1]),
                                        node(k + 1, q[2]), node(k + 1, q[3])};
+          Vec3 x[8];
+          for (int c = 0; c < 8; ++c)
+            x[c] = X(h[std::size_t(c)]);
           if (orientation == 0)
-            orientation = corner_jacobian(h, 0, X) > 0 ? 1 : -1;
+            orientation = hexahedron_corner_jacobian(x, 0) > 0 ? 1 : -1;
           if (orientation < 0)
-            std::swap_ranges(h.begin(), h.begin() + 4, h.begin() + 4);
+            {
+              std::swap_ranges(h.begin(), h.begin() + 4, h.begin() + 4);
+              std::swap_ranges(x, x + 4, x + 4);
+            }
           for (int corner = 0; corner < 8; ++corner)
-            if (!(corner_jacobian(h, corner, X) > 0))
+            if (!(hexahedron_corner_jacobian(x, corner) > 0))
               {
                 std::ostringstream msg;
                 msg << "bevel segment mesh: a folded element at (" << X(h[corner]).transpose() * 1e3
@@ -398,20 +404,6 @@ public:
   std::vector<int> member_teeth;
 
 private:
-  template <class Positions>
-  static double
-  corner_jacobian(const std::array<std::size_t, 8> &h, int corner, const Positions &X)
-  {
-    // edges from the corner along the three directions of the trilinear map
-    static const int    along[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
-                                       {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
-    static const double sign[8]     = {1, -1, 1, -1, -1, 1, -1, 1};
-    const Vec3          x           = X(h[corner]);
-    return sign[corner] * (X(h[along[corner][0]]) - x)
-                              .cross(X(h[along[corner][1]]) - x)
-                              .dot(X(h[along[corner][2]]) - x);
-  }
-
   void
   choose_counts()
   {

@@ -4,9 +4,13 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <limits>
+#include <vector>
 
 namespace gearkit
 {
@@ -52,6 +56,39 @@ require_hexahedra(const std::string &what)
   std::vector<double> coords, parametric;
   gmsh::model::mesh::getNodes(nodes, coords, parametric);
   return {tags.size(), nodes.size()};
+}
+
+double
+worst_corner_jacobian()
+{
+  std::vector<std::size_t> nodes;
+  std::vector<double>      xyz, parametric;
+  gmsh::model::mesh::getNodes(nodes, xyz, parametric);
+  std::vector<std::size_t> index; // node tag -> position in xyz
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    {
+      if (nodes[i] >= index.size())
+        index.resize(nodes[i] + 1);
+      index[nodes[i]] = i;
+    }
+  std::vector<std::size_t> tags, corners;
+  gmsh::model::mesh::getElementsByType(5, tags, corners);
+  double worst = std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < tags.size(); ++e)
+    {
+      Vec3 x[8];
+      for (int c = 0; c < 8; ++c)
+        {
+          const std::size_t i = index[corners[8 * e + std::size_t(c)]];
+          x[c]                = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+        }
+      double j[8], mean = 0;
+      for (int c = 0; c < 8; ++c)
+        mean += std::abs(j[c] = hexahedron_corner_jacobian(x, c)) / 8;
+      for (double jc : j)
+        worst = std::min(worst, jc / mean);
+    }
+  return worst;
 }
 
 void

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -258,8 +260,6 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.Algorithm",
-                          6); // frontal-Delaunay (8 crashes with a background field in gmsh 4.8)
   gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1); // blossom
   // Every element is split into hexahedra at the end (the prisms the recombination's left-over
   // triangles extrude into as well): all-hexahedral. The sizes and layers given to gmsh are
@@ -286,33 +286,66 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
                                  boundary::name(id));
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 1), "body");
 
-  gmsh::model::mesh::generate(3);
-  std::tie(info.hexahedra, info.nodes) = require_hexahedra("tooth segment mesh");
-
   // Flank nodes onto the exact involute (splines and the subdivision's new nodes are off by up
   // to a few micrometres; contact gaps are micrometres): at the node's radius and z, the polar
   // angle of the involute, theta_b - inv(alpha_r) from the tooth's centre line turned by the
   // helix.
-  const double theta_b = std::atan2(involute.front().y(), involute.front().x()) +
-                         gear.roll_angle_form - std::atan(gear.roll_angle_form);
-  for (int i = 0; i < o.teeth; ++i)
-    for (FlankSide side : {FlankSide::drive, FlankSide::coast})
-      {
-        const double             sign = side == FlankSide::drive ? 1 : -1;
-        const double             a    = phi0 + pitch * (o.central_tooth - half_n + i);
-        std::vector<std::size_t> flank_nodes;
-        std::vector<double>      xyz;
-        gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes, xyz);
-        for (std::size_t k = 0; k < flank_nodes.size(); ++k)
-          {
-            const double r = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
-            const double xi =
-                std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
-            const double angle = a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
-            gmsh::model::mesh::setNode(flank_nodes[k],
-                                       {r * std::cos(angle), r * std::sin(angle), zk}, {});
-          }
-      }
+  const auto onto_involutes = [&] {
+    const double theta_b = std::atan2(involute.front().y(), involute.front().x()) +
+                           gear.roll_angle_form - std::atan(gear.roll_angle_form);
+    for (int i = 0; i < o.teeth; ++i)
+      for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+        {
+          const double             sign = side == FlankSide::drive ? 1 : -1;
+          const double             a    = phi0 + pitch * (o.central_tooth - half_n + i);
+          std::vector<std::size_t> flank_nodes;
+          std::vector<double>      xyz;
+          gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes, xyz);
+          for (std::size_t k = 0; k < flank_nodes.size(); ++k)
+            {
+              const double r = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
+              const double xi =
+                  std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
+              const double angle = a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
+              gmsh::model::mesh::setNode(flank_nodes[k],
+                                         {r * std::cos(angle), r * std::sin(angle), zk}, {});
+            }
+        }
+  };
+
+  // gmsh's 2-D algorithms in turn until the worst element is acceptable (the best one if none
+  // is): at some sizes one of them leaves a sliver at a root land or fillet whose subdivision
+  // folds (bench/README.md, "Mesh quality"); the first is the one every earlier mesh used.
+  // (8, frontal-Delaunay for quadrilaterals, crashes with a background field in gmsh 4.8.)
+  const int algorithms[] = {6, 5, 1}; // frontal-Delaunay, Delaunay, MeshAdapt
+  int       best = 0;
+  double    best_quality = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i <= std::size(algorithms); ++i)
+    {
+      const int algorithm = i < std::size(algorithms) ? algorithms[i] : best;
+      if (i == std::size(algorithms) && algorithm == info.mesh_algorithm)
+        break; // the last one tried was the best
+      gmsh::model::mesh::clear();
+      gmsh::option::setNumber("Mesh.Algorithm", algorithm);
+      gmsh::model::mesh::generate(3);
+      std::tie(info.hexahedra, info.nodes) = require_hexahedra("tooth segment mesh");
+      onto_involutes();
+      info.mesh_algorithm = algorithm;
+      info.worst_corner_jacobian = worst_corner_jacobian();
+      if (info.worst_corner_jacobian >= SegmentMeshInfo::acceptable_corner_jacobian)
+        break;
+      if (info.worst_corner_jacobian > best_quality)
+        best_quality = info.worst_corner_jacobian, best = algorithm;
+    }
+  if (!(info.worst_corner_jacobian > 0))
+    {
+      std::ostringstream msg;
+      msg << "tooth segment mesh of " << d.name << ": gmsh folds an element with every 2-D "
+          << "algorithm at these sizes (flank " << flank_size * 1e3 << " mm, far " << far_size * 1e3
+          << " mm; worst corner Jacobian " << best_quality
+          << " of its mean); allowed: positive at every corner. Try other element sizes";
+      throw InputError(msg.str());
+    }
 
   // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b.
   const double outline_area = polygon_moments(gear.transverse_outline(400)).area;
@@ -357,7 +390,9 @@ segment_sidecar(const std::string &member, const SegmentMeshInfo &info,
   json.precision(12);
   json << "{\n  \"gear\": \"" << member << "\",\n  \"analytic_volume\": " << info.analytic_volume
        << ",\n  \"hexahedra\": " << info.hexahedra << ",\n  \"nodes\": " << info.nodes
-       << ",\n  \"rim_inner_radius\": " << info.rim_inner_radius << ",\n  \"member_teeth\": [";
+       << ",\n  \"rim_inner_radius\": " << info.rim_inner_radius
+       << ",\n  \"worst_corner_jacobian\": " << info.worst_corner_jacobian
+       << ",\n  \"gmsh_2d_algorithm\": " << info.mesh_algorithm << ",\n  \"member_teeth\": [";
   for (std::size_t i = 0; i < info.member_teeth.size(); ++i)
     json << (i ? ", " : "") << info.member_teeth[i];
   json << "],\n  \"physical_surfaces\": {";

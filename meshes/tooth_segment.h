@@ -71,6 +71,12 @@ struct SegmentMeshInfo
   double           rim_inner_radius = 0; ///< the one used [m]
   std::vector<int> member_teeth;         ///< member tooth of each segment tooth
   bool             whole = false;        ///< the whole gear: no cut faces
+  /// The worst hexahedron: its smallest corner Jacobian relative to its mean (1 for a
+  /// parallelepiped, <= 0 folded), and gmsh's 2-D algorithm that gave it (6 frontal-Delaunay,
+  /// 5 Delaunay, 1 MeshAdapt: the next is tried while the worst is below the acceptable value).
+  double worst_corner_jacobian = 0;
+  int    mesh_algorithm        = 0;
+  static constexpr double acceptable_corner_jacobian = 0.05;
 };
 
 /// The .json sidecar of a segment mesh (for scripts/check_mesh.py): the member's name, the
@@ -80,8 +86,9 @@ segment_sidecar(const std::string &member, const SegmentMeshInfo &info,
                 const std::vector<int> &boundary_ids);
 
 /// Builds the segment with gmsh and writes it to `path` (.msh 4.1) and `path`.json, each via a
-/// temporary file and a rename. Throws InputError for bad options (name, value, allowed range)
-/// and when gmsh cannot mesh the section with quadrilaterals only.
+/// temporary file and a rename. Throws InputError for bad options (name, value, allowed range),
+/// when gmsh cannot mesh the section with quadrilaterals only, and when every 2-D algorithm
+/// folds an element.
 SegmentMeshInfo
 write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &options,
                          const std::string &path);

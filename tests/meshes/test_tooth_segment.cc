@@ -228,6 +228,42 @@ TEST_F(ToothSegmentMesh, FineOnlyAtTheLoadedFlanks)
   EXPECT_THROW(write_tooth_segment_mesh(*gear, bad, path), InputError);
 }
 
+TEST_F(ToothSegmentMesh, AnotherAlgorithmWhereFrontalDelaunayFoldsAnElement)
+{
+  // The FZG C gear's 7-tooth segment at half a module: gmsh 4.8's frontal-Delaunay leaves a
+  // sliver at a root land whose subdivision folds (worst corner Jacobian -2.1 spur, -0.51
+  // helical of its mean); the mesher tries the next 2-D algorithm.
+  for (double beta : {0.0, 15 * pi / 180})
+    {
+      const auto         gear = InvoluteGear::create(test_data::fzg_c_pair(beta).second);
+      SegmentMeshOptions o;
+      o.teeth = 7, o.flank_size = 0.5 * 4.5e-3, o.far_size = 4.5e-3;
+      const std::string     path = (dir / "segment.msh").string();
+      const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
+      EXPECT_NE(info.mesh_algorithm, 6) << beta; // the fallback is what this test exercises
+      EXPECT_GE(info.worst_corner_jacobian, SegmentMeshInfo::acceptable_corner_jacobian) << beta;
+      // independently, from the trilinear map's derivative: the worst corner against the
+      // element's mean Jacobian (its volume / 8 in reference coordinates [-1, 1]^3)
+      const MeshFile m     = read(path);
+      double         worst = HUGE_VAL;
+      for (const auto &h : m.hexahedra)
+        {
+          std::array<Vec3, 8> x;
+          for (int k = 0; k < 8; ++k)
+            x[k] = m.nodes.at(h[k]);
+          const auto [v, j] = hex_volume_and_min_jacobian(x);
+          worst             = std::min(worst, j / (v / 8));
+        }
+      EXPECT_GT(worst, 0.5 * info.worst_corner_jacobian) << beta;
+      EXPECT_LT(worst, 2 * info.worst_corner_jacobian) << beta;
+      std::ifstream      sidecar(path + ".json");
+      std::ostringstream text;
+      text << sidecar.rdbuf();
+      EXPECT_NE(text.str().find("\"gmsh_2d_algorithm\": " + std::to_string(info.mesh_algorithm)),
+                std::string::npos);
+    }
+}
+
 TEST_F(ToothSegmentMesh, TheWholeGearIsARingWithoutCutsFineAtTheLoadedTeeth)
 {
   // teeth = z: every tooth on the rim, the bore a hole all round, no cut faces; only the

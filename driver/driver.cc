@@ -1,9 +1,11 @@
 #include "driver/driver.h"
 
 #include "driver/stages.h"
+#include "stiffness/elastic_segment.h"
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <dlfcn.h>
@@ -12,6 +14,8 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <thread>
+#include <unistd.h>
 
 namespace gearkit
 {
@@ -41,6 +45,25 @@ together(Work &&work)
       dealii::Utilities::MPI::min(error.empty() ? n_processes : rank, MPI_COMM_WORLD);
   if (failed < n_processes)
     throw InputError(dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, error, failed));
+}
+
+/// Cores, memory and processes, for the report.
+std::string
+machine_description()
+{
+  std::ostringstream m;
+  m << std::thread::hardware_concurrency() << " cores, " << std::setprecision(3)
+    << double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / (1u << 30)
+    << " GiB memory, " << dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
+    << " MPI process(es)";
+  std::ifstream cpu("/proc/cpuinfo");
+  for (std::string line; std::getline(cpu, line);)
+    if (line.rfind("model name", 0) == 0)
+      {
+        m << ", " << line.substr(line.find(':') + 2);
+        break;
+      }
+  return m.str();
 }
 } // namespace
 
@@ -130,10 +153,24 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
     root.attribute("scene", scene.name);
     root.attribute("scene_file", scene.file);
     root.attribute("gearkit_version", GEARKIT_VERSION);
-    std::string stages;
+    std::string        stages;
+    std::ostringstream table, parameters;
     for (const StageRun &r : summary.stages)
-      stages += r.name + (r.reused ? " (reused)" : " (ran)") + "\n";
+      {
+        stages += r.name + (r.reused ? " (reused)" : " (ran)") + "\n";
+        table << r.name << '\t' << (r.reused ? "reused" : "ran") << '\t' << r.seconds << '\t'
+              << fs::path(r.cache_file).filename().string() << '\n';
+      }
     root.attribute("stages", stages);
+    // For the report (scripts/report.py): each stage's time and cache file (its key), the
+    // scene's parameters as run, what ran them.
+    root.attribute("stage_table", table.str());
+    for (const auto &[section, text] : scene.sections)
+      parameters << "subsection " << section << "\n" << text << "end\n";
+    root.attribute("scene_parameters", parameters.str());
+    root.attribute("versions", "gearkit " GEARKIT_VERSION ", " + finite_element_versions() +
+                                   ", compiler " __VERSION__);
+    root.attribute("machine", machine_description());
   }
   for (const StageRun &r : summary.stages)
     results.copy_from(*files.at(r.name), "/" + r.name, "/" + r.name);
@@ -162,13 +199,50 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
 
 namespace
 {
+/// The cases that ship with gearkit: cases/*.prm and cases/*/*.prm, each with the first
+/// sentence of its opening comment.
+void
+list_cases(std::ostream &out)
+{
+  std::vector<fs::path> files;
+  for (const auto &e : fs::recursive_directory_iterator(GEARKIT_SOURCE_DIR "/cases"))
+    if (e.path().extension() == ".prm")
+      files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  out << "cases (gearkit [options] <file>; ./run <file>):\n";
+  for (const fs::path &f : files)
+    {
+      std::ifstream in(f);
+      std::string   text;
+      for (std::string line; std::getline(in, line) && line.rfind("#", 0) == 0;)
+        text += line.substr(std::min<std::size_t>(2, line.size())) + " ";
+      for (const char *prefix : {"gearkit case: ", "gearkit "})
+        if (text.rfind(prefix, 0) == 0)
+          text = text.substr(std::string(prefix).size());
+      if (const auto stop = text.find(". "); stop != std::string::npos)
+        text.resize(stop + 1);
+      out << "  " << fs::relative(f, GEARKIT_SOURCE_DIR).string() << "\n";
+      std::istringstream words(text);
+      std::string        line, word;
+      while (words >> word)
+        {
+          if (!line.empty() && line.size() + 1 + word.size() > 90)
+            out << "      " << line << "\n", line.clear();
+          line += (line.empty() ? "" : " ") + word;
+        }
+      out << "      " << line << "\n";
+    }
+}
+
 const char *usage = R"(usage: gearkit [options] SCENE.prm
 
 Reads one scene file, runs the stages its outputs need (reusing cached results of unchanged
-stages) and writes <output root>/<scene name>/results.h5.
+stages) and writes <output root>/<scene name>/results.h5 and report.html (the scene's
+parameters, key numbers with their accuracy, pictures, times, versions: open it in a browser).
 
 options:
   --help                  this text
+  --list-cases            the scene files that ship with gearkit, with what each computes
   --print-parameters      every scene parameter with its default, allowed values and help
   --output-root DIR       where scene result folders go (default: out)
   --plot                  also draw the PNG pictures of the results (scripts/plot_results.py)
@@ -209,6 +283,11 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
           out << usage;
           return 0;
         }
+      else if (a == "--list-cases")
+        {
+          list_cases(out);
+          return 0;
+        }
       else if (a == "--print-parameters")
         {
           print_parameters(out);
@@ -240,15 +319,19 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
     {
       const Scene      scene   = read_scene(scene_file);
       const RunSummary summary = run_scene(scene, output_root, out);
-      if (plot && first)
+      // The pictures (if asked for), then the report that shows them (every run).
+      std::vector<std::pair<std::string, std::string>> scripts;
+      if (plot)
+        scripts.emplace_back("plot_results.py", "plotting");
+      scripts.emplace_back("report.py", "writing the report");
+      for (const auto &[script, what] : first ? scripts : decltype(scripts){})
         {
-          out.flush(); // the log first, then the plotting script's lines
-          const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR
-                                  "/scripts/plot_results.py' '" +
-                                  summary.results_file + "'";
+          out.flush(); // the log first, then the script's lines
+          const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR "/scripts/" + script +
+                                  "' '" + summary.results_file + "'";
           if (std::system(cmd.c_str()) != 0)
             {
-              err << "gearkit: plotting failed (" << cmd << ")\n";
+              err << "gearkit: " << what << " failed (" << cmd << ")\n";
               return 1;
             }
         }

@@ -67,7 +67,7 @@ unpack(const std::vector<double> &in, std::size_t &at)
 /// The tasks, spread over the MPI processes (task i on process i mod size) and each process's
 /// share of the threads; every process returns all results.
 std::vector<std::vector<SweepPoint>>
-run_everywhere(const std::vector<SweepTask> &tasks)
+run_everywhere(const std::vector<SweepTask> &tasks, const std::string &progress)
 {
   const unsigned size = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
                  rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
@@ -77,7 +77,7 @@ run_everywhere(const std::vector<SweepTask> &tasks)
     mine.push_back(tasks[i]), index.push_back(i);
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency() / size);
   std::vector<std::vector<SweepPoint>> results(tasks.size());
-  const auto                           done = run_sweeps(mine, threads);
+  const auto                           done = run_sweeps(mine, threads, progress);
   if (size == 1)
     {
       for (std::size_t k = 0; k < mine.size(); ++k)
@@ -497,7 +497,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
               tasks.push_back({e.model.get(), e.s.q, PairVector::Zero(), b});
           }
       first_task.push_back(tasks.size());
-      const auto results = run_everywhere(tasks);
+      const auto results = run_everywhere(tasks, "dynamics " + pair.name + ": speed");
 
       for (const Excitation &e : excitations)
         write_stability(g.group(e.label).group("stability"), *e.model, d, e.TE, e.TL, log,

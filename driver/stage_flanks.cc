@@ -87,7 +87,7 @@ write_member(const InvoluteGear &g, int n_u, int n_v, const H5Group &out, std::o
             }
           u = grid.u;
           v = grid.v;
-          progress.step();
+          progress.advance();
         }
       const std::vector<hsize_t> shape = {hsize_t(d.teeth), hsize_t(n_u), hsize_t(n_v), 3};
       s.write("points", points, shape, "m",
@@ -121,7 +121,7 @@ write_grids(const MemberFlanks &m, int n_u, int n_v, const H5Group &out, const c
               normals.insert(normals.end(), grid.normals[i].data(), grid.normals[i].data() + 3);
             }
           u = grid.u, v = grid.v;
-          progress.step();
+          progress.advance();
         }
       const std::vector<hsize_t> shape = {hsize_t(m.teeth()), hsize_t(n_u), hsize_t(n_v), 3};
       s.write("points", points, shape, "m",
@@ -222,7 +222,7 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
   std::size_t total = 0;
   for (const PairScene &pair : scene.pairs)
     total += 2 * (pair_teeth(pair).first + pair_teeth(pair).second);
-  Progress progress(log, "flanks", total);
+  Progress progress("flanks", total);
   for (const PairScene &pair : scene.pairs)
     {
       const H5Group pg = out.group(pair.name);

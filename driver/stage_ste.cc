@@ -15,8 +15,8 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       const TcaScene &t = scene.tca.at(pair.name);
       total += t.options.positions_per_mesh * t.options.mesh_cycles * (t.measured ? 2 : 1);
     }
-  Progress   progress(log, "ste", total);
-  const auto step = [&] { progress.step(); };
+  Progress   progress("ste", total);
+  const auto step = [&] { progress.advance(); };
 
   for (const PairScene &pair : scene.pairs)
     {

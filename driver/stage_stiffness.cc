@@ -99,10 +99,14 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       // sizes at the flanks (FeScene::error_estimate).
       // Both tables are computed before either is written: a failure leaves no half group.
       using Tables = std::vector<std::pair<FlankCompliance, MemberComplianceInfo>>;
-      auto compute = [&](const FeScene &mesh_fe, const std::string &mesh_dir) {
+      Progress progress("finite elements " + pair.name + ": member", fe.error_estimate ? 4 : 2);
+      auto     compute = [&](const FeScene &mesh_fe, const std::string &mesh_dir) {
         Tables tables;
         for (const bool is_pinion : {true, false})
           {
+            progress.note(std::string(is_pinion ? "pinion" : "gear") +
+                          (&mesh_fe == &fe ? "" : " (coarse mesh)") +
+                          ": mesh, assembly, factorisation, unit loads");
             const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
             const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
             MemberComplianceInfo info;
@@ -112,6 +116,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
                                                 segment, mesh_dir),
                                  &info);
             tables.emplace_back(std::move(table), info);
+            progress.advance();
           }
         return tables;
       };
@@ -237,9 +242,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
-        Progress               progress(log, "stiffness", lc.positions * lc.torques.size());
+        Progress               progress("stiffness", lc.positions * lc.torques.size());
         const MeshCycleContact c =
-            loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg, [&] { progress.step(); });
+            loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg, [&] { progress.advance(); });
         const std::size_t n = c.positions;
         for (std::size_t k = 0; k < c.torques; ++k)
           {
@@ -295,8 +300,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           const FlankCompliance cgr2 = table(*members.gear, cg.group("coarse"), "gear");
           LoadedContactOptions  half = lo;
           half.cells                 = halved_cells(lo.cells);
-          Progress progress(log, "stiffness error estimate", 2 * lc.positions * lc.torques.size());
-          const auto           step = [&] { progress.step(); };
+          Progress progress("stiffness error estimate", 2 * lc.positions * lc.torques.size());
+          const auto           step = [&] { progress.advance(); };
           const MeshCycleError err  = mesh_cycle_error(
                fine,
                loaded_contact_cycle(theory, lc.positions, lc.torques, lo, pinion_compliance(cp2),
@@ -366,9 +371,11 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           ro.far_size           = fe.far_size * member_module(pair);
           const std::size_t   P = lc.reference_positions.size(), M = lc.torques.size();
           std::vector<double> phi, eL, K, F, dofs, seconds;
+          Progress            progress("reference mode " + pair.name + ": position", P);
           for (std::size_t k = 0; k < P; ++k)
             {
-              const int i   = lc.reference_positions[k];
+              const int i = lc.reference_positions[k];
+              progress.note("position " + std::to_string(i) + " meshing and solving");
               ro.vtu_prefix = (vtu / (pair.name + "_position" + std::to_string(i))).string();
               ReferenceContactInfo              info;
               const std::vector<LoadedPosition> r = reference_contact(
@@ -384,6 +391,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
               for (const LoadedPosition &p : r)
                 log << " " << p.mesh_stiffness << " N/m";
               log << " (" << info.dofs << " dofs, " << seconds.back() << " s)\n";
+              progress.advance();
             }
           // stored position-major: [position][torque]; transposed to the fast mode's layout
           auto by_torque = [&](const std::vector<double> &v) {

@@ -17,26 +17,6 @@
 
 namespace gearkit
 {
-Progress::Progress(std::ostream &l, std::string s, std::size_t t)
-    : log(l)
-    , stage(std::move(s))
-    , total(t)
-    , last(std::chrono::steady_clock::now())
-{
-}
-
-void
-Progress::step(std::size_t n)
-{
-  done += n;
-  const auto now = std::chrono::steady_clock::now();
-  if (now - last > std::chrono::seconds(2) && total > 0)
-    {
-      log << "  " << stage << ": " << 100 * done / total << " %" << std::endl;
-      last = now;
-    }
-}
-
 namespace
 {
 // FNV-1a, 64 bit: a cache key, not a security measure.

@@ -4,6 +4,7 @@
 // results.
 #pragma once
 
+#include "base/progress.h"
 #include "driver/h5_file.h"
 #include "driver/scene.h"
 #include "geometry/measured_flank.h"
@@ -17,21 +18,6 @@
 
 namespace gearkit
 {
-/// Progress of a long stage: prints "stage: 40 %" at most every two seconds.
-class Progress
-{
-public:
-  Progress(std::ostream &log, std::string stage, std::size_t total);
-  void
-  step(std::size_t n = 1);
-
-private:
-  std::ostream                         &log;
-  std::string                           stage;
-  std::size_t                           total, done = 0;
-  std::chrono::steady_clock::time_point last;
-};
-
 /// The cores of this machine per process of MPI_COMM_WORLD running on it (at least 1): the
 /// threads a process may use without crowding the others. The first call is collective (every
 /// process makes it: gearkit_main does); later ones return the count.

@@ -1,6 +1,7 @@
 #include "dynamics/sweep.h"
 
 #include "base/parallel.h"
+#include "base/progress.h"
 #include "base/spectrum.h"
 #include "dynamics/newmark_error.h"
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <optional>
 
 namespace gearkit
@@ -290,6 +292,8 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
             p.series_force.push_back(t.force[k]);
           }
       out.push_back(std::move(p));
+      if (o.progress)
+        o.progress->advance();
     }
   return out;
 }
@@ -319,12 +323,20 @@ split_sweep(const SweepOptions &o, int blocks, int warmup)
 }
 
 std::vector<std::vector<SweepPoint>>
-run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads)
+run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads, const std::string &progress)
 {
   std::vector<std::vector<SweepPoint>> results(tasks.size());
+  std::size_t                          speeds = 0;
+  for (const SweepTask &t : tasks)
+    speeds += t.options.speeds.size();
+  std::optional<Progress> line;
+  if (!progress.empty())
+    line.emplace(progress, speeds);
   parallel_for(tasks.size(), threads, [&](std::size_t i) {
-    PairVector q = tasks[i].q, v = tasks[i].v;
-    results[i] = sweep(*tasks[i].model, q, v, tasks[i].options);
+    PairVector   q = tasks[i].q, v = tasks[i].v;
+    SweepOptions o = tasks[i].options;
+    o.progress     = line ? &*line : nullptr;
+    results[i]     = sweep(*tasks[i].model, q, v, o);
   });
   return results;
 }

@@ -15,12 +15,16 @@
 
 #include "dynamics/integrators.h"
 
+#include <string>
 #include <vector>
 
 namespace gearkit
 {
+class Progress;
+
 struct SweepOptions
 {
+  Progress *progress = nullptr; ///< advanced by one per speed, if given
   std::vector<double> speeds; ///< pinion speeds [rad/s], in the order swept
   double              motor_torque = 0, load_torque = 0; ///< [N m]
   /// Mesh cycles: settle at most this many (up to five times as many while the Poincare
@@ -104,6 +108,8 @@ struct SweepTask
 
 /// Runs the tasks on up to `threads` threads (0: the hardware's); results in the tasks'
 /// order. An error in any task is rethrown (the first task's by index) after all have stopped.
+/// A non-empty `progress` names the speeds on a progress line (base/progress.h).
 std::vector<std::vector<SweepPoint>>
-run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads = 0);
+run_sweeps(const std::vector<SweepTask> &tasks, unsigned threads = 0,
+           const std::string &progress = "");
 } // namespace gearkit

@@ -58,6 +58,15 @@ require_hexahedra(const std::string &what)
   return {tags.size(), nodes.size()};
 }
 
+std::string
+gmsh_version()
+{
+  GmshSession session;
+  std::string version;
+  gmsh::option::getString("General.Version", version);
+  return version;
+}
+
 double
 worst_corner_jacobian()
 {

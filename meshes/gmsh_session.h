@@ -51,6 +51,10 @@ worst_corner_jacobian();
 void
 write_mesh_atomically(const std::string &path);
 
+/// gmsh's version ("4.8.4").
+std::string
+gmsh_version();
+
 /// Writes text through a temporary file and a rename.
 void
 write_text_atomically(const std::string &path, const std::string &text);

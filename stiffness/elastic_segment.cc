@@ -1,6 +1,7 @@
 #include "stiffness/elastic_segment.h"
 
 #include "base/parallel.h"
+#include "meshes/gmsh_session.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -26,6 +27,8 @@
 #include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
+
+#include <petscversion.h>
 
 #include <algorithm>
 #include <array>
@@ -1397,5 +1400,13 @@ ElasticSegment::write_vtu(const std::vector<PatchLoad> &loads, const std::string
       std::remove(tmp.c_str());
       throw InputError("elastic segment: cannot write " + path);
     }
+}
+std::string
+finite_element_versions()
+{
+  std::ostringstream v;
+  v << "deal.II " << DEAL_II_PACKAGE_VERSION << ", PETSc " << PETSC_VERSION_MAJOR << '.'
+    << PETSC_VERSION_MINOR << '.' << PETSC_VERSION_SUBMINOR << ", gmsh " << gmsh_version();
+  return v.str();
 }
 } // namespace gearkit

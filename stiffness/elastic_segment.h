@@ -92,6 +92,11 @@ struct NearFieldLoad
   double inner = 0, outer = 0;
 };
 
+/// The libraries the finite elements run on, with their versions ("deal.II 9.4.0, PETSc 3.18.4,
+/// gmsh 4.8.4").
+std::string
+finite_element_versions();
+
 /// A displacement component to read: the displacement at `point` projected on `direction`.
 struct Probe
 {

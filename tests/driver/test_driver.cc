@@ -70,13 +70,13 @@ end
 )";
 } // namespace
 
-TEST_F(DriverTest, DefaultCaseCentreDistancesMatchPublishedPairs)
+TEST_F(DriverTest, PublishedPairsCentreDistancesMatchTheirPublications)
 {
   // reference-data.md: FZG C-type a = 91.5 mm (section 5), ISO/TR 6336-30 example a = 500 mm
   // (section 3). Their profile shifts are published to 4 and 3 decimals, which moves a_w by
   // < 0.01 mm.
-  ASSERT_EQ(run({source_dir + "/cases/default.prm"}), 0) << err.str();
-  const H5File  f      = H5File::open((dir / "out/default/results.h5").string());
+  ASSERT_EQ(run({source_dir + "/cases/published_pairs.prm"}), 0) << err.str();
+  const H5File  f      = H5File::open((dir / "out/published_pairs/results.h5").string());
   const H5Group flanks = f.root().group("flanks");
   EXPECT_NEAR(flanks.group("spur").read_double("working_centre_distance"), 91.5e-3, 1e-5);
   EXPECT_NEAR(flanks.group("helical").read_double("working_centre_distance"), 500e-3, 1e-5);

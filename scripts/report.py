@@ -1,0 +1,334 @@
+#!/usr/bin/python3
+"""The page an engineer forwards: <scene folder>/report.html from a gearkit results.h5.
+
+  report.py RESULTS.h5
+
+Self-contained (styles inline, pictures embedded as data URIs): the scene's parameters as run,
+each stage's key numbers with units and their accuracy figures (error estimates, reference
+positions, checks), every picture drawn from these results (PNGs in the scene folder not older
+than results.h5), the stages' times and cache files, versions and the machine. Written through a
+temporary file and a rename. The driver runs it after every run (gearkit, ./run).
+"""
+
+import base64
+import html
+import inspect
+import os
+import sys
+import time
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_results  # noqa: E402  (captions: the docstrings of the functions that drew them)
+
+CAPTIONS = {
+    "profiles.png": plot_results.plot_profiles,
+    "topography.png": plot_results.plot_topography,
+    "measured.png": plot_results.plot_measured,
+    "ste.png": plot_results.plot_ste,
+    "contact_pattern.png": plot_results.plot_contact_pattern,
+    "hunting.png": plot_results.plot_hunting,
+    "stiffness.png": plot_results.plot_stiffness,
+    "dynamics.png": plot_results.plot_dynamics,
+    "dynamics_spectra.png": plot_results.plot_dynamics_spectra,
+    "dynamics_time.png": plot_results.plot_dynamics_time,
+    "train_compare.png": plot_results.plot_train_compare,
+    "train_spectrogram.png": plot_results.plot_train_spectrograms,
+    "deflection.png": plot_results.plot_deflection,
+}
+# Displayed units: SI inside, the engineer's units on the page.
+DISPLAY = {"m": (1e6, "µm"), "rad": (1e6, "µrad"), "N/m": (1e-6, "N/µm"), "Pa": (1e-6, "MPa"),
+           "m/N": (1e9, "µm/kN")}
+
+
+def esc(text):
+    return html.escape(str(text))
+
+
+def shown(value, units):
+    """A number in display units, 4 significant digits."""
+    scale, label = DISPLAY.get(units, (1.0, units))
+    v = float(value) * scale
+    text = f"{v:.4g}" if abs(v) < 1e6 else f"{v:.4e}"
+    return text, ("" if label == "1" else label)
+
+
+def caption(png):
+    f = CAPTIONS.get(png)
+    if f is None and png.startswith("train_"):
+        f = plot_results.plot_train
+    doc = inspect.getdoc(f) if f else ""
+    return " ".join(doc.split()) if doc else png
+
+
+class Page:
+    def __init__(self):
+        self.parts = []
+
+    def h(self, level, text, anchor=None):
+        a = f' id="{anchor}"' if anchor else ""
+        self.parts.append(f"<h{level}{a}>{esc(text)}</h{level}>")
+
+    def p(self, text, cls=None):
+        c = f' class="{cls}"' if cls else ""
+        self.parts.append(f"<p{c}>{text}</p>")
+
+    def table(self, header, rows, cls=None):
+        c = f' class="{cls}"' if cls else ""
+        out = [f"<table{c}><tr>" + "".join(f"<th>{esc(x)}</th>" for x in header) + "</tr>"]
+        for r in rows:
+            out.append("<tr>" + "".join(f"<td>{x}</td>" for x in r) + "</tr>")
+        out.append("</table>")
+        self.parts.append("\n".join(out))
+
+    def raw(self, text):
+        self.parts.append(text)
+
+
+def attr(group, name, default=""):
+    v = group.attrs.get(name, default)
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def number(value, units):
+    v, u = shown(value, units)
+    return f"{v} {esc(u)}".strip()
+
+
+def stats(values, units):
+    """mean (min .. max) of an array in display units."""
+    a = np.asarray(values, dtype=float)
+    a = a[np.isfinite(a)]
+    if a.size == 0:
+        return "–"
+    mean, u = shown(a.mean(), units)
+    lo, _ = shown(a.min(), units)
+    hi, _ = shown(a.max(), units)
+    return f"{mean} ({lo} .. {hi}) {esc(u)}"
+
+
+def stiffness_rows(name, g):
+    """Key numbers of one pair's loaded contact: per torque K_m, e_L - e_0, pressure, with the
+    error estimate and the reference positions where present."""
+    rows = []
+    torques = g["torque"][()]
+    km = g["mesh_stiffness"][()]
+    de = g["transmission_error_loaded"][()] - g["transmission_error_unloaded"][()][None, :]
+    est = g["error_estimate"]["mesh_stiffness"][()] if "error_estimate" in g else None
+    for t, torque in enumerate(torques):
+        label = f"{esc(name)}, {torque:g} N m"
+        rows.append([label, "mesh stiffness K_m, mean (min .. max)", stats(km[t], "N/m")])
+        rows.append([label, "e_L − e_0, mean (min .. max)", stats(de[t], "rad")])
+        rows.append([label, "largest contact pressure", stats(g["peak_pressure"][t], "Pa")])
+        if est is not None:
+            rel = np.abs(est[t]) / km[t] * 100
+            rows.append([label, "K_m estimated discretisation error (mean, largest)",
+                         f"{rel.mean():.2f} %, {rel.max():.2f} %"])
+    for key, what in (("iso_c_th", "ISO 6336-1 c'_th b"), ("iso_c_prime", "ISO 6336-1 c' b"),
+                      ("iso_c_gamma_alpha", "ISO 6336-1 c_γα b")):
+        if key in g:
+            rows.append([esc(name), what + " (K_m mean against it)",
+                         f"{number(g[key][()], 'N/m')} ({(km.mean() / g[key][()] - 1) * 100:+.1f} %)"])
+    if "reference" in g:
+        r = g["reference"]
+        pos = r["position"][()].astype(int)
+        ref = r["mesh_stiffness"][()]
+        for t, torque in enumerate(torques):
+            diffs = ", ".join(f"{p}: {(km[t][p] / ref[t][i] - 1) * 100:+.2f} %"
+                              for i, p in enumerate(pos))
+            rows.append([f"{esc(name)}, {torque:g} N m",
+                         "fast mode against the reference mode (finite elements alone), by position",
+                         diffs])
+    return rows
+
+
+def dynamics_rows(name, g):
+    rows = []
+    for ex in g:
+        e = g[ex]
+        if not isinstance(e, h5py.Group) or "up" not in e:
+            continue
+        label = f"{esc(name)}, {esc(ex)} excitation"
+        rows.append([label, "static mesh force", number(e["static_mesh_force"][()], "N")])
+        for sweep in ("up", "down"):
+            if sweep not in e:
+                continue
+            s = e[sweep]
+            speed = s["speed"][()] if "speed" in s else None
+            dlf = s["dynamic_load_factor"][()]
+            k = int(np.nanargmax(dlf))
+            at = f" at {speed[k]:.0f} rpm" if speed is not None else ""
+            rows.append([label, f"largest dynamic load factor ({sweep} sweep)", f"{dlf[k]:.3f}{at}"])
+            rows.append([label, f"DTE peak-to-peak ({sweep} sweep), mean (min .. max)",
+                         stats(s["dte_peak_to_peak"][()], "m")])
+            if "contact_loss" in s:
+                lost = int(np.count_nonzero(s["contact_loss"][()]))
+                rows.append([label, f"speeds with contact loss ({sweep} sweep)",
+                             f"{lost} of {len(dlf)}"])
+            if "error_estimate" in s:
+                worst = np.nanmax(s["error_estimate"][()])
+                rows.append([label, f"estimated integration error of the DTE ({sweep} sweep), "
+                             "largest over the speeds", f"{worst * 100:.2g} % of its RMS"])
+    return rows
+
+
+def scalar_rows(f):
+    """Every scalar dataset of the results with its units and description."""
+    rows = []
+
+    def visit(path, obj):
+        if isinstance(obj, h5py.Dataset) and obj.shape == () and obj.dtype.kind in "fiu":
+            units = attr(obj, "units", "1")
+            rows.append([esc(path), number(obj[()], units), esc(attr(obj, "description"))])
+    f.visititems(visit)
+    return rows
+
+
+def checks(f):
+    """Checks any reader can repeat: no NaN outside datasets whose description allows gaps
+    ("(NaN: where ...)", as the driver writes them)."""
+    bad, total = [], 0
+
+    def visit(path, obj):
+        nonlocal total
+        if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f":
+            total += 1
+            if not np.all(np.isfinite(obj[()])) and "(NaN:" not in attr(obj, "description"):
+                bad.append(path)
+    f.visititems(visit)
+    return total, bad
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    results = sys.argv[1]
+    folder = os.path.dirname(os.path.abspath(results))
+    page = Page()
+    with h5py.File(results, "r") as f:
+        scene = attr(f, "scene")
+        made = os.path.getmtime(results)
+        page.h(1, f"gearkit — {scene}")
+        page.p(f"Scene file <code>{esc(attr(f, 'scene_file'))}</code>, run "
+               f"{time.strftime('%Y-%m-%d %H:%M', time.localtime(made))}. "
+               f"Results: <code>results.h5</code> beside this page (SI units; shown here in µm, "
+               f"µrad, N/µm, MPa).", "meta")
+
+        # 1. Key numbers and their accuracy
+        page.h(2, "Key numbers", "key")
+        rows = []
+        if "flanks" in f:
+            for pair in f["flanks"]:
+                g = f["flanks"][pair]
+                for key in ("working_centre_distance", "working_pressure_angle"):
+                    if key in g:
+                        v = g[key][()]
+                        rows.append(["flanks", esc(pair) + " " + key.replace("_", " "),
+                                     f"{v * 1e3:.4f} mm" if key.endswith("distance")
+                                     else f"{np.degrees(v):.4f}°"])
+        if "ste" in f:
+            for pair in f["ste"]:
+                g = f["ste"][pair]
+                if "peak_to_peak" in g:
+                    rows.append(["unloaded TCA", f"{esc(pair)} e_0 peak-to-peak (theoretical)",
+                                 number(g["peak_to_peak"][()], "rad")])
+                if "measured" in g and "peak_to_peak" in g["measured"]:
+                    rows.append(["unloaded TCA", f"{esc(pair)} e_0 peak-to-peak (measured flanks)",
+                                 number(g["measured"]["peak_to_peak"][()], "rad")])
+                if "mean_pairs_in_contact" in g:
+                    rows.append(["unloaded TCA", f"{esc(pair)} mean pairs in contact",
+                                 f"{g['mean_pairs_in_contact'][()]:.3f}"])
+        if "compliance" in f:
+            for pair in f["compliance"]:
+                for member in ("pinion", "gear"):
+                    if member in f["compliance"][pair]:
+                        m = f["compliance"][pair][member]
+                        rows.append(["finite elements", f"{esc(pair)} {member}",
+                                     f"{int(m['dofs'][()]):,} dofs, {int(m['hexahedra'][()]):,} "
+                                     f"hexahedra, {m['seconds'][()]:.1f} s"])
+        if "stiffness" in f:
+            for pair in f["stiffness"]:
+                rows += [["loaded contact", r[0] + ": " + r[1], r[2]]
+                         for r in stiffness_rows(pair, f["stiffness"][pair])]
+        if "dynamics" in f:
+            for pair in f["dynamics"]:
+                rows += [["dynamics", r[0] + ": " + r[1], r[2]]
+                         for r in dynamics_rows(pair, f["dynamics"][pair])]
+        if "train" in f:
+            for name in f["train"]:
+                g = f["train"][name]
+                if "energy_error" in g:
+                    rows.append(["gear train", f"{esc(name)} energy balance error",
+                                 f"{g['energy_error'][()]:.2e} of the energy put in"])
+                if "events" in g:
+                    rows.append(["gear train", f"{esc(name)} contact events",
+                                 f"{int(g['events'][()])}"])
+        total, bad = checks(f)
+        rows.append(["checks", "finite values in every floating-point dataset",
+                     f"{total - len(bad)} of {total} datasets"
+                     + ("" if not bad else " — not: " + esc(", ".join(bad[:10])))])
+        page.table(["stage", "what", "value"], rows, "key")
+
+        # 2. Pictures
+        pngs = sorted(p for p in os.listdir(folder)
+                      if p.endswith(".png") and os.path.getmtime(os.path.join(folder, p)) >= made - 1)
+        page.h(2, "Pictures", "pictures")
+        if not pngs:
+            page.p("No pictures drawn from these results (run with <code>--plot</code>, as "
+                   "<code>./run</code> does).")
+        for png in pngs:
+            with open(os.path.join(folder, png), "rb") as fh:
+                data = base64.b64encode(fh.read()).decode()
+            page.raw(f'<figure><img src="data:image/png;base64,{data}" alt="{esc(png)}">'
+                     f"<figcaption><b>{esc(png)}</b>: {esc(caption(png))}</figcaption></figure>")
+
+        # 3. Stages
+        page.h(2, "Stages", "stages")
+        stage_rows = []
+        for line in attr(f, "stage_table").splitlines():
+            name, how, seconds, cache = (line.split("\t") + ["", "", "", ""])[:4]
+            stage_rows.append([esc(name), esc(how), f"{float(seconds or 0):.2f} s",
+                               f"<code>cache/{esc(cache)}</code>"])
+        page.table(["stage", "ran or reused", "time", "cache file (name-key)"], stage_rows)
+        others = sorted(p for p in os.listdir(folder)
+                        if not p.endswith(".png") and p not in ("report.html", "cache"))
+        page.p("Other files beside this page: " + ", ".join(f"<code>{esc(o)}</code>" for o in others))
+
+        # 4. Parameters, all scalars, versions
+        page.h(2, "Scene parameters as run", "parameters")
+        page.raw(f"<details><summary>{len(attr(f, 'scene_parameters').splitlines())} lines "
+                 f"(defaults filled in)</summary><pre>{esc(attr(f, 'scene_parameters'))}</pre></details>")
+        page.h(2, "Every scalar result", "scalars")
+        page.raw("<details><summary>with units and descriptions</summary>")
+        page.table(["dataset", "value", "description"], scalar_rows(f))
+        page.raw("</details>")
+        page.h(2, "Versions and machine", "versions")
+        page.p(esc(attr(f, "versions")) + "<br>" + esc(attr(f, "machine")))
+
+    style = """
+body{font-family:system-ui,sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;color:#222}
+h1{font-size:1.6em} h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:1.6em}
+table{border-collapse:collapse;margin:.5em 0} td,th{border:1px solid #ddd;padding:.25em .6em;
+text-align:left;vertical-align:top} th{background:#f3f3f3} table.key td:first-child{color:#666}
+figure{margin:1em 0} img{max-width:100%;border:1px solid #eee} figcaption{font-size:.9em;color:#444}
+pre{background:#f7f7f7;padding:.6em;overflow:auto;font-size:.85em} .meta{color:#555}
+"""
+    # For the browser check (tests): how many pictures decoded, on the body once the page loaded.
+    script = """<script>window.addEventListener('load',function(){var i=document.images,n=0;
+for(var k=0;k<i.length;k++){if(i[k].complete&&i[k].naturalWidth>0)n++;}
+document.body.setAttribute('data-images',n+'/'+i.length);});</script>"""
+    text = (f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<title>gearkit — {esc(scene)}</title><style>{style}</style>{script}</head><body>\n"
+            + "\n".join(page.parts) + "\n</body></html>\n")
+    out = os.path.join(folder, "report.html")
+    tmp = out + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    os.replace(tmp, out)
+    print(f"report: {out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -164,7 +164,9 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
     {
       const TrainModel  model = train_model(scene, train, upstream);
       const auto        start = std::chrono::steady_clock::now();
-      const TrainResult r     = simulate_train(model, train.run);
+      TrainRunOptions   run   = train.run;
+      run.progress            = "train " + train.name + ": sample";
+      const TrainResult r     = simulate_train(model, run);
       const double      seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const H5Group     g  = out.group(train.name);

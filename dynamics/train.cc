@@ -1,11 +1,13 @@
 #include "dynamics/train.h"
 
+#include "base/progress.h"
 #include "base/types.h"
 #include "dynamics/cvode_solver.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 namespace gearkit
@@ -683,8 +685,13 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   record(0, y, {0.0, 0.0});
   const long samples = std::max(1L, long(std::ceil(o.duration * o.sample_rate - 1e-9)));
   double     t       = 0;
+  std::optional<Progress> line;
+  if (!o.progress.empty())
+    line.emplace(o.progress, std::size_t(samples));
   for (long s = 1; s <= samples; ++s)
     {
+      if (line)
+        line->advance();
       const double t_out = std::min(o.duration, s / o.sample_rate);
       while (solver.advance(t_out, t, y, &fired))
         {

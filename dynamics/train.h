@@ -159,6 +159,8 @@ enum class TrainIntegrator
 
 struct TrainRunOptions
 {
+  /// Names the run on a progress line over its samples (base/progress.h); empty: none.
+  std::string     progress;
   double          duration    = 0.1;  ///< [s]
   double          sample_rate = 20e3; ///< output samples per second
   TrainIntegrator method      = TrainIntegrator::bdf;

@@ -50,11 +50,11 @@ Progress::duration(double seconds)
 }
 
 Progress::Progress(std::string what_, std::size_t total_)
-  : what(std::move(what_))
-  , total(std::max<std::size_t>(1, total_))
-  , start(std::chrono::steady_clock::now())
-  , last_draw(start)
-  , visible(shown())
+    : what(std::move(what_))
+    , total(std::max<std::size_t>(1, total_))
+    , start(std::chrono::steady_clock::now())
+    , last_draw(start)
+    , visible(shown())
 {
 }
 
@@ -88,16 +88,16 @@ Progress::draw(bool force)
     return;
   last_draw                = now;
   const std::size_t d      = std::min(done.load(), total);
-  // a log on standard output wipes this line first (LineWipingBuffer)
   const double      passed = std::chrono::duration<double>(now - start).count();
-  std::string       line   = "  " + what + " " + std::to_string(d) + " of " +
-                     std::to_string(total) + " (" + std::to_string(100 * d / total) + " %)";
+  std::string line = "  " + what + " " + std::to_string(d) + " of " + std::to_string(total) + " (" +
+                     std::to_string(100 * d / total) + " %)";
   if (d > 0 && d < total)
     line += ", about " + duration(passed * double(total - d) / double(d)) + " left";
   if (!doing.empty())
     line += ": " + doing;
   if (line.size() > 120)
     line.resize(120);
+  // over the line drawn last (a log on standard output wipes it first: LineWipingBuffer)
   std::fprintf(stderr, "\r%-*s", int(std::max(width, line.size())), line.c_str());
   std::fflush(stderr);
   width = line.size();

@@ -49,14 +49,14 @@ private:
   void
   draw(bool force);
 
-  std::string                                 what;
-  std::size_t                                 total;
-  std::atomic<std::size_t>                    done{0};
-  std::string                                 doing;
-  std::mutex                                  guard;
-  std::chrono::steady_clock::time_point       start, last_draw;
-  bool                                        visible;
-  std::size_t                                 width = 0; // of the line drawn last
+  std::string                           what;
+  std::size_t                           total;
+  std::atomic<std::size_t>              done{0};
+  std::string                           doing;
+  std::mutex                            guard;
+  std::chrono::steady_clock::time_point start, last_draw;
+  bool                                  visible;
+  std::size_t                           width = 0; // of the line drawn last
 };
 
 /// A stream buffer that passes everything on to `to` and starts each line with the terminal's
@@ -66,7 +66,7 @@ class LineWipingBuffer : public std::streambuf
 {
 public:
   explicit LineWipingBuffer(std::streambuf *to)
-    : to(to)
+      : to(to)
   {
   }
 

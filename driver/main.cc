@@ -15,7 +15,7 @@ main(int argc, char **argv)
   // On a terminal the log's lines wipe the progress line they would run into.
   gearkit::LineWipingBuffer wiping(std::cout.rdbuf());
   std::ostream              terminal_log(&wiping);
-  const bool wipe = gearkit::Progress::shown() && isatty(STDOUT_FILENO) == 1;
+  const bool                wipe = gearkit::Progress::shown() && isatty(STDOUT_FILENO) == 1;
   return gearkit::gearkit_main(std::vector<std::string>(argv + 1, argv + argc),
                                wipe ? terminal_log : std::cout, std::cerr);
 }

@@ -105,16 +105,16 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
         for (const bool is_pinion : {true, false})
           {
             progress.note(std::string(is_pinion ? "pinion" : "gear") +
-                          (&mesh_fe == &fe ? "" : " (coarse mesh)") +
-                          ": mesh, assembly, factorisation, unit loads");
+                              (&mesh_fe == &fe ? "" : " (coarse mesh)") +
+                              ": mesh, assembly, factorisation, unit loads");
             const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
             const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
             MemberComplianceInfo info;
             FlankCompliance      table =
                 compliance_table(pair, flanks, is_pinion,
-                                 member_options(member_module(pair), flanks.teeth(), mesh_fe, side,
-                                                segment, mesh_dir),
-                                 &info);
+                                     member_options(member_module(pair), flanks.teeth(), mesh_fe, side,
+                                                    segment, mesh_dir),
+                                     &info);
             tables.emplace_back(std::move(table), info);
             progress.advance();
           }
@@ -243,9 +243,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
         Progress               progress("stiffness", lc.positions * lc.torques.size());
-        const MeshCycleContact c =
-            loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg, [&] { progress.advance(); });
-        const std::size_t n = c.positions;
+        const MeshCycleContact c = loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg,
+                                                        [&] { progress.advance(); });
+        const std::size_t      n = c.positions;
         for (std::size_t k = 0; k < c.torques; ++k)
           {
             double k_mean = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
@@ -300,13 +300,13 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           const FlankCompliance cgr2 = table(*members.gear, cg.group("coarse"), "gear");
           LoadedContactOptions  half = lo;
           half.cells                 = halved_cells(lo.cells);
-          Progress progress("stiffness error estimate", 2 * lc.positions * lc.torques.size());
-          const auto           step = [&] { progress.advance(); };
-          const MeshCycleError err  = mesh_cycle_error(
-               fine,
-               loaded_contact_cycle(theory, lc.positions, lc.torques, lo, pinion_compliance(cp2),
-                                    gear_compliance(cgr2), step),
-               c, loaded_contact_cycle(theory, lc.positions, lc.torques, half, sp, sg, step));
+          Progress   progress("stiffness error estimate", 2 * lc.positions * lc.torques.size());
+          const auto step          = [&] { progress.advance(); };
+          const MeshCycleError err = mesh_cycle_error(
+              fine,
+              loaded_contact_cycle(theory, lc.positions, lc.torques, lo, pinion_compliance(cp2),
+                                   gear_compliance(cgr2), step),
+              c, loaded_contact_cycle(theory, lc.positions, lc.torques, half, sp, sg, step));
           const std::size_t n = fine.positions, M = fine.torques;
           const H5Group     e = g.group("error_estimate");
           e.attribute("method", "|K(h) - K(c h)| / (c - 1) of the finite elements (the "

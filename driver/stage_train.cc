@@ -162,11 +162,11 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
 {
   for (const TrainScene &train : scene.trains)
     {
-      const TrainModel  model = train_model(scene, train, upstream);
-      const auto        start = std::chrono::steady_clock::now();
-      TrainRunOptions   run   = train.run;
-      run.progress            = "train " + train.name + ": sample";
-      const TrainResult r     = simulate_train(model, run);
+      const TrainModel model = train_model(scene, train, upstream);
+      const auto       start = std::chrono::steady_clock::now();
+      TrainRunOptions  run   = train.run;
+      run.progress           = "train " + train.name + ": sample";
+      const TrainResult r    = simulate_train(model, run);
       const double      seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const H5Group     g  = out.group(train.name);

@@ -24,8 +24,8 @@ class Progress;
 
 struct SweepOptions
 {
-  Progress *progress = nullptr; ///< advanced by one per speed, if given
-  std::vector<double> speeds; ///< pinion speeds [rad/s], in the order swept
+  Progress           *progress = nullptr; ///< advanced by one per speed, if given
+  std::vector<double> speeds;             ///< pinion speeds [rad/s], in the order swept
   double              motor_torque = 0, load_torque = 0; ///< [N m]
   /// Mesh cycles: settle at most this many (up to five times as many while the Poincare
   /// points still converge geometrically fast enough to repeat within them), record this many

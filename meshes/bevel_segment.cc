@@ -297,7 +297,7 @@ public:
           std::array<std::size_t, 8> h{node(k, q[0]),     node(k, q[1]),     node(k, q[2]),
                                        node(k, q[3]),     node(k + 1, q[0]), node(k + 1, q[1]),
                                        node(k + 1, q[2]), node(k + 1, q[3])};
-          Vec3 x[8];
+          Vec3                       x[8];
           for (int c = 0; c < 8; ++c)
             x[c] = X(h[std::size_t(c)]);
           if (orientation == 0)

@@ -300,13 +300,15 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
           const double             a    = phi0 + pitch * (o.central_tooth - half_n + i);
           std::vector<std::size_t> flank_nodes;
           std::vector<double>      xyz;
-          gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes, xyz);
+          gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes,
+                                                      xyz);
           for (std::size_t k = 0; k < flank_nodes.size(); ++k)
             {
               const double r = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
               const double xi =
                   std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
-              const double angle = a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
+              const double angle =
+                  a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
               gmsh::model::mesh::setNode(flank_nodes[k],
                                          {r * std::cos(angle), r * std::sin(angle), zk}, {});
             }
@@ -318,7 +320,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   // folds (bench/README.md, "Mesh quality"); the first is the one every earlier mesh used.
   // (8, frontal-Delaunay for quadrilaterals, crashes with a background field in gmsh 4.8.)
   const int algorithms[] = {6, 5, 1}; // frontal-Delaunay, Delaunay, MeshAdapt
-  int       best = 0;
+  int       best         = 0;
   double    best_quality = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i <= std::size(algorithms); ++i)
     {
@@ -330,7 +332,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       gmsh::model::mesh::generate(3);
       std::tie(info.hexahedra, info.nodes) = require_hexahedra("tooth segment mesh");
       onto_involutes();
-      info.mesh_algorithm = algorithm;
+      info.mesh_algorithm        = algorithm;
       info.worst_corner_jacobian = worst_corner_jacobian();
       if (info.worst_corner_jacobian >= SegmentMeshInfo::acceptable_corner_jacobian)
         break;

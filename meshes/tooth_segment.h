@@ -74,8 +74,8 @@ struct SegmentMeshInfo
   /// The worst hexahedron: its smallest corner Jacobian relative to its mean (1 for a
   /// parallelepiped, <= 0 folded), and gmsh's 2-D algorithm that gave it (6 frontal-Delaunay,
   /// 5 Delaunay, 1 MeshAdapt: the next is tried while the worst is below the acceptable value).
-  double worst_corner_jacobian = 0;
-  int    mesh_algorithm        = 0;
+  double                  worst_corner_jacobian      = 0;
+  int                     mesh_algorithm             = 0;
   static constexpr double acceptable_corner_jacobian = 0.05;
 };
 

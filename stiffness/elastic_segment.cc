@@ -28,8 +28,6 @@
 #include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <petscversion.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,6 +38,7 @@
 #include <malloc.h>
 #include <map>
 #include <petscksp.h>
+#include <petscversion.h>
 #include <sstream>
 
 namespace gearkit

@@ -104,17 +104,15 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
         Tables tables;
         for (const bool is_pinion : {true, false})
           {
-            progress.note(std::string(is_pinion ? "pinion" : "gear") +
-                              (&mesh_fe == &fe ? "" : " (coarse mesh)") +
-                              ": mesh, assembly, factorisation, unit loads");
             const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
             const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
+            const std::string    label   = std::string(is_pinion ? "pinion" : "gear") +
+                                      (&mesh_fe == &fe ? "" : " (coarse mesh)") + ": ";
+            MemberComplianceOptions mo = member_options(member_module(pair), flanks.teeth(),
+                                                            mesh_fe, side, segment, mesh_dir);
+            mo.on_phase = [&](const std::string &what) { progress.note(label + what); };
             MemberComplianceInfo info;
-            FlankCompliance      table =
-                compliance_table(pair, flanks, is_pinion,
-                                     member_options(member_module(pair), flanks.teeth(), mesh_fe, side,
-                                                    segment, mesh_dir),
-                                     &info);
+            FlankCompliance      table = compliance_table(pair, flanks, is_pinion, mo, &info);
             tables.emplace_back(std::move(table), info);
             progress.advance();
           }

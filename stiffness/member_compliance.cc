@@ -60,6 +60,14 @@ with_radius(MemberComplianceOptions o, double module)
   return o;
 }
 
+/// Tells the caller what comes next, if it listens.
+void
+phase(const MemberComplianceOptions &o, const std::string &what)
+{
+  if (o.on_phase)
+    o.on_phase(what);
+}
+
 /// The segment mesh's options: the loaded flanks get the flank element size; with local
 /// refinements k, every size 2^k times larger (deal.II refines at the loaded flanks).
 SegmentMeshOptions
@@ -292,7 +300,8 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
                      "' does not exist");
   if (!(o.depth_elements > 0 && o.patch_elements > 0))
     throw InputError("member compliance: depth and patch radius (in element sizes) must be > 0");
-  auto        t0   = std::chrono::steady_clock::now();
+  auto t0 = std::chrono::steady_clock::now();
+  phase(o, "meshing");
   std::string name = member_name + "_segment";
   std::replace_if(
       name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
@@ -338,10 +347,13 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
       eo.refine_distance   = o.refine_depth * std::ldexp(h, int(o.local_refinements));
       eo.boundary_surface  = flank_surface(flanks, segment.member_teeth, o.side);
     }
+  phase(o, "assembly and factorisation");
   const ElasticSegment body(mesh_file, eo);
   out.hexahedra     = body.cells(); // after the local refinement
   out.dofs          = body.dofs();
   out.setup_seconds = seconds_since(t0);
+  phase(o, std::to_string(table.points().size()) + " unit loads on " + std::to_string(out.dofs) +
+               " dofs");
 
   t0                          = std::chrono::steady_clock::now();
   const ElasticResponse solve = [&](const std::vector<FlankLoad>             &loads,

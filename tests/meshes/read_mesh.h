@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <gmsh.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -100,6 +101,29 @@ hex_volume_and_min_jacobian(const std::array<Vec3, 8> &x)
     {
       volume += jacobian(s[k][0] * g, s[k][1] * g, s[k][2] * g);
       min_j = std::min(min_j, jacobian(s[k][0], s[k][1], s[k][2]));
+    }
+  return {volume, min_j};
+}
+
+/// The corner positions of one hexahedron of the mesh.
+inline std::array<Vec3, 8>
+hex_corners(const MeshFile &m, const std::array<std::size_t, 8> &h)
+{
+  std::array<Vec3, 8> x;
+  for (int k = 0; k < 8; ++k)
+    x[k] = m.nodes.at(h[k]);
+  return x;
+}
+
+/// The mesh's volume and its hexahedra's smallest corner Jacobian.
+inline std::pair<double, double>
+volume_and_min_jacobian(const MeshFile &m)
+{
+  double volume = 0, min_j = HUGE_VAL;
+  for (const auto &h : m.hexahedra)
+    {
+      const auto [v, j] = hex_volume_and_min_jacobian(hex_corners(m, h));
+      volume += v, min_j = std::min(min_j, j);
     }
   return {volume, min_j};
 }

@@ -10,15 +10,18 @@
 #include <Eigen/Dense>
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
 
 using namespace gearkit;
+using test_data::hex_corners;
 using test_data::hex_volume_and_min_jacobian;
 using test_data::MeshFile;
 using test_data::read;
+using test_data::volume_and_min_jacobian;
 
 namespace
 {
@@ -34,31 +37,9 @@ mean_volume_at(const MeshFile &m, int group)
   double                      v = 0;
   int                         n = 0;
   for (const auto &h : m.hexahedra)
-    {
-      std::array<Vec3, 8> x;
-      bool                on = false;
-      for (int k = 0; k < 8; ++k)
-        x[k] = m.nodes.at(h[k]), on |= nodes.count(h[k]) > 0;
-      if (on)
-        v += hex_volume_and_min_jacobian(x).first, ++n;
-    }
+    if (std::any_of(h.begin(), h.end(), [&](std::size_t node) { return nodes.count(node) > 0; }))
+      v += hex_volume_and_min_jacobian(hex_corners(m, h)).first, ++n;
   return v / n;
-}
-
-/// The mesh's volume and its hexahedra's smallest corner Jacobian.
-std::pair<double, double>
-volume_and_min_jacobian(const MeshFile &m)
-{
-  double volume = 0, min_j = HUGE_VAL;
-  for (const auto &h : m.hexahedra)
-    {
-      std::array<Vec3, 8> x;
-      for (int k = 0; k < 8; ++k)
-        x[k] = m.nodes.at(h[k]);
-      const auto [v, j] = hex_volume_and_min_jacobian(x);
-      volume += v, min_j = std::min(min_j, j);
-    }
-  return {volume, min_j};
 }
 } // namespace
 
@@ -181,14 +162,11 @@ TEST_F(ToothSegmentMesh, CylinderSlicesForHertz)
       const CylinderSliceInfo info = write_cylinder_slice_mesh(o, path);
       const MeshFile          m    = read(path);
       ASSERT_EQ(m.hexahedra.size(), info.hexahedra);
-      double volume = 0, min_j = HUGE_VAL, smallest = HUGE_VAL;
+      const auto [volume, min_j] = volume_and_min_jacobian(m);
+      double smallest            = HUGE_VAL;
       for (const auto &h : m.hexahedra)
         {
-          std::array<Vec3, 8> x;
-          for (int k = 0; k < 8; ++k)
-            x[k] = m.nodes.at(h[k]);
-          const auto [v, j] = hex_volume_and_min_jacobian(x);
-          volume += v, min_j = std::min(min_j, j);
+          const std::array<Vec3, 8> x = hex_corners(m, h);
           if (x[0].head<2>().norm() < 3 * o.contact_size)
             smallest = std::min(smallest, (x[1] - x[0]).norm());
         }
@@ -248,10 +226,7 @@ TEST_F(ToothSegmentMesh, AnotherAlgorithmWhereFrontalDelaunayFoldsAnElement)
       double         worst = HUGE_VAL;
       for (const auto &h : m.hexahedra)
         {
-          std::array<Vec3, 8> x;
-          for (int k = 0; k < 8; ++k)
-            x[k] = m.nodes.at(h[k]);
-          const auto [v, j] = hex_volume_and_min_jacobian(x);
+          const auto [v, j] = hex_volume_and_min_jacobian(hex_corners(m, h));
           worst             = std::min(worst, j / (v / 8));
         }
       EXPECT_GT(worst, 0.5 * info.worst_corner_jacobian) << beta;

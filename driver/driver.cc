@@ -319,12 +319,14 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
     {
       const Scene      scene   = read_scene(scene_file);
       const RunSummary summary = run_scene(scene, output_root, out);
-      // The pictures (if asked for), then the report that shows them (every run).
+      // The first process draws the pictures (if asked for), then the report that shows them
+      // (every run).
       std::vector<std::pair<std::string, std::string>> scripts;
-      if (plot)
+      if (first && plot)
         scripts.emplace_back("plot_results.py", "plotting");
-      scripts.emplace_back("report.py", "writing the report");
-      for (const auto &[script, what] : first ? scripts : decltype(scripts){})
+      if (first)
+        scripts.emplace_back("report.py", "writing the report");
+      for (const auto &[script, what] : scripts)
         {
           out.flush(); // the log first, then the script's lines
           const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR "/scripts/" + script +

@@ -27,6 +27,12 @@
 
 namespace gearkit
 {
+/// A point of a surface and its outward unit normal there.
+struct SurfacePoint
+{
+  Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
+};
+
 struct ElasticSegmentOptions
 {
   unsigned      degree      = 1; ///< FE_Q degree (1 or 2)
@@ -54,10 +60,16 @@ struct ElasticSegmentOptions
   /// Each pass within half the previous pass's distance (the cells it refines are half as
   /// large): a graded zone whose finest layer is as thick as its elements, not the first pass's.
   bool halve_refine_distance = false;
-  /// Where a new vertex on one of the `refine_boundaries` goes, given the boundary id and the
-  /// point between its parents: onto the exact surface the mesh's facets approximate. Empty:
-  /// between its parents (on the facets).
-  std::function<Vec3(int boundary, const Vec3 &)> boundary_surface;
+  /// The exact surfaces the facets of the boundaries `surface_boundaries` approximate: given
+  /// the boundary id and a point on or near its facets, the point of the surface it stands for
+  /// and the surface's outward unit normal there. A vertex new in a refinement of these
+  /// boundaries goes onto the surface (else between its parents, on the facets), and the
+  /// traction of an analytic near field on them (remainder_response) is taken with the exact
+  /// normal (else with the facets' vertex normals interpolated, which on a strongly curved
+  /// surface tilt by a good part of an element's angle: the force's 1/r^2 stresses then put a
+  /// traction on the facets around it that no quadrature integrates reliably).
+  std::set<int>                                           surface_boundaries;
+  std::function<SurfacePoint(int boundary, const Vec3 &)> boundary_surface;
   /// Threads that assemble the remainder loads (remainder_response); 0: as many as the
   /// hardware runs.
   unsigned threads = 0;

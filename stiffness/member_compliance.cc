@@ -255,13 +255,14 @@ segment_mesh_on_first_process(const SegmentMesher &mesher, const std::string &pa
   return info;
 }
 
-std::function<Vec3(int, const Vec3 &)>
+std::function<SurfacePoint(int, const Vec3 &)>
 flank_surface(const MemberFlanks &flanks, const std::vector<int> &member_teeth, FlankSide side)
 {
   return [&flanks, member_teeth, side](int id, const Vec3 &x) {
-    const int tooth   = member_teeth.at(std::size_t((id - boundary::flank(0, side)) / 2));
-    const auto [u, v] = flanks.rotational_parameters(x);
-    return flanks.flank(tooth, side).evaluate(u, v).position;
+    const int tooth    = member_teeth.at(std::size_t((id - boundary::flank(0, side)) / 2));
+    const auto [u, v]  = flanks.rotational_parameters(x);
+    const FlankPoint p = flanks.flank(tooth, side).evaluate(u, v);
+    return SurfacePoint{p.position, p.normal};
   };
 }
 
@@ -339,13 +340,15 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   eo.clamped      = {boundary::bore};
   if (o.hold_cuts && !segment.whole)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
+  // the loaded flanks on their exact surfaces (refined vertices, the near field's traction)
+  for (int t : spec.teeth)
+    eo.surface_boundaries.insert(loaded_flank(t));
+  eo.boundary_surface = flank_surface(flanks, segment.member_teeth, o.side);
   if (o.local_refinements > 0)
     {
-      for (int t : spec.teeth)
-        eo.refine_boundaries.insert(loaded_flank(t));
+      eo.refine_boundaries = eo.surface_boundaries;
       eo.local_refinements = o.local_refinements;
       eo.refine_distance   = o.refine_depth * std::ldexp(h, int(o.local_refinements));
-      eo.boundary_surface  = flank_surface(flanks, segment.member_teeth, o.side);
     }
   phase(o, "assembly and factorisation");
   const ElasticSegment body(mesh_file, eo);

@@ -8,6 +8,7 @@
 
 #include "meshes/bevel_segment.h"
 #include "meshes/tooth_segment.h"
+#include "stiffness/elastic_segment.h"
 #include "stiffness/flank_compliance.h"
 #include "tca/unloaded_tca.h"
 
@@ -81,10 +82,11 @@ std::pair<SegmentChoice, SegmentChoice>
 loaded_segments(const std::vector<TcaPosition> &positions, int pinion_teeth, int gear_teeth,
                 double gap_band);
 
-/// Where a refined vertex of a segment's loaded flank goes (ElasticSegmentOptions::
-/// boundary_surface): onto the exact flank of its segment tooth (`member_teeth` as in the
-/// segment's description) at the point's rotational parameters. Keeps a reference to `flanks`.
-std::function<Vec3(int, const Vec3 &)>
+/// The exact surface of a segment's loaded flanks (ElasticSegmentOptions::boundary_surface):
+/// the point of the exact flank of its segment tooth (`member_teeth` as in the segment's
+/// description) at the point's rotational parameters, with the flank's outward normal there.
+/// Keeps a reference to `flanks`.
+std::function<SurfacePoint(int, const Vec3 &)>
 flank_surface(const MemberFlanks &flanks, const std::vector<int> &member_teeth, FlankSide side);
 
 /// Writes a member's segment mesh to the path given and describes it.

@@ -235,6 +235,7 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
                   {c.position,
                    Vec3(c.half_size.x() + contact, c.half_size.y() + contact, flank_size), c.axes});
             }
+          eo.surface_boundaries = eo.refine_boundaries;
           eo.boundary_surface   = flank_surface(*m.flanks, segment.member_teeth, side);
           out.local_refinements = eo.local_refinements;
         }

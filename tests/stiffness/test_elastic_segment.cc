@@ -122,11 +122,16 @@ TEST(ElasticSegment, RefinedBoundaryVerticesGoOnTheExactSurface)
       o.refine_distance   = 1e-3;
       o.local_refinements = 1;
       if (exact)
-        o.boundary_surface = [&](int id, const Vec3 &x) {
-          EXPECT_EQ(id, 2);
-          return Vec3(L.x() + a * std::sin(pi * x.y() / L.y()) * std::sin(pi * x.z() / L.z()),
-                      x.y(), x.z());
-        };
+        {
+          o.surface_boundaries = {2};
+          o.boundary_surface   = [&](int id, const Vec3 &x) {
+            EXPECT_EQ(id, 2);
+            return SurfacePoint{
+                Vec3(L.x() + a * std::sin(pi * x.y() / L.y()) * std::sin(pi * x.z() / L.z()), x.y(),
+                       x.z()),
+                Vec3::UnitX()}; // the normal is not read without near-field loads
+          };
+        }
       const ElasticSegment body(mesh, o);
       // (y, z) = (Ly / 4, Lz / 4): a new vertex, where the surface is a / 2 out
       const std::vector<bool> inside = body.contains(
@@ -259,6 +264,63 @@ TEST(ElasticSegment, NearFieldCarriedAnalyticallyIsIndependentOfItsCutOff)
     EXPECT_NEAR(total(j, 0), total(j, 1), 1e-11) << radii[j];
   for (std::size_t j = 3; j < radii.size(); ++j)
     EXPECT_NEAR(total(j, 0) / P(j, 0), 1, 0.02) << radii[j];
+}
+
+TEST(ElasticSegment, RemainderAtTheForceDoesNotJumpWhereTheForceFalls)
+{
+  // A unit force on the flat top of a block (Q2, 2.5 mm elements, the cut-off shell 2.5-5 mm:
+  // one element wide, as where a tooth is thin), at points 1 um, 0.1 mm and 0.3 mm from a
+  // point of the fine face quadrature and at one between such points. The remainder at the
+  // force moves only as the discretisation does (measured 3 %; 34 % with one Gauss rule per
+  // cell across the shell). Taken with a normal tilted by 0.05 rad from the surface's (as the
+  // facets' interpolated normals tilt on a curved flank), Boussinesq's in-plane stresses
+  // (1 / r^2) put a traction on the faces around the force that the quadrature point next to
+  // it turns into a jump; the exact normal of a flat top is the facets'. A normal that is not
+  // a unit vector and a surface without its function are refused.
+  const Vec3              L(20e-3, 20e-3, 10e-3);
+  const std::string       mesh = box("exact-normal", L, 8, 8, 4);
+  const double            h = 2.5e-3, sub = h / 8; // the close faces' rule: 8 x 8 Gauss 3 x 3
+  const Vec3              q(3 * h + sub / 2, 5 * h + sub / 2, L.z()); // a quadrature point
+  const Vec3              down = -Vec3::UnitZ();
+  const std::vector<Vec3> at{q + Vec3(1e-6, 0, 0), q + Vec3(1e-4, 0, 0), q + Vec3(3e-4, 0, 0),
+                             q + Vec3(0.3 * sub, 0.3 * sub, 0)};
+  auto                    remainder = [&](const std::function<Vec3(const Vec3 &)> &normal) {
+    ElasticSegmentOptions o;
+    o.degree   = 2;
+    o.material = steel;
+    o.clamped  = {5};
+    if (normal)
+      {
+        o.surface_boundaries = {6};
+        o.boundary_surface = [&](int, const Vec3 &x) { return SurfacePoint{x, normal(x)}; };
+      }
+    std::vector<NearFieldLoad> loads;
+    std::vector<Probe>         probes;
+    for (const Vec3 &x : at)
+      loads.push_back({x, down, 2.5e-3, 5e-3}), probes.push_back({x, down});
+    const Eigen::VectorXd w = ElasticSegment(mesh, o).remainder_response(loads, probes).diagonal();
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        std::printf("  remainder at the force [m/N], %s normal:", normal ? "given" : "facets'");
+        for (double v : w)
+          std::printf(" %.4e", v);
+        std::printf("\n");
+      }
+    return w;
+  };
+  const Eigen::VectorXd facets = remainder(nullptr);
+  const Eigen::VectorXd exact  = remainder([](const Vec3 &) { return Vec3::UnitZ(); });
+  const Eigen::VectorXd tilted =
+      remainder([](const Vec3 &) { return Vec3(std::sin(0.05), 0, std::cos(0.05)); });
+  for (Eigen::Index k = 0; k < exact.size(); ++k)
+    EXPECT_NEAR(exact[k] / facets[k], 1, 1e-9);
+  EXPECT_LT(exact.maxCoeff() / exact.minCoeff() - 1, 0.05); // both negative: |min| / |max|
+  EXPECT_GT(std::abs(tilted[0] / tilted[3] - 1), 1.0);
+  EXPECT_THROW(remainder([](const Vec3 &) { return Vec3(0, 0, 2); }), InputError);
+  ElasticSegmentOptions o;
+  o.clamped            = {5};
+  o.surface_boundaries = {6};
+  EXPECT_THROW(ElasticSegment(mesh, o), InputError);
 }
 
 TEST(ElasticSegment, BadInputIsRefused)

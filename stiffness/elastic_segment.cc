@@ -304,8 +304,11 @@ struct ElasticSegment::Impl
   ElasticSegmentOptions options;
   /// The whole mesh on every process, each owning a part (deal.II refines it: p4est's balance
   /// crashed on twisted helical segments refined about contact cells)
-  parallel::shared::Triangulation<3>   tria;
-  FESystem<3>                          fe;
+  parallel::shared::Triangulation<3> tria;
+  FESystem<3>                        fe;
+  /// The scalar element of each component: the remainder loads' quadratures use its shape
+  /// values (FESystem would copy its base's values into its own on every cell).
+  FE_Q<3>                              scalar_fe;
   DoFHandler<3>                        dofs;
   MappingQ1<3>                         mapping;
   std::unique_ptr<GridTools::Cache<3>> cache_ptr; ///< cell search (R-tree) for probes
@@ -363,11 +366,12 @@ struct ElasticSegment::Impl
   /// finer rule still.
   struct RemainderScratch
   {
-    std::vector<std::unique_ptr<FEValues<3>>>     volume; ///< [m - 1]: m subdivisions
-    std::vector<std::unique_ptr<FEFaceValues<3>>> face;   ///< [m - 1]: m subdivisions
-    FEFaceValues<3>                               near_face;
-    std::vector<unsigned>                         component; ///< of each shape function
-    Vector<double>                                f;
+    std::vector<std::unique_ptr<FEValues<3>>>     volume;    ///< [m - 1]: m subdivisions
+    std::vector<std::unique_ptr<FEFaceValues<3>>> face;      ///< [m - 1]: m subdivisions
+    FEFaceValues<3>                               near_face; ///< (of the scalar element)
+    /// Per shape function of the vector element: its component and scalar shape function.
+    std::vector<unsigned> component, scalar;
+    Vector<double>        f;
     explicit RemainderScratch(const Impl &m);
   };
   /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
@@ -379,6 +383,7 @@ struct ElasticSegment::Impl
       , tria(communicator, Triangulation<3>::none, false,
              parallel::shared::Triangulation<3>::partition_zorder)
       , fe(FE_Q<3>(degree), 3)
+      , scalar_fe(degree)
   {
   }
   ~Impl()
@@ -693,6 +698,10 @@ ElasticSegment::Impl::factorise(const std::string &file)
   // in millions of bytes
   petsc_check(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &factor), "MatGetFactor");
   petsc_check(MatSetOptionsPrefix(factor, "gearkit_"), "MatSetOptionsPrefix");
+  // The compliance solves a few hundred right-hand sides at once: MUMPS's blocks of 128 of
+  // them (ICNTL(27); its default 32) took the ISO/TR 6336-30 segments' solves from 18 s to
+  // 13 s. -gearkit_mat_mumps_icntl_27 still overrides it.
+  petsc_check(MatMumpsSetIcntl(factor, 27, 128), "MatMumpsSetIcntl");
   MatFactorInfo info;
   petsc_check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
   petsc_check(MatCholeskyFactorSymbolic(factor, K, nullptr, &info),
@@ -1215,19 +1224,20 @@ ElasticSegment::Impl::surface_normal(const FaceNormals &face, const Point<3> &x)
 }
 
 ElasticSegment::Impl::RemainderScratch::RemainderScratch(const Impl &m)
-    : near_face(m.mapping, m.fe, QIterated<2>(QGauss<1>(m.options.degree + 1), 8),
+    : near_face(m.mapping, m.scalar_fe, QIterated<2>(QGauss<1>(m.options.degree + 1), 8),
                 update_values | update_quadrature_points | update_JxW_values)
     , f(m.dofs.n_dofs())
 {
   for (unsigned i = 0; i < m.fe.n_dofs_per_cell(); ++i)
-    component.push_back(m.fe.system_to_component_index(i).first);
+    component.push_back(m.fe.system_to_component_index(i).first),
+        scalar.push_back(m.fe.system_to_component_index(i).second);
   const auto flags = update_values | update_quadrature_points | update_JxW_values;
   for (unsigned k = 1; k <= max_rule_subdivisions; ++k)
     {
       volume.push_back(std::make_unique<FEValues<3>>(
-          m.mapping, m.fe, QIterated<3>(QGauss<1>(m.options.degree + 2), k), flags));
+          m.mapping, m.scalar_fe, QIterated<3>(QGauss<1>(m.options.degree + 2), k), flags));
       face.push_back(std::make_unique<FEFaceValues<3>>(
-          m.mapping, m.fe, QIterated<2>(QGauss<1>(m.options.degree + 2), k), flags));
+          m.mapping, m.scalar_fe, QIterated<2>(QGauss<1>(m.options.degree + 2), k), flags));
     }
 }
 
@@ -1295,7 +1305,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
         {
           FEValues<3> &values =
               *scratch.volume[rule_subdivisions(2 * radius / std::sqrt(3.0), shell) - 1];
-          values.reinit(cell);
+          values.reinit(tria_cell);
           for (unsigned q = 0; q < values.n_quadrature_points; ++q)
             {
               const double r = values.quadrature_point(q).distance(x0);
@@ -1303,7 +1313,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
                 continue; // chi constant: no body force
               const Vec3 b = near(values.quadrature_point(q), Tensor<1, 3>()).body * values.JxW(q);
               for (unsigned i = 0; i < n; ++i)
-                local(i) += values.shape_value(i, q) * b[scratch.component[i]];
+                local(i) += values.shape_value(scratch.scalar[i], q) * b[scratch.component[i]];
             }
         }
       for (unsigned face = 0; face < GeometryInfo<3>::faces_per_cell; ++face)
@@ -1318,7 +1328,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
                                           cell->face(face)->diameter() / std::sqrt(2.0), shell) -
                                       1];
             const FaceNormals normals = face_normals(cell, face);
-            v.reinit(cell, face);
+            v.reinit(tria_cell, face);
             for (unsigned q = 0; q < v.n_quadrature_points; ++q)
               {
                 const double r = v.quadrature_point(q).distance(x0);
@@ -1329,7 +1339,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
                         .traction *
                     v.JxW(q);
                 for (unsigned i = 0; i < n; ++i)
-                  local(i) -= v.shape_value(i, q) * t[scratch.component[i]];
+                  local(i) -= v.shape_value(scratch.scalar[i], q) * t[scratch.component[i]];
               }
           }
       cell->get_dof_indices(indices);
@@ -1348,9 +1358,10 @@ ElasticSegment::Impl::responses(
   // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
   // factorisation does a block solve: one pass over the factor per block; an iterative
   // run-time choice solves column by column); a block's right-hand sides and solutions take
-  // at most about 1 GB together (at least 16 columns).
+  // at most about 1 GB together (at least 16 columns), and a block is at most MUMPS's own
+  // (128, factorise()): larger ones took memory and no time.
   const std::size_t block =
-      std::max<std::size_t>(16, (std::size_t(1) << 30) / (16 * m.dofs.n_dofs()));
+      std::clamp<std::size_t>((std::size_t(1) << 30) / (16 * m.dofs.n_dofs()), 16, 128);
   const PetscInt local = PetscInt(m.owned.n_elements());
   for (std::size_t first = 0; first < n_loads; first += block)
     {

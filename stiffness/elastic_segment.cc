@@ -283,6 +283,11 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::shared::Triangula
     }
 }
 
+/// Right-hand sides solved together: MUMPS's block (ICNTL(27), its default 32) and the most
+/// columns of our dense blocks. 128 took the ISO/TR 6336-30 segments' solves from 18 s to 13 s;
+/// larger blocks of ours took memory and no time.
+constexpr std::size_t solve_block = 128;
+
 /// Gauss rules on the cells and faces of a near-field load's cut-off shell are subdivided up
 /// to this many times per direction.
 constexpr unsigned max_rule_subdivisions = 4;
@@ -698,10 +703,9 @@ ElasticSegment::Impl::factorise(const std::string &file)
   // in millions of bytes
   petsc_check(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &factor), "MatGetFactor");
   petsc_check(MatSetOptionsPrefix(factor, "gearkit_"), "MatSetOptionsPrefix");
-  // The compliance solves a few hundred right-hand sides at once: MUMPS's blocks of 128 of
-  // them (ICNTL(27); its default 32) took the ISO/TR 6336-30 segments' solves from 18 s to
-  // 13 s. -gearkit_mat_mumps_icntl_27 still overrides it.
-  petsc_check(MatMumpsSetIcntl(factor, 27, 128), "MatMumpsSetIcntl");
+  // the compliance solves a few hundred right-hand sides at once (solve_block);
+  // -gearkit_mat_mumps_icntl_27 still overrides it
+  petsc_check(MatMumpsSetIcntl(factor, 27, PetscInt(solve_block)), "MatMumpsSetIcntl");
   MatFactorInfo info;
   petsc_check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
   petsc_check(MatCholeskyFactorSymbolic(factor, K, nullptr, &info),
@@ -1358,10 +1362,9 @@ ElasticSegment::Impl::responses(
   // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
   // factorisation does a block solve: one pass over the factor per block; an iterative
   // run-time choice solves column by column); a block's right-hand sides and solutions take
-  // at most about 1 GB together (at least 16 columns), and a block is at most MUMPS's own
-  // (128, factorise()): larger ones took memory and no time.
+  // at most about 1 GB together (at least 16 columns) and at most solve_block columns.
   const std::size_t block =
-      std::clamp<std::size_t>((std::size_t(1) << 30) / (16 * m.dofs.n_dofs()), 16, 128);
+      std::clamp<std::size_t>((std::size_t(1) << 30) / (16 * m.dofs.n_dofs()), 16, solve_block);
   const PetscInt local = PetscInt(m.owned.n_elements());
   for (std::size_t first = 0; first < n_loads; first += block)
     {

@@ -24,6 +24,13 @@ FeScene::declare(ParameterHandler &prm)
                     "the flank sizes, the others the far size; segment teeth and hold cuts are "
                     "then not used. The support the segments approximate (bench/README.md: "
                     "segment -> whole gear).");
+  prm.declare_entry("unit loads", "loaded teeth", Patterns::Selection("loaded teeth|middle tooth"),
+                    "loaded teeth: a unit-load grid on every tooth that can carry load over the "
+                    "mesh cycle. middle tooth: on the segment's middle tooth alone, its table read "
+                    "for every tooth turned (every tooth of a gear alike: the one farthest from "
+                    "the cuts speaks for all); responses on the teeth as far from it as the "
+                    "loaded teeth lie apart, so the segment has at least twice the loaded teeth "
+                    "less one (a third to a fifth of the unit loads; bench/README.md).");
   prm.declare_entry("flank element size", "0.25", Patterns::Double(0.02, 2),
                     "Element size at the flanks and fillets / m_n.");
   prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
@@ -89,6 +96,7 @@ FeScene::parse(ParameterHandler &prm)
   segment_teeth       = prm.get_integer("segment teeth");
   hold_cuts           = prm.get_bool("hold cuts");
   whole_gears         = prm.get_bool("whole gears");
+  cyclic              = prm.get("unit loads") == "middle tooth";
   flank_size          = prm.get_double("flank element size");
   far_size            = prm.get_double("far element size");
   other_size          = prm.get_double("other element size");

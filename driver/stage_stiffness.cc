@@ -37,7 +37,23 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
                const SegmentChoice &segment, const std::string &dir)
 {
   MemberComplianceOptions o;
-  o.mesh.teeth         = fe.whole_gears ? z : std::max(fe.segment_teeth, segment.teeth);
+  // With unit loads on the middle tooth alone, responses on the teeth as far from it as the
+  // loaded teeth lie apart (on a segment spanning at most half the gear: at least as far as
+  // teeth stand apart in contact at once).
+  const int loaded_reach = (segment.teeth - 1) / 2;
+  int       reach        = loaded_reach;
+  if (fe.cyclic)
+    {
+      reach = fe.whole_gears ? segment.teeth - 1 : std::min(segment.teeth - 1, (z / 2 - 1) / 2);
+      if (reach < segment.span)
+        throw InputError("Finite elements: unit loads = middle tooth needs responses " +
+                         std::to_string(segment.span) +
+                         " teeth either side of the middle one, "
+                         "more than a segment of at most half the " +
+                         std::to_string(z) +
+                         " teeth holds; expected whole gears = true or unit loads = loaded teeth");
+    }
+  o.mesh.teeth         = fe.whole_gears ? z : std::max(fe.segment_teeth, 2 * reach + 1);
   o.mesh.fine_teeth    = fe.whole_gears ? segment.teeth : 0;
   o.mesh.central_tooth = segment.central;
   o.hold_cuts          = fe.hold_cuts;
@@ -56,10 +72,12 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   o.local_refinements   = fe.local_refinements;
   o.refine_depth        = fe.refine_depth;
   o.work_directory      = dir;
-  // Unit loads only on the teeth that can carry load over the mesh cycle; the segment's other
-  // teeth are there for the stiffness of the surroundings.
-  for (int k = -(segment.teeth - 1) / 2; k <= (segment.teeth - 1) / 2; ++k)
+  // Unit loads only on the teeth that can carry load over the mesh cycle, or on the middle one
+  // for all; the segment's other teeth are there for the stiffness of the surroundings.
+  for (int k = -loaded_reach; k <= loaded_reach; ++k)
     o.loaded_teeth.push_back(((segment.central + k) % z + z) % z);
+  o.cyclic_tooth = fe.cyclic ? segment.central : -1;
+  o.cyclic_reach = fe.cyclic ? reach : 0;
   return o;
 }
 
@@ -121,21 +139,27 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       auto write = [&](const Tables &tables, const H5Group &group, const std::string &label) {
         for (const bool is_pinion : {true, false})
           {
-            const auto &[table, info]    = tables[is_pinion ? 0 : 1];
-            const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
-            const H5Group        m       = group.group(is_pinion ? "pinion" : "gear");
-            std::vector<int>     teeth;
-            for (std::size_t k = 0; k < table.points().size(); k += fe.n_u * fe.n_v)
-              teeth.push_back(table.points()[k].tooth);
-            const hsize_t       n = table.points().size();
-            std::vector<double> S(table.matrix().data(), table.matrix().data() + n * n);
-            m.write("compliance", S, {n, n}, "m/N",
-                    std::string("structural compliance S(i, j) (column-major: load j, response "
-                                "i) on the load grid, ") +
+            const auto &[table, info]       = tables[is_pinion ? 0 : 1];
+            const SegmentChoice    &segment = is_pinion ? segments.first : segments.second;
+            const H5Group           m       = group.group(is_pinion ? "pinion" : "gear");
+            const std::vector<int> &teeth   = table.teeth();
+            const hsize_t           n = table.points().size(), loads = table.load_points().size();
+            std::vector<double>     S(table.matrix().data(), table.matrix().data() + n * loads);
+            m.write("compliance", S, {loads, n}, "m/N",
+                    std::string("structural compliance S(i, j) (column-major: load j on the "
+                                "load points, response i on the grid), ") +
                         (fe.analytic_near_field
                              ? "the point-force half-space displacement of the same tooth removed"
                              : "half-space part below the response depth removed"));
-            m.write("teeth", teeth, {teeth.size()}, "1", "member teeth with load grids");
+            m.write("teeth", teeth, {teeth.size()}, "1", "member teeth that can carry load");
+            const std::vector<int> &grid = table.grid_teeth();
+            m.write("grid_teeth", grid, {grid.size()}, "1",
+                    "member teeth with grid points (responses; the compliance's rows)");
+            m.write("cyclic_tooth", double(fe.cyclic ? segment.central : -1), "1",
+                    "-1: unit loads on every tooth that can carry load; else the tooth that "
+                    "alone carries them, read for every tooth turned");
+            m.write("cyclic_reach", double(table.grid_teeth().size() / 2), "1",
+                    "with a cyclic tooth: the teeth either side of it with responses");
             m.write("central_tooth", double(segment.central), "1",
                     "tooth in the middle of the segment");
             m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
@@ -154,7 +178,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
                     "mesh, assembly, factorisation and unit-load solves");
             log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << label << ": "
-                << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << n
+                << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << loads
                 << " unit loads (";
             if (fe.analytic_near_field)
               log << "near field analytic within " << info.min_near_field_radius * 1e3
@@ -213,15 +237,17 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       auto table = [&](const MemberFlanks &flanks, const H5Group &tables, const char *member) {
         const H5Group m = tables.group(member);
         FlankGridSpec spec;
-        spec.teeth = m.read_ints("teeth");
-        spec.side  = side;
+        spec.teeth        = m.read_ints("teeth");
+        spec.cyclic_tooth = int(m.read_doubles("cyclic_tooth").front());
+        spec.cyclic_reach = int(m.read_doubles("cyclic_reach").front());
+        spec.side         = side;
         spec.n_u = fe.n_u, spec.n_v = fe.n_v;
         spec.graded = fe.graded_grid;
         FlankCompliance           t(flanks, spec);
         std::vector<hsize_t>      shape;
         const std::vector<double> S = m.read_doubles("compliance", &shape);
-        t.set(Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[0]),
-                                                Eigen::Index(shape[1])));
+        t.set(Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[1]),
+                                                Eigen::Index(shape[0])));
         return t;
       };
       const FlankCompliance cp  = table(*members.pinion, cg, "pinion");
@@ -356,13 +382,16 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           ro.hold_cuts         = fe.hold_cuts;
           ro.elements_per_cell = lc.reference_elements_per_cell;
           ro.work_directory    = vtu.string();
-          // the segments of the fast mode (member_options): the loaded teeth, at least the
-          // scene's segment teeth, or the whole gear
+          // the segments of the fast mode (member_options): the teeth with grids, at least
+          // the scene's segment teeth, or the whole gear
           auto segment = [&](const char *member, int z) {
             const H5Group m = cg.group(member);
-            return SegmentChoice{
-                int(m.read_doubles("central_tooth").front()),
-                fe.whole_gears ? z : std::max(fe.segment_teeth, int(m.read_ints("teeth").size()))};
+            SegmentChoice s;
+            s.central = int(m.read_doubles("central_tooth").front());
+            s.teeth   = fe.whole_gears
+                            ? z
+                            : std::max(fe.segment_teeth, int(m.read_ints("grid_teeth").size()));
+            return s;
           };
           ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
           ro.flank_size         = fe.flank_size * member_module(pair);

@@ -8,11 +8,23 @@ namespace gearkit
 {
 FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec &s)
     : spec(s)
+    , member_teeth(flanks.teeth())
 {
   if (spec.teeth.empty() || spec.n_u < 2 || spec.n_v < 2 || !(spec.margin >= 0) ||
       !(spec.margin < 0.5))
     throw InputError("flank compliance grid: needs at least one tooth, n_u and n_v >= 2 and a "
                      "margin in [0, 0.5)");
+  if (spec.cyclic_tooth < 0)
+    with_grid = spec.teeth;
+  else
+    {
+      if (spec.cyclic_tooth >= member_teeth || spec.cyclic_reach < 0 ||
+          2 * spec.cyclic_reach + 1 > member_teeth)
+        throw InputError("flank compliance grid: a cyclic tooth in [0, z) and a reach in [0, "
+                         "(z - 1) / 2] expected");
+      for (int k = -spec.cyclic_reach; k <= spec.cyclic_reach; ++k)
+        with_grid.push_back(((spec.cyclic_tooth + k) % member_teeth + member_teeth) % member_teeth);
+    }
   auto nodes = [&](int n) {
     std::vector<double> x(std::size_t(n), 0.0);
     for (int i = 0; i < n; ++i)
@@ -21,7 +33,7 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
     return x;
   };
   u_nodes = nodes(spec.n_u), v_nodes = nodes(spec.n_v);
-  for (int tooth : spec.teeth)
+  for (int tooth : with_grid)
     {
       const Flank      &f  = flanks.flank(tooth, spec.side);
       const FlankDomain d  = f.domain();
@@ -40,18 +52,21 @@ FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec
             const FlankPoint q = f.evaluate(p.u, p.v);
             p.position = q.position, p.normal = q.normal;
             p.face_direction = flanks.face_direction(q.position);
+            if (spec.cyclic_tooth < 0 || tooth == spec.cyclic_tooth)
+              loaded.push_back(grid.size());
             grid.push_back(p);
           }
     }
+  load_base = int(loaded.front());
 }
 
 void
 FlankCompliance::set(const Eigen::MatrixXd &compliance)
 {
-  const Eigen::Index n = Eigen::Index(grid.size());
-  if (compliance.rows() != n || compliance.cols() != n || !compliance.allFinite())
+  const Eigen::Index n = Eigen::Index(grid.size()), m = Eigen::Index(loaded.size());
+  if (compliance.rows() != n || compliance.cols() != m || !compliance.allFinite())
     throw InputError("flank compliance: the matrix must be finite and " + std::to_string(n) +
-                     " x " + std::to_string(n));
+                     " x " + std::to_string(m));
   S = compliance;
 }
 
@@ -64,11 +79,11 @@ FlankCompliance::covers(int tooth) const
 FlankCompliance::Weights
 FlankCompliance::weights(int tooth, double u, double v) const
 {
-  const auto it = std::find(spec.teeth.begin(), spec.teeth.end(), tooth);
-  if (it == spec.teeth.end())
+  const auto it = std::find(with_grid.begin(), with_grid.end(), tooth);
+  if (it == with_grid.end())
     throw InputError("flank compliance: tooth " + std::to_string(tooth) +
                      " carries load but lies outside the finite-element segment's loaded teeth");
-  const int t = int(it - spec.teeth.begin());
+  const int t = int(it - with_grid.begin());
   // the interval of the nodes x lies in, and the fraction along it
   auto frac = [](double x, double lo, double hi, const std::vector<double> &nodes, int &i0) {
     const double f = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
@@ -97,11 +112,27 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
 {
   if (S.size() == 0)
     throw InputError("flank compliance: the table has not been filled");
+  if (spec.cyclic_tooth >= 0)
+    {
+      // the load moved onto the cyclic tooth, the response turned with it
+      const int offset =
+          ((tooth_j - tooth_i) % member_teeth + member_teeth + member_teeth / 2) % member_teeth -
+          member_teeth / 2; // signed, in (-z/2, z/2]
+      if (std::abs(offset) > spec.cyclic_reach)
+        throw InputError("flank compliance: teeth " + std::to_string(tooth_i) + " and " +
+                         std::to_string(tooth_j) + " in contact at once lie " +
+                         std::to_string(std::abs(offset)) +
+                         " teeth apart, further than the middle tooth's responses reach (" +
+                         std::to_string(spec.cyclic_reach) + ")");
+      const int turned =
+          ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth;
+      tooth_i = spec.cyclic_tooth, tooth_j = turned;
+    }
   const Weights wi = weights(tooth_i, u_i, v_i), wj = weights(tooth_j, u_j, v_j);
   double        c = 0;
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b)
-      c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a]);
+      c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
   return c;
 }
 
@@ -140,26 +171,28 @@ fill_structural_compliance(FlankCompliance &table, const ElasticResponse &solve,
                            double patch_radius)
 {
   const auto                        &points = table.points();
+  const auto                        &loaded = table.load_points();
   std::vector<FlankLoad>             loads;
   std::vector<std::pair<Vec3, Vec3>> responses;
   if (depths.size() != points.size())
     throw InputError("flank compliance: " + std::to_string(depths.size()) +
                      " response depths for " + std::to_string(points.size()) + " grid points");
-  for (std::size_t i = 0; i < points.size(); ++i)
-    {
-      loads.push_back({points[i].tooth, points[i].position, -points[i].normal});
-      responses.emplace_back(points[i].position + depths[i] * response_offset(points[i]),
-                             -points[i].normal);
-    }
+  for (std::size_t i : loaded)
+    loads.push_back({points[i].tooth, points[i].position, -points[i].normal});
+  for (std::size_t j = 0; j < points.size(); ++j)
+    responses.emplace_back(points[j].position + depths[j] * response_offset(points[j]),
+                           -points[j].normal);
   Eigen::MatrixXd D = solve(loads, responses);
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (std::size_t k = 0; k < loaded.size(); ++k)
     for (std::size_t j = 0; j < points.size(); ++j)
-      if (points[i].tooth == points[j].tooth)
+      if (points[loaded[k]].tooth == points[j].tooth)
         {
-          const Vec3   d = responses[j].first - points[i].position;
-          const double z = -d.dot(points[i].normal); // depth below the load's tangent plane
-          const double r = (d + z * points[i].normal).norm();
-          D(j, i) -= disk_load_displacement(r, std::max(z, 0.0), patch_radius, material);
+          const FlankCompliance::Point &p = points[loaded[k]];
+          const Vec3                    d = responses[j].first - p.position;
+          const double z = -d.dot(p.normal); // depth below the load's tangent plane
+          const double r = (d + z * p.normal).norm();
+          D(Eigen::Index(j), Eigen::Index(k)) -=
+              disk_load_displacement(r, std::max(z, 0.0), patch_radius, material);
         }
   table.set(D);
 }

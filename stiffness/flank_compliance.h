@@ -28,6 +28,13 @@ struct FlankGridSpec
   /// compliance rises steeply within a few tenths of a millimetre of a free face end or tip,
   /// which equal spacing smears over a whole grid interval.
   bool graded = true;
+  /// -1: unit loads on every tooth of `teeth`, responses read there. Otherwise the one tooth
+  /// that carries the unit loads, responses read on the teeth within `cyclic_reach` of it, its
+  /// table read for a load on any tooth of `teeth` turned by the teeth between (the gear's
+  /// rotational periodicity: every tooth alike, each seeing its surroundings as the segment's
+  /// middle tooth does). `cyclic_reach`: at least the largest offset between teeth in contact
+  /// at once.
+  int cyclic_tooth = -1, cyclic_reach = 0;
 };
 
 class FlankCompliance
@@ -44,25 +51,44 @@ public:
 
   FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec &spec);
 
-  /// Points, tooth by tooth, u-major then v.
+  /// Points, tooth by tooth, u-major then v: where the responses are read.
   const std::vector<Point> &
   points() const
   {
     return grid;
   }
-  /// S(j, i): approach of point j into the material per unit normal force on point i [m/N].
+  /// The points that carry unit loads (indices into points()): all, or the cyclic tooth's.
+  const std::vector<std::size_t> &
+  load_points() const
+  {
+    return loaded;
+  }
+  /// S(j, k): approach of point j into the material per unit normal force on load point k
+  /// (points()[load_points()[k]]) [m/N].
   void
   set(const Eigen::MatrixXd &compliance);
-  /// True if the tooth has a load grid.
+  /// True if the tooth can carry load (FlankGridSpec::teeth).
   bool
   covers(int tooth) const;
+  /// The teeth that can carry load (FlankGridSpec::teeth), and those with a grid of points.
+  const std::vector<int> &
+  teeth() const
+  {
+    return spec.teeth;
+  }
+  const std::vector<int> &
+  grid_teeth() const
+  {
+    return with_grid;
+  }
   const Eigen::MatrixXd &
   matrix() const
   {
     return S;
   }
   /// Interpolated compliance from a load at (tooth_i, u_i, v_i) to (tooth_j, u_j, v_j); throws
-  /// InputError for a tooth outside the grid.
+  /// InputError for a tooth outside the grid (with a cyclic tooth: an offset tooth_j - tooth_i
+  /// beyond its reach).
   double
   operator()(int tooth_i, double u_i, double v_i, int tooth_j, double u_j, double v_j) const;
 
@@ -73,11 +99,14 @@ private:
     double weight[4];
   };
   Weights
-  weights(int tooth, double u, double v) const;
-
-  FlankGridSpec       spec;
-  std::vector<Point>  grid;
-  std::vector<double> u_nodes, v_nodes; ///< grid points as fractions of each range, in [0, 1]
+                           weights(int tooth, double u, double v) const;
+  FlankGridSpec            spec;
+  std::vector<int>         with_grid; ///< teeth with grid points
+  int                      member_teeth = 0;
+  std::vector<Point>       grid;
+  std::vector<std::size_t> loaded;           ///< load points (indices into grid)
+  int                      load_base = 0;    ///< with a cyclic tooth: its first grid index
+  std::vector<double>      u_nodes, v_nodes; ///< grid points as fractions of each range, in [0, 1]
   std::vector<std::pair<double, double>> u_range, v_range; ///< per tooth entry
   Eigen::MatrixXd                        S;
 };
@@ -101,8 +130,8 @@ using ElasticResponse = std::function<Eigen::MatrixXd(
 Vec3
 response_offset(const FlankCompliance::Point &point);
 
-/// Fills the table from unit normal loads at the grid points, read depths[i] below point i
-/// (position + depths[i] response_offset); the half-space displacement there of the load as
+/// Fills the table from unit normal loads at its load points, read depths[i] below every point
+/// i (position + depths[i] response_offset); the half-space displacement there of the load as
 /// applied (a unit force spread uniformly over a disk of `patch_radius`; 0: a point force) is
 /// subtracted for points of the same tooth.
 void

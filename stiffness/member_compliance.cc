@@ -26,23 +26,29 @@ std::pair<SegmentChoice, SegmentChoice>
 loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, double gap_band)
 {
   auto choose = [&](bool pinion, int z) {
-    int first = -1, lo = 0, hi = 0;
+    int first = -1, lo = 0, hi = 0, span = 0;
     for (const TcaPosition &p : positions)
-      for (const PairContact &c : p.pairs)
-        if (c.found && c.separation <= gap_band)
-          {
-            const int t = pinion ? c.pinion_tooth : c.gear_tooth;
-            if (first < 0)
-              first = t;
-            const int d = ((t - first) % z + z + z / 2) % z - z / 2; // signed offset
-            lo = std::min(lo, d), hi = std::max(hi, d);
-          }
+      {
+        int here_lo = z, here_hi = -z;
+        for (const PairContact &c : p.pairs)
+          if (c.found && c.separation <= gap_band)
+            {
+              const int t = pinion ? c.pinion_tooth : c.gear_tooth;
+              if (first < 0)
+                first = t;
+              const int d = ((t - first) % z + z + z / 2) % z - z / 2; // signed offset
+              lo = std::min(lo, d), hi = std::max(hi, d);
+              here_lo = std::min(here_lo, d), here_hi = std::max(here_hi, d);
+            }
+        span = std::max(span, here_hi - here_lo);
+      }
     if (first < 0)
       throw InputError("member compliance: no tooth pair comes within the gap band at the "
                        "positions analysed");
     SegmentChoice s;
     s.central = ((first + (lo + hi) / 2) % z + z) % z;
     s.teeth   = hi - lo + 1;
+    s.span    = span;
     if (s.teeth % 2 == 0)
       ++s.teeth; // segments are odd: one tooth more on one side
     return s;
@@ -178,50 +184,58 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
   std::vector<Vec3> on(n);
   for (std::size_t i = 0; i < n; ++i)
     on[i] = x[i] + (surface[i].second - 2e-6 * h) * outward[i]; // just inside
-  // where the body comes back across the outward normal
-  const auto back = first_crossing(body, on, outward, 4e-6 * h, 1.25 * o.near_field_radius, h / 4,
-                                   1e-3 * h, true);
-  const std::vector<double>  held = body.distance_to_held(on);
+  // where the body comes back across a load's outward normal
+  const auto       &loaded = table.load_points();
+  std::vector<Vec3> load_on, load_out;
+  for (std::size_t i : loaded)
+    load_on.push_back(on[i]), load_out.push_back(outward[i]);
+  const auto back = first_crossing(body, load_on, load_out, 4e-6 * h, 1.25 * o.near_field_radius,
+                                   h / 4, 1e-3 * h, true);
+  const std::vector<double>  held = body.distance_to_held(load_on);
   std::vector<NearFieldLoad> loads;
   std::vector<Probe>         probes;
   double                     smallest = HUGE_VAL;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t k = 0; k < loaded.size(); ++k)
     {
-      const double outer = std::min({o.near_field_radius, 0.8 * back[i].second, 0.9 * held[i]});
+      const std::size_t i = loaded[k];
+      const double outer  = std::min({o.near_field_radius, 0.8 * back[k].second, 0.9 * held[k]});
       if (!(outer > 0))
         {
           std::ostringstream msg;
           msg << "member compliance: no room for the analytic near field of the unit load at "
               << "tooth " << points[i].tooth << " (u, v) = (" << points[i].u << ", " << points[i].v
               << "), " << on[i].transpose() * 1e3 << " mm: the body comes back "
-              << "across its normal after " << back[i].second * 1e3 << " mm, a held face is "
-              << held[i] * 1e3 << " mm away (elements of " << h * 1e3 << " mm)";
+              << "across its normal after " << back[k].second * 1e3 << " mm, a held face is "
+              << held[k] * 1e3 << " mm away (elements of " << h * 1e3 << " mm)";
           throw InputError(msg.str());
         }
       smallest = std::min(smallest, outer);
       loads.push_back({on[i], in[i], outer / 2, outer});
-      probes.push_back({on[i], in[i]});
     }
+  for (std::size_t j = 0; j < n; ++j)
+    probes.push_back({on[j], in[j]});
   out.min_near_field_radius = smallest;
   const Eigen::MatrixXd W   = body.remainder_response(loads, probes);
   Eigen::MatrixXd       S   = W;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t k = 0; k < loaded.size(); ++k)
     for (std::size_t j = 0; j < n; ++j)
-      if (j != i)
+      if (j != loaded[k])
         {
           // the analytic part along the load's own direction: along the other point's normal
           // it would add the tilt of the normals, u_r theta -> (1 - 2 nu) / (4 pi G rho) cos^2,
           // a term whose limit at the load depends on the direction; bilinear interpolation of
           // the table would turn it into a ripple of the grid spacing (up to 0.5 % of K_m),
           // while along a contact line (a straight generator of the flank, or nearly) it is nil
-          const NearFieldLoad &l   = loads[i];
+          const std::size_t    i   = loaded[k];
+          const NearFieldLoad &l   = loads[k];
           const double         chi = radial_cutoff(on[j], l.point, l.inner, l.outer).value;
+          const Eigen::Index   r = Eigen::Index(j), c = Eigen::Index(k);
           if (chi > 0)
-            S(j, i) +=
+            S(r, c) +=
                 chi *
                 point_force_field(on[j], l.point, l.direction, 1.0, o.material).u.dot(l.direction);
           if (points[i].tooth == points[j].tooth)
-            S(j, i) -= point_load_displacement((on[j] - on[i]).norm(), 0, 1.0, o.material);
+            S(r, c) -= point_load_displacement((on[j] - on[i]).norm(), 0, 1.0, o.material);
         }
   table.set(S);
 }
@@ -318,7 +332,9 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   spec.teeth = o.loaded_teeth.empty() ? segment.member_teeth : o.loaded_teeth;
   spec.side  = o.side;
   spec.n_u = o.n_u, spec.n_v = o.n_v;
-  spec.graded = o.graded_grid;
+  spec.graded       = o.graded_grid;
+  spec.cyclic_tooth = o.cyclic_tooth;
+  spec.cyclic_reach = o.cyclic_reach;
   // the loaded flank of a member tooth: its boundary id in the segment mesh
   const auto loaded_flank = [&](int tooth) {
     const auto at = std::find(segment.member_teeth.begin(), segment.member_teeth.end(), tooth);
@@ -327,9 +343,9 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
                        " is not in the finite-element segment of " + member_name);
     return boundary::flank(int(at - segment.member_teeth.begin()), o.side);
   };
-  for (int t : spec.teeth)
-    loaded_flank(t);
   FlankCompliance table(flanks, spec);
+  for (int t : table.grid_teeth())
+    loaded_flank(t);
 
   t0 = std::chrono::steady_clock::now();
   ElasticSegmentOptions eo;
@@ -341,12 +357,14 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   if (o.hold_cuts && !segment.whole)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
   // the loaded flanks on their exact surfaces (refined vertices, the near field's traction)
-  for (int t : spec.teeth)
+  for (int t : table.grid_teeth())
     eo.surface_boundaries.insert(loaded_flank(t));
   eo.boundary_surface = flank_surface(flanks, segment.member_teeth, o.side);
   if (o.local_refinements > 0)
     {
-      eo.refine_boundaries = eo.surface_boundaries;
+      // with a cyclic tooth only its flank carries loads: the others' responses are smooth
+      eo.refine_boundaries =
+          o.cyclic_tooth < 0 ? eo.surface_boundaries : std::set<int>{loaded_flank(o.cyclic_tooth)};
       eo.local_refinements = o.local_refinements;
       eo.refine_distance   = o.refine_depth * std::ldexp(h, int(o.local_refinements));
     }
@@ -355,8 +373,8 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   out.hexahedra     = body.cells(); // after the local refinement
   out.dofs          = body.dofs();
   out.setup_seconds = seconds_since(t0);
-  phase(o, std::to_string(table.points().size()) + " unit loads on " + std::to_string(out.dofs) +
-               " dofs");
+  phase(o, std::to_string(table.load_points().size()) + " unit loads on " +
+               std::to_string(out.dofs) + " dofs");
 
   t0                          = std::chrono::steady_clock::now();
   const ElasticResponse solve = [&](const std::vector<FlankLoad>             &loads,

@@ -24,11 +24,16 @@ struct MemberComplianceOptions
   unsigned           degree = 2; ///< FE_Q degree
   Material           material;
   FlankSide          side = FlankSide::drive;
-  std::vector<int>   loaded_teeth;          ///< member teeth with load grids; empty: the segment's
-  int                n_u = 9, n_v = 7;      ///< grid over profile and face
-  bool               graded_grid    = true; ///< grid clustered towards the edges (FlankGridSpec)
-  double             depth_elements = 3;    ///< response depth in flank element sizes
-  double             patch_elements = 1;    ///< patch load radius in flank element sizes
+  std::vector<int>   loaded_teeth; ///< member teeth that can carry load; empty: the segment's
+  /// -1: unit loads on every loaded tooth. Otherwise the member tooth (the segment's middle)
+  /// that alone carries unit loads, responses read on the teeth within `cyclic_reach` of it,
+  /// its table read for every loaded tooth turned (FlankGridSpec); only its loaded flank is
+  /// refined (local refinements).
+  int    cyclic_tooth = -1, cyclic_reach = 0;
+  int    n_u = 9, n_v = 7;      ///< grid over profile and face
+  bool   graded_grid    = true; ///< grid clustered towards the edges (FlankGridSpec)
+  double depth_elements = 3;    ///< response depth in flank element sizes
+  double patch_elements = 1;    ///< patch load radius in flank element sizes
   /// Radial cut faces held (else free; the bore always; a whole gear has none).
   bool hold_cuts = true;
   /// The near field of each unit load: false, read a response depth below the flank and take
@@ -72,10 +77,11 @@ struct MemberComplianceInfo
 
 /// The segment a member needs: the teeth of the pairs that stand within `gap_band` of contact
 /// at any of the positions (they can carry load), contiguous around the wheel, as the middle
-/// tooth and the count (odd).
+/// tooth and the count (odd), and how far apart teeth stand within the band at once.
 struct SegmentChoice
 {
   int central = 0, teeth = 1;
+  int span = 0; ///< the largest offset between teeth within the gap band at one position
 };
 /// For the pinion (first) and the gear (second) of the pair at the given TCA positions.
 std::pair<SegmentChoice, SegmentChoice>

@@ -177,7 +177,7 @@ TEST_F(MemberCompliance, TheWholeGearLiesBetweenHeldAndFreeCuts)
   const std::string  dir = std::filesystem::temp_directory_path() / "gearkit-test-whole-gear";
   std::filesystem::create_directories(dir);
   auto member = [&](const InvoluteGear &g, const MemberFlanks &f, const SegmentChoice &s, int teeth,
-                    bool hold_cuts) {
+                    bool hold_cuts, bool cyclic = false) {
     MemberComplianceOptions o;
     o.mesh.teeth         = teeth;
     o.mesh.fine_teeth    = s.teeth;
@@ -186,25 +186,87 @@ TEST_F(MemberCompliance, TheWholeGearLiesBetweenHeldAndFreeCuts)
     o.hold_cuts          = hold_cuts;
     for (int k = -(s.teeth - 1) / 2; k <= (s.teeth - 1) / 2; ++k)
       o.loaded_teeth.push_back((s.central + k + g.teeth()) % g.teeth());
-    o.degree = 1;
+    o.cyclic_tooth = cyclic ? s.central : -1;
+    o.cyclic_reach = cyclic ? s.teeth - 1 : 0;
+    o.degree       = 1;
     o.n_u = 5, o.n_v = 4;
     o.material       = {206e9, 0.3};
     o.work_directory = dir;
     return involute_member_compliance(g, f, o);
   };
   const FlankCompliance gear_table = member(*gear, *gf, segments.second, 5, true);
-  auto                  pinion_on  = [&](int teeth, bool hold_cuts) {
-    return mesh_stiffness(tca, at, member(*pinion, *pf, segments.first, teeth, hold_cuts),
+  auto                  pinion_on  = [&](int teeth, bool hold_cuts, bool cyclic = false) {
+    return mesh_stiffness(tca, at, member(*pinion, *pf, segments.first, teeth, hold_cuts, cyclic),
                                             gear_table);
   };
   const double held3 = pinion_on(3, true), held7 = pinion_on(7, true);
   const double free3 = pinion_on(3, false), free7 = pinion_on(7, false);
   const double whole = pinion_on(pd.teeth, true);
+  // unit loads on the middle tooth alone, read for every tooth turned: on a whole gear the
+  // same as loads on every tooth (rotational periodicity, up to the mesh); on the held segment
+  // the middle tooth's view of its surroundings, nearer the whole gear than the loaded teeth
+  // next to the cuts see it
+  const double cyclic7 = pinion_on(7, true, true), cyclic_whole = pinion_on(pd.teeth, true, true);
   std::printf("K_m [N/um]: cuts held 3 / 7 teeth %.1f / %.1f, whole gear %.1f, cuts free 7 / 3 "
-              "teeth %.1f / %.1f\n",
-              held3 / 1e6, held7 / 1e6, whole / 1e6, free7 / 1e6, free3 / 1e6);
+              "teeth %.1f / %.1f; middle tooth's table: 7 teeth held %.1f, whole gear %.1f\n",
+              held3 / 1e6, held7 / 1e6, whole / 1e6, free7 / 1e6, free3 / 1e6, cyclic7 / 1e6,
+              cyclic_whole / 1e6);
   EXPECT_GT(held3, held7);
   EXPECT_GT(held7, whole);
   EXPECT_GT(whole, free7);
   EXPECT_GT(free7, free3);
+  EXPECT_LT(std::abs(cyclic7 - whole), std::abs(held7 - whole));
+  EXPECT_NEAR(cyclic_whole / whole, 1, 0.005);
+}
+
+// The middle tooth's table (unit loads on it alone) holds exactly the columns the loaded teeth's
+// table has for that tooth on the same segment, and a load on any tooth reads them turned by
+// the teeth between; teeth further apart than the responses reach are refused.
+TEST_F(MemberCompliance, MiddleToothTableReadForEveryToothTurned)
+{
+  const std::string dir = std::filesystem::temp_directory_path() / "gearkit-test-cyclic";
+  std::filesystem::create_directories(dir);
+  const int z = pd.teeth, c = segments.first.central;
+  auto      turn  = [&](int k) { return ((c + k) % z + z) % z; };
+  auto      table = [&](bool cyclic) {
+    MemberComplianceOptions o;
+    o.mesh.teeth         = 5;
+    o.mesh.central_tooth = c;
+    o.mesh.flank_size    = pd.normal_module / 3;
+    o.degree             = 1;
+    o.n_u = 4, o.n_v = 3;
+    o.loaded_teeth   = {turn(-1), turn(0), turn(1)};
+    o.cyclic_tooth   = cyclic ? c : -1;
+    o.cyclic_reach   = cyclic ? 2 : 0;
+    o.material       = {206e9, 0.3};
+    o.work_directory = dir;
+    return involute_member_compliance(*pinion, *pf, o);
+  };
+  const FlankCompliance every = table(false), middle = table(true);
+  ASSERT_EQ(every.load_points().size(), 3u * 4 * 3);
+  ASSERT_EQ(middle.load_points().size(), 4u * 3);
+  ASSERT_EQ(middle.points().size(), 5u * 4 * 3);
+  const FlankDomain d     = pf->flank(c, FlankSide::drive).domain();
+  const double      scale = every.matrix().cwiseAbs().maxCoeff();
+  for (const auto &[a, b] : {std::pair{0.2, 0.7}, std::pair{0.55, 0.1}, std::pair{0.9, 0.45}})
+    {
+      const double u = d.u_min + a * (d.u_max - d.u_min), v = d.v_min + b * (d.v_max - d.v_min);
+      const double u2 = d.u_min + b * (d.u_max - d.u_min), v2 = d.v_min + a * (d.v_max - d.v_min);
+      for (int k : {-1, 0, 1})
+        {
+          const double expected = every(c, u, v, turn(k), u2, v2);
+          EXPECT_NEAR(middle(c, u, v, turn(k), u2, v2), expected, 1e-9 * scale) << k;
+          // the same teeth apart anywhere on the gear, across tooth 0 too
+          for (int from : {turn(1), turn(-1), 0, z - 1, 7})
+            EXPECT_NEAR(middle(from, u, v, (from + k + z) % z, u2, v2), expected, 1e-9 * scale)
+                << from << " " << k;
+        }
+      // two teeth apart: the responses reach them from the middle tooth alone
+      EXPECT_LT(std::abs(middle(turn(1), u, v, turn(-1), u2, v2)),
+                std::abs(middle(turn(1), u, v, turn(0), u2, v2)));
+    }
+  EXPECT_TRUE(middle.covers(turn(-1)));
+  EXPECT_FALSE(middle.covers(turn(2))); // can carry load: the loaded teeth, as without
+  EXPECT_FALSE(every.covers(turn(2)));
+  EXPECT_THROW(middle(c, d.u_min, d.v_min, turn(3), d.u_min, d.v_min), InputError);
 }

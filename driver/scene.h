@@ -147,7 +147,7 @@ struct FeScene
   int      segment_teeth       = 7;     ///< teeth per member segment
   bool     hold_cuts           = true;  ///< radial cuts held (else free)
   bool     whole_gears         = false; ///< all teeth on the rim (involute); the loaded ones fine
-  bool     cyclic              = false; ///< unit loads on the middle tooth, read for all turned
+  bool     cyclic              = true;  ///< unit loads on the middle tooth, read for all turned
   double   flank_size          = 0.25;  ///< element size at the flanks / m_n
   double   far_size            = 1.0;   ///< element size toward the bore / m_n
   double   other_size          = 0;     ///< at fillets and unloaded flanks / m_n; 0 = flank size

@@ -24,13 +24,15 @@ FeScene::declare(ParameterHandler &prm)
                     "the flank sizes, the others the far size; segment teeth and hold cuts are "
                     "then not used. The support the segments approximate (bench/README.md: "
                     "segment -> whole gear).");
-  prm.declare_entry("unit loads", "loaded teeth", Patterns::Selection("loaded teeth|middle tooth"),
-                    "loaded teeth: a unit-load grid on every tooth that can carry load over the "
-                    "mesh cycle. middle tooth: on the segment's middle tooth alone, its table read "
-                    "for every tooth turned (every tooth of a gear alike: the one farthest from "
-                    "the cuts speaks for all); responses on the teeth as far from it as the "
-                    "loaded teeth lie apart, so the segment has at least twice the loaded teeth "
-                    "less one (a third to a fifth of the unit loads; bench/README.md).");
+  prm.declare_entry("unit loads", "middle tooth", Patterns::Selection("middle tooth|loaded teeth"),
+                    "middle tooth: unit loads on the segment's middle tooth alone, its table "
+                    "read for every tooth turned (every tooth of a gear alike: the one farthest "
+                    "from the cuts speaks for all; only its flank refined), responses on the "
+                    "teeth as far from it as teeth stand apart in contact at once (the segment "
+                    "grows to hold them). loaded teeth: a unit-load grid on every tooth that can "
+                    "carry load over the mesh cycle; those next to held cuts are stiffened by "
+                    "them (62/62 on 9-tooth segments: K_m +1.65 % from the whole gear, middle "
+                    "tooth +0.78 %, at two thirds of the time; bench/README.md).");
   prm.declare_entry("flank element size", "0.25", Patterns::Double(0.02, 2),
                     "Element size at the flanks and fillets / m_n.");
   prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),

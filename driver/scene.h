@@ -155,7 +155,7 @@ struct FeScene
   double   depth               = 3;    ///< response depth in flank element sizes
   bool     analytic_near_field = true; ///< near field = analytic (else: response depth)
   double   near_field_radius   = 2;    ///< [m_n]
-  int      n_u = 9, n_v = 7;           ///< load grid per flank
+  int      n_u = 9, n_v = 0;           ///< load grid per flank (n_v 0: from the face width)
   bool     graded_grid = true;         ///< load grid clustered towards the flank's edges
   /// Also the tables on a mesh of twice the element sizes at the flanks (coarsened(); 1.5 or
   /// 1.25 times where that cannot be meshed): the stiffness stage estimates each K_m's error.

@@ -32,6 +32,20 @@ member_module(const PairScene &pair)
                                              : pair.pinion.normal_module;
 }
 
+/// The scene's finite-element section of a pair with the face grid points resolved (0: from
+/// the face width and module).
+FeScene
+pair_fe(const Scene &scene, const PairScene &pair)
+{
+  FeScene fe = scene.fe.at(pair.name);
+  if (fe.n_v == 0)
+    fe.n_v = face_grid_points(pair.type == PairType::spiral_bevel
+                                  ? pair.bevel.face_width
+                                  : std::min(pair.pinion.face_width, pair.gear.face_width),
+                              member_module(pair));
+  return fe;
+}
+
 MemberComplianceOptions
 member_options(double module, int z, const FeScene &fe, FlankSide side,
                const SegmentChoice &segment, const std::string &dir)
@@ -99,7 +113,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
 {
   for (const PairScene &pair : scene.pairs)
     {
-      const FeScene  &fe   = scene.fe.at(pair.name);
+      const FeScene   fe   = pair_fe(scene, pair);
       const TcaScene &tca  = scene.tca.at(pair.name);
       const FlankSide side = tca.options.side;
       // The teeth that can carry load over a mesh cycle decide the segments.
@@ -224,7 +238,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 {
   for (const PairScene &pair : scene.pairs)
     {
-      const FeScene     &fe   = scene.fe.at(pair.name);
+      const FeScene      fe   = pair_fe(scene, pair);
       const LoadedScene &lc   = scene.loaded.at(pair.name);
       const TcaScene    &tca  = scene.tca.at(pair.name);
       const FlankSide    side = tca.options.side;

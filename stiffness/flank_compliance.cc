@@ -6,6 +6,14 @@
 
 namespace gearkit
 {
+int
+face_grid_points(double face_width, double module)
+{
+  if (!(face_width > 0 && module > 0))
+    throw InputError("face grid points: face width and module must be > 0");
+  return std::clamp(1 + int(std::ceil(2 * face_width / module - 1e-9)), 7, 25);
+}
+
 FlankCompliance::FlankCompliance(const MemberFlanks &flanks, const FlankGridSpec &s)
     : spec(s)
     , member_teeth(flanks.teeth())
@@ -117,7 +125,7 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
       // the load moved onto the cyclic tooth, the response turned with it
       const int offset =
           ((tooth_j - tooth_i) % member_teeth + member_teeth + member_teeth / 2) % member_teeth -
-          member_teeth / 2; // signed, in (-z/2, z/2]
+          member_teeth / 2; // signed: the nearer way round
       if (std::abs(offset) > spec.cyclic_reach)
         throw InputError("flank compliance: teeth " + std::to_string(tooth_i) + " and " +
                          std::to_string(tooth_j) + " in contact at once lie " +

@@ -139,3 +139,22 @@ TEST(FlankCompliance, SpiralBevelResponsesReadAcrossTheConeElement)
       EXPECT_NEAR(v, p.v, 1e-12);
     }
 }
+
+TEST(FlankCompliance, FaceGridPointsFromTheFaceWidth)
+{
+  // 1 + ceil(2 b / m), at least 7, at most 25: the middle intervals of the graded grid about a
+  // module (pi / (2 (n - 1)) b <= m)
+  EXPECT_EQ(face_grid_points(20e-3, 2e-3), 21);      // 62/62 spur: b = 10 m
+  EXPECT_EQ(face_grid_points(14e-3, 4.5e-3), 8);     // FZG C: b = 3.1 m
+  EXPECT_EQ(face_grid_points(19e-3, 2.2423e-3), 18); // seed bevel: b = 8.5 m_mn
+  EXPECT_EQ(face_grid_points(4e-3, 4e-3), 7);
+  EXPECT_EQ(face_grid_points(100e-3, 8e-3), 25);
+  for (double b : {2e-3, 7e-3, 15e-3, 40e-3})
+    {
+      const int n = face_grid_points(b, 2e-3);
+      if (n > 7 && n < 25)
+        EXPECT_LE(pi / (2 * (n - 1)) * b, 2e-3 * 1.0001) << b;
+    }
+  EXPECT_THROW(face_grid_points(0, 2e-3), InputError);
+  EXPECT_THROW(face_grid_points(20e-3, -1), InputError);
+}

@@ -144,13 +144,13 @@ struct TcaScene
 /// Finite-element compliance of a pair's members (stage "compliance").
 struct FeScene
 {
-  int      segment_teeth       = 7;     ///< teeth per member segment
-  bool     hold_cuts           = true;  ///< radial cuts held (else free)
-  bool     whole_gears         = false; ///< all teeth on the rim (involute); the loaded ones fine
-  bool     cyclic              = true;  ///< unit loads on the middle tooth, read for all turned
-  double   flank_size          = 0.25;  ///< element size at the flanks / m_n
-  double   far_size            = 1.0;   ///< element size toward the bore / m_n
-  double   other_size          = 0;     ///< at fillets and unloaded flanks / m_n; 0 = flank size
+  int      segment_teeth = 7;                        ///< teeth per member segment
+  bool     hold_cuts     = true;                     ///< radial cuts held (else free)
+  bool     whole_pinion = false, whole_gear = false; ///< all teeth on the rim (involute)
+  bool     cyclic              = true; ///< unit loads on the middle tooth, read for all turned
+  double   flank_size          = 0.25; ///< element size at the flanks / m_n
+  double   far_size            = 1.0;  ///< element size toward the bore / m_n
+  double   other_size          = 0;    ///< at fillets and unloaded flanks / m_n; 0 = flank size
   unsigned degree              = 2;
   double   depth               = 3;    ///< response depth in flank element sizes
   bool     analytic_near_field = true; ///< near field = analytic (else: response depth)

@@ -21,8 +21,9 @@ FeScene::declare(ParameterHandler &prm)
   prm.declare_entry("hold cuts", "true", Patterns::Bool(),
                     "Hold the segment's radial cut faces (true) or leave them free (false: "
                     "softer than the whole gear; held and free bracket it).");
-  prm.declare_entry("whole gears", "false", Patterns::Bool(),
-                    "Model each member whole: all teeth on the rim, the bore held, no cuts "
+  prm.declare_entry("whole gears", "false", Patterns::Selection("false|true|pinion|gear"),
+                    "Model each member (true), or only the pinion or the gear, whole: all teeth "
+                    "on the rim, the bore held, no cuts "
                     "(spur and helical pairs). The teeth that carry load over the mesh cycle get "
                     "the flank sizes, the others the far size; segment teeth and hold cuts are "
                     "then not used. The support the segments approximate (bench/README.md: "
@@ -102,23 +103,25 @@ FeScene::declare(ParameterHandler &prm)
 void
 FeScene::parse(ParameterHandler &prm)
 {
-  segment_teeth       = prm.get_integer("segment teeth");
-  hold_cuts           = prm.get_bool("hold cuts");
-  whole_gears         = prm.get_bool("whole gears");
-  cyclic              = prm.get("unit loads") == "middle tooth";
-  flank_size          = prm.get_double("flank element size");
-  far_size            = prm.get_double("far element size");
-  other_size          = prm.get_double("other element size");
-  degree              = unsigned(prm.get_integer("degree"));
-  depth               = prm.get_double("response depth");
-  analytic_near_field = prm.get("near field") == "analytic";
-  near_field_radius   = prm.get_double("near field radius");
-  n_u                 = prm.get_integer("profile grid points");
-  n_v                 = prm.get_integer("face grid points");
-  graded_grid         = prm.get("load grid") == "graded";
-  error_estimate      = prm.get_bool("error estimate");
-  local_refinements   = unsigned(prm.get_integer("local refinements"));
-  refine_depth        = prm.get_double("refine depth");
+  segment_teeth           = prm.get_integer("segment teeth");
+  hold_cuts               = prm.get_bool("hold cuts");
+  const std::string whole = prm.get("whole gears");
+  whole_pinion            = whole == "true" || whole == "pinion";
+  whole_gear              = whole == "true" || whole == "gear";
+  cyclic                  = prm.get("unit loads") == "middle tooth";
+  flank_size              = prm.get_double("flank element size");
+  far_size                = prm.get_double("far element size");
+  other_size              = prm.get_double("other element size");
+  degree                  = unsigned(prm.get_integer("degree"));
+  depth                   = prm.get_double("response depth");
+  analytic_near_field     = prm.get("near field") == "analytic";
+  near_field_radius       = prm.get_double("near field radius");
+  n_u                     = prm.get_integer("profile grid points");
+  n_v                     = prm.get_integer("face grid points");
+  graded_grid             = prm.get("load grid") == "graded";
+  error_estimate          = prm.get_bool("error estimate");
+  local_refinements       = unsigned(prm.get_integer("local refinements"));
+  refine_depth            = prm.get_double("refine depth");
   material = {prm.get_double("Young's modulus") * GPa, prm.get_double("Poisson's ratio")};
 }
 
@@ -145,7 +148,7 @@ FeScene::check(const PairScene &pair) const
     throw InputError("Finite elements/" + pair.name +
                      "/face grid points = 1 is not allowed; expected 0 (from the face width) or "
                      "at least 2");
-  if (whole_gears && pair.type != PairType::involute)
+  if ((whole_pinion || whole_gear) && pair.type != PairType::involute)
     throw InputError("Finite elements/" + pair.name +
                      "/whole gears = true is not allowed for this pair; whole gears are meshed "
                      "for spur and helical pairs (spiral bevel pairs: segments)");

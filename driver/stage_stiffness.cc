@@ -47,7 +47,7 @@ pair_fe(const Scene &scene, const PairScene &pair)
 }
 
 MemberComplianceOptions
-member_options(double module, int z, const FeScene &fe, FlankSide side,
+member_options(double module, int z, bool whole, const FeScene &fe, FlankSide side,
                const SegmentChoice &segment, const std::string &dir)
 {
   MemberComplianceOptions o;
@@ -58,7 +58,7 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
   int       reach        = loaded_reach;
   if (fe.cyclic)
     {
-      reach = fe.whole_gears ? segment.teeth - 1 : std::min(segment.teeth - 1, (z / 2 - 1) / 2);
+      reach = whole ? segment.teeth - 1 : std::min(segment.teeth - 1, (z / 2 - 1) / 2);
       if (reach < segment.span)
         throw InputError("Finite elements: unit loads = middle tooth needs responses " +
                          std::to_string(segment.span) +
@@ -67,8 +67,8 @@ member_options(double module, int z, const FeScene &fe, FlankSide side,
                          std::to_string(z) +
                          " teeth holds; expected whole gears = true or unit loads = loaded teeth");
     }
-  o.mesh.teeth         = fe.whole_gears ? z : std::max(fe.segment_teeth, 2 * reach + 1);
-  o.mesh.fine_teeth    = fe.whole_gears ? segment.teeth : 0;
+  o.mesh.teeth         = whole ? z : std::max(fe.segment_teeth, 2 * reach + 1);
+  o.mesh.fine_teeth    = whole ? segment.teeth : 0;
   o.mesh.central_tooth = segment.central;
   o.hold_cuts          = fe.hold_cuts;
   o.mesh.flank_size    = fe.flank_size * module;
@@ -140,8 +140,10 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
             const std::string    label   = std::string(is_pinion ? "pinion" : "gear") +
                                       (&mesh_fe == &fe ? "" : " (coarse mesh)") + ": ";
-            MemberComplianceOptions mo = member_options(member_module(pair), flanks.teeth(),
-                                                            mesh_fe, side, segment, mesh_dir);
+            MemberComplianceOptions mo =
+                member_options(member_module(pair), flanks.teeth(),
+                               is_pinion ? mesh_fe.whole_pinion : mesh_fe.whole_gear, mesh_fe, side,
+                                   segment, mesh_dir);
             mo.on_phase = [&](const std::string &what) { progress.note(label + what); };
             MemberComplianceInfo info;
             FlankCompliance      table = compliance_table(pair, flanks, is_pinion, mo, &info);
@@ -402,7 +404,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
             const H5Group m = cg.group(member);
             SegmentChoice s;
             s.central = int(m.read_doubles("central_tooth").front());
-            s.teeth   = fe.whole_gears
+            s.teeth   = (std::string(member) == "pinion" ? fe.whole_pinion : fe.whole_gear)
                             ? z
                             : std::max(fe.segment_teeth, int(m.read_ints("grid_teeth").size()));
             return s;

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <numeric>
 #include <regex>
 #include <sstream>
 
@@ -1555,4 +1556,36 @@ TEST_F(DriverTest, LocallyRefinedTablesEstimateOnTheSameSegmentRefinedOnceLess)
              elements = read("refined", "stiffness/fzg/error_estimate/mesh_stiffness_elements");
   for (std::size_t i = 0; i < fine.size(); ++i)
     EXPECT_NEAR(elements[i], std::abs(fine[i] - base[i]), 1e-9 * fine[i]) << i;
+}
+
+// `whole gears = pinion`: the pinion meshed whole, the gear on its segment — the gear's table as
+// on segments, and the mesh softer than on segments (the held cuts stiffen) and stiffer than
+// with both members whole.
+TEST_F(DriverTest, WholePinionAloneLiesBetweenSegmentsAndWholeGears)
+{
+  auto variant = [&](const std::string &name, const std::string &whole) {
+    return scene(fe_stiffness_scene(name, "set flank element size = 0.5\n    set error estimate "
+                                          "= false\n    set whole gears = " +
+                                              whole),
+                 name + ".prm");
+  };
+  for (const std::string whole : {"false", "pinion", "true"})
+    ASSERT_EQ(run({variant("whole_" + whole, whole)}), 0) << whole << ": " << err.str();
+  auto read = [&](const std::string &whole, const std::string &dataset) {
+    const H5File f = H5File::open((dir / ("out/whole_" + whole + "/results.h5")).string());
+    return f.root().read_doubles(dataset);
+  };
+  auto mean_K = [&](const std::string &whole) {
+    const auto K = read(whole, "stiffness/fzg/mesh_stiffness");
+    return std::accumulate(K.begin(), K.end(), 0.0) / double(K.size());
+  };
+  EXPECT_GT(read("pinion", "compliance/fzg/pinion/dofs")[0],
+            read("false", "compliance/fzg/pinion/dofs")[0]);
+  EXPECT_EQ(read("pinion", "compliance/fzg/gear/dofs"), read("false", "compliance/fzg/gear/dofs"));
+  EXPECT_EQ(read("pinion", "compliance/fzg/gear/compliance"),
+            read("false", "compliance/fzg/gear/compliance"));
+  EXPECT_EQ(read("pinion", "compliance/fzg/pinion/dofs"),
+            read("true", "compliance/fzg/pinion/dofs"));
+  EXPECT_GT(mean_K("false"), mean_K("pinion"));
+  EXPECT_GT(mean_K("pinion"), mean_K("true"));
 }

@@ -177,6 +177,12 @@ struct FeScene
   /// refinements and factor 2: one refinement less of the same segment mesh.
   FeScene
   coarsened(double factor) const;
+  /// Whether the pinion's (else the gear's) member is modelled whole.
+  bool
+  whole(bool pinion) const
+  {
+    return pinion ? whole_pinion : whole_gear;
+  }
 };
 
 /// Loaded contact over the mesh cycle (stage "stiffness").

@@ -141,9 +141,8 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const std::string    label   = std::string(is_pinion ? "pinion" : "gear") +
                                       (&mesh_fe == &fe ? "" : " (coarse mesh)") + ": ";
             MemberComplianceOptions mo =
-                member_options(member_module(pair), flanks.teeth(),
-                               is_pinion ? mesh_fe.whole_pinion : mesh_fe.whole_gear, mesh_fe, side,
-                                   segment, mesh_dir);
+                member_options(member_module(pair), flanks.teeth(), mesh_fe.whole(is_pinion),
+                                   mesh_fe, side, segment, mesh_dir);
             mo.on_phase = [&](const std::string &what) { progress.note(label + what); };
             MemberComplianceInfo info;
             FlankCompliance      table = compliance_table(pair, flanks, is_pinion, mo, &info);
@@ -158,7 +157,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const auto &[table, info]       = tables[is_pinion ? 0 : 1];
             const SegmentChoice    &segment = is_pinion ? segments.first : segments.second;
             const H5Group           m       = group.group(is_pinion ? "pinion" : "gear");
-            const std::vector<int> &teeth   = table.teeth();
+            const std::vector<int> &teeth   = table.grid_spec().teeth;
             const hsize_t           n = table.points().size(), loads = table.load_points().size();
             std::vector<double>     S(table.matrix().data(), table.matrix().data() + n * loads);
             m.write("compliance", S, {loads, n}, "m/N",
@@ -171,7 +170,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const std::vector<int> &grid = table.grid_teeth();
             m.write("grid_teeth", grid, {grid.size()}, "1",
                     "member teeth with grid points (responses; the compliance's rows)");
-            m.write("cyclic_tooth", double(fe.cyclic ? segment.central : -1), "1",
+            m.write("cyclic_tooth", double(table.grid_spec().cyclic_tooth), "1",
                     "-1: unit loads on every tooth that can carry load; else the tooth that "
                     "alone carries them, read for every tooth turned");
             m.write("cyclic_reach", double(table.grid_teeth().size() / 2), "1",
@@ -404,7 +403,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
             const H5Group m = cg.group(member);
             SegmentChoice s;
             s.central = int(m.read_doubles("central_tooth").front());
-            s.teeth   = (std::string(member) == "pinion" ? fe.whole_pinion : fe.whole_gear)
+            s.teeth   = fe.whole(std::string(member) == "pinion")
                             ? z
                             : std::max(fe.segment_teeth, int(m.read_ints("grid_teeth").size()));
             return s;

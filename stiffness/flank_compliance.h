@@ -78,11 +78,12 @@ public:
   /// True if the tooth can carry load (FlankGridSpec::teeth).
   bool
   covers(int tooth) const;
-  /// The teeth that can carry load (FlankGridSpec::teeth), and those with a grid of points.
-  const std::vector<int> &
-  teeth() const
+  /// The grid as asked for (teeth that can carry load, cyclic tooth and reach), and the teeth
+  /// with a grid of points.
+  const FlankGridSpec &
+  grid_spec() const
   {
-    return spec.teeth;
+    return spec;
   }
   const std::vector<int> &
   grid_teeth() const

@@ -144,9 +144,10 @@ struct TcaScene
 /// Finite-element compliance of a pair's members (stage "compliance").
 struct FeScene
 {
-  int      segment_teeth = 7;                        ///< teeth per member segment
-  bool     hold_cuts     = true;                     ///< radial cuts held (else free)
-  bool     whole_pinion = false, whole_gear = false; ///< all teeth on the rim (involute)
+  int      segment_teeth = 7;                                ///< teeth per member segment
+  bool     hold_cuts     = true;                             ///< radial cuts held (else free)
+  bool     whole_pinion = false, whole_gear = false;         ///< all teeth on the rim (involute)
+  bool     whole_rim_pinion = false, whole_rim_gear = false; ///< the segment on the whole rim
   bool     cyclic              = true; ///< unit loads on the middle tooth, read for all turned
   double   flank_size          = 0.25; ///< element size at the flanks / m_n
   double   far_size            = 1.0;  ///< element size toward the bore / m_n
@@ -182,6 +183,12 @@ struct FeScene
   whole(bool pinion) const
   {
     return pinion ? whole_pinion : whole_gear;
+  }
+  /// Whether the pinion's (else the gear's) segment sits on the whole rim and bore.
+  bool
+  whole_rim(bool pinion) const
+  {
+    return pinion ? whole_rim_pinion : whole_rim_gear;
   }
 };
 

@@ -28,6 +28,12 @@ FeScene::declare(ParameterHandler &prm)
                     "the flank sizes, the others the far size; segment teeth and hold cuts are "
                     "then not used. The support the segments approximate (bench/README.md: "
                     "segment -> whole gear).");
+  prm.declare_entry("whole rims", "false", Patterns::Selection("false|true|pinion|gear"),
+                    "Put each member's segment (true), or only the pinion's or the gear's, on "
+                    "the whole rim: the rim and the held bore all round, no cuts, teeth only on "
+                    "the segment (spur and helical pairs). The whole gear's support at about "
+                    "the segment's cost: the far teeth hardly stiffen the body "
+                    "(bench/README.md). Hold cuts is then not used.");
   prm.declare_entry("unit loads", "middle tooth", Patterns::Selection("middle tooth|loaded teeth"),
                     "middle tooth: unit loads on the segment's middle tooth alone, its table "
                     "read for every tooth turned (every tooth of a gear alike: the one farthest "
@@ -40,7 +46,8 @@ FeScene::declare(ParameterHandler &prm)
   prm.declare_entry("flank element size", "0.25", Patterns::Double(0.02, 2),
                     "Element size at the flanks and fillets / m_n.");
   prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
-                    "Element size toward the bore / m_n.");
+                    "Element size toward the bore / m_n; at most a third of the rim's thickness "
+                    "(root circle to bore) of each member (involute members).");
   prm.declare_entry("degree", "2", Patterns::Integer(1, 2), "Finite-element degree (FE_Q).");
   prm.declare_entry("other element size", "0", Patterns::Double(0, 2),
                     "[m_n] Element size at the fillets and the flanks of the unloaded side; 0 = "
@@ -108,6 +115,9 @@ FeScene::parse(ParameterHandler &prm)
   const std::string whole = prm.get("whole gears");
   whole_pinion            = whole == "true" || whole == "pinion";
   whole_gear              = whole == "true" || whole == "gear";
+  const std::string rim   = prm.get("whole rims");
+  whole_rim_pinion        = rim == "true" || rim == "pinion";
+  whole_rim_gear          = rim == "true" || rim == "gear";
   cyclic                  = prm.get("unit loads") == "middle tooth";
   flank_size              = prm.get_double("flank element size");
   far_size                = prm.get_double("far element size");
@@ -152,6 +162,14 @@ FeScene::check(const PairScene &pair) const
     throw InputError("Finite elements/" + pair.name +
                      "/whole gears = true is not allowed for this pair; whole gears are meshed "
                      "for spur and helical pairs (spiral bevel pairs: segments)");
+  if ((whole_rim_pinion || whole_rim_gear) && pair.type != PairType::involute)
+    throw InputError("Finite elements/" + pair.name +
+                     "/whole rims is not allowed for this pair; expected false (whole rims are "
+                     "meshed for spur and helical pairs; spiral bevel pairs: segments)");
+  if ((whole_pinion && whole_rim_pinion) || (whole_gear && whole_rim_gear))
+    throw InputError("Finite elements/" + pair.name +
+                     "/whole rims and whole gears both name a member; expected one of them "
+                     "(a whole gear has its rim already)");
   const int z = std::min(pair_teeth(pair).first, pair_teeth(pair).second);
   if (segment_teeth > z)
     throw InputError(where + std::to_string(segment_teeth) +

@@ -47,29 +47,34 @@ pair_fe(const Scene &scene, const PairScene &pair)
 }
 
 MemberComplianceOptions
-member_options(double module, int z, bool whole, const FeScene &fe, FlankSide side,
+member_options(double module, int z, bool pinion, const FeScene &fe, FlankSide side,
                const SegmentChoice &segment, const std::string &dir)
 {
   MemberComplianceOptions o;
   // With unit loads on the middle tooth alone, responses on the teeth as far from it as the
   // loaded teeth lie apart (on a segment spanning at most half the gear: at least as far as
   // teeth stand apart in contact at once).
-  const int loaded_reach = (segment.teeth - 1) / 2;
-  int       reach        = loaded_reach;
+  const bool whole        = fe.whole(pinion);
+  const int  loaded_reach = (segment.teeth - 1) / 2;
+  int        reach        = loaded_reach;
   if (fe.cyclic)
     {
-      reach = whole ? segment.teeth - 1 : std::min(segment.teeth - 1, (z / 2 - 1) / 2);
+      // without cuts the segment may span more than half the gear
+      reach = whole || fe.whole_rim(pinion) ? segment.teeth - 1
+                                            : std::min(segment.teeth - 1, (z / 2 - 1) / 2);
       if (reach < segment.span)
-        throw InputError("Finite elements: unit loads = middle tooth needs responses " +
-                         std::to_string(segment.span) +
-                         " teeth either side of the middle one, "
-                         "more than a segment of at most half the " +
-                         std::to_string(z) +
-                         " teeth holds; expected whole gears = true or unit loads = loaded teeth");
+        throw InputError(
+            "Finite elements: unit loads = middle tooth needs responses " +
+            std::to_string(segment.span) +
+            " teeth either side of the middle one, "
+            "more than a segment of at most half the " +
+            std::to_string(z) +
+            " teeth holds; expected whole gears, whole rims or unit loads = loaded teeth");
     }
-  o.mesh.teeth         = whole ? z : std::max(fe.segment_teeth, 2 * reach + 1);
+  o.mesh.teeth         = whole ? z : std::min(z, std::max(fe.segment_teeth, 2 * reach + 1));
   o.mesh.fine_teeth    = whole ? segment.teeth : 0;
   o.mesh.central_tooth = segment.central;
+  o.mesh.whole_rim     = fe.whole_rim(pinion);
   o.hold_cuts          = fe.hold_cuts;
   o.mesh.flank_size    = fe.flank_size * module;
   o.mesh.far_size      = fe.far_size * module;
@@ -140,9 +145,8 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
             const std::string    label   = std::string(is_pinion ? "pinion" : "gear") +
                                       (&mesh_fe == &fe ? "" : " (coarse mesh)") + ": ";
-            MemberComplianceOptions mo =
-                member_options(member_module(pair), flanks.teeth(), mesh_fe.whole(is_pinion),
-                                   mesh_fe, side, segment, mesh_dir);
+            MemberComplianceOptions mo = member_options(
+                    member_module(pair), flanks.teeth(), is_pinion, mesh_fe, side, segment, mesh_dir);
             mo.on_phase = [&](const std::string &what) { progress.note(label + what); };
             MemberComplianceInfo info;
             FlankCompliance      table = compliance_table(pair, flanks, is_pinion, mo, &info);
@@ -409,6 +413,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
             return s;
           };
           ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
+          ro.pinion_whole_rim = fe.whole_rim(true), ro.gear_whole_rim = fe.whole_rim(false);
           ro.flank_size         = fe.flank_size * member_module(pair);
           ro.far_size           = fe.far_size * member_module(pair);
           const std::size_t   P = lc.reference_positions.size(), M = lc.torques.size();

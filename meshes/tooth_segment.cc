@@ -52,13 +52,14 @@ public:
   {
     return gmsh::model::geo::addPoint(p.x(), p.y(), z0);
   }
-  /// Circle arc about the axis from point a to point b (split below 60 deg per piece).
+  /// Circle arc about the axis from point a to point b (split below 60 deg per piece): the
+  /// shorter way, or counter-clockwise however far that is.
   void
-  arc(int a, const Vec2 &pa, int b, const Vec2 &pb, int group)
+  arc(int a, const Vec2 &pa, int b, const Vec2 &pb, int group, bool counter_clockwise = false)
   {
-    const double a0     = std::atan2(pa.y(), pa.x());
-    double       da     = std::atan2(pb.y(), pb.x()) - a0;
-    da                  = std::remainder(da, 2 * pi);
+    const double a0 = std::atan2(pa.y(), pa.x());
+    double       da = std::atan2(pb.y(), pb.x()) - a0;
+    da = counter_clockwise ? da - 2 * pi * std::floor(da / (2 * pi)) : std::remainder(da, 2 * pi);
     const int    pieces = int(std::ceil(std::abs(da) / (pi / 3)));
     const double r      = pa.norm();
     int          from   = a;
@@ -134,20 +135,22 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   const double phi0    = -dphi * b / 2; // the section at z = -b/2
   const double pitch   = 2 * pi / z;
   const bool   whole   = o.teeth == z;
+  const bool   round   = whole || o.whole_rim; // rim and bore all round, no cuts
   const int    half_n  = whole ? z / 2 : (o.teeth - 1) / 2;
   const double a_start = phi0 + pitch * (o.central_tooth - half_n) - pitch / 2;
   const double a_end   = a_start + pitch * o.teeth;
   const double ri = info.rim_inner_radius, rf = gear.root_radius;
-  info.whole = whole;
+  info.whole = round;
 
   SectionBuilder s(-b / 2);
   // Counter-clockwise: cut at the start, root arcs and teeth, cut at the end, bore back. The
-  // whole gear: the teeth all round, then the bore as a hole.
+  // whole gear: the teeth all round, then the bore as a hole; the whole rim: the segment's
+  // teeth, the root circle round to the first, then the bore as a hole.
   const Vec2 bore_start = polar(ri, a_start), root_start = polar(rf, a_start);
   const Vec2 root_end = polar(rf, a_end), bore_end = polar(ri, a_end);
   const int  p_root_start = s.point(root_start);
-  const int  p_bore_start = whole ? 0 : s.point(bore_start);
-  if (!whole)
+  const int  p_bore_start = round ? 0 : s.point(bore_start);
+  if (!round)
     s.line(p_bore_start, p_root_start, boundary::cut_start);
   int  previous    = p_root_start;
   Vec2 previous_xy = root_start;
@@ -174,9 +177,9 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     }
   s.tooth = -1;
   std::vector<int> loops;
-  if (whole)
+  if (round)
     {
-      s.arc(previous, previous_xy, p_root_start, root_start, boundary::free);
+      s.arc(previous, previous_xy, p_root_start, root_start, boundary::free, true);
       loops.push_back(gmsh::model::geo::addCurveLoop(s.curves));
       // the bore: three arcs of 120 degrees
       const std::size_t outer = s.curves.size();
@@ -349,9 +352,12 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       throw InputError(msg.str());
     }
 
-  // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b.
+  // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b (the
+  // whole rim: the rest of the root disc too).
   const double outline_area = polygon_moments(gear.transverse_outline(400)).area;
-  info.analytic_volume      = b * double(o.teeth) / z * (outline_area - pi * ri * ri);
+  const double toothed      = double(o.teeth) / z;
+  info.analytic_volume      = b * (toothed * (outline_area - pi * ri * ri) +
+                              (round ? (1 - toothed) * pi * (rf * rf - ri * ri) : 0));
 
   write_mesh_atomically(path);
 
@@ -412,11 +418,11 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
   const InvoluteGearData &d  = gear.data();
   const int               z  = d.teeth;
   const double            mn = d.normal_module, b = d.face_width;
-  check(o.teeth == z ||
-            (o.teeth >= 1 && o.teeth % 2 == 1 && o.teeth < z && 2 * pi * o.teeth / z <= pi + 1e-12),
+  check(o.teeth == z || (o.teeth >= 1 && o.teeth % 2 == 1 && o.teeth < z &&
+                         (o.whole_rim || 2 * pi * o.teeth / z <= pi + 1e-12)),
         "teeth in the segment", o.teeth,
-        "an odd number >= 1 spanning at most half the gear, or all " + std::to_string(z) +
-            " (the whole gear)");
+        "an odd number >= 1 spanning at most half the gear (any on the whole rim), or all " +
+            std::to_string(z) + " (the whole gear)");
   check(o.fine_teeth == 0 || (o.fine_teeth % 2 == 1 && o.fine_teeth <= o.teeth), "fine teeth",
         o.fine_teeth, "0 (all) or an odd number up to the segment's teeth");
   check(o.central_tooth >= 0 && o.central_tooth < z, "central tooth", o.central_tooth,
@@ -446,7 +452,10 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
         "a radius in (0, root radius - m_n/2 = " +
             std::to_string((gear.root_radius - 0.5 * mn) * 1e3) + " mm)");
   const double flank_size = o.flank_size > 0 ? o.flank_size : mn / 5;
-  const double far_size   = std::max(flank_size, o.far_size > 0 ? o.far_size : mn);
+  // the body between the bore and the root circle at least three elements thick
+  const double rim_thickness = gear.root_radius - info.rim_inner_radius;
+  const double far_size =
+      std::max(flank_size, std::min(o.far_size > 0 ? o.far_size : mn, rim_thickness / 3));
   const int    layers =
       o.face_layers > 0 ? o.face_layers : std::max(2, int(std::lround(b / (2 * flank_size))));
 

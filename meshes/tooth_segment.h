@@ -7,7 +7,7 @@
 // Physical groups (the numbers are the boundary ids deal.II reads; names as in the .msh):
 //   volume 1 "body";
 //   surfaces 1 "bore", 2 "cut_start" (the radial cut at the smaller polar angle), 3 "cut_end"
-//   (no cuts when the segment is the whole gear),
+//   (no cuts when the segment is the whole gear or sits on the whole rim),
 //   4 "end_front" (z = -b/2), 5 "end_back" (z = +b/2), 6 "free" (tip lands, root lands, fillets),
 //   10 + 2 i "tooth<i>_drive" and 11 + 2 i "tooth<i>_coast" for the i-th tooth of the segment
 //   (i = 0 .. teeth - 1 in counter-clockwise order; member tooth central - (teeth - 1) / 2 + i).
@@ -37,10 +37,14 @@ name(int id);
 
 struct SegmentMeshOptions
 {
-  /// Teeth in the segment: odd, >= 1, spanning at most half the gear; or the gear's number of
-  /// teeth: the whole gear (rim and bore all round, no cuts).
+  /// Teeth in the segment: odd, >= 1, spanning at most half the gear (on the whole rim: fewer
+  /// than the gear's); or the gear's number of teeth: the whole gear (rim and bore all round, no
+  /// cuts).
   int teeth         = 3;
   int central_tooth = 0; ///< member tooth in the middle of the segment
+  /// The rim and bore all round (no cuts), teeth only on the segment: the whole gear's support
+  /// without meshing the far teeth (they hardly stiffen the body: bench/README.md).
+  bool whole_rim = false;
   /// Inner radius of the rim [m]: 0 = the bore if the gear has one, else a shaft seat
   /// 3.5 m_n below the root circle (ISO 6336 rim thickness).
   double rim_inner_radius = 0;
@@ -53,8 +57,10 @@ struct SegmentMeshOptions
   FlankSide fine_side  = FlankSide::drive;
   /// Teeth about the central one whose flanks and fillets get the sizes above (odd); the others
   /// get the far size. 0: all teeth of the segment.
-  int    fine_teeth   = 0;
-  double far_size     = 0;  ///< element size far from them [m]; 0 = m_n
+  int fine_teeth = 0;
+  /// Element size far from them [m]; 0 = m_n. At most a third of the rim's thickness (root
+  /// circle to its inner radius): a small pinion's body is resolved whatever the module says.
+  double far_size     = 0;
   int    face_layers  = 0;  ///< elements over the face width; 0 = b / (2 flank_size)
   int    curve_points = 40; ///< spline points per fillet and per involute
   /// Local refinement (spur segments: the contact lines of one mesh position run along z):
@@ -70,7 +76,7 @@ struct SegmentMeshInfo
   double           analytic_volume  = 0; ///< nominal segment volume [m^3]
   double           rim_inner_radius = 0; ///< the one used [m]
   std::vector<int> member_teeth;         ///< member tooth of each segment tooth
-  bool             whole = false;        ///< the whole gear: no cut faces
+  bool             whole = false;        ///< the whole gear or rim: no cut faces
   /// The worst hexahedron: its smallest corner Jacobian relative to its mean (1 for a
   /// parallelepiped, <= 0 folded), and gmsh's 2-D algorithm that gave it (6 frontal-Delaunay,
   /// 5 Delaunay, 1 MeshAdapt: the next is tried while the worst is below the acceptable value).

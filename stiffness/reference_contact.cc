@@ -154,6 +154,7 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
       const SegmentChoice &seg = is_pinion ? out.pinion_segment : out.gear_segment;
       mesh.teeth               = seg.teeth;
       mesh.central_tooth       = seg.central;
+      mesh.whole_rim           = is_pinion ? o.pinion_whole_rim : o.gear_whole_rim;
       mesh.flank_size          = o.flank_size;
       mesh.far_size            = o.far_size;
       mesh.fine_side           = side;

@@ -34,8 +34,10 @@ struct ReferenceContactOptions
   /// `min_segment_teeth`); give both to keep the same segments over a mesh cycle.
   SegmentChoice pinion_segment{0, 0}, gear_segment{0, 0};
   int           min_segment_teeth = 3;
-  bool          hold_cuts         = true;   ///< radial cut faces held (the bore always)
-  double        elements_per_cell = 1;      ///< element size at the contact = cell width / this
+  /// The segments on the whole rim and bore (SegmentMeshOptions::whole_rim).
+  bool        pinion_whole_rim = false, gear_whole_rim = false;
+  bool        hold_cuts         = true;     ///< radial cut faces held (the bore always)
+  double      elements_per_cell = 1;        ///< element size at the contact = cell width / this
   double      flank_size = 0, far_size = 0; ///< segment sizes away from the contact [m]; 0: m/5, m
   int         layers_per_cell = 1;          ///< face layers per cell along the contact line
   std::string work_directory;               ///< meshes are written here

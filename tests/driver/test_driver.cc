@@ -1561,31 +1561,43 @@ TEST_F(DriverTest, LocallyRefinedTablesEstimateOnTheSameSegmentRefinedOnceLess)
 // `whole gears = pinion`: the pinion meshed whole, the gear on its segment — the gear's table as
 // on segments, and the mesh softer than on segments (the held cuts stiffen) and stiffer than
 // with both members whole.
-TEST_F(DriverTest, WholePinionAloneLiesBetweenSegmentsAndWholeGears)
+TEST_F(DriverTest, WholePinionAloneLiesBetweenSegmentsAndWholeGearsWholeRimsNearTheWholeGears)
 {
-  auto variant = [&](const std::string &name, const std::string &whole) {
+  auto variant = [&](const std::string &name, const std::string &option) {
     return scene(fe_stiffness_scene(name, "set flank element size = 0.5\n    set error estimate "
-                                          "= false\n    set whole gears = " +
-                                              whole),
+                                          "= false\n    set " +
+                                              option),
                  name + ".prm");
   };
   for (const std::string whole : {"false", "pinion", "true"})
-    ASSERT_EQ(run({variant("whole_" + whole, whole)}), 0) << whole << ": " << err.str();
-  auto read = [&](const std::string &whole, const std::string &dataset) {
-    const H5File f = H5File::open((dir / ("out/whole_" + whole + "/results.h5")).string());
+    ASSERT_EQ(run({variant("whole_" + whole, "whole gears = " + whole)}), 0)
+        << whole << ": " << err.str();
+  ASSERT_EQ(run({variant("whole_rims", "whole rims = true")}), 0) << err.str();
+  auto read = [&](const std::string &variant, const std::string &dataset) {
+    const H5File f = H5File::open((dir / ("out/" + variant + "/results.h5")).string());
     return f.root().read_doubles(dataset);
   };
-  auto mean_K = [&](const std::string &whole) {
-    const auto K = read(whole, "stiffness/fzg/mesh_stiffness");
+  auto mean_K = [&](const std::string &variant) {
+    const auto K = read(variant, "stiffness/fzg/mesh_stiffness");
     return std::accumulate(K.begin(), K.end(), 0.0) / double(K.size());
   };
-  EXPECT_GT(read("pinion", "compliance/fzg/pinion/dofs")[0],
-            read("false", "compliance/fzg/pinion/dofs")[0]);
-  EXPECT_EQ(read("pinion", "compliance/fzg/gear/dofs"), read("false", "compliance/fzg/gear/dofs"));
-  EXPECT_EQ(read("pinion", "compliance/fzg/gear/compliance"),
-            read("false", "compliance/fzg/gear/compliance"));
-  EXPECT_EQ(read("pinion", "compliance/fzg/pinion/dofs"),
-            read("true", "compliance/fzg/pinion/dofs"));
-  EXPECT_GT(mean_K("false"), mean_K("pinion"));
-  EXPECT_GT(mean_K("pinion"), mean_K("true"));
+  EXPECT_GT(read("whole_pinion", "compliance/fzg/pinion/dofs")[0],
+            read("whole_false", "compliance/fzg/pinion/dofs")[0]);
+  EXPECT_EQ(read("whole_pinion", "compliance/fzg/gear/dofs"),
+            read("whole_false", "compliance/fzg/gear/dofs"));
+  EXPECT_EQ(read("whole_pinion", "compliance/fzg/gear/compliance"),
+            read("whole_false", "compliance/fzg/gear/compliance"));
+  EXPECT_EQ(read("whole_pinion", "compliance/fzg/pinion/dofs"),
+            read("whole_true", "compliance/fzg/pinion/dofs"));
+  EXPECT_GT(mean_K("whole_false"), mean_K("whole_pinion"));
+  EXPECT_GT(mean_K("whole_pinion"), mean_K("whole_true"));
+  // The segments on the whole rims: fewer unknowns than the whole gears (no far teeth), and the
+  // whole gears' support: K_m several times nearer the whole gears' than the held segments' is.
+  for (const char *member : {"pinion", "gear"})
+    EXPECT_LT(read("whole_rims", std::string("compliance/fzg/") + member + "/dofs")[0],
+              read("whole_true", std::string("compliance/fzg/") + member + "/dofs")[0])
+        << member;
+  const double whole = mean_K("whole_true");
+  EXPECT_LT(std::abs(mean_K("whole_rims") - whole), std::abs(mean_K("whole_false") - whole) / 4)
+      << mean_K("whole_false") << " " << mean_K("whole_rims") << " " << whole;
 }

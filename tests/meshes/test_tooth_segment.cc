@@ -286,3 +286,65 @@ TEST_F(ToothSegmentMesh, TheWholeGearIsARingWithoutCutsFineAtTheLoadedTeeth)
                                         (dir / "bad.msh").string()),
                InputError);
 }
+
+TEST_F(ToothSegmentMesh, FarElementsAreAtMostAThirdOfTheRimThick)
+{
+  // a far size beyond a third of the rim's thickness meshes as that third (a small pinion's body
+  // stays resolved); a finer one gives more elements
+  const auto         gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  SegmentMeshOptions o;
+  o.teeth = 3, o.face_layers = 2, o.rim_inner_radius = gear->root_radius - 4 * 4.5e-3;
+  auto hexahedra = [&](double far_size) {
+    o.far_size = far_size;
+    return write_tooth_segment_mesh(*gear, o, (dir / "far.msh").string()).hexahedra;
+  };
+  const std::size_t third = hexahedra(4 * 4.5e-3 / 3);
+  EXPECT_EQ(hexahedra(10 * 4.5e-3), third);
+  EXPECT_GT(hexahedra(0.5 * 4.5e-3), third);
+}
+
+TEST_F(ToothSegmentMesh, TheWholeRimCarriesTheSegmentsTeethAndTheBoreAllRound)
+{
+  // whole_rim: the segment's teeth on the rim, the root circle round the rest of the gear, the
+  // bore a hole all round, no cut faces.
+  for (double beta : {0.0, 15 * pi / 180})
+    {
+      const auto         gear = InvoluteGear::create(test_data::fzg_c_pair(beta).first);
+      SegmentMeshOptions o;
+      o.teeth = 3, o.central_tooth = 5, o.whole_rim = true, o.face_layers = 4;
+      const std::string     path = (dir / "rim.msh").string();
+      const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
+      EXPECT_TRUE(info.whole);
+      EXPECT_EQ(info.member_teeth, (std::vector<int>{4, 5, 6}));
+      const MeshFile m = read(path);
+      EXPECT_TRUE(m.other_element_types.empty());
+      const auto [volume, min_j] = volume_and_min_jacobian(m);
+      EXPECT_GT(min_j, 0) << beta;
+      EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
+      EXPECT_EQ(m.group_nodes.count(boundary::cut_start) + m.group_nodes.count(boundary::cut_end),
+                0u);
+      double a_lo = HUGE_VAL, a_hi = -HUGE_VAL;
+      for (std::size_t tag : m.group_nodes.at(boundary::bore))
+        {
+          const double a = std::atan2(m.nodes.at(tag).y(), m.nodes.at(tag).x());
+          a_lo = std::min(a_lo, a), a_hi = std::max(a_hi, a);
+        }
+      EXPECT_GT(a_hi - a_lo, 1.9 * pi);
+      // nothing beyond the root circle more than two pitches (plus the helix's twist) from the
+      // central tooth; the teeth there reach the tip circle
+      const double pitch = 2 * pi / 16, centre = 5 * pitch;
+      const double twist = std::tan(beta) * gear->data().face_width / gear->reference_radius;
+      double       r_far = 0, r_near = 0;
+      for (const auto &[tag, x] : m.nodes)
+        {
+          const double r     = std::hypot(x.x(), x.y());
+          const double a     = std::abs(std::remainder(std::atan2(x.y(), x.x()) - centre, 2 * pi));
+          double      &r_max = a > 2 * pitch + twist ? r_far : r_near;
+          r_max              = std::max(r_max, r);
+        }
+      EXPECT_LT(r_far, gear->root_radius * (1 + 1e-9)) << beta;
+      EXPECT_NEAR(r_near / gear->tip_radius, 1, 1e-3) << beta;
+      for (int i = 0; i < 3; ++i)
+        EXPECT_TRUE(m.group_nodes.count(boundary::flank(i, FlankSide::drive))) << i;
+    }
+}

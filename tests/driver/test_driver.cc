@@ -895,6 +895,11 @@ TEST_F(DriverTest, BadInputCorpusIsRefusedBeforeTheStagesThatWouldUseIt)
        "modifications\n        set tip relief = 10\n        set tip relief length = 50\n      "
        "end\n    end\n  end\nend\n",
        {"Flanks/p1/Pinion coast flank", "tip relief length = 50 mm", "active profile"}},
+      {"whole rims and whole gears on the same member",
+       "",
+       "subsection Finite elements\n  subsection p1\n    set whole gears = pinion\n    set "
+       "whole rims = true\n  end\nend\n",
+       {"Finite elements/p1/whole rims", "whole gears", "one of them"}},
       {"a reference position outside the mesh cycle",
        "",
        "subsection Loaded contact\n  subsection p1\n    set reference positions = 9999\n  "

@@ -41,6 +41,29 @@ mean_volume_at(const MeshFile &m, int group)
       v += hex_volume_and_min_jacobian(hex_corners(m, h)).first, ++n;
   return v / n;
 }
+/// A mesh without cuts (whole gear or whole rim): hexahedra only, none folded, the analytic
+/// volume, no cut groups, and the bore all round at its radius.
+void
+expect_ring_without_cuts(const MeshFile &m, const SegmentMeshInfo &info, double beta)
+{
+  EXPECT_TRUE(info.whole);
+  EXPECT_TRUE(m.other_element_types.empty());
+  const auto [volume, min_j] = volume_and_min_jacobian(m);
+  EXPECT_GT(min_j, 0) << beta;
+  EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
+  EXPECT_EQ(m.group_nodes.count(boundary::cut_start) + m.group_nodes.count(boundary::cut_end), 0u);
+  double r_lo = HUGE_VAL, r_hi = 0, a_lo = HUGE_VAL, a_hi = -HUGE_VAL;
+  for (std::size_t tag : m.group_nodes.at(boundary::bore))
+    {
+      const Vec3   x = m.nodes.at(tag);
+      const double r = std::hypot(x.x(), x.y()), a = std::atan2(x.y(), x.x());
+      r_lo = std::min(r_lo, r), r_hi = std::max(r_hi, r);
+      a_lo = std::min(a_lo, a), a_hi = std::max(a_hi, a);
+    }
+  EXPECT_NEAR(r_lo / info.rim_inner_radius, 1, 1e-8) << beta; // on the circle (the file's digits)
+  EXPECT_NEAR(r_hi / info.rim_inner_radius, 1, 1e-8) << beta;
+  EXPECT_GT(a_hi - a_lo, 1.9 * pi) << beta;
+}
 } // namespace
 
 TEST_F(ToothSegmentMesh, HexahedraVolumeGroupsAndFlanksOnTheInvolute)
@@ -250,29 +273,11 @@ TEST_F(ToothSegmentMesh, TheWholeGearIsARingWithoutCutsFineAtTheLoadedTeeth)
       o.teeth = 16, o.fine_teeth = 3, o.central_tooth = 5, o.face_layers = 4;
       const std::string     path = (dir / "whole.msh").string();
       const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
-      EXPECT_TRUE(info.whole);
       ASSERT_EQ(info.member_teeth.size(), 16u);
       EXPECT_EQ(std::set<int>(info.member_teeth.begin(), info.member_teeth.end()).size(), 16u);
       EXPECT_EQ(info.member_teeth[8], 5); // the central tooth in the middle, as in a segment
       const MeshFile m = read(path);
-      EXPECT_TRUE(m.other_element_types.empty());
-      const auto [volume, min_j] = volume_and_min_jacobian(m);
-      EXPECT_GT(min_j, 0) << beta;
-      EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
-      EXPECT_EQ(m.group_nodes.count(boundary::cut_start) + m.group_nodes.count(boundary::cut_end),
-                0u);
-      // the bore all round at its radius
-      double r_lo = HUGE_VAL, r_hi = 0, a_lo = HUGE_VAL, a_hi = -HUGE_VAL;
-      for (std::size_t tag : m.group_nodes.at(boundary::bore))
-        {
-          const Vec3   x = m.nodes.at(tag);
-          const double r = std::hypot(x.x(), x.y()), a = std::atan2(x.y(), x.x());
-          r_lo = std::min(r_lo, r), r_hi = std::max(r_hi, r);
-          a_lo = std::min(a_lo, a), a_hi = std::max(a_hi, a);
-        }
-      EXPECT_NEAR(r_lo / info.rim_inner_radius, 1, 1e-8); // on the circle (the file's digits)
-      EXPECT_NEAR(r_hi / info.rim_inner_radius, 1, 1e-8);
-      EXPECT_GT(a_hi - a_lo, 1.9 * pi);
+      expect_ring_without_cuts(m, info, beta);
       for (int i = 0; i < 16; ++i)
         EXPECT_TRUE(m.group_nodes.count(boundary::flank(i, FlankSide::drive))) << i;
       // the loaded teeth (segment teeth 7..9) fine, the far ones coarse
@@ -314,22 +319,9 @@ TEST_F(ToothSegmentMesh, TheWholeRimCarriesTheSegmentsTeethAndTheBoreAllRound)
       o.teeth = 3, o.central_tooth = 5, o.whole_rim = true, o.face_layers = 4;
       const std::string     path = (dir / "rim.msh").string();
       const SegmentMeshInfo info = write_tooth_segment_mesh(*gear, o, path);
-      EXPECT_TRUE(info.whole);
       EXPECT_EQ(info.member_teeth, (std::vector<int>{4, 5, 6}));
       const MeshFile m = read(path);
-      EXPECT_TRUE(m.other_element_types.empty());
-      const auto [volume, min_j] = volume_and_min_jacobian(m);
-      EXPECT_GT(min_j, 0) << beta;
-      EXPECT_NEAR(volume / info.analytic_volume, 1, 2e-3) << beta;
-      EXPECT_EQ(m.group_nodes.count(boundary::cut_start) + m.group_nodes.count(boundary::cut_end),
-                0u);
-      double a_lo = HUGE_VAL, a_hi = -HUGE_VAL;
-      for (std::size_t tag : m.group_nodes.at(boundary::bore))
-        {
-          const double a = std::atan2(m.nodes.at(tag).y(), m.nodes.at(tag).x());
-          a_lo = std::min(a_lo, a), a_hi = std::max(a_hi, a);
-        }
-      EXPECT_GT(a_hi - a_lo, 1.9 * pi);
+      expect_ring_without_cuts(m, info, beta);
       // nothing beyond the root circle more than two pitches (plus the helix's twist) from the
       // central tooth; the teeth there reach the tip circle
       const double pitch = 2 * pi / 16, centre = 5 * pitch;

@@ -199,6 +199,7 @@ struct LoadedScene
   int                 positions = 20;
   ContactCellOptions  cells;
   bool                measured = false; ///< also the measured flanks, compliances reused
+  bool follow_load = false; ///< the tables read following the load (FlankGridSpec::follow_load)
   /// Positions (indices into the mesh cycle) solved again in reference mode, with VTU files.
   std::vector<int> reference_positions;
   double           reference_elements_per_cell = 0.5;

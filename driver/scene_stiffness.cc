@@ -202,6 +202,14 @@ LoadedScene::declare(ParameterHandler &prm)
                     "displacement and stress in <output>/vtu/.");
   prm.declare_entry("reference elements per cell", "0.5", Patterns::Double(0.1, 4),
                     "Reference mode: element size at the contact = cell width / this.");
+  prm.declare_entry("table interpolation", "bilinear",
+                    Patterns::Selection("bilinear|load following"),
+                    "How the compliance tables are read between their unit loads. bilinear: in "
+                    "both points' flank parameters. load following: on the load's own flank the "
+                    "response is read at the same offset from each of the load's grid points, "
+                    "which keeps the compliance's peak at the load (second order in both grid "
+                    "directions: the tables' grid-converged K_m with fewer face points, more "
+                    "profile points; bench/README.md).");
   prm.declare_entry("measured flanks", "false", Patterns::Bool(),
                     "Also the loaded contact of the measured flanks (Measured flanks section), "
                     "with the theoretical pair's compliances.");
@@ -216,6 +224,7 @@ LoadedScene::parse(ParameterHandler &prm)
   cells.cells_along           = prm.get_integer("cells along");
   cells.gap_band              = prm.get_double("gap band") * um;
   measured                    = prm.get_bool("measured flanks");
+  follow_load                 = prm.get("table interpolation") == "load following";
   reference_positions         = get_integers(prm, "reference positions");
   reference_elements_per_cell = prm.get_double("reference elements per cell");
 }

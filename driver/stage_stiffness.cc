@@ -259,6 +259,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         spec.teeth        = m.read_ints("teeth");
         spec.cyclic_tooth = int(m.read_doubles("cyclic_tooth").front());
         spec.cyclic_reach = int(m.read_doubles("cyclic_reach").front());
+        spec.follow_load  = lc.follow_load;
         spec.side         = side;
         spec.n_u = fe.n_u, spec.n_v = fe.n_v;
         spec.graded = fe.graded_grid;

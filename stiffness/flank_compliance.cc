@@ -110,6 +110,10 @@ FlankCompliance::weights(int tooth, double u, double v) const
       {
         w.index[k]  = base + (iu + a) * spec.n_v + iv + b;
         w.weight[k] = (a ? fu : 1 - fu) * (b ? fv : 1 - fv);
+        w.u[k]      = u_range[t].first +
+                 u_nodes[std::size_t(iu + a)] * (u_range[t].second - u_range[t].first);
+        w.v[k] = v_range[t].first +
+                 v_nodes[std::size_t(iv + b)] * (v_range[t].second - v_range[t].first);
       }
   return w;
 }
@@ -136,11 +140,17 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
           ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth;
       tooth_i = spec.cyclic_tooth, tooth_j = turned;
     }
-  const Weights wi = weights(tooth_i, u_i, v_i), wj = weights(tooth_j, u_j, v_j);
-  double        c = 0;
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b)
-      c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
+  const Weights wj = weights(tooth_j, u_j, v_j);
+  double        c  = 0;
+  for (int b = 0; b < 4; ++b)
+    {
+      // following the load: the response at the same offset from each of the load's corners
+      const Weights wi = spec.follow_load && tooth_i == tooth_j
+                             ? weights(tooth_i, u_i + wj.u[b] - u_j, v_i + wj.v[b] - v_j)
+                             : weights(tooth_i, u_i, v_i);
+      for (int a = 0; a < 4; ++a)
+        c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
+    }
   return c;
 }
 

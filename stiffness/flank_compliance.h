@@ -3,7 +3,8 @@
 // side), the normal displacements at every grid point, without the local half-space part
 // (finite elements give it at a depth below the surface where they are accurate; the
 // Boussinesq solution at that depth is subtracted, the exact half-space part is added per cell
-// pair by the contact solver). Interpolated bilinearly in both points' flank parameters.
+// pair by the contact solver). Interpolated bilinearly in both points' flank parameters, or
+// following the load on its own flank (FlankGridSpec::follow_load).
 #pragma once
 
 #include "geometry/member_flanks.h"
@@ -35,6 +36,12 @@ struct FlankGridSpec
   /// middle tooth does). `cyclic_reach`: at least the largest offset between teeth in contact
   /// at once.
   int cyclic_tooth = -1, cyclic_reach = 0;
+  /// Reading between the unit loads: false, bilinear in both points' flank parameters; true, on
+  /// the load's own flank the response read at the same parameter offset from each of the
+  /// load's grid points (weighted bilinearly): the compliance's peak at the load (a kink where
+  /// the flank curves) stays at the grid points instead of being cut off between them, so both
+  /// grid directions converge at second order (bench/README.md).
+  bool follow_load = false;
 };
 
 /// Unit-load points along the face for a flank of face width b and (normal) module m: the
@@ -106,6 +113,7 @@ private:
   {
     int    index[4];
     double weight[4];
+    double u[4], v[4]; ///< the corner nodes' flank parameters
   };
   Weights
                            weights(int tooth, double u, double v) const;

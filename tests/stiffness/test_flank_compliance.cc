@@ -1,5 +1,6 @@
-// The flank compliance table: bilinear interpolation is exact on bilinear data, teeth outside
-// the grid are refused, and a member that behaves like a half-space leaves no structural part.
+// The flank compliance table: bilinear interpolation is exact on bilinear data, reading it
+// following the load keeps a kinked kernel's peak, teeth outside the grid are refused, and a
+// member that behaves like a half-space leaves no structural part.
 #include "stiffness/flank_compliance.h"
 #include "tests/fzg_c_pair.h"
 #include "tests/seed_bevel_pair.h"
@@ -43,6 +44,43 @@ TEST(FlankCompliance, BilinearDataInterpolatedExactly)
       const double first = pts[1].v - pts[0].v, middle = pts[4].v - pts[3].v;
       EXPECT_NEAR(first / middle, graded ? (1 - std::cos(pi / 6)) / 2 / 0.25 : 1.0, 1e-9);
     }
+}
+
+TEST(FlankCompliance, FollowingTheLoadKeepsThePeakAtTheLoad)
+{
+  // A kernel with a kink at the load, exp(-|du| / L_u - |dv| / L_v) in the flank parameters: at
+  // the grid points both readings are exact; between them, reading the load's own flank
+  // bilinearly cuts the peak (self term below 1), following the load keeps it (exactly 1);
+  // across teeth both read alike.
+  const auto                   gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  const InvoluteMemberFlanks   flanks(gear);
+  const FlankDomain            d  = flanks.flank(0, FlankSide::drive).domain();
+  const double                 Lu = (d.u_max - d.u_min) / 4, Lv = (d.v_max - d.v_min) / 4;
+  std::vector<FlankCompliance> tables;
+  for (const bool follow : {false, true})
+    {
+      FlankGridSpec spec;
+      spec.teeth = {0, 1}, spec.graded = false, spec.follow_load = follow;
+      tables.emplace_back(flanks, spec);
+      const auto     &pts = tables.back().points();
+      Eigen::MatrixXd S(pts.size(), pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        for (std::size_t j = 0; j < pts.size(); ++j)
+          S(j, i) =
+              std::exp(-std::abs(pts[i].u - pts[j].u) / Lu - std::abs(pts[i].v - pts[j].v) / Lv) *
+              (pts[i].tooth == pts[j].tooth ? 1 : 0.5);
+      tables.back().set(S);
+    }
+  const auto &pts = tables[0].points();
+  for (const std::size_t k : {std::size_t(0), std::size_t(9), std::size_t(24)})
+    for (const FlankCompliance &t : tables)
+      EXPECT_NEAR(t(0, pts[k].u, pts[k].v, 0, pts[k].u, pts[k].v), 1, 1e-12) << k;
+  // midway between grid points (7 x 7, equally spaced)
+  const double u = d.u_min + 0.02 * (d.u_max - d.u_min) + 0.5 / 6 * 0.96 * (d.u_max - d.u_min);
+  const double v = d.v_min + 0.02 * (d.v_max - d.v_min) + 2.5 / 6 * 0.96 * (d.v_max - d.v_min);
+  EXPECT_LT(tables[0](0, u, v, 0, u, v), 0.95);
+  EXPECT_NEAR(tables[1](0, u, v, 0, u, v), 1, 1e-12);
+  EXPECT_NEAR(tables[1](1, u, v, 0, u, v), tables[0](1, u, v, 0, u, v), 1e-15);
 }
 
 TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)
@@ -153,7 +191,9 @@ TEST(FlankCompliance, FaceGridPointsFromTheFaceWidth)
     {
       const int n = face_grid_points(b, 2e-3);
       if (n > 7 && n < 25)
-        EXPECT_LE(pi / (2 * (n - 1)) * b, 2e-3 * 1.0001) << b;
+        {
+          EXPECT_LE(pi / (2 * (n - 1)) * b, 2e-3 * 1.0001) << b;
+        }
     }
   EXPECT_THROW(face_grid_points(0, 2e-3), InputError);
   EXPECT_THROW(face_grid_points(20e-3, -1), InputError);

@@ -140,14 +140,15 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
           ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth;
       tooth_i = spec.cyclic_tooth, tooth_j = turned;
     }
-  const Weights wj = weights(tooth_j, u_j, v_j);
-  double        c  = 0;
+  const bool    follow = spec.follow_load && tooth_i == tooth_j;
+  const Weights wj     = weights(tooth_j, u_j, v_j);
+  const Weights fixed  = follow ? Weights{} : weights(tooth_i, u_i, v_i);
+  double        c      = 0;
   for (int b = 0; b < 4; ++b)
     {
       // following the load: the response at the same offset from each of the load's corners
-      const Weights wi = spec.follow_load && tooth_i == tooth_j
-                             ? weights(tooth_i, u_i + wj.u[b] - u_j, v_i + wj.v[b] - v_j)
-                             : weights(tooth_i, u_i, v_i);
+      const Weights wi =
+          follow ? weights(tooth_i, u_i + wj.u[b] - u_j, v_i + wj.v[b] - v_j) : fixed;
       for (int a = 0; a < 4; ++a)
         c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
     }

@@ -1566,6 +1566,37 @@ TEST_F(DriverTest, LocallyRefinedTablesEstimateOnTheSameSegmentRefinedOnceLess)
 // `whole gears = pinion`: the pinion meshed whole, the gear on its segment — the gear's table as
 // on segments, and the mesh softer than on segments (the held cuts stiffen) and stiffer than
 // with both members whole.
+TEST_F(DriverTest, TableInterpolationReachesTheLoadedContactOnly)
+{
+  // The same compliance tables read bilinearly and following the load: the tables identical,
+  // K_m different but close (the readings differ only between the unit loads).
+  for (const std::string how : {"bilinear", "load following"})
+    {
+      std::string text =
+          fe_stiffness_scene("read_" + how.substr(0, 4),
+                             "set flank element size = 0.5\n    set error estimate = false");
+      text = std::regex_replace(text, std::regex("set torques                  = 100, 200"),
+                                "set torques                  = 100, 200\n    set table "
+                                "interpolation = " +
+                                    how);
+      ASSERT_EQ(run({scene(text, "read_" + how.substr(0, 4) + ".prm")}), 0) << how << err.str();
+    }
+  auto read = [&](const std::string &name, const std::string &dataset) {
+    const H5File f = H5File::open((dir / ("out/read_" + name + "/results.h5")).string());
+    return f.root().read_doubles(dataset);
+  };
+  EXPECT_EQ(read("bili", "compliance/fzg/gear/compliance"),
+            read("load", "compliance/fzg/gear/compliance"));
+  const auto K0 = read("bili", "stiffness/fzg/mesh_stiffness");
+  const auto K1 = read("load", "stiffness/fzg/mesh_stiffness");
+  ASSERT_EQ(K0.size(), K1.size());
+  double largest = 0;
+  for (std::size_t i = 0; i < K0.size(); ++i)
+    largest = std::max(largest, std::abs(K1[i] / K0[i] - 1));
+  EXPECT_GT(largest, 1e-4);
+  EXPECT_LT(largest, 0.03);
+}
+
 TEST_F(DriverTest, WholePinionAloneLiesBetweenSegmentsAndWholeGearsWholeRimsNearTheWholeGears)
 {
   auto variant = [&](const std::string &name, const std::string &option) {

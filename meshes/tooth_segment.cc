@@ -456,7 +456,7 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
   const double rim_thickness = gear.root_radius - info.rim_inner_radius;
   const double far_size =
       std::max(flank_size, std::min(o.far_size > 0 ? o.far_size : mn, rim_thickness / 3));
-  const int    layers =
+  const int layers =
       o.face_layers > 0 ? o.face_layers : std::max(2, int(std::lround(b / (2 * flank_size))));
 
   with_gmsh("tooth segment mesh",

@@ -1563,9 +1563,6 @@ TEST_F(DriverTest, LocallyRefinedTablesEstimateOnTheSameSegmentRefinedOnceLess)
     EXPECT_NEAR(elements[i], std::abs(fine[i] - base[i]), 1e-9 * fine[i]) << i;
 }
 
-// `whole gears = pinion`: the pinion meshed whole, the gear on its segment — the gear's table as
-// on segments, and the mesh softer than on segments (the held cuts stiffen) and stiffer than
-// with both members whole.
 TEST_F(DriverTest, TableInterpolationReachesTheLoadedContactOnly)
 {
   // The same compliance tables read bilinearly and following the load: the tables identical,
@@ -1597,6 +1594,9 @@ TEST_F(DriverTest, TableInterpolationReachesTheLoadedContactOnly)
   EXPECT_LT(largest, 0.03);
 }
 
+// `whole gears = pinion`: the pinion meshed whole, the gear on its segment — the gear's table as
+// on segments, and the mesh softer than on segments (the held cuts stiffen) and stiffer than
+// with both members whole; segments on whole rims near the whole gears.
 TEST_F(DriverTest, WholePinionAloneLiesBetweenSegmentsAndWholeGearsWholeRimsNearTheWholeGears)
 {
   auto variant = [&](const std::string &name, const std::string &option) {

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/qprojector.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/shared_tria.h>
@@ -288,6 +289,29 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::shared::Triangula
 /// larger blocks of ours took memory and no time.
 constexpr std::size_t solve_block = 128;
 
+/// (xi, eta) of the point of the bilinear face (vertices in lexicographic order: (0, 0),
+/// (1, 0), (0, 1), (1, 1)) nearest to x, by Gauss-Newton; not clamped to the face.
+std::pair<double, double>
+bilinear_coordinates(const std::array<Point<3>, 4> &v, const Point<3> &x)
+{
+  double xi = 0.5, eta = 0.5;
+  for (int it = 0; it < 8; ++it)
+    {
+      const Tensor<1, 3> r = v[0] * (1 - xi) * (1 - eta) + v[1] * xi * (1 - eta) +
+                             v[2] * (1 - xi) * eta + v[3] * xi * eta - x;
+      const Tensor<1, 3> dxi  = (v[1] - v[0]) * (1 - eta) + (v[3] - v[2]) * eta;
+      const Tensor<1, 3> deta = (v[2] - v[0]) * (1 - xi) + (v[3] - v[1]) * xi;
+      const double       a = dxi * dxi, b = dxi * deta, c = deta * deta;
+      const double       p = -(dxi * r), q = -(deta * r), det = a * c - b * b;
+      const double       step_xi = (c * p - b * q) / det, step_eta = (a * q - b * p) / det;
+      xi += step_xi;
+      eta += step_eta;
+      if (std::abs(step_xi) + std::abs(step_eta) < 1e-13)
+        break;
+    }
+  return {xi, eta};
+}
+
 /// Gauss rules on the cells and faces of a near-field load's cut-off shell are subdivided up
 /// to this many times per direction.
 constexpr unsigned max_rule_subdivisions = 4;
@@ -360,10 +384,24 @@ struct ElasticSegment::Impl
   /// normals): the traction a curved surface would carry, without the facets' kinks.
   static Tensor<1, 3>
   smooth_normal(const FaceNormals &face, const Point<3> &x);
-  /// The outward normal at a point of a boundary face: the exact surface's where the options
-  /// give one for the face's boundary, else the smooth normal.
-  Tensor<1, 3>
-  surface_normal(const FaceNormals &face, const Point<3> &x) const;
+  /// The surface a point of a boundary face stands for, and its outward normal there: the
+  /// exact surface's point and normal where the options give one for the face's boundary,
+  /// else the point itself and the smooth normal.
+  std::pair<Point<3>, Tensor<1, 3>>
+  surface_point(const FaceNormals &face, const Point<3> &x) const;
+  /// A rule on a boundary face split at the face's point nearest to x into triangles, each
+  /// with the Duffy rule collapsed there (deal.II QSplit of QDuffy: exact for a 1 / r
+  /// singularity at that point), if that point is within `within` of x (else empty): the
+  /// scalar element's values at its points (FEValues on the rule projected to the face, which
+  /// sets up far fewer shape values than FEFaceValues) and the points' surface weights.
+  struct SplitRule
+  {
+    std::unique_ptr<FEValues<3>> values;
+    std::vector<double>          JxW;
+  };
+  SplitRule
+  split_face_rule(const typename Triangulation<3>::active_cell_iterator &cell, unsigned face,
+                  const Point<3> &x, double within) const;
   /// What one thread needs to assemble remainder loads: their quadratures (built once per
   /// thread, their shape values are costly to set up) and a load vector over all dofs. The
   /// cut-off's shell is often no wider than an element where a tooth is thin: a cell or face
@@ -1186,45 +1224,72 @@ ElasticSegment::Impl::face_normals(const typename DoFHandler<3>::active_cell_ite
 Tensor<1, 3>
 ElasticSegment::Impl::smooth_normal(const FaceNormals &face, const Point<3> &x)
 {
-  // (xi, eta) of x on the bilinear face (vertices in the face's own lexicographic order) by
-  // Gauss-Newton, then the vertex normals interpolated with the same weights
-  const auto &v  = face.vertex;
-  double      xi = 0.5, eta = 0.5;
-  for (int it = 0; it < 8; ++it)
-    {
-      const Tensor<1, 3> r = v[0] * (1 - xi) * (1 - eta) + v[1] * xi * (1 - eta) +
-                             v[2] * (1 - xi) * eta + v[3] * xi * eta - x;
-      const Tensor<1, 3> dxi  = (v[1] - v[0]) * (1 - eta) + (v[3] - v[2]) * eta;
-      const Tensor<1, 3> deta = (v[2] - v[0]) * (1 - xi) + (v[3] - v[1]) * xi;
-      const double       a = dxi * dxi, b = dxi * deta, c = deta * deta;
-      const double       p = -(dxi * r), q = -(deta * r), det = a * c - b * b;
-      const double       step_xi = (c * p - b * q) / det, step_eta = (a * q - b * p) / det;
-      xi += step_xi;
-      eta += step_eta;
-      if (std::abs(step_xi) + std::abs(step_eta) < 1e-13)
-        break;
-    }
-  const double w[4] = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta, xi * eta};
+  // the vertex normals interpolated with the bilinear face's weights at x
+  const auto [xi, eta] = bilinear_coordinates(face.vertex, x);
+  const double w[4]    = {(1 - xi) * (1 - eta), xi * (1 - eta), (1 - xi) * eta, xi * eta};
   Tensor<1, 3> n;
   for (unsigned k = 0; k < 4; ++k)
     n += w[k] * face.sum[k] / face.length[k];
   return n / n.norm();
 }
 
-Tensor<1, 3>
-ElasticSegment::Impl::surface_normal(const FaceNormals &face, const Point<3> &x) const
+std::pair<Point<3>, Tensor<1, 3>>
+ElasticSegment::Impl::surface_point(const FaceNormals &face, const Point<3> &x) const
 {
   if (!options.surface_boundaries.count(face.boundary))
-    return smooth_normal(face, x);
-  const Vec3 n = options.boundary_surface(face.boundary, Vec3(x[0], x[1], x[2])).normal;
-  if (!(n.allFinite() && std::abs(n.norm() - 1) < 1e-6))
+    return {x, smooth_normal(face, x)};
+  const SurfacePoint s = options.boundary_surface(face.boundary, Vec3(x[0], x[1], x[2]));
+  if (!(s.position.allFinite() && s.normal.allFinite() && std::abs(s.normal.norm() - 1) < 1e-6))
     {
       std::ostringstream msg;
       msg << "elastic segment: the exact surface of boundary " << face.boundary
-          << " has no unit normal for the point (" << 1e3 * x << ") mm";
+          << " has no point with a unit normal for (" << 1e3 * x << ") mm";
       throw InputError(msg.str());
     }
-  return Tensor<1, 3>({n.x(), n.y(), n.z()});
+  return {point(s.position), Tensor<1, 3>({s.normal.x(), s.normal.y(), s.normal.z()})};
+}
+
+ElasticSegment::Impl::SplitRule
+ElasticSegment::Impl::split_face_rule(const typename Triangulation<3>::active_cell_iterator &cell,
+                                      unsigned face, const Point<3> &x, double within) const
+{
+  SplitRule rule;
+  // first on the face's own vertices (lexicographic in the face): most faces are farther
+  std::array<Point<3>, 4> corner;
+  for (unsigned k = 0; k < 4; ++k)
+    corner[k] = cell->face(face)->vertex(k);
+  auto [u, v] = bilinear_coordinates(corner, x);
+  u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
+  if (!(x.distance(corner[0] * (1 - u) * (1 - v) + corner[1] * u * (1 - v) +
+                   corner[2] * (1 - u) * v + corner[3] * u * v) < within))
+    return rule;
+  // the face's corners in the coordinates of the rules projected to it
+  static const Quadrature<2> corner_rule(
+      std::vector<Point<2>>{Point<2>(0, 0), Point<2>(1, 0), Point<2>(0, 1), Point<2>(1, 1)},
+      std::vector<double>(4, 0.25));
+  const Quadrature<3> corners_in_cell =
+      QProjector<3>::project_to_face(ReferenceCells::Hexahedron, corner_rule, face);
+  for (unsigned k = 0; k < 4; ++k)
+    corner[k] = mapping.transform_unit_to_real_cell(cell, corners_in_cell.point(k));
+  auto [xi, eta] = bilinear_coordinates(corner, x);
+  xi = std::clamp(xi, 0.0, 1.0), eta = std::clamp(eta, 0.0, 1.0);
+  const QSplit<2>     split(QDuffy(options.degree + 4, 1.0), Point<2>(xi, eta));
+  const Quadrature<3> in_cell =
+      QProjector<3>::project_to_face(ReferenceCells::Hexahedron, split, face);
+  rule.values = std::make_unique<FEValues<3>>(
+      mapping, scalar_fe, in_cell, update_values | update_quadrature_points | update_jacobians);
+  rule.values->reinit(cell);
+  // the surface weight: the reference face's two axes mapped, their cross product's length
+  const unsigned a = (face / 2 + 1) % 3, b = (face / 2 + 2) % 3;
+  for (unsigned q = 0; q < in_cell.size(); ++q)
+    {
+      const DerivativeForm<1, 3, 3> &J = rule.values->jacobian(q);
+      Tensor<1, 3>                   ta, tb;
+      for (unsigned d = 0; d < 3; ++d)
+        ta[d] = J[d][a], tb[d] = J[d][b];
+      rule.JxW.push_back(split.weight(q) * cross_product_3d(ta, tb).norm());
+    }
+  return rule;
 }
 
 ElasticSegment::Impl::RemainderScratch::RemainderScratch(const Impl &m)
@@ -1276,19 +1341,35 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
 {
   const Point<3>  x0       = point(load.point);
   const Material &material = options.material;
-  auto            near     = [&](const Point<3> &x, const Tensor<1, 3> &normal) {
+  const Vec3      axis     = load.direction.normalized();
+  auto            cutoff   = [&](const Point<3> &x) {
+    return near_field_cutoff(Vec3(x[0], x[1], x[2]), load.point, axis, load.inner, load.outer);
+  };
+  auto near = [&](const Point<3> &x, const Cutoff &chi, const Tensor<1, 3> &normal) {
     const Vec3 y(x[0], x[1], x[2]);
-    return cut_off_near_field(point_force_field(y, load.point, load.direction, 1.0, material),
-                                             radial_cutoff(y, load.point, load.inner, load.outer),
-                                             Vec3(normal[0], normal[1], normal[2]), material);
+    return cut_off_near_field(point_force_field(y, load.point, load.direction, 1.0, material), chi,
+                              Vec3(normal[0], normal[1], normal[2]), material);
   };
   const unsigned                       n = fe.n_dofs_per_cell();
   Vector<double>                       local(n);
   std::vector<types::global_dof_index> indices(n);
-  // the body force lives in the shell between the radii; the traction on every boundary face
-  // within the outer radius, on faces near the force with a finely subdivided rule (the
-  // residual traction of a curved surface grows like 1/r toward the force)
+  // the body force lives where the cut-off varies: in the shell between the radii and where
+  // the body rises 30 to 60 degrees above the load's tangent plane (near_field_cutoff); the
+  // traction on every boundary face within the outer radius, on faces near the force with a
+  // finely subdivided rule (the residual traction of a curved surface grows like 1/r toward the
+  // force). The length the rules must resolve: the shell's thickness, or the elevation step's
+  // width at the distance of an object (centre, radius) that may meet it.
   const double shell = load.outer - load.inner;
+  auto         scale = [&](const Point<3> &centre, double radius) {
+    const double reach = centre.distance(x0);
+    if (reach <= radius)
+      return 0.0; // contains the force: the finest rule
+    const double elevation =
+        std::asin(std::clamp(-((centre - x0) * point(axis)) / reach, -1.0, 1.0));
+    const double spread = std::asin(std::min(1.0, radius / reach));
+    const bool   steps  = elevation + spread > pi / 6 && elevation - spread < pi / 3;
+    return steps ? std::min(shell, 0.5 * (reach - radius)) : shell;
+  };
   // the cells whose bounding boxes meet the cube about the outer sphere
   Point<3> low = x0, high = x0;
   for (unsigned d = 0; d < 3; ++d)
@@ -1304,18 +1385,20 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
       const double reach = cell->center().distance(x0), radius = cell->diameter() / 2;
       if (reach - radius > load.outer)
         continue;
-      local = 0;
-      if (reach + radius > load.inner)
+      local                 = 0;
+      const double resolved = scale(cell->center(), radius);
+      if (reach + radius > load.inner || resolved < shell)
         {
           FEValues<3> &values =
-              *scratch.volume[rule_subdivisions(2 * radius / std::sqrt(3.0), shell) - 1];
+              *scratch.volume[rule_subdivisions(2 * radius / std::sqrt(3.0), resolved) - 1];
           values.reinit(tria_cell);
           for (unsigned q = 0; q < values.n_quadrature_points; ++q)
             {
-              const double r = values.quadrature_point(q).distance(x0);
-              if (r <= load.inner || r >= load.outer)
+              const Cutoff chi = cutoff(values.quadrature_point(q));
+              if (!(chi.value > 0 && chi.value < 1))
                 continue; // chi constant: no body force
-              const Vec3 b = near(values.quadrature_point(q), Tensor<1, 3>()).body * values.JxW(q);
+              const Vec3 b =
+                  near(values.quadrature_point(q), chi, Tensor<1, 3>()).body * values.JxW(q);
               for (unsigned i = 0; i < n; ++i)
                 local(i) += values.shape_value(scratch.scalar[i], q) * b[scratch.component[i]];
             }
@@ -1324,26 +1407,42 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
         if (cell->face(face)->at_boundary() &&
             cell->face(face)->center().distance(x0) - cell->face(face)->diameter() / 2 < load.outer)
           {
-            const bool close =
-                cell->face(face)->center().distance(x0) < 2 * cell->face(face)->diameter();
+            const double      diameter = cell->face(face)->diameter();
+            const bool        close    = cell->face(face)->center().distance(x0) < 2 * diameter;
+            const FaceNormals normals  = face_normals(cell, face);
+            // next to the force, a rule split at the face's point nearest to it (Duffy:
+            // exact for the residual traction's 1/r there, wherever the force falls)
+            const SplitRule split =
+                close ? split_face_rule(tria_cell, face, x0, 0.25 * diameter) : SplitRule();
             FEFaceValues<3> &v =
                 close ? scratch.near_face
                       : *scratch.face[rule_subdivisions(
-                                          cell->face(face)->diameter() / std::sqrt(2.0), shell) -
+                                          diameter / std::sqrt(2.0),
+                                          scale(cell->face(face)->center(), diameter / 2)) -
                                       1];
-            const FaceNormals normals = face_normals(cell, face);
-            v.reinit(tria_cell, face);
-            for (unsigned q = 0; q < v.n_quadrature_points; ++q)
+            if (!split.values)
+              v.reinit(tria_cell, face);
+            const unsigned n_q =
+                split.values ? split.values->n_quadrature_points : v.n_quadrature_points;
+            for (unsigned q = 0; q < n_q; ++q)
               {
-                const double r = v.quadrature_point(q).distance(x0);
-                if (r < 1e-12 * cell->diameter() || r >= load.outer)
-                  continue; // the force itself (its part is carried by chi u), or chi = 0
+                // on a boundary with an exact surface, the point of the surface the facet's
+                // point stands for: the force lies on it, so the traction left to the elements
+                // is the surface's curvature's, ~ 1 / r, not the facets' tilt's, ~ 1 / r^2
+                const auto [at, normal] =
+                    surface_point(normals, split.values ? split.values->quadrature_point(q)
+                                                        : v.quadrature_point(q));
+                if (at.distance(x0) < 1e-12 * cell->diameter())
+                  continue; // the force itself (its part is carried by chi u)
+                const Cutoff chi = cutoff(at);
+                if (chi.value == 0)
+                  continue;
                 const Vec3 t =
-                    near(v.quadrature_point(q), surface_normal(normals, v.quadrature_point(q)))
-                        .traction *
-                    v.JxW(q);
+                    near(at, chi, normal).traction * (split.values ? split.JxW[q] : v.JxW(q));
                 for (unsigned i = 0; i < n; ++i)
-                  local(i) -= v.shape_value(scratch.scalar[i], q) * t[scratch.component[i]];
+                  local(i) -= (split.values ? split.values->shape_value(scratch.scalar[i], q)
+                                            : v.shape_value(scratch.scalar[i], q)) *
+                              t[scratch.component[i]];
               }
           }
       cell->get_dof_indices(indices);

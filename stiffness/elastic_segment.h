@@ -96,8 +96,9 @@ struct PatchLoad
 /// A unit normal point force on the boundary whose near field is carried analytically:
 /// Boussinesq's field of the half-space tangent at `point` (inward normal `direction`, unit:
 /// the force pushes along it), cut off smoothly between the radii `inner` and `outer` about the
-/// point [m]. The cut-off sphere must not reach a held boundary, nor the ray outside the body
-/// opposite the force where it re-enters the body (the field is singular there).
+/// point [m], and by elevation above the tangent plane (near_field_cutoff: none of it within
+/// 30 degrees of the ray opposite the force, where it is singular, so the sphere may reach the
+/// body across the force). The cut-off sphere must not reach a held boundary.
 struct NearFieldLoad
 {
   Vec3   point = Vec3::Zero(), direction = Vec3::Zero();
@@ -136,8 +137,8 @@ public:
   patch_response(const std::vector<PatchLoad> &loads, const std::vector<PatchLoad> &measures) const;
 
   /// D(j, i): probe j's displacement under the unit point force i less the force's cut-off
-  /// half-space field chi u (half_space.h: cut_off_near_field), which the caller adds
-  /// analytically where it needs it. The finite elements solve only the smooth remainder w:
+  /// half-space field chi u (half_space.h: near_field_cutoff, cut_off_near_field), which the caller
+  /// adds analytically where it needs it. The finite elements solve only the smooth remainder w:
   /// a(w, v) = -(boundary integral of sigma(chi u) n . v) + (integral of div sigma(chi u) . v),
   /// so that no element has to resolve the 1/r field of the force; the total displacement is
   /// chi u + w.

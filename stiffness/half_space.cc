@@ -99,6 +99,61 @@ radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer)
   return c;
 }
 
+Cutoff
+elevation_cutoff(const Vec3 &x, const Vec3 &centre, const Vec3 &direction, double from, double to)
+{
+  Cutoff       c;
+  const Vec3   y = x - centre;
+  const double r = y.norm();
+  if (r == 0)
+    {
+      c.value = 1;
+      return c;
+    }
+  // t = sin(elevation) = -(y . d) / r
+  const double yd = y.dot(direction), t = -yd / r, lo = std::sin(from), w = std::sin(to) - lo;
+  if (t <= lo)
+    {
+      c.value = 1;
+      return c;
+    }
+  if (t >= lo + w)
+    return c;
+  const double s           = (t - lo) / w;
+  c.value                  = 1 - s * s * s * (10 - 15 * s + 6 * s * s);
+  const double          d1 = -30 * s * s * (1 - s) * (1 - s) / w;       // d psi / dt
+  const double          d2 = -60 * s * (1 - s) * (1 - 2 * s) / (w * w); // d2 psi / dt2
+  const double          r3 = r * r * r;
+  const Vec3            gt = -direction / r + yd * y / r3;
+  const Eigen::Matrix3d ht =
+      (direction * y.transpose() + y * direction.transpose()) / r3 +
+      yd * (Eigen::Matrix3d::Identity() / r3 - 3 * y * y.transpose() / (r3 * r * r));
+  c.gradient = d1 * gt;
+  c.hessian  = d2 * gt * gt.transpose() + d1 * ht;
+  return c;
+}
+
+Cutoff
+operator*(const Cutoff &a, const Cutoff &b)
+{
+  Cutoff c;
+  c.value    = a.value * b.value;
+  c.gradient = a.value * b.gradient + b.value * a.gradient;
+  c.hessian  = a.value * b.hessian + b.value * a.hessian + a.gradient * b.gradient.transpose() +
+              b.gradient * a.gradient.transpose();
+  return c;
+}
+
+Cutoff
+near_field_cutoff(const Vec3 &x, const Vec3 &centre, const Vec3 &direction, double inner,
+                  double outer)
+{
+  const Cutoff radial = radial_cutoff(x, centre, inner, outer);
+  if (radial.value == 0)
+    return radial;
+  return radial * elevation_cutoff(x, centre, direction, pi / 6, pi / 3);
+}
+
 Lame
 lame(const Material &m)
 {

@@ -70,6 +70,27 @@ struct Cutoff
 Cutoff
 radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer);
 
+/// A smooth cut-off by elevation above the tangent plane of a point force at `centre` (its
+/// inward normal `direction`, unit), seen from the force: 1 where x lies below the plane or at
+/// most `from` above it, 0 from `to` on (angles in radians), between them the quintic step in
+/// the sine of the elevation; value, gradient and Hessian at x (1 at the centre itself).
+Cutoff
+elevation_cutoff(const Vec3 &x, const Vec3 &centre, const Vec3 &direction, double from, double to);
+
+/// The product of two cut-offs (value, gradient and Hessian by the product rule).
+Cutoff
+operator*(const Cutoff &a, const Cutoff &b);
+
+/// The cut-off of a unit load's analytic near field: radial between `inner` and `outer`, and
+/// by elevation between 30 and 60 degrees. Boussinesq's field is singular on the ray opposite
+/// the force (rho + z = 0) and large near it; whatever of the body lies across the load's
+/// tangent plane within 30 degrees of that ray (the next tooth across the gap, a tooth's
+/// corner beyond a face end) gets none of it, wherever the sphere reaches, while near the load
+/// (a smooth flank, the body below its tangent plane) the field is Boussinesq's own.
+Cutoff
+near_field_cutoff(const Vec3 &x, const Vec3 &centre, const Vec3 &direction, double inner,
+                  double outer);
+
 /// Stress of a displacement gradient in an isotropic body (E, nu): lambda tr(eps) I + 2 mu eps.
 Eigen::Matrix3d
 stress(const Eigen::Matrix3d &gradient, const Material &material);

@@ -163,11 +163,12 @@ response_depths(const FlankCompliance &table, const ElasticSegment &body, double
   return depths;
 }
 
-/// The table with the near field carried analytically: each grid point moved along its
-/// inward normal onto the finite-element surface (the facets lie inside the curved flank by
-/// their sagitta), a unit force there with Boussinesq's field cut off between half and the
-/// whole of its radius, the finite elements' remainder read at every point, the analytic part
-/// added and the point-force half-space displacement of the same tooth taken out (the contact
+/// The table with the near field carried analytically: a unit force at each grid point of the
+/// exact flank with Boussinesq's field cut off between half and the whole of its radius (and
+/// away from the body across its normal: near_field_cutoff), the finite elements' remainder
+/// read at every grid point moved along its inward normal onto the finite-element surface (the
+/// facets lie inside the curved flank by their sagitta), the analytic part added at the exact
+/// points and the point-force half-space displacement of the same tooth taken out (the contact
 /// solver adds the exact half-space between cells).
 void
 fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body, double h,
@@ -184,7 +185,9 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
   std::vector<Vec3> on(n);
   for (std::size_t i = 0; i < n; ++i)
     on[i] = x[i] + (surface[i].second - 2e-6 * h) * outward[i]; // just inside
-  // where the body comes back across a load's outward normal
+  // where the body comes back across a load's outward normal: the sphere stays short of it
+  // (near_field_cutoff keeps the field off the body about the ray wherever the sphere reaches;
+  // this keeps the remainder's traction off the next tooth)
   const auto       &loaded = table.load_points();
   std::vector<Vec3> load_on, load_out;
   for (std::size_t i : loaded)
@@ -210,7 +213,7 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
           throw InputError(msg.str());
         }
       smallest = std::min(smallest, outer);
-      loads.push_back({on[i], in[i], outer / 2, outer});
+      loads.push_back({points[i].position, in[i], outer / 2, outer});
     }
   for (std::size_t j = 0; j < n; ++j)
     probes.push_back({on[j], in[j]});
@@ -226,16 +229,17 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
           // a term whose limit at the load depends on the direction; bilinear interpolation of
           // the table would turn it into a ripple of the grid spacing (up to 0.5 % of K_m),
           // while along a contact line (a straight generator of the flank, or nearly) it is nil
-          const std::size_t    i   = loaded[k];
-          const NearFieldLoad &l   = loads[k];
-          const double         chi = radial_cutoff(on[j], l.point, l.inner, l.outer).value;
-          const Eigen::Index   r = Eigen::Index(j), c = Eigen::Index(k);
+          const std::size_t    i = loaded[k];
+          const NearFieldLoad &l = loads[k];
+          const Vec3          &x = points[j].position;
+          const double chi     = near_field_cutoff(x, l.point, l.direction, l.inner, l.outer).value;
+          const Eigen::Index r = Eigen::Index(j), c = Eigen::Index(k);
           if (chi > 0)
             S(r, c) +=
                 chi *
-                point_force_field(on[j], l.point, l.direction, 1.0, o.material).u.dot(l.direction);
+                point_force_field(x, l.point, l.direction, 1.0, o.material).u.dot(l.direction);
           if (points[i].tooth == points[j].tooth)
-            S(r, c) -= point_load_displacement((on[j] - on[i]).norm(), 0, 1.0, o.material);
+            S(r, c) -= point_load_displacement((x - l.point).norm(), 0, 1.0, o.material);
         }
   table.set(S);
 }

@@ -257,3 +257,60 @@ TEST(HalfSpace, CutOffNearFieldBodyForceAndTraction)
           .body.norm(),
       0);
 }
+
+TEST(HalfSpace, ElevationCutOffKeepsTheFieldOffTheRayOppositeTheForce)
+{
+  // The near field's cut-off also by elevation above the load's tangent plane: 1 below it and
+  // up to 30 degrees above, 0 from 60 degrees (the ray opposite the force, where Boussinesq's
+  // field is singular, and all within 30 degrees of it), half at sin = (sin 30 + sin 60) / 2;
+  // gradient and Hessian against central differences; the product with the radial cut-off's
+  // body force div sigma(chi u) against central differences where both vary.
+  const Material m{2.1e11, 0.3};
+  const Vec3     x0(1e-3, -2e-3, 0.5e-3), d = Vec3(0.3, -0.2, 1).normalized();
+  const Vec3     e1 = d.unitOrthogonal(), e2 = d.cross(e1);
+  auto           at = [&](double r, double elevation, double azimuth) { // elevation above the plane
+    return Vec3(x0 + r * (std::cos(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2) -
+                          std::sin(elevation) * d));
+  };
+  auto psi = [&](const Vec3 &x) { return elevation_cutoff(x, x0, d, pi / 6, pi / 3); };
+  EXPECT_EQ(psi(at(2e-3, -pi / 4, 0.3)).value, 1);       // in the body
+  EXPECT_EQ(psi(at(2e-3, 0.9 * pi / 6, 1.1)).value, 1);  // just above the plane
+  EXPECT_EQ(psi(at(2e-3, 1.01 * pi / 3, 2.0)).value, 0); // near the ray
+  EXPECT_EQ(psi(at(2e-3, pi / 2, 0)).value, 0);          // on it
+  EXPECT_EQ(psi(x0).value, 1);
+  EXPECT_NEAR(psi(at(2e-3, std::asin((0.5 + std::sqrt(0.75)) / 2), 0.7)).value, 0.5, 1e-14);
+  for (const Vec3 &x : {at(1.5e-3, 0.6, 0.2), at(3e-3, 0.8, -2.0), at(0.4e-3, 0.95, 1.3)})
+    {
+      const Cutoff c = psi(x);
+      ASSERT_GT(c.value, 0);
+      ASSERT_LT(c.value, 1);
+      const double h = 1e-9;
+      for (int j = 0; j < 3; ++j)
+        {
+          const Vec3   e  = h * Vec3::Unit(j);
+          const double fd = (psi(x + e).value - psi(x - e).value) / (2 * h);
+          EXPECT_NEAR(c.gradient[j], fd, 1e-6 * c.gradient.norm()) << j;
+          const Vec3 hd = (psi(x + e).gradient - psi(x - e).gradient) / (2 * h);
+          EXPECT_LT((c.hessian.col(j) - hd).norm(), 1e-5 * c.hessian.norm()) << j;
+        }
+    }
+  // the near field's cut-off: radial 1-2.5 mm times elevation 30-60 degrees
+  const double r1 = 1e-3, r2 = 2.5e-3;
+  EXPECT_EQ(near_field_cutoff(at(2e-3, pi / 2, 0), x0, d, r1, r2).value, 0);
+  EXPECT_EQ(near_field_cutoff(at(0.5e-3, 0.2, 0), x0, d, r1, r2).value, 1);
+  EXPECT_EQ(near_field_cutoff(at(3e-3, 0.2, 0), x0, d, r1, r2).value, 0);
+  auto grad_chi_u = [&](const Vec3 &x) {
+    const DisplacementField f = point_force_field(x, x0, d, 1.0, m);
+    const Cutoff            c = near_field_cutoff(x, x0, d, r1, r2);
+    return Eigen::Matrix3d(c.value * f.gradient + f.u * c.gradient.transpose());
+  };
+  for (const Vec3 &x : {at(1.8e-3, 0.7, 0.4), at(0.6e-3, 0.8, -1.0), at(2.2e-3, 0.9, 2.5)})
+    {
+      const Cutoff c = near_field_cutoff(x, x0, d, r1, r2);
+      ASSERT_GT(c.value, 0);
+      ASSERT_LT(c.value, 1);
+      const NearField near = cut_off_near_field(point_force_field(x, x0, d, 1.0, m), c, d, m);
+      const Vec3      fd   = divergence_of_stress(grad_chi_u, x, m, 1e-8);
+      EXPECT_LT((near.body - fd).norm(), 1e-5 * near.body.norm()) << x.transpose();
+    }
+}

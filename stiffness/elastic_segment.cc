@@ -1254,16 +1254,21 @@ ElasticSegment::Impl::split_face_rule(const typename Triangulation<3>::active_ce
                                       unsigned face, const Point<3> &x, double within) const
 {
   SplitRule rule;
-  // first on the face's own vertices (lexicographic in the face): most faces are farther
+  // the face's point nearest to x: (xi, eta) on the bilinear face of the corners, clamped
   std::array<Point<3>, 4> corner;
+  auto                    nearest = [&] {
+    auto [xi, eta] = bilinear_coordinates(corner, x);
+    xi = std::clamp(xi, 0.0, 1.0), eta = std::clamp(eta, 0.0, 1.0);
+    const Point<3> at = corner[0] * (1 - xi) * (1 - eta) + corner[1] * xi * (1 - eta) +
+                        corner[2] * (1 - xi) * eta + corner[3] * xi * eta;
+    return std::make_pair(Point<2>(xi, eta), at.distance(x));
+  };
+  // first on the face's own vertices (lexicographic in the face): most faces are farther
   for (unsigned k = 0; k < 4; ++k)
     corner[k] = cell->face(face)->vertex(k);
-  auto [u, v] = bilinear_coordinates(corner, x);
-  u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
-  if (!(x.distance(corner[0] * (1 - u) * (1 - v) + corner[1] * u * (1 - v) +
-                   corner[2] * (1 - u) * v + corner[3] * u * v) < within))
+  if (!(nearest().second < within))
     return rule;
-  // the face's corners in the coordinates of the rules projected to it
+  // then in the coordinates of the rules projected to the face
   static const Quadrature<2> corner_rule(
       std::vector<Point<2>>{Point<2>(0, 0), Point<2>(1, 0), Point<2>(0, 1), Point<2>(1, 1)},
       std::vector<double>(4, 0.25));
@@ -1271,9 +1276,7 @@ ElasticSegment::Impl::split_face_rule(const typename Triangulation<3>::active_ce
       QProjector<3>::project_to_face(ReferenceCells::Hexahedron, corner_rule, face);
   for (unsigned k = 0; k < 4; ++k)
     corner[k] = mapping.transform_unit_to_real_cell(cell, corners_in_cell.point(k));
-  auto [xi, eta] = bilinear_coordinates(corner, x);
-  xi = std::clamp(xi, 0.0, 1.0), eta = std::clamp(eta, 0.0, 1.0);
-  const QSplit<2>     split(QDuffy(options.degree + 4, 1.0), Point<2>(xi, eta));
+  const QSplit<2>     split(QDuffy(options.degree + 4, 1.0), nearest().first);
   const Quadrature<3> in_cell =
       QProjector<3>::project_to_face(ReferenceCells::Hexahedron, split, face);
   rule.values = std::make_unique<FEValues<3>>(

@@ -1,6 +1,7 @@
 #include "stiffness/half_space.h"
 
 #include <cmath>
+#include <tuple>
 #include <unsupported/Eigen/AutoDiff>
 
 namespace gearkit
@@ -18,6 +19,16 @@ corner(double X, double Y)
   if (Y != 0)
     f += Y * std::asinh(X / std::abs(Y));
   return f;
+}
+
+/// The quintic step from 1 at a to 0 at b (second derivatives continuous) at a < x < b: its
+/// value and first and second derivatives in x.
+std::tuple<double, double, double>
+quintic_step(double x, double a, double b)
+{
+  const double w = b - a, s = (x - a) / w;
+  return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s) / w,
+          -60 * s * (1 - s) * (1 - 2 * s) / (w * w)};
 }
 } // namespace
 
@@ -89,12 +100,10 @@ radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer)
     }
   if (r >= outer)
     return c;
-  const double w = outer - inner, s = (r - inner) / w;
-  c.value         = 1 - s * s * s * (10 - 15 * s + 6 * s * s);
-  const double d1 = -30 * s * s * (1 - s) * (1 - s) / w;       // d chi / dr
-  const double d2 = -60 * s * (1 - s) * (1 - 2 * s) / (w * w); // d2 chi / dr2
-  const Vec3   e  = d / r;
-  c.gradient      = d1 * e;
+  const auto [value, d1, d2] = quintic_step(r, inner, outer); // chi, d chi / dr, d2 chi / dr2
+  c.value                    = value;
+  const Vec3 e               = d / r;
+  c.gradient                 = d1 * e;
   c.hessian = d2 * e * e.transpose() + d1 / r * (Eigen::Matrix3d::Identity() - e * e.transpose());
   return c;
 }
@@ -119,12 +128,10 @@ elevation_cutoff(const Vec3 &x, const Vec3 &centre, const Vec3 &direction, doubl
     }
   if (t >= lo + w)
     return c;
-  const double s           = (t - lo) / w;
-  c.value                  = 1 - s * s * s * (10 - 15 * s + 6 * s * s);
-  const double          d1 = -30 * s * s * (1 - s) * (1 - s) / w;       // d psi / dt
-  const double          d2 = -60 * s * (1 - s) * (1 - 2 * s) / (w * w); // d2 psi / dt2
-  const double          r3 = r * r * r;
-  const Vec3            gt = -direction / r + yd * y / r3;
+  const auto [value, d1, d2] = quintic_step(t, lo, lo + w); // psi, d psi / dt, d2 psi / dt2
+  c.value                    = value;
+  const double          r3   = r * r * r;
+  const Vec3            gt   = -direction / r + yd * y / r3;
   const Eigen::Matrix3d ht =
       (direction * y.transpose() + y * direction.transpose()) / r3 +
       yd * (Eigen::Matrix3d::Identity() / r3 - 3 * y * y.transpose() / (r3 * r * r));

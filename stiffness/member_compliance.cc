@@ -229,17 +229,17 @@ fill_with_analytic_near_field(FlankCompliance &table, const ElasticSegment &body
           // a term whose limit at the load depends on the direction; bilinear interpolation of
           // the table would turn it into a ripple of the grid spacing (up to 0.5 % of K_m),
           // while along a contact line (a straight generator of the flank, or nearly) it is nil
-          const std::size_t    i = loaded[k];
-          const NearFieldLoad &l = loads[k];
-          const Vec3          &x = points[j].position;
-          const double chi     = near_field_cutoff(x, l.point, l.direction, l.inner, l.outer).value;
+          const std::size_t    i  = loaded[k];
+          const NearFieldLoad &l  = loads[k];
+          const Vec3          &at = points[j].position;
+          const double chi = near_field_cutoff(at, l.point, l.direction, l.inner, l.outer).value;
           const Eigen::Index r = Eigen::Index(j), c = Eigen::Index(k);
           if (chi > 0)
             S(r, c) +=
                 chi *
-                point_force_field(x, l.point, l.direction, 1.0, o.material).u.dot(l.direction);
+                point_force_field(at, l.point, l.direction, 1.0, o.material).u.dot(l.direction);
           if (points[i].tooth == points[j].tooth)
-            S(r, c) -= point_load_displacement((x - l.point).norm(), 0, 1.0, o.material);
+            S(r, c) -= point_load_displacement((at - l.point).norm(), 0, 1.0, o.material);
         }
   table.set(S);
 }

@@ -137,8 +137,10 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       // Both tables are computed before either is written: a failure leaves no half group.
       using Tables = std::vector<std::pair<FlankCompliance, MemberComplianceInfo>>;
       Progress progress("finite elements " + pair.name + ": member", fe.error_estimate ? 4 : 2);
-      auto     compute = [&](const FeScene &mesh_fe, const std::string &mesh_dir) {
-        Tables tables;
+      // With several processes the members are computed at once, each on its share of them
+      // (member_compliances).
+      auto compute = [&](const FeScene &mesh_fe, const std::string &mesh_dir) {
+        std::vector<MemberJob> jobs;
         for (const bool is_pinion : {true, false})
           {
             const MemberFlanks  &flanks  = is_pinion ? *members.pinion : *members.gear;
@@ -146,15 +148,24 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const std::string    label   = std::string(is_pinion ? "pinion" : "gear") +
                                       (&mesh_fe == &fe ? "" : " (coarse mesh)") + ": ";
             MemberComplianceOptions mo = member_options(
-                    member_module(pair), flanks.teeth(), is_pinion, mesh_fe, side, segment, mesh_dir);
-            mo.on_phase = [&](const std::string &what) { progress.note(label + what); };
-            MemberComplianceInfo info;
-            FlankCompliance      table = compliance_table(pair, flanks, is_pinion, mo, &info);
-            tables.emplace_back(std::move(table), info);
-            progress.advance();
+                member_module(pair), flanks.teeth(), is_pinion, mesh_fe, side, segment, mesh_dir);
+            mo.on_phase = [&progress, label](const std::string &what) {
+              progress.note(label + what);
+            };
+            jobs.push_back({&flanks, [&pair, &flanks, is_pinion, mo, &progress](
+                                         MPI_Comm comm, double memory, MemberComplianceInfo &info) {
+                              MemberComplianceOptions o = mo;
+                              o.communicator            = comm;
+                              o.memory_available        = memory;
+                              FlankCompliance table = compliance_table(pair, flanks, is_pinion, o, &info);
+                              progress.advance();
+                              return table;
+                            }});
           }
-        return tables;
+        return member_compliances(jobs, MPI_COMM_WORLD);
       };
+      int processes = 1;
+      MPI_Comm_size(MPI_COMM_WORLD, &processes);
       auto write = [&](const Tables &tables, const H5Group &group, const std::string &label) {
         for (const bool is_pinion : {true, false})
           {
@@ -206,7 +217,11 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
               log << info.shallow_points << " read shallower), ";
             log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s (mesh "
                 << info.mesh_seconds << ", assembly and factorisation " << info.setup_seconds
-                << ", unit loads " << info.solve_seconds << ")\n";
+                << ", unit loads " << info.solve_seconds << ")"
+                << (processes > 1 ? " on " + std::to_string(info.processes) + " of " +
+                                        std::to_string(processes) + " processes"
+                                  : "")
+                << "\n";
           }
       };
       // The segment meshes beside the cache file: every process reads them.

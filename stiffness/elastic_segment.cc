@@ -128,24 +128,6 @@ public:
 private:
   double lambda, mu;
 };
-/// MemAvailable of /proc/meminfo [bytes] (0 where it cannot be read), after handing the
-/// process's own freed heap back to the system: a body factorised before (the other member)
-/// leaves gigabytes freed but held by malloc, which this process would reuse (62/62 pair,
-/// 1.04M dofs a member: 5.3 GB available before the trim with 18 GB of it free in the heap).
-double
-memory_available_now()
-{
-  malloc_trim(0);
-  std::ifstream in("/proc/meminfo");
-  std::string   key;
-  double        kb = 0;
-  std::string   unit;
-  while (in >> key >> kb >> unit)
-    if (key == "MemAvailable:")
-      return kb * 1024;
-  return 0;
-}
-
 /// The bytes that `need` (this process's) add up to over the processes on each machine, and
 /// whether every machine has them (`have`: its available memory; <= 0: unknown, fits).
 std::pair<double, bool>
@@ -278,7 +260,7 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::shared::Triangula
               << Utilities::MPI::min(have, comm) / 1e9
               << " GB available. Use fewer refinements (larger elements at the contact) or "
                  "more machines under mpirun";
-          throw InputError(msg.str());
+          throw MemoryRefusal(msg.str());
         }
       tria.execute_coarsening_and_refinement();
     }
@@ -326,6 +308,21 @@ rule_subdivisions(double size, double shell)
   return unsigned(std::clamp(std::ceil(2 * size / shell), 1.0, double(max_rule_subdivisions)));
 }
 } // namespace
+
+double
+memory_available_now()
+{
+  malloc_trim(0);
+  std::ifstream in("/proc/meminfo");
+  std::string   key;
+  double        kb = 0;
+  std::string   unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:")
+      return kb * 1024;
+  return 0;
+}
+
 
 struct ElasticSegment::Impl
 {
@@ -729,7 +726,7 @@ ElasticSegment::Impl::check_assembly_fits(const std::string &file) const
           << Utilities::MPI::min(have, comm) / 1e9
           << " GB available. Use coarser elements (fewer refinements, larger flank elements) "
              "or more machines under mpirun";
-      throw InputError(msg.str());
+      throw MemoryRefusal(msg.str());
     }
 }
 
@@ -768,7 +765,7 @@ ElasticSegment::Impl::factorise(const std::string &file)
           << " GB available). Use coarser elements (fewer refinements, larger flank "
              "elements), more machines under mpirun, or an iterative solver "
              "(PETSC_OPTIONS=\"-gearkit_ksp_type cg -gearkit_pc_type gamg\")";
-      throw InputError(msg.str());
+      throw MemoryRefusal(msg.str());
     }
   petsc_check(MatCholeskyFactorNumeric(factor, K, &info),
               "MatCholeskyFactorNumeric (factorisation: is the body held?)");

@@ -33,6 +33,20 @@ struct SurfacePoint
   Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
 };
 
+/// A body refused before its memory is taken: its stiffness matrix or direct factorisation
+/// would need more than the memory available to it (ElasticSegmentOptions::memory_available);
+/// the message gives the estimate and what is available.
+class MemoryRefusal : public InputError
+{
+public:
+  using InputError::InputError;
+};
+
+/// MemAvailable of /proc/meminfo [bytes] (0 where it cannot be read), after handing this
+/// process's own freed heap back to the system.
+double
+memory_available_now();
+
 struct ElasticSegmentOptions
 {
   unsigned      degree      = 1; ///< FE_Q degree (1 or 2)
@@ -76,7 +90,7 @@ struct ElasticSegmentOptions
   /// Memory the direct factorisation may take on each machine [bytes]; 0: what the machine
   /// has available now (MemAvailable). Before factorising, MUMPS's analysis estimates its need
   /// (per process, times the processes on the machine); a body that would not fit is refused
-  /// (InputError with the estimate) instead of being killed for want of memory half way.
+  /// (MemoryRefusal with the estimate) instead of being killed for want of memory half way.
   double memory_available = 0;
 };
 

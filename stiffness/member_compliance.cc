@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <type_traits>
 
 namespace gearkit
 {
@@ -355,8 +357,9 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   ElasticSegmentOptions eo;
   eo.degree       = o.degree;
   eo.material     = o.material;
-  eo.communicator = o.communicator;
-  eo.threads      = o.threads;
+  eo.communicator      = o.communicator;
+  eo.memory_available  = o.memory_available;
+  eo.threads           = o.threads;
   eo.clamped      = {boundary::bore};
   if (o.hold_cuts && !segment.whole)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
@@ -404,5 +407,139 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   fill_structural_compliance(table, solve, depths, o.material, out.patch_radius);
   out.solve_seconds = seconds_since(t0);
   return table;
+}
+namespace
+{
+using MemberResult = std::pair<FlankCompliance, MemberComplianceInfo>;
+
+/// The table and its description that the process `root` of comm holds (`mine`), on every
+/// process: the others build the grid from `flanks` and the sender's grid specification.
+MemberResult
+broadcast_result(const MemberFlanks &flanks, const std::optional<MemberResult> &mine, int root,
+                 MPI_Comm comm)
+{
+  namespace mpi            = dealii::Utilities::MPI;
+  const bool          here = int(mpi::this_mpi_process(comm)) == root;
+  std::vector<double> head; // the grid specification and the matrix's size, then the teeth
+  MemberComplianceInfo info;
+  if (here)
+    {
+      const FlankGridSpec   &g = mine->first.grid_spec();
+      const Eigen::MatrixXd &S = mine->first.matrix();
+      head = {double(g.side == FlankSide::drive ? 0 : 1), double(g.n_u), double(g.n_v),
+              g.margin, double(g.graded), double(g.cyclic_tooth), double(g.cyclic_reach),
+              double(g.follow_load), double(S.rows()), double(S.cols())};
+      head.insert(head.end(), g.teeth.begin(), g.teeth.end());
+      info = mine->second;
+    }
+  head = mpi::broadcast(comm, head, root);
+  static_assert(std::is_trivially_copyable_v<MemberComplianceInfo>);
+  MPI_Bcast(&info, int(sizeof info), MPI_BYTE, root, comm);
+  Eigen::MatrixXd S = here ? mine->first.matrix() : Eigen::MatrixXd(Eigen::Index(head[8]),
+                                                                    Eigen::Index(head[9]));
+  MPI_Bcast(S.data(), int(S.size()), MPI_DOUBLE, root, comm);
+  if (here)
+    return *mine;
+  FlankGridSpec g;
+  g.side = head[0] == 0 ? FlankSide::drive : FlankSide::coast;
+  g.n_u = int(head[1]), g.n_v = int(head[2]);
+  g.margin       = head[3];
+  g.graded       = head[4] != 0;
+  g.cyclic_tooth = int(head[5]), g.cyclic_reach = int(head[6]);
+  g.follow_load  = head[7] != 0;
+  g.teeth.assign(head.begin() + 10, head.end());
+  FlankCompliance table(flanks, g);
+  table.set(S);
+  return {std::move(table), info};
+}
+} // namespace
+
+std::vector<std::pair<FlankCompliance, MemberComplianceInfo>>
+member_compliances(const std::vector<MemberJob> &jobs, MPI_Comm comm)
+{
+  namespace mpi    = dealii::Utilities::MPI;
+  const int   rank = int(mpi::this_mpi_process(comm));
+  const int   size = int(mpi::n_mpi_processes(comm));
+  const int   groups = int(std::min<std::size_t>(jobs.size(), std::size_t(size)));
+  const auto  run    = [&](std::size_t k, MPI_Comm c, double memory) {
+    MemberComplianceInfo info;
+    FlankCompliance      table = jobs[k].compute(c, memory, info);
+    info.processes             = int(mpi::n_mpi_processes(c));
+    return MemberResult(std::move(table), info);
+  };
+  std::vector<MemberResult> out;
+  if (groups <= 1)
+    {
+      for (std::size_t k = 0; k < jobs.size(); ++k)
+        out.push_back(run(k, comm, 0));
+      return out;
+    }
+
+  // 1. The groups, and each group's share of its machine's available memory.
+  const int color = rank % groups;
+  MPI_Comm  group, machine, machine_group;
+  MPI_Comm_split(comm, color, rank, &group);
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &machine);
+  MPI_Comm_split(machine, color, rank, &machine_group);
+  const double share = memory_available_now() * mpi::n_mpi_processes(machine_group) /
+                       mpi::n_mpi_processes(machine);
+  MPI_Comm_free(&machine_group);
+  MPI_Comm_free(&machine);
+
+  // 2. Every group its jobs, at once.
+  enum Status : int
+  {
+    done,
+    refused, // for want of memory on the group: again on all processes
+    bad_input,
+    error
+  };
+  std::vector<std::optional<MemberResult>> mine(jobs.size());
+  std::vector<int>                         status(jobs.size(), done);
+  std::vector<std::string>                 message(jobs.size());
+  for (std::size_t k = std::size_t(color); k < jobs.size(); k += std::size_t(groups))
+    try
+      {
+        mine[k] = run(k, group, share);
+      }
+    catch (const MemoryRefusal &e)
+      {
+        status[k] = refused, message[k] = e.what();
+      }
+    catch (const InputError &e)
+      {
+        status[k] = bad_input, message[k] = e.what();
+      }
+    catch (const std::exception &e)
+      {
+        status[k] = error, message[k] = e.what();
+      }
+  MPI_Comm_free(&group);
+
+  // 3. Each job's outcome from its group's first process (rank k modulo the groups) to all.
+  std::vector<std::optional<MemberResult>> results(jobs.size());
+  for (std::size_t k = 0; k < jobs.size(); ++k)
+    {
+      const int root = int(k % std::size_t(groups));
+      MPI_Bcast(&status[k], 1, MPI_INT, root, comm);
+      if (status[k] == done)
+        results[k] = broadcast_result(*jobs[k].flanks, mine[k], root, comm);
+      else
+        message[k] = mpi::broadcast(comm, message[k], root);
+    }
+  for (std::size_t k = 0; k < jobs.size(); ++k)
+    if (status[k] == bad_input)
+      throw InputError(message[k]);
+    else if (status[k] == error)
+      throw std::runtime_error(message[k]);
+
+  // 4. Jobs refused for memory on a group: on all processes, one after another.
+  for (std::size_t k = 0; k < jobs.size(); ++k)
+    {
+      if (status[k] == refused)
+        results[k] = run(k, comm, 0);
+      out.push_back(std::move(*results[k]));
+    }
+  return out;
 }
 } // namespace gearkit

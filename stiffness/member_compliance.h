@@ -54,6 +54,9 @@ struct MemberComplianceOptions
   /// The processes that share the finite elements: the first meshes the segment (gmsh), all
   /// solve it together; every process receives the whole table.
   MPI_Comm communicator = MPI_COMM_WORLD;
+  /// Memory the finite elements may take on each machine [bytes]; 0: what it has available
+  /// (ElasticSegmentOptions::memory_available).
+  double   memory_available = 0;
   unsigned threads      = 0; ///< threads per process for the unit loads; 0: the hardware's
   /// Told what comes next ("meshing", "assembly and factorisation, 103095 dofs", "189 unit
   /// loads"): a progress line's note (base/progress.h); may be empty.
@@ -73,6 +76,8 @@ struct MemberComplianceInfo
   /// option where the body comes back across a point's normal or a held face is near).
   double min_near_field_radius = 0;
   double mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
+  /// The processes that computed the table (member_compliances: a group's or all).
+  int processes = 1;
 };
 
 /// The segment a member needs: the teeth of the pairs that stand within `gap_band` of contact
@@ -110,6 +115,25 @@ FlankCompliance
 member_compliance(const MemberFlanks &flanks, const std::string &name, const SegmentMesher &mesher,
                   double flank_size, const MemberComplianceOptions &options,
                   MemberComplianceInfo *info = nullptr);
+
+/// One member's table for member_compliances: its flanks, and how to compute it on the given
+/// processes within the given memory per machine (as options.communicator and
+/// options.memory_available of member_compliance).
+struct MemberJob
+{
+  const MemberFlanks *flanks = nullptr;
+  std::function<FlankCompliance(MPI_Comm, double memory, MemberComplianceInfo &)> compute;
+};
+
+/// The members' tables, each on every process of `comm`. On one process one after another. On
+/// several, at once: the processes split into min(jobs, processes) groups (job k on the group
+/// of the processes whose rank is k modulo that count), each with its share of its machine's
+/// available memory (its processes there over the machine's), and each table is then sent from
+/// its group to every process. A job its group refuses for want of memory (MemoryRefusal) is
+/// computed again on all processes with all the memory. An InputError of any job is thrown on
+/// every process (the lowest failed job's), after every group has finished.
+std::vector<std::pair<FlankCompliance, MemberComplianceInfo>>
+member_compliances(const std::vector<MemberJob> &jobs, MPI_Comm comm);
 
 /// On a gmsh tooth segment of the involute gear (options.mesh; flank size default m_n / 5).
 FlankCompliance

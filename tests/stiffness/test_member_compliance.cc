@@ -60,6 +60,8 @@ protected:
 };
 } // namespace
 
+// The tables shared by all processes, and computed at once by member_compliances' groups
+// (under mpirun -np 2 one process a member), equal those of one process alone.
 TEST_F(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
 {
   const UnloadedTca &tca  = this->tca();
@@ -88,6 +90,22 @@ TEST_F(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
   const FlankCompliance g_all = member(*gear, *gf, segments.second, MPI_COMM_WORLD, shared);
   const FlankCompliance p_one = member(*pinion, *pf, segments.first, MPI_COMM_SELF, alone);
   const FlankCompliance g_one = member(*gear, *gf, segments.second, MPI_COMM_SELF, alone);
+  const auto at_once = member_compliances(
+      {{pf.get(),
+        [&](MPI_Comm comm, double, MemberComplianceInfo &) {
+          return member(*pinion, *pf, segments.first, comm, base + "-at-once");
+        }},
+       {gf.get(),
+        [&](MPI_Comm comm, double, MemberComplianceInfo &) {
+          return member(*gear, *gf, segments.second, comm, base + "-at-once");
+        }}},
+      MPI_COMM_WORLD);
+  ASSERT_EQ(at_once.size(), 2u);
+  for (const auto &[table, info] : at_once)
+    EXPECT_EQ(info.processes, int(size) / int(std::min(size, 2u)));
+  EXPECT_LT((at_once[0].first.matrix() - p_one.matrix()).norm(), 1e-9 * p_one.matrix().norm());
+  EXPECT_LT((at_once[1].first.matrix() - g_one.matrix()).norm(), 1e-9 * g_one.matrix().norm());
+  EXPECT_EQ(at_once[1].first.grid_spec().teeth, g_one.grid_spec().teeth);
   ASSERT_EQ(p_all.matrix().rows(), p_one.matrix().rows());
   EXPECT_LT((p_all.matrix() - p_one.matrix()).norm(), 1e-9 * p_one.matrix().norm());
   EXPECT_LT((g_all.matrix() - g_one.matrix()).norm(), 1e-9 * g_one.matrix().norm());
@@ -269,4 +287,77 @@ TEST_F(MemberCompliance, MiddleToothTableReadForEveryToothTurned)
   EXPECT_FALSE(middle.covers(turn(2))); // can carry load: the loaded teeth, as without
   EXPECT_FALSE(every.covers(turn(2)));
   EXPECT_THROW(middle(c, d.u_min, d.v_min, turn(3), d.u_min, d.v_min), InputError);
+}
+
+// member_compliances' bookkeeping with jobs that make their tables directly: each table reaches
+// every process from its group; a member refused for want of memory on its group (here: on
+// fewer than all processes) is computed again on all of them with all the memory; the groups
+// each get a share of the memory; an InputError of one group's member is thrown on every
+// process, once both groups are done.
+TEST_F(MemberCompliance, MembersAtOnceShareTablesRetryRefusalsAndShareErrors)
+{
+  const int    size = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
+  const double have = memory_available_now();
+  FlankGridSpec spec;
+  spec.teeth = {segments.first.central};
+  spec.n_u = 3, spec.n_v = 2;
+  std::vector<double> first_memory(2, -1), last_memory(2, -1); // each job's tries
+  auto job = [&](int k, bool refuse_on_a_group, bool bad) {
+    return MemberJob{pf.get(), [this, k, refuse_on_a_group, bad, size, spec, &first_memory,
+                                &last_memory](MPI_Comm comm, double memory,
+                                              MemberComplianceInfo &info) {
+                       const int n = int(dealii::Utilities::MPI::n_mpi_processes(comm));
+                       if (first_memory[std::size_t(k)] < 0)
+                         first_memory[std::size_t(k)] = memory;
+                       last_memory[std::size_t(k)] = memory;
+                       if (bad)
+                         throw InputError("job " + std::to_string(k) + ": bad input");
+                       if (refuse_on_a_group && n < size)
+                         throw MemoryRefusal("job " + std::to_string(k) + ": too large");
+                       FlankCompliance table(*pf, spec);
+                       table.set(Eigen::MatrixXd::Constant(Eigen::Index(table.points().size()),
+                                                           Eigen::Index(table.load_points().size()),
+                                                           k + 1.0 + n));
+                       info.dofs = std::size_t(100 + k);
+                       return table;
+                     }};
+  };
+  const auto tables = member_compliances({job(0, false, false), job(1, true, false)},
+                                         MPI_COMM_WORLD);
+  ASSERT_EQ(tables.size(), 2u);
+  const int group = size > 1 ? size / 2 : 1;
+  EXPECT_EQ(tables[0].second.processes, group);
+  EXPECT_EQ(tables[1].second.processes, size);
+  EXPECT_EQ(tables[0].second.dofs, 100u);
+  EXPECT_EQ(tables[1].second.dofs, 101u);
+  EXPECT_EQ(tables[0].first.matrix().maxCoeff(), 1.0 + group);
+  EXPECT_EQ(tables[0].first.matrix().minCoeff(), 1.0 + group);
+  EXPECT_EQ(tables[1].first.matrix().minCoeff(), 2.0 + size);
+  EXPECT_EQ(tables[1].first.grid_spec().teeth, spec.teeth);
+  EXPECT_EQ(tables[1].first.points().size(), 6u);
+  if (size > 1)
+    {
+      // this process's group computed job rank % 2 with about half of the machine's memory; the
+      // refused job's second try on all processes measures the memory itself (0)
+      const double mine = first_memory[dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) % 2];
+      if (have > 0)
+        {
+          EXPECT_GT(mine, 0.3 * have);
+          EXPECT_LT(mine, 0.7 * have);
+        }
+      EXPECT_EQ(last_memory[1], 0);
+    }
+  else
+    EXPECT_EQ(last_memory[0], 0);
+
+  // the second member's group fails: every process throws its message
+  try
+    {
+      member_compliances({job(0, false, false), job(1, false, true)}, MPI_COMM_WORLD);
+      ADD_FAILURE() << "no InputError";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_EQ(std::string(e.what()), "job 1: bad input");
+    }
 }

@@ -2,6 +2,7 @@
 // refinements), to choose the direct solver's settings. Run-time PETSc options apply, e.g.
 //   PETSC_OPTIONS="-gearkit_mat_mumps_icntl_7 5" build/bench_fe_factorisation 2 1
 // usage: bench_fe_factorisation [degree=2] [refinements=0] [elements per side=12]
+#include "base/blas_kernels.h"
 #include "meshes/box.h"
 #include "stiffness/elastic_segment.h"
 
@@ -18,6 +19,7 @@ using namespace gearkit;
 int
 main(int argc, char **argv)
 {
+  gearkit::use_fitting_blas_kernels(argv); // before MPI: may run the program again
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const unsigned                           degree = argc > 1 ? unsigned(std::atoi(argv[1])) : 2;
   const unsigned                           refine = argc > 2 ? unsigned(std::atoi(argv[2])) : 0;

@@ -5,6 +5,7 @@
 //                                [depth in elements = 3] [cells across = 17] [cells along = 24]
 //                                [pair: fzg | pe62] [segment teeth at least = 3] [cuts: held|free]
 // pe62: the 62/62 spur pair of reference-data.md section 4 (m 2 mm, b 20 mm, alpha 20 deg).
+#include "base/blas_kernels.h"
 #include "stiffness/loaded_contact.h"
 #include "stiffness/member_compliance.h"
 #include "tests/fzg_c_pair.h"
@@ -22,6 +23,7 @@ using namespace gearkit;
 int
 main(int argc, char **argv)
 {
+  gearkit::use_fitting_blas_kernels(argv); // before MPI: may run the program again
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const double                             size_factor = argc > 1 ? std::atof(argv[1]) : 0.2;
   const int                                positions   = argc > 2 ? std::atoi(argv[2]) : 20;

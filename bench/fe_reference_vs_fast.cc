@@ -10,6 +10,7 @@
 //          [fast response depth in elements = 3] [fast other flanks and fillets size / m_n = same]
 //          [fast near field: 0 response depth, 1 analytic = 0] [near-field radius / m_n = 2]
 //          [fast load grid: 0 uniform, 1 graded towards the flank's edges = 1]
+#include "base/blas_kernels.h"
 #include "stiffness/loaded_contact.h"
 #include "stiffness/member_compliance.h"
 #include "stiffness/reference_contact.h"
@@ -37,6 +38,7 @@ seconds_since(std::chrono::steady_clock::time_point t0)
 int
 main(int argc, char **argv)
 {
+  gearkit::use_fitting_blas_kernels(argv); // before MPI: may run the program again
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
 
   const int    positions = argc > 1 ? std::atoi(argv[1]) : 20;

@@ -1,6 +1,7 @@
 // Reference mode on the Hertz line contact (two cylinder slices, plane strain): half-width and
 // peak pressure against the exact solution for a sequence of element sizes at the contact, with
 // the observed convergence rate. usage: bench_hertz_convergence [degree = 2]
+#include "base/blas_kernels.h"
 #include "stiffness/hertz_reference.h"
 
 #include <deal.II/base/mpi.h>
@@ -15,6 +16,7 @@ using namespace gearkit;
 int
 main(int argc, char **argv)
 {
+  gearkit::use_fitting_blas_kernels(argv); // before MPI: may run the program again
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const int                                degree = argc > 1 ? std::atoi(argv[1]) : 2;
   std::filesystem::create_directories("/tmp/gearkit-bench-hertz");

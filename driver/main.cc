@@ -1,4 +1,5 @@
 // gearkit: one executable, one scene file. See `gearkit --help`.
+#include "base/blas_kernels.h"
 #include "base/progress.h"
 #include "driver/driver.h"
 
@@ -10,6 +11,8 @@
 int
 main(int argc, char **argv)
 {
+  // OpenBLAS's fast kernels where it fell back to generic ones (may run the program again)
+  gearkit::use_fitting_blas_kernels(argv);
   // MPI and PETSc for the finite-element stages (a single process unless run under mpirun).
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   // On a terminal the log's lines wipe the progress line they would run into.

@@ -157,7 +157,8 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
                               MemberComplianceOptions o = mo;
                               o.communicator            = comm;
                               o.memory_available        = memory;
-                              FlankCompliance table = compliance_table(pair, flanks, is_pinion, o, &info);
+                              FlankCompliance table =
+                                  compliance_table(pair, flanks, is_pinion, o, &info);
                               progress.advance();
                               return table;
                             }});
@@ -345,6 +346,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.pinion_material = lo.gear_material = fe.material;
       lo.covered      = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
       lo.threads      = cores_per_process();
+      lo.communicator = MPI_COMM_WORLD; // the positions shared among the processes
       const H5Group g = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
       const UnloadedTca      theory(members.pinion, members.gear, members.assembly, tca.options);

@@ -323,7 +323,6 @@ memory_available_now()
   return 0;
 }
 
-
 struct ElasticSegment::Impl
 {
   MPI_Comm              comm;

@@ -3,7 +3,10 @@
 #include "base/parallel.h"
 #include "stiffness/contact_solver.h"
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
+#include <array>
 #include <mutex>
 #include <sstream>
 
@@ -174,46 +177,107 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   for (const TcaPosition &p : positions)
     for (std::size_t s = 0; s < c.slots; ++s)
       c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
-  // Every (torque, position) on its own, on a few threads.
-  std::vector<std::vector<LoadedPosition>> results(
-      static_cast<std::size_t>(m), std::vector<LoadedPosition>(static_cast<std::size_t>(n)));
-  std::mutex progress;
-  parallel_for(std::size_t(m * n), lo.threads, [&](std::size_t job) {
-    results[job / std::size_t(n)][job % std::size_t(n)] = loaded_contact(
-        t, positions[job % std::size_t(n)], torques[job / std::size_t(n)], lo, sp, sg);
-    if (step)
-      {
-        const std::lock_guard<std::mutex> lock(progress);
-        step();
-      }
-  });
-  for (const auto &torque : results)
-    for (const LoadedPosition &r : torque)
-      c.cells = std::max(c.cells, r.cells.size());
+  // Every (torque, position) on its own: job j on process j modulo the processes, each
+  // process's jobs on a few threads; what the tables need of each sent to every process.
+  struct Solved
+  {
+    double                             eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
+    std::vector<double>                pair_force;
+    std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
+  };
+  const MPI_Comm           comm = lo.communicator;
+  const unsigned           size = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const unsigned           rank = dealii::Utilities::MPI::this_mpi_process(comm);
+  const std::size_t        jobs = std::size_t(m * n);
+  std::vector<std::size_t> mine;
+  for (std::size_t j = rank; j < jobs; j += size)
+    mine.push_back(j);
+  std::vector<Solved> solved(jobs);
+  std::string         failure; // this process's lowest failed job's message
+  std::mutex          progress;
+  try
+    {
+      parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
+        const std::size_t    job = mine[k];
+        const LoadedPosition r   = loaded_contact(t, positions[job % std::size_t(n)],
+                                                  torques[job / std::size_t(n)], lo, sp, sg);
+        Solved              &s   = solved[job];
+        s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
+        s.normal_force = r.normal_force, s.lever = r.lever;
+        s.pair_force = r.pair_force;
+        for (std::size_t j = 0; j < r.cells.size(); ++j)
+          {
+            const ContactCell &cell = r.cells[j];
+            s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1,
+                                r.force[Eigen::Index(j)] / (cell.ds * cell.dt)}});
+          }
+        if (step)
+          {
+            const std::lock_guard<std::mutex> lock(progress);
+            step();
+          }
+      });
+    }
+  catch (const std::exception &e)
+    {
+      failure = e.what();
+      if (size == 1)
+        throw;
+    }
+  if (size > 1)
+    {
+      // a failure on any process is thrown on all (the first process's with one)
+      for (const std::string &message : dealii::Utilities::MPI::all_gather(comm, failure))
+        if (!message.empty())
+          throw InputError(message);
+      std::vector<double> payload;
+      for (const std::size_t job : mine)
+        {
+          const Solved &s = solved[job];
+          payload.insert(payload.end(),
+                         {double(job), s.eL, s.mesh_stiffness, s.normal_force, s.lever,
+                          double(s.pair_force.size()), double(s.cells.size())});
+          payload.insert(payload.end(), s.pair_force.begin(), s.pair_force.end());
+          for (const auto &cell : s.cells)
+            payload.insert(payload.end(), cell.begin(), cell.end());
+        }
+      for (const std::vector<double> &from : dealii::Utilities::MPI::all_gather(comm, payload))
+        for (std::size_t at = 0; at < from.size();)
+          {
+            Solved &s = solved[std::size_t(from[at])];
+            s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
+            s.normal_force = from[at + 3], s.lever = from[at + 4];
+            const auto slots = std::size_t(from[at + 5]), cells = std::size_t(from[at + 6]);
+            at += 7;
+            s.pair_force.assign(from.begin() + long(at), from.begin() + long(at + slots));
+            at += slots;
+            s.cells.resize(cells);
+            for (auto &cell : s.cells)
+              for (double &x : cell)
+                x = from[at++];
+          }
+    }
+  for (const Solved &s : solved)
+    c.cells = std::max(c.cells, s.cells.size());
   for (int i = 0; i < n; ++i)
     c.pinion_angle.push_back(positions[i].pinion_angle),
         c.unloaded_te.push_back(positions[i].transmission_error);
-  for (int k = 0; k < m; ++k)
-    for (int i = 0; i < n; ++i)
-      {
-        const LoadedPosition &r = results[k][i];
-        c.loaded_te.push_back(r.eL), c.mesh_stiffness.push_back(r.mesh_stiffness);
-        c.normal_force.push_back(r.normal_force), c.lever.push_back(r.lever);
-        for (std::size_t s = 0; s < c.slots; ++s)
-          c.pair_force.push_back(s < r.pair_force.size() ? r.pair_force[s] : 0.0);
-        double p_max = 0;
-        for (std::size_t j = 0; j < c.cells; ++j)
-          {
-            const bool         used = j < r.cells.size();
-            const ContactCell  none;
-            const ContactCell &cell = used ? r.cells[j] : none;
-            const double       p    = used ? r.force[Eigen::Index(j)] / (cell.ds * cell.dt) : 0.0;
-            p_max                   = std::max(p_max, p);
-            c.cell_pressure.insert(c.cell_pressure.end(),
-                                   {used ? double(cell.pinion_tooth) : -1.0, cell.u1, cell.v1, p});
-          }
-        c.peak_pressure.push_back(p_max);
-      }
+  for (const Solved &r : solved) // torque-major, as the jobs
+    {
+      c.loaded_te.push_back(r.eL), c.mesh_stiffness.push_back(r.mesh_stiffness);
+      c.normal_force.push_back(r.normal_force), c.lever.push_back(r.lever);
+      for (std::size_t s = 0; s < c.slots; ++s)
+        c.pair_force.push_back(s < r.pair_force.size() ? r.pair_force[s] : 0.0);
+      double p_max = 0;
+      for (std::size_t j = 0; j < c.cells; ++j)
+        {
+          const std::array<double, 4>  unused{{-1.0, 0.0, 0.0, 0.0}};
+          const std::array<double, 4> &cell = j < r.cells.size() ? r.cells[j] : unused;
+          p_max                             = std::max(p_max, cell[3]);
+          c.cell_pressure.insert(c.cell_pressure.end(), cell.begin(), cell.end());
+        }
+      c.peak_pressure.push_back(p_max);
+    }
   c.mean_pairs_in_contact = touching / n;
   return c;
 }

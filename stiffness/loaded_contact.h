@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <mpi.h>
 #include <vector>
 
 namespace gearkit
@@ -36,6 +37,9 @@ struct LoadedContactOptions
   /// Positions loaded_contact_cycle solves at once (threads; the results do not depend on it);
   /// 0: as many as the hardware runs.
   unsigned threads = 0;
+  /// The processes loaded_contact_cycle shares the positions among (each solves every size-th
+  /// (torque, position), every process receives all); MPI_COMM_SELF: this process alone.
+  MPI_Comm communicator = MPI_COMM_SELF;
 };
 
 struct LoadedPosition

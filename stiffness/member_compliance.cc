@@ -355,12 +355,12 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
 
   t0 = std::chrono::steady_clock::now();
   ElasticSegmentOptions eo;
-  eo.degree       = o.degree;
-  eo.material     = o.material;
-  eo.communicator      = o.communicator;
-  eo.memory_available  = o.memory_available;
-  eo.threads           = o.threads;
-  eo.clamped      = {boundary::bore};
+  eo.degree           = o.degree;
+  eo.material         = o.material;
+  eo.communicator     = o.communicator;
+  eo.memory_available = o.memory_available;
+  eo.threads          = o.threads;
+  eo.clamped          = {boundary::bore};
   if (o.hold_cuts && !segment.whole)
     eo.clamped.insert({boundary::cut_start, boundary::cut_end});
   // the loaded flanks on their exact surfaces (refined vertices, the near field's traction)
@@ -418,25 +418,32 @@ MemberResult
 broadcast_result(const MemberFlanks &flanks, const std::optional<MemberResult> &mine, int root,
                  MPI_Comm comm)
 {
-  namespace mpi            = dealii::Utilities::MPI;
-  const bool          here = int(mpi::this_mpi_process(comm)) == root;
-  std::vector<double> head; // the grid specification and the matrix's size, then the teeth
+  namespace mpi             = dealii::Utilities::MPI;
+  const bool           here = int(mpi::this_mpi_process(comm)) == root;
+  std::vector<double>  head; // the grid specification and the matrix's size, then the teeth
   MemberComplianceInfo info;
   if (here)
     {
       const FlankGridSpec   &g = mine->first.grid_spec();
       const Eigen::MatrixXd &S = mine->first.matrix();
-      head = {double(g.side == FlankSide::drive ? 0 : 1), double(g.n_u), double(g.n_v),
-              g.margin, double(g.graded), double(g.cyclic_tooth), double(g.cyclic_reach),
-              double(g.follow_load), double(S.rows()), double(S.cols())};
+      head                     = {double(g.side == FlankSide::drive ? 0 : 1),
+                                  double(g.n_u),
+                                  double(g.n_v),
+                                  g.margin,
+                                  double(g.graded),
+                                  double(g.cyclic_tooth),
+                                  double(g.cyclic_reach),
+                                  double(g.follow_load),
+                                  double(S.rows()),
+                                  double(S.cols())};
       head.insert(head.end(), g.teeth.begin(), g.teeth.end());
       info = mine->second;
     }
   head = mpi::broadcast(comm, head, root);
   static_assert(std::is_trivially_copyable_v<MemberComplianceInfo>);
   MPI_Bcast(&info, int(sizeof info), MPI_BYTE, root, comm);
-  Eigen::MatrixXd S = here ? mine->first.matrix() : Eigen::MatrixXd(Eigen::Index(head[8]),
-                                                                    Eigen::Index(head[9]));
+  Eigen::MatrixXd S =
+      here ? mine->first.matrix() : Eigen::MatrixXd(Eigen::Index(head[8]), Eigen::Index(head[9]));
   MPI_Bcast(S.data(), int(S.size()), MPI_DOUBLE, root, comm);
   if (here)
     return *mine;
@@ -446,7 +453,7 @@ broadcast_result(const MemberFlanks &flanks, const std::optional<MemberResult> &
   g.margin       = head[3];
   g.graded       = head[4] != 0;
   g.cyclic_tooth = int(head[5]), g.cyclic_reach = int(head[6]);
-  g.follow_load  = head[7] != 0;
+  g.follow_load = head[7] != 0;
   g.teeth.assign(head.begin() + 10, head.end());
   FlankCompliance table(flanks, g);
   table.set(S);
@@ -457,11 +464,11 @@ broadcast_result(const MemberFlanks &flanks, const std::optional<MemberResult> &
 std::vector<std::pair<FlankCompliance, MemberComplianceInfo>>
 member_compliances(const std::vector<MemberJob> &jobs, MPI_Comm comm)
 {
-  namespace mpi    = dealii::Utilities::MPI;
-  const int   rank = int(mpi::this_mpi_process(comm));
-  const int   size = int(mpi::n_mpi_processes(comm));
-  const int   groups = int(std::min<std::size_t>(jobs.size(), std::size_t(size)));
-  const auto  run    = [&](std::size_t k, MPI_Comm c, double memory) {
+  namespace mpi     = dealii::Utilities::MPI;
+  const int  rank   = int(mpi::this_mpi_process(comm));
+  const int  size   = int(mpi::n_mpi_processes(comm));
+  const int  groups = int(std::min<std::size_t>(jobs.size(), std::size_t(size)));
+  const auto run    = [&](std::size_t k, MPI_Comm c, double memory) {
     MemberComplianceInfo info;
     FlankCompliance      table = jobs[k].compute(c, memory, info);
     info.processes             = int(mpi::n_mpi_processes(c));
@@ -481,8 +488,8 @@ member_compliances(const std::vector<MemberJob> &jobs, MPI_Comm comm)
   MPI_Comm_split(comm, color, rank, &group);
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &machine);
   MPI_Comm_split(machine, color, rank, &machine_group);
-  const double share = memory_available_now() * mpi::n_mpi_processes(machine_group) /
-                       mpi::n_mpi_processes(machine);
+  const double share =
+      memory_available_now() * mpi::n_mpi_processes(machine_group) / mpi::n_mpi_processes(machine);
   MPI_Comm_free(&machine_group);
   MPI_Comm_free(&machine);
 

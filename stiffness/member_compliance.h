@@ -57,7 +57,7 @@ struct MemberComplianceOptions
   /// Memory the finite elements may take on each machine [bytes]; 0: what it has available
   /// (ElasticSegmentOptions::memory_available).
   double   memory_available = 0;
-  unsigned threads      = 0; ///< threads per process for the unit loads; 0: the hardware's
+  unsigned threads          = 0; ///< threads per process for the unit loads; 0: the hardware's
   /// Told what comes next ("meshing", "assembly and factorisation, 103095 dofs", "189 unit
   /// loads"): a progress line's note (base/progress.h); may be empty.
   std::function<void(const std::string &)> on_phase;
@@ -121,8 +121,9 @@ member_compliance(const MemberFlanks &flanks, const std::string &name, const Seg
 /// options.memory_available of member_compliance).
 struct MemberJob
 {
+  using Compute = std::function<FlankCompliance(MPI_Comm, double memory, MemberComplianceInfo &)>;
   const MemberFlanks *flanks = nullptr;
-  std::function<FlankCompliance(MPI_Comm, double memory, MemberComplianceInfo &)> compute;
+  Compute             compute;
 };
 
 /// The members' tables, each on every process of `comm`. On one process one after another. On

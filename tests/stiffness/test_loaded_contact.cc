@@ -242,3 +242,34 @@ TEST(LoadedContact, MisalignedPairLoadsOneEndOfTheFace)
   EXPECT_GT(peak, 1.3 * peak_aligned);
   EXPECT_LT(r.mesh_stiffness, 0.9 * aligned.mesh_stiffness);
 }
+
+// A mesh cycle shared among the processes (every size-th torque and position on each, gathered
+// on all; stiffness_mpi_np2 runs it on two) equals the one of this process alone, entry by
+// entry; a position refused on one process is refused on all.
+TEST(LoadedContact, MeshCycleSharedAmongProcessesEqualsOneProcessAlone)
+{
+  const SpurPair             s;
+  const StructuralCompliance spring = [](const ContactCell &a, const ContactCell &b) {
+    return a.pair == b.pair ? 2e-11 : 0.0;
+  };
+  LoadedContactOptions alone;
+  alone.threads               = 1;
+  LoadedContactOptions shared = alone;
+  shared.communicator         = MPI_COMM_WORLD;
+  const MeshCycleContact a    = loaded_contact_cycle(*s.tca, 7, {150, 300}, alone, spring, rigid);
+  const MeshCycleContact b    = loaded_contact_cycle(*s.tca, 7, {150, 300}, shared, spring, rigid);
+  EXPECT_EQ(a.slots, b.slots);
+  EXPECT_EQ(a.cells, b.cells);
+  EXPECT_EQ(a.loaded_te, b.loaded_te);
+  EXPECT_EQ(a.mesh_stiffness, b.mesh_stiffness);
+  EXPECT_EQ(a.normal_force, b.normal_force);
+  EXPECT_EQ(a.lever, b.lever);
+  EXPECT_EQ(a.pair_force, b.pair_force);
+  EXPECT_EQ(a.peak_pressure, b.peak_pressure);
+  EXPECT_EQ(a.cell_pressure, b.cell_pressure);
+  EXPECT_EQ(a.mesh_stiffness.size(), 14u);
+  for (std::size_t i = 0; i < 7; ++i)
+    EXPECT_GT(a.mesh_stiffness[i], 0); // no empty entry
+  // a negative torque is refused, on every process (with two, only the first solves it: job 2)
+  EXPECT_THROW(loaded_contact_cycle(*s.tca, 1, {150, 300, -1}, shared, spring, rigid), InputError);
+}

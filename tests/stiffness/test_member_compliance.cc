@@ -90,16 +90,16 @@ TEST_F(MemberCompliance, SameTableAndMeshStiffnessOnAllProcessesAsOnOne)
   const FlankCompliance g_all = member(*gear, *gf, segments.second, MPI_COMM_WORLD, shared);
   const FlankCompliance p_one = member(*pinion, *pf, segments.first, MPI_COMM_SELF, alone);
   const FlankCompliance g_one = member(*gear, *gf, segments.second, MPI_COMM_SELF, alone);
-  const auto at_once = member_compliances(
-      {{pf.get(),
-        [&](MPI_Comm comm, double, MemberComplianceInfo &) {
-          return member(*pinion, *pf, segments.first, comm, base + "-at-once");
-        }},
-       {gf.get(),
-        [&](MPI_Comm comm, double, MemberComplianceInfo &) {
-          return member(*gear, *gf, segments.second, comm, base + "-at-once");
-        }}},
-      MPI_COMM_WORLD);
+  const auto            at_once =
+      member_compliances({{pf.get(),
+                           [&](MPI_Comm comm, double, MemberComplianceInfo &) {
+                             return member(*pinion, *pf, segments.first, comm, base + "-at-once");
+                           }},
+                          {gf.get(),
+                           [&](MPI_Comm comm, double, MemberComplianceInfo &) {
+                             return member(*gear, *gf, segments.second, comm, base + "-at-once");
+                           }}},
+                         MPI_COMM_WORLD);
   ASSERT_EQ(at_once.size(), 2u);
   for (const auto &[table, info] : at_once)
     EXPECT_EQ(info.processes, int(size) / int(std::min(size, 2u)));
@@ -296,16 +296,16 @@ TEST_F(MemberCompliance, MiddleToothTableReadForEveryToothTurned)
 // process, once both groups are done.
 TEST_F(MemberCompliance, MembersAtOnceShareTablesRetryRefusalsAndShareErrors)
 {
-  const int    size = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
-  const double have = memory_available_now();
+  const int     size = int(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
+  const double  have = memory_available_now();
   FlankGridSpec spec;
   spec.teeth = {segments.first.central};
   spec.n_u = 3, spec.n_v = 2;
   std::vector<double> first_memory(2, -1), last_memory(2, -1); // each job's tries
-  auto job = [&](int k, bool refuse_on_a_group, bool bad) {
-    return MemberJob{pf.get(), [this, k, refuse_on_a_group, bad, size, spec, &first_memory,
-                                &last_memory](MPI_Comm comm, double memory,
-                                              MemberComplianceInfo &info) {
+  auto                job = [&](int k, bool refuse_on_a_group, bool bad) {
+    return MemberJob{pf.get(),
+                     [this, k, refuse_on_a_group, bad, size, spec, &first_memory,
+                      &last_memory](MPI_Comm comm, double memory, MemberComplianceInfo &info) {
                        const int n = int(dealii::Utilities::MPI::n_mpi_processes(comm));
                        if (first_memory[std::size_t(k)] < 0)
                          first_memory[std::size_t(k)] = memory;
@@ -316,14 +316,14 @@ TEST_F(MemberCompliance, MembersAtOnceShareTablesRetryRefusalsAndShareErrors)
                          throw MemoryRefusal("job " + std::to_string(k) + ": too large");
                        FlankCompliance table(*pf, spec);
                        table.set(Eigen::MatrixXd::Constant(Eigen::Index(table.points().size()),
-                                                           Eigen::Index(table.load_points().size()),
-                                                           k + 1.0 + n));
+                                                                          Eigen::Index(table.load_points().size()),
+                                                                          k + 1.0 + n));
                        info.dofs = std::size_t(100 + k);
                        return table;
                      }};
   };
-  const auto tables = member_compliances({job(0, false, false), job(1, true, false)},
-                                         MPI_COMM_WORLD);
+  const auto tables =
+      member_compliances({job(0, false, false), job(1, true, false)}, MPI_COMM_WORLD);
   ASSERT_EQ(tables.size(), 2u);
   const int group = size > 1 ? size / 2 : 1;
   EXPECT_EQ(tables[0].second.processes, group);
@@ -339,7 +339,8 @@ TEST_F(MemberCompliance, MembersAtOnceShareTablesRetryRefusalsAndShareErrors)
     {
       // this process's group computed job rank % 2 with about half of the machine's memory; the
       // refused job's second try on all processes measures the memory itself (0)
-      const double mine = first_memory[dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) % 2];
+      const double mine =
+          first_memory[dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) % 2];
       if (have > 0)
         {
           EXPECT_GT(mine, 0.3 * have);

@@ -80,13 +80,8 @@ main(int argc, char **argv)
       const FlankCompliance cg = member(*gear, *gf, segments.second);
       const double          t_fe =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-      };
-      const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
-        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-      };
-      LoadedContactOptions lo;
+      const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cg, false);
+      LoadedContactOptions       lo;
       lo.pinion_material = lo.gear_material = steel;
       lo.cells.cells_across = across, lo.cells.cells_along = along;
       lo.covered   = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };

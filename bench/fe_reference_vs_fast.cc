@@ -99,12 +99,7 @@ main(int argc, char **argv)
       lo.pinion_material = lo.gear_material = steel;
       lo.cells.cells_across = across, lo.cells.cells_along = along;
       lo.covered                    = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
-      const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-      };
-      const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
-        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-      };
+      const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cg, false);
 
       ReferenceContactOptions ro;
       ro.cells          = lo;

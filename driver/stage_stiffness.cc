@@ -286,19 +286,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                                                 Eigen::Index(shape[0])));
         return t;
       };
-      const FlankCompliance cp  = table(*members.pinion, cg, "pinion");
-      const FlankCompliance cgr = table(*members.gear, cg, "gear");
-      auto pinion_compliance    = [](const FlankCompliance &t) -> StructuralCompliance {
-        return [&t](const ContactCell &i, const ContactCell &j) {
-          return t(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-        };
-      };
-      auto gear_compliance = [](const FlankCompliance &t) -> StructuralCompliance {
-        return [&t](const ContactCell &i, const ContactCell &j) {
-          return t(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-        };
-      };
-      const StructuralCompliance sp = pinion_compliance(cp), sg = gear_compliance(cgr);
+      const FlankCompliance      cp  = table(*members.pinion, cg, "pinion");
+      const FlankCompliance      cgr = table(*members.gear, cg, "gear");
+      const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cgr, false);
 
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
@@ -365,8 +355,9 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           const auto step          = [&] { progress.advance(); };
           const MeshCycleError err = mesh_cycle_error(
               fine,
-              loaded_contact_cycle(theory, lc.positions, lc.torques, lo, pinion_compliance(cp2),
-                                   gear_compliance(cgr2), step),
+              loaded_contact_cycle(theory, lc.positions, lc.torques, lo,
+                                   table_compliance(cp2, true), table_compliance(cgr2, false),
+                                   step),
               c, loaded_contact_cycle(theory, lc.positions, lc.torques, half, sp, sg, step));
           const std::size_t n = fine.positions, M = fine.torques;
           const H5Group     e = g.group("error_estimate");

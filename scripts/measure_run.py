@@ -74,7 +74,7 @@ def main(argv):
               f"(all processes), exit {code}", file=sys.stderr)
     if runs > 1:
         print(f"measure_run: median of {runs}: {statistics.median(times):.1f} s, "
-              f"peak memory {max(peaks) / 1e9:.2f} GB", file=sys.stderr)
+              f"peak memory {max(peaks) / 2**30:.2f} GiB", file=sys.stderr)
     sys.exit(status)
 
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace gearkit
@@ -153,6 +154,66 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
         c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
     }
   return c;
+}
+
+Eigen::MatrixXd
+FlankCompliance::matrix(const std::vector<Location> &at) const
+{
+  const Eigen::Index n = Eigen::Index(at.size());
+  Eigen::MatrixXd    M(n, n);
+  if (spec.follow_load)
+    {
+      // the load's weights depend on the response's corners: pair by pair
+      for (Eigen::Index i = 0; i < n; ++i)
+        for (Eigen::Index j = 0; j < n; ++j)
+          M(j, i) = (*this)(at[i].tooth, at[i].u, at[i].v, at[j].tooth, at[j].u, at[j].v);
+      return M;
+    }
+  if (S.size() == 0)
+    throw InputError("flank compliance: the table has not been filled");
+  // Without a cyclic tooth each point is read on its own tooth (offset 0). With one, a load is
+  // read on the cyclic tooth and a response on the tooth as far from it as the response's tooth
+  // from the load's: the weights of each point at each such offset, found once.
+  const bool                                       cyclic = spec.cyclic_tooth >= 0;
+  const int                                        reach  = cyclic ? spec.cyclic_reach : 0;
+  std::vector<std::vector<std::optional<Weights>>> cache(
+      std::size_t(2 * reach + 1), std::vector<std::optional<Weights>>(at.size()));
+  auto weights_at = [&](std::size_t k, int offset) -> const Weights & {
+    std::optional<Weights> &w = cache[std::size_t(offset + reach)][k];
+    if (!w)
+      w = weights(cyclic
+                      ? ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth
+                      : at[k].tooth,
+                  at[k].u, at[k].v);
+    return *w;
+  };
+  for (Eigen::Index i = 0; i < n; ++i)
+    {
+      const Weights &wi = weights_at(std::size_t(i), 0);
+      for (Eigen::Index j = 0; j < n; ++j)
+        {
+          int offset = 0;
+          if (cyclic)
+            {
+              offset =
+                  ((at[j].tooth - at[i].tooth) % member_teeth + member_teeth + member_teeth / 2) %
+                      member_teeth -
+                  member_teeth / 2;
+              if (std::abs(offset) > reach)
+                {
+                  (*this)(at[i].tooth, at[i].u, at[i].v, at[j].tooth, at[j].u, at[j].v); // throws
+                  continue;
+                }
+            }
+          const Weights &wj = weights_at(std::size_t(j), offset);
+          double         c  = 0;
+          for (int b = 0; b < 4; ++b) // as operator(), term by term
+            for (int a = 0; a < 4; ++a)
+              c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
+          M(j, i) = c;
+        }
+    }
+  return M;
 }
 
 double

@@ -107,6 +107,17 @@ public:
   /// beyond its reach).
   double
   operator()(int tooth_i, double u_i, double v_i, int tooth_j, double u_j, double v_j) const;
+  /// A point on a member tooth's flank, by its flank parameters.
+  struct Location
+  {
+    int    tooth = 0;
+    double u = 0, v = 0;
+  };
+  /// M(j, i) = operator()(at[i], at[j]) for every pair of the points, the same numbers, with
+  /// each point's interpolation weights found once (per tooth it is read on) instead of per
+  /// pair: what the loaded contact needs at a position.
+  Eigen::MatrixXd
+  matrix(const std::vector<Location> &at) const;
 
 private:
   struct Weights

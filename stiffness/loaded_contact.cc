@@ -12,6 +12,45 @@
 
 namespace gearkit
 {
+StructuralCompliance::StructuralCompliance(Pair pair, Matrix matrix)
+    : pair(std::move(pair))
+    , all(std::move(matrix))
+{
+}
+
+Eigen::MatrixXd
+StructuralCompliance::matrix(const std::vector<ContactCell> &cells) const
+{
+  if (all)
+    return all(cells);
+  const Eigen::Index n = Eigen::Index(cells.size());
+  Eigen::MatrixXd    M(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j)
+      M(j, i) = pair(cells[std::size_t(i)], cells[std::size_t(j)]);
+  return M;
+}
+
+StructuralCompliance
+table_compliance(const FlankCompliance &table, bool pinion)
+{
+  const auto at = [pinion](const ContactCell &c) {
+    return pinion ? FlankCompliance::Location{c.pinion_tooth, c.table_u1, c.table_v1}
+                  : FlankCompliance::Location{c.gear_tooth, c.table_u2, c.table_v2};
+  };
+  return StructuralCompliance(
+      [&table, at](const ContactCell &i, const ContactCell &j) {
+        const FlankCompliance::Location a = at(i), b = at(j);
+        return table(a.tooth, a.u, a.v, b.tooth, b.u, b.v);
+      },
+      [&table, at](const std::vector<ContactCell> &cells) {
+        std::vector<FlankCompliance::Location> points;
+        for (const ContactCell &c : cells)
+          points.push_back(at(c));
+        return table.matrix(points);
+      });
+}
+
 std::vector<ContactCell>
 loaded_cells(const UnloadedTca &tca, const TcaPosition &position, const LoadedContactOptions &o)
 {
@@ -87,17 +126,18 @@ loaded_contact_in_zone(const UnloadedTca &tca, const TcaPosition &position, doub
 {
   std::vector<ContactCell> cells = loaded_cells(tca, position, o);
   const Eigen::Index       n     = Eigen::Index(cells.size());
-  Eigen::MatrixXd          C(n, n);
-  const double             Estar = contact_modulus(o.pinion_material, o.gear_material);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j)
-      {
-        const ContactCell &ci = cells[i], &cj = cells[j];
-        double             c = pinion(ci, cj) + gear(ci, cj);
-        if (o.half_space && ci.pair == cj.pair)
-          c += rectangle_displacement(cj.s - ci.s, cj.t - ci.t, ci.ds / 2, ci.dt / 2, 1.0, Estar);
-        C(j, i) = c;
-      }
+  Eigen::MatrixXd          C     = pinion.matrix(cells);
+  C += gear.matrix(cells);
+  const double Estar = contact_modulus(o.pinion_material, o.gear_material);
+  if (o.half_space)
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j)
+        {
+          const ContactCell &ci = cells[i], &cj = cells[j];
+          if (ci.pair == cj.pair)
+            C(j, i) +=
+                rectangle_displacement(cj.s - ci.s, cj.t - ci.t, ci.ds / 2, ci.dt / 2, 1.0, Estar);
+        }
   LoadedPosition r = solve_loaded_contact(tca, position, torque, std::move(cells), C);
   r.gap_band       = o.cells.gap_band;
   return r;

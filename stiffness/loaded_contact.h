@@ -6,12 +6,14 @@
 #pragma once
 
 #include "stiffness/contact_cells.h"
+#include "stiffness/flank_compliance.h"
 #include "stiffness/half_space.h"
 
 #include <Eigen/Core>
 
 #include <functional>
 #include <mpi.h>
+#include <type_traits>
 #include <vector>
 
 namespace gearkit
@@ -19,9 +21,43 @@ namespace gearkit
 /// Structural compliance of one member [m/N]: normal approach at the response cell (moving
 /// into the member's material) per unit normal force on the load cell, without the local
 /// half-space part. Cells are identified on the member's flank: the pinion by (pinion_tooth,
-/// table_u1, table_v1), the gear by (gear_tooth, table_u2, table_v2).
-using StructuralCompliance =
-    std::function<double(const ContactCell &load, const ContactCell &response)>;
+/// table_u1, table_v1), the gear by (gear_tooth, table_u2, table_v2). Given pair by pair (any
+/// callable), and optionally as the matrix over all the cells of a position at once (faster:
+/// table_compliance).
+class StructuralCompliance
+{
+public:
+  using Pair = std::function<double(const ContactCell &load, const ContactCell &response)>;
+  /// M(j, i): the approach at cells[j] per unit force on cells[i].
+  using Matrix = std::function<Eigen::MatrixXd(const std::vector<ContactCell> &cells)>;
+
+  StructuralCompliance(Pair pair, Matrix matrix);
+  template <class F, std::enable_if_t<std::is_invocable_r_v<double, const F &, const ContactCell &,
+                                                            const ContactCell &>,
+                                      int> = 0>
+  StructuralCompliance(F pair) // NOLINT(google-explicit-constructor): a callable is one
+      : StructuralCompliance(Pair(std::move(pair)), nullptr)
+  {
+  }
+
+  double
+  operator()(const ContactCell &load, const ContactCell &response) const
+  {
+    return pair(load, response);
+  }
+  /// M(j, i) over the cells: the matrix form if given, else pair by pair.
+  Eigen::MatrixXd
+  matrix(const std::vector<ContactCell> &cells) const;
+
+private:
+  Pair   pair;
+  Matrix all;
+};
+
+/// A member's compliance table read at the cells' parameters on the pinion (table_u1, table_v1)
+/// or the gear (table_u2, table_v2); keeps a reference to the table.
+StructuralCompliance
+table_compliance(const FlankCompliance &table, bool pinion);
 
 struct LoadedContactOptions
 {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 using namespace gearkit;
 
 TEST(FlankCompliance, BilinearDataInterpolatedExactly)
@@ -81,6 +83,50 @@ TEST(FlankCompliance, FollowingTheLoadKeepsThePeakAtTheLoad)
   EXPECT_LT(tables[0](0, u, v, 0, u, v), 0.95);
   EXPECT_NEAR(tables[1](0, u, v, 0, u, v), 1, 1e-12);
   EXPECT_NEAR(tables[1](1, u, v, 0, u, v), tables[0](1, u, v, 0, u, v), 1e-15);
+}
+
+// The matrix over all the cells of a position (each point's weights found once) holds the same
+// numbers as reading the table pair by pair, bit for bit: on every tooth, with a cyclic tooth
+// (read for teeth anywhere on the gear, refused beyond its reach) and following the load.
+TEST(FlankCompliance, MatrixOverAllPointsEqualsThePairs)
+{
+  const auto                             gear = InvoluteGear::create(test_data::fzg_c_pair().first);
+  const InvoluteMemberFlanks             flanks(gear);
+  const FlankDomain                      d = flanks.flank(0, FlankSide::drive).domain();
+  std::mt19937                           random(3);
+  std::uniform_real_distribution<double> unit(-0.05, 1.05); // some just beyond the grid
+  for (const int variant : {0, 1, 2})
+    {
+      FlankGridSpec spec;
+      spec.teeth = {15, 0, 1};
+      if (variant == 1)
+        spec.cyclic_tooth = 0, spec.cyclic_reach = 1;
+      spec.follow_load = variant == 2;
+      FlankCompliance table(flanks, spec);
+      Eigen::MatrixXd S(table.points().size(), table.load_points().size());
+      for (Eigen::Index k = 0; k < S.size(); ++k)
+        S.data()[k] = 1e-10 * (1 + unit(random));
+      table.set(S);
+      const std::vector<int> teeth =
+          variant == 1 ? std::vector<int>{7, 8} : std::vector<int>{15, 0, 1};
+      std::vector<FlankCompliance::Location> at;
+      for (int k = 0; k < 12; ++k)
+        at.push_back({teeth[std::size_t(k) % teeth.size()],
+                      d.u_min + unit(random) * (d.u_max - d.u_min),
+                      d.v_min + unit(random) * (d.v_max - d.v_min)});
+      const Eigen::MatrixXd M = table.matrix(at);
+      ASSERT_EQ(M.rows(), 12);
+      for (std::size_t i = 0; i < at.size(); ++i)
+        for (std::size_t j = 0; j < at.size(); ++j)
+          EXPECT_EQ(M(Eigen::Index(j), Eigen::Index(i)),
+                    table(at[i].tooth, at[i].u, at[i].v, at[j].tooth, at[j].u, at[j].v))
+              << variant << ": " << i << " " << j;
+      if (variant == 1)
+        {
+          at.push_back({9, d.u_min, d.v_min}); // two teeth from tooth 7: beyond the reach
+          EXPECT_THROW(table.matrix(at), InputError);
+        }
+    }
 }
 
 TEST(FlankCompliance, HalfSpaceMemberHasNoStructuralPart)

@@ -19,13 +19,8 @@ double
 mesh_stiffness(const UnloadedTca &tca, const TcaPosition &at, const FlankCompliance &cp,
                const FlankCompliance &cg)
 {
-  const StructuralCompliance sp = [&](const ContactCell &i, const ContactCell &j) {
-    return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-  };
-  const StructuralCompliance sg = [&](const ContactCell &i, const ContactCell &j) {
-    return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-  };
-  LoadedContactOptions lo;
+  const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cg, false);
+  LoadedContactOptions       lo;
   lo.pinion_material = lo.gear_material = {206e9, 0.3};
   lo.covered = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
   return loaded_contact(tca, at, 200, lo, sp, sg).mesh_stiffness;

@@ -67,14 +67,8 @@ fast_mode(const InvoluteGear &pinion, const InvoluteGear &gear, const UnloadedTc
   const FlankCompliance cg = table(gear, tca.gear_flanks(), info.gear_segment);
   LoadedContactOptions  lo = o.cells;
   lo.covered               = [&](int p, int g) { return cp.covers(p) && cg.covers(g); };
-  return loaded_contact(
-      tca, position, torque, lo,
-      [&](const ContactCell &i, const ContactCell &j) {
-        return cp(i.pinion_tooth, i.table_u1, i.table_v1, j.pinion_tooth, j.table_u1, j.table_v1);
-      },
-      [&](const ContactCell &i, const ContactCell &j) {
-        return cg(i.gear_tooth, i.table_u2, i.table_v2, j.gear_tooth, j.table_u2, j.table_v2);
-      });
+  return loaded_contact(tca, position, torque, lo, table_compliance(cp, true),
+                        table_compliance(cg, false));
 }
 } // namespace
 

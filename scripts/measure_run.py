@@ -70,7 +70,7 @@ def main(argv):
         status = status or code
         times.append(seconds)
         peaks.append(peak)
-        print(f"measure_run: run {k + 1}: {seconds:.1f} s, peak memory {peak / 1e9:.2f} GB "
+        print(f"measure_run: run {k + 1}: {seconds:.1f} s, peak memory {peak / 2**30:.2f} GiB "
               f"(all processes), exit {code}", file=sys.stderr)
     if runs > 1:
         print(f"measure_run: median of {runs}: {statistics.median(times):.1f} s, "

@@ -1,5 +1,6 @@
 #include "stiffness/elastic_segment.h"
 
+#include "base/blas_kernels.h"
 #include "base/parallel.h"
 #include "meshes/gmsh_session.h"
 
@@ -33,6 +34,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -344,6 +346,7 @@ struct ElasticSegment::Impl
   /// The MUMPS Cholesky factor (the default); null where run-time options chose another solver
   /// (the KSP then solves).
   Mat    factor         = nullptr;
+  bool   out_of_core    = false; ///< the factors in files (factorise: in core they did not fit)
   double factor_seconds = 0;
   double lambda = 0, mu = 0;
 
@@ -744,27 +747,61 @@ ElasticSegment::Impl::factorise(const std::string &file)
   petsc_check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
   petsc_check(MatCholeskyFactorSymbolic(factor, K, nullptr, &info),
               "MatCholeskyFactorSymbolic (MUMPS analysis)");
-  PetscInt most = 0, total = 0; // MB: the largest process's, all processes'
+  // MB: the largest process's and all processes' in core (INFOG(16), (17)), and with the
+  // factors written to files (INFOG(26), (27)); the factors' entries (INFOG(3), negative: in
+  // millions)
+  PetscInt most = 0, total = 0, most_ooc = 0, total_ooc = 0, entries = 0;
   petsc_check(MatMumpsGetInfog(factor, 16, &most), "MatMumpsGetInfog");
   petsc_check(MatMumpsGetInfog(factor, 17, &total), "MatMumpsGetInfog");
+  petsc_check(MatMumpsGetInfog(factor, 26, &most_ooc), "MatMumpsGetInfog");
+  petsc_check(MatMumpsGetInfog(factor, 27, &total_ooc), "MatMumpsGetInfog");
+  petsc_check(MatMumpsGetInfog(factor, 3, &entries), "MatMumpsGetInfog");
   // per machine: its processes (at most the largest's each) against what it has
   const double have =
       options.memory_available > 0 ? options.memory_available : memory_available_now();
   const auto [need, fits] = machine_need(double(most) * 1e6, have, comm);
   if (!fits)
     {
-      const double       short_need = Utilities::MPI::max(need, comm);
-      const double       short_have = Utilities::MPI::min(have, comm);
-      std::ostringstream msg;
-      msg.precision(3);
-      msg << "elastic segment: " << file << " has " << dofs.n_dofs()
-          << " degrees of freedom; its direct factorisation (MUMPS) needs about "
-          << double(total) / 1e3 << " GB (" << short_need / 1e9 << " GB on a machine with "
-          << short_have / 1e9
-          << " GB available). Use coarser elements (fewer refinements, larger flank "
-             "elements), more machines under mpirun, or an iterative solver "
-             "(PETSC_OPTIONS=\"-gearkit_ksp_type cg -gearkit_pc_type gamg\")";
-      throw MemoryRefusal(msg.str());
+      // Out of core: MUMPS keeps only its working space in memory and writes the factors to
+      // files (in MUMPS_OOC_TMPDIR, or -gearkit_mat_mumps_ooc_tmpdir, else /tmp), which every
+      // solve reads back: slower solves, the same numbers. Taken where that fits, memory and
+      // disk (the factors' entries, 8 bytes each, on the disk of every process).
+      const auto [need_ooc, fits_ooc]   = machine_need(double(most_ooc) * 1e6, have, comm);
+      char      dir[PETSC_MAX_PATH_LEN] = "";
+      PetscBool set                     = PETSC_FALSE;
+      petsc_check(PetscOptionsGetString(nullptr, "gearkit_", "-mat_mumps_ooc_tmpdir", dir,
+                                        sizeof dir, &set),
+                  "PetscOptionsGetString");
+      const char       *env         = std::getenv("MUMPS_OOC_TMPDIR");
+      const std::string files       = set ? dir : env ? env : "/tmp";
+      const double      factor_size = 8 * (entries < 0 ? -1e6 * double(entries) : double(entries));
+      std::error_code   error;
+      const double      disk = double(std::filesystem::space(files, error).available);
+      const bool        on_disk =
+          Utilities::MPI::min(!error && disk > 1.1 * factor_size ? 1 : 0, comm) == 1;
+      if (fits_ooc && on_disk)
+        {
+          petsc_check(MatMumpsSetIcntl(factor, 22, 1), "MatMumpsSetIcntl (out of core)");
+          out_of_core = true;
+        }
+      else
+        {
+          const double       short_need = Utilities::MPI::max(need, comm);
+          const double       short_have = Utilities::MPI::min(have, comm);
+          std::ostringstream msg;
+          msg.precision(3);
+          msg << "elastic segment: " << file << " has " << dofs.n_dofs()
+              << " degrees of freedom; its direct factorisation (MUMPS) needs about "
+              << double(total) / 1e3 << " GB (" << short_need / 1e9 << " GB on a machine with "
+              << short_have / 1e9 << " GB available); with its factors out of core "
+              << double(total_ooc) / 1e3 << " GB (" << Utilities::MPI::max(need_ooc, comm) / 1e9
+              << " GB on a machine) and " << factor_size / 1e9 << " GB of files in " << files
+              << " (" << (error ? 0.0 : disk / 1e9)
+              << " GB free). Use coarser elements (fewer refinements, larger flank elements), "
+                 "more machines under mpirun, or an iterative solver "
+                 "(PETSC_OPTIONS=\"-gearkit_ksp_type cg -gearkit_pc_type gamg\")";
+          throw MemoryRefusal(msg.str());
+        }
     }
   petsc_check(MatCholeskyFactorNumeric(factor, K, &info),
               "MatCholeskyFactorNumeric (factorisation: is the body held?)");
@@ -894,6 +931,12 @@ double
 ElasticSegment::factorisation_seconds() const
 {
   return impl->factor_seconds;
+}
+
+bool
+ElasticSegment::factors_out_of_core() const
+{
+  return impl->out_of_core;
 }
 
 std::vector<double>
@@ -1575,6 +1618,8 @@ finite_element_versions()
   std::ostringstream v;
   v << "deal.II " << DEAL_II_PACKAGE_VERSION << ", PETSc " << PETSC_VERSION_MAJOR << '.'
     << PETSC_VERSION_MINOR << '.' << PETSC_VERSION_SUBMINOR << ", gmsh " << gmsh_version();
+  if (const std::string core = blas_core_name(); !core.empty())
+    v << ", OpenBLAS " << core << " kernels";
   return v.str();
 }
 } // namespace gearkit

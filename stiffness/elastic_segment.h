@@ -89,8 +89,10 @@ struct ElasticSegmentOptions
   unsigned threads = 0;
   /// Memory the direct factorisation may take on each machine [bytes]; 0: what the machine
   /// has available now (MemAvailable). Before factorising, MUMPS's analysis estimates its need
-  /// (per process, times the processes on the machine); a body that would not fit is refused
-  /// (MemoryRefusal with the estimate) instead of being killed for want of memory half way.
+  /// (per process, times the processes on the machine); where the factorisation does not fit
+  /// in memory but does with its factors in files (out of core), it is done so; a body that
+  /// would not fit either way is refused (MemoryRefusal with the estimates) instead of being
+  /// killed for want of memory half way.
   double memory_available = 0;
 };
 
@@ -119,8 +121,8 @@ struct NearFieldLoad
   double inner = 0, outer = 0;
 };
 
-/// The libraries the finite elements run on, with their versions ("deal.II 9.4.0, PETSc 3.18.4,
-/// gmsh 4.8.4").
+/// The libraries the finite elements run on, with their versions, and OpenBLAS's kernels
+/// ("deal.II 9.4.0, PETSc 3.18.4, gmsh 4.8.4, OpenBLAS SkylakeX kernels").
 std::string
 finite_element_versions();
 
@@ -186,6 +188,10 @@ public:
   dofs() const;
   double
   factorisation_seconds() const;
+  /// Whether MUMPS keeps its factors in files: taken where they did not fit in memory but do
+  /// so (ElasticSegmentOptions::memory_available).
+  bool
+  factors_out_of_core() const;
   /// The PETSc solver in use, "<ksp type>/<pc type>": "preonly/cholesky" unless run-time
   /// options chose another (e.g. "cg/gamg").
   std::string

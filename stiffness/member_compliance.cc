@@ -379,6 +379,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   const ElasticSegment body(mesh_file, eo);
   out.hexahedra     = body.cells(); // after the local refinement
   out.dofs          = body.dofs();
+  out.out_of_core   = body.factors_out_of_core();
   out.setup_seconds = seconds_since(t0);
   phase(o, std::to_string(table.load_points().size()) + " unit loads on " +
                std::to_string(out.dofs) + " dofs");
@@ -408,6 +409,7 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
   out.solve_seconds = seconds_since(t0);
   return table;
 }
+
 namespace
 {
 using MemberResult = std::pair<FlankCompliance, MemberComplianceInfo>;

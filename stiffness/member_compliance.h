@@ -78,6 +78,8 @@ struct MemberComplianceInfo
   double mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
   /// The processes that computed the table (member_compliances: a group's or all).
   int processes = 1;
+  /// The factors kept in files: in memory they did not fit (ElasticSegment).
+  bool out_of_core = false;
 };
 
 /// The segment a member needs: the teeth of the pairs that stand within `gap_band` of contact

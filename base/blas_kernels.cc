@@ -16,6 +16,15 @@ blas_core_name()
   return core ? core : "";
 }
 
+void
+set_blas_threads(int threads)
+{
+  using SetThreads = void (*)(int);
+  if (const auto set =
+          reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+    set(threads);
+}
+
 std::string
 fitting_blas_core(const std::string &chosen)
 {

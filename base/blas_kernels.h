@@ -15,6 +15,10 @@ namespace gearkit
 std::string
 blas_core_name();
 
+/// OpenBLAS's threads in this process (nothing where the BLAS is not OpenBLAS).
+void
+set_blas_threads(int threads);
+
 /// The kernels that suit this processor where OpenBLAS fell back to Prescott: "SkylakeX" with
 /// AVX-512 (F, CD, BW, DQ, VL), "Haswell" with AVX2 and FMA, else empty (keep OpenBLAS's choice).
 std::string

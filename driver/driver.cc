@@ -1,5 +1,6 @@
 #include "driver/driver.h"
 
+#include "base/blas_kernels.h"
 #include "driver/stages.h"
 #include "stiffness/elastic_segment.h"
 
@@ -8,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <dlfcn.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -252,14 +252,10 @@ options:
 /// unless OPENBLAS_NUM_THREADS says otherwise: by default it takes every core in every process
 /// and crowds itself under mpirun.
 void
-set_blas_threads()
+blas_threads_per_process()
 {
-  if (std::getenv("OPENBLAS_NUM_THREADS"))
-    return;
-  using SetThreads = void (*)(int);
-  if (const auto set =
-          reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
-    set(int(cores_per_process()));
+  if (!std::getenv("OPENBLAS_NUM_THREADS"))
+    set_blas_threads(int(cores_per_process()));
 }
 } // namespace
 
@@ -268,7 +264,7 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
 {
   // Under mpirun every process parses the same arguments and meets the same errors: only the
   // first one speaks.
-  set_blas_threads();
+  blas_threads_per_process();
   std::ostream  silent(nullptr);
   const bool    first       = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   std::ostream &out         = first ? out_0 : silent;

@@ -128,31 +128,52 @@ FlankCompliance::operator()(int tooth_i, double u_i, double v_i, int tooth_j, do
   if (spec.cyclic_tooth >= 0)
     {
       // the load moved onto the cyclic tooth, the response turned with it
-      const int offset =
-          ((tooth_j - tooth_i) % member_teeth + member_teeth + member_teeth / 2) % member_teeth -
-          member_teeth / 2; // signed: the nearer way round
+      const int offset = tooth_offset(tooth_i, tooth_j);
       if (std::abs(offset) > spec.cyclic_reach)
         throw InputError("flank compliance: teeth " + std::to_string(tooth_i) + " and " +
                          std::to_string(tooth_j) + " in contact at once lie " +
                          std::to_string(std::abs(offset)) +
                          " teeth apart, further than the middle tooth's responses reach (" +
                          std::to_string(spec.cyclic_reach) + ")");
-      const int turned =
-          ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth;
-      tooth_i = spec.cyclic_tooth, tooth_j = turned;
+      tooth_i = spec.cyclic_tooth, tooth_j = cyclic_turned(offset);
     }
   const bool    follow = spec.follow_load && tooth_i == tooth_j;
   const Weights wj     = weights(tooth_j, u_j, v_j);
   const Weights fixed  = follow ? Weights{} : weights(tooth_i, u_i, v_i);
-  double        c      = 0;
+  if (!follow)
+    return interpolate(fixed, wj);
+  double c = 0;
   for (int b = 0; b < 4; ++b)
     {
       // following the load: the response at the same offset from each of the load's corners
-      const Weights wi =
-          follow ? weights(tooth_i, u_i + wj.u[b] - u_j, v_i + wj.v[b] - v_j) : fixed;
+      const Weights wi = weights(tooth_i, u_i + wj.u[b] - u_j, v_i + wj.v[b] - v_j);
       for (int a = 0; a < 4; ++a)
         c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
     }
+  return c;
+}
+
+int
+FlankCompliance::tooth_offset(int from, int to) const
+{
+  // signed: the nearer way round
+  return ((to - from) % member_teeth + member_teeth + member_teeth / 2) % member_teeth -
+         member_teeth / 2;
+}
+
+int
+FlankCompliance::cyclic_turned(int offset) const
+{
+  return ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth;
+}
+
+double
+FlankCompliance::interpolate(const Weights &wi, const Weights &wj) const
+{
+  double c = 0;
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a)
+      c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
   return c;
 }
 
@@ -181,10 +202,7 @@ FlankCompliance::matrix(const std::vector<Location> &at) const
   auto weights_at = [&](std::size_t k, int offset) -> const Weights & {
     std::optional<Weights> &w = cache[std::size_t(offset + reach)][k];
     if (!w)
-      w = weights(cyclic
-                      ? ((spec.cyclic_tooth + offset) % member_teeth + member_teeth) % member_teeth
-                      : at[k].tooth,
-                  at[k].u, at[k].v);
+      w = weights(cyclic ? cyclic_turned(offset) : at[k].tooth, at[k].u, at[k].v);
     return *w;
   };
   for (Eigen::Index i = 0; i < n; ++i)
@@ -192,25 +210,10 @@ FlankCompliance::matrix(const std::vector<Location> &at) const
       const Weights &wi = weights_at(std::size_t(i), 0);
       for (Eigen::Index j = 0; j < n; ++j)
         {
-          int offset = 0;
-          if (cyclic)
-            {
-              offset =
-                  ((at[j].tooth - at[i].tooth) % member_teeth + member_teeth + member_teeth / 2) %
-                      member_teeth -
-                  member_teeth / 2;
-              if (std::abs(offset) > reach)
-                {
-                  (*this)(at[i].tooth, at[i].u, at[i].v, at[j].tooth, at[j].u, at[j].v); // throws
-                  continue;
-                }
-            }
-          const Weights &wj = weights_at(std::size_t(j), offset);
-          double         c  = 0;
-          for (int b = 0; b < 4; ++b) // as operator(), term by term
-            for (int a = 0; a < 4; ++a)
-              c += wi.weight[a] * wj.weight[b] * S(wj.index[b], wi.index[a] - load_base);
-          M(j, i) = c;
+          const int offset = cyclic ? tooth_offset(at[i].tooth, at[j].tooth) : 0;
+          if (std::abs(offset) > reach) // refused, with operator()'s message
+            (*this)(at[i].tooth, at[i].u, at[i].v, at[j].tooth, at[j].u, at[j].v);
+          M(j, i) = interpolate(wi, weights_at(std::size_t(j), offset));
         }
     }
   return M;

@@ -127,7 +127,16 @@ private:
     double u[4], v[4]; ///< the corner nodes' flank parameters
   };
   Weights
-                           weights(int tooth, double u, double v) const;
+  weights(int tooth, double u, double v) const;
+  /// Teeth from `from` to `to`, signed, the nearer way round the gear.
+  int
+  tooth_offset(int from, int to) const;
+  /// The tooth `offset` teeth from the cyclic tooth.
+  int
+  cyclic_turned(int offset) const;
+  /// The table between the load's corners (wi) and the response's (wj), term by term.
+  double
+                           interpolate(const Weights &wi, const Weights &wj) const;
   FlankGridSpec            spec;
   std::vector<int>         with_grid; ///< teeth with grid points
   int                      member_teeth = 0;

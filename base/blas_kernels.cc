@@ -25,6 +25,27 @@ set_blas_threads(int threads)
     set(threads);
 }
 
+int
+blas_threads()
+{
+  using GetThreads = int (*)();
+  const auto get   = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return get ? get() : 1;
+}
+
+BlasThreads::BlasThreads(int threads)
+    : previous(blas_threads())
+{
+  if (threads != previous)
+    set_blas_threads(threads);
+}
+
+BlasThreads::~BlasThreads()
+{
+  if (blas_threads() != previous)
+    set_blas_threads(previous);
+}
+
 std::string
 fitting_blas_core(const std::string &chosen)
 {

@@ -19,6 +19,26 @@ blas_core_name();
 void
 set_blas_threads(int threads);
 
+/// OpenBLAS's threads in this process (1 where the BLAS is not OpenBLAS).
+int
+blas_threads();
+
+/// While it lives, OpenBLAS runs on the given number of threads; then on as many as before.
+/// One for jobs side by side on threads of the program's own (parallel_for): their BLAS calls
+/// would otherwise queue for the one pool of BLAS threads, the waiting threads spinning.
+class BlasThreads
+{
+public:
+  explicit BlasThreads(int threads);
+  ~BlasThreads();
+  BlasThreads(const BlasThreads &) = delete;
+  BlasThreads &
+  operator=(const BlasThreads &) = delete;
+
+private:
+  int previous;
+};
+
 /// The kernels that suit this processor where OpenBLAS fell back to Prescott: "SkylakeX" with
 /// AVX-512 (F, CD, BW, DQ, VL), "Haswell" with AVX2 and FMA, else empty (keep OpenBLAS's choice).
 std::string

@@ -3,6 +3,8 @@
 // depend on the number of threads (each job writes only its own output).
 #pragma once
 
+#include "base/blas_kernels.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -16,7 +18,8 @@ namespace gearkit
 /// Runs job(state, i) for i = 0 .. n - 1 on `threads` threads (0: as many as the hardware
 /// runs; never more than n), the calling thread among them. Each thread first makes its own
 /// state with make_state() (scratch it reuses over its jobs). After a job throws, no further job
-/// starts; once all threads stop, the exception of the lowest failed job is rethrown.
+/// starts; once all threads stop, the exception of the lowest failed job is rethrown. With more
+/// than one thread, OpenBLAS runs on one thread meanwhile (BlasThreads).
 template <class MakeState, class Job>
 void
 parallel_for(std::size_t n, unsigned threads, const MakeState &make_state, const Job &job)
@@ -24,6 +27,7 @@ parallel_for(std::size_t n, unsigned threads, const MakeState &make_state, const
   if (threads == 0)
     threads = std::max(1u, std::thread::hardware_concurrency());
   threads = unsigned(std::min<std::size_t>(threads, n));
+  const BlasThreads        blas(threads > 1 ? 1 : blas_threads());
   std::atomic<std::size_t> next{0};
   std::mutex               guard;
   std::exception_ptr       failure;

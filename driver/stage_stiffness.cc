@@ -218,7 +218,8 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
               log << info.shallow_points << " read shallower), ";
             log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s (mesh "
                 << info.mesh_seconds << ", assembly and factorisation " << info.setup_seconds
-                << ", unit loads " << info.solve_seconds << ")"
+                << " of it factorisation " << info.factor_seconds << ", unit loads "
+                << info.solve_seconds << ")"
                 << (info.out_of_core ? ", factors out of core (in memory they did not fit)" : "")
                 << (processes > 1 ? " on " + std::to_string(info.processes) + " of " +
                                         std::to_string(processes) + " processes"

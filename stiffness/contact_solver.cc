@@ -2,10 +2,15 @@
 
 #include "geometry/types.h"
 
-#include <Eigen/Cholesky>
-
 #include <sstream>
 #include <vector>
+
+// LAPACK's Cholesky factorisation and solve (OpenBLAS's kernels for this processor)
+extern "C" void
+dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
+extern "C" void
+dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+        const int *ldb, int *info);
 
 namespace gearkit
 {
@@ -38,17 +43,21 @@ solve_contact(const ContactProblem &p)
           A.push_back(j);
       const Eigen::Index m = Eigen::Index(A.size());
       Eigen::MatrixXd    C(m, m);
+      Eigen::MatrixXd    x(m, 2); // the levers and the gaps of the active cells, then C^-1 of them
       Eigen::VectorXd    lA(m), gA(m);
-      for (Eigen::Index a = 0; a < m; ++a)
+      for (Eigen::Index b = 0; b < m; ++b)
         {
-          lA[a] = p.lever[A[a]], gA[a] = p.gap[A[a]];
-          for (Eigen::Index b = 0; b < m; ++b)
+          x(b, 0) = lA[b] = p.lever[A[b]], x(b, 1) = gA[b] = p.gap[A[b]];
+          for (Eigen::Index a = b; a < m; ++a) // the lower triangle
             C(a, b) = p.compliance(A[a], A[b]);
         }
-      const Eigen::LLT<Eigen::MatrixXd> llt(C);
-      if (llt.info() != Eigen::Success)
+      const int size = int(m), columns = 2;
+      int       info = 0;
+      dpotrf_("L", &size, C.data(), &size, &info);
+      if (info != 0)
         throw InputError("contact solver: the compliance matrix is not positive definite");
-      const Eigen::VectorXd x1 = llt.solve(lA), x2 = llt.solve(gA);
+      dpotrs_("L", &size, &columns, C.data(), &size, x.data(), &size, &info);
+      const Eigen::VectorXd x1 = x.col(0), x2 = x.col(1);
       s.approach               = (p.load + lA.dot(x2)) / lA.dot(x1);
       const Eigen::VectorXd FA = s.approach * x1 - x2;
       s.force.setZero();

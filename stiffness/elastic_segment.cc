@@ -401,6 +401,17 @@ struct ElasticSegment::Impl
   SplitRule
   split_face_rule(const typename Triangulation<3>::active_cell_iterator &cell, unsigned face,
                   const Point<3> &x, double within) const;
+  /// A cell's Gauss rule subdivided k times per direction, point by point of its k^3
+  /// sub-cells (each sub-cell's points together), with the scalar shape functions' values
+  /// there (the same on every cell).
+  struct SubdividedRule
+  {
+    unsigned              k = 1, per_subcell = 0;
+    std::vector<Point<3>> points;  ///< on the reference cell
+    std::vector<double>   weights; ///< (summing to 1)
+    Eigen::MatrixXd       phi;     ///< (scalar shape function, point)
+    SubdividedRule(const FiniteElement<3> &scalar_fe, unsigned gauss, unsigned k);
+  };
   /// What one thread needs to assemble remainder loads: their quadratures (built once per
   /// thread, their shape values are costly to set up) and a load vector over all dofs. The
   /// cut-off's shell is often no wider than an element where a tooth is thin: a cell or face
@@ -408,9 +419,12 @@ struct ElasticSegment::Impl
   /// finer rule still.
   struct RemainderScratch
   {
-    std::vector<std::unique_ptr<FEValues<3>>>     volume;    ///< [m - 1]: m subdivisions
+    std::vector<SubdividedRule>                   volume;    ///< [m - 1]: m subdivisions
     std::vector<std::unique_ptr<FEFaceValues<3>>> face;      ///< [m - 1]: m subdivisions
     FEFaceValues<3>                               near_face; ///< (of the scalar element)
+    /// A sub-cell's body forces (point, component) and a cell's sums (scalar shape function,
+    /// component).
+    Eigen::Matrix<double, Eigen::Dynamic, 3> forces, body;
     /// Per shape function of the vector element: its component and scalar shape function.
     std::vector<unsigned> component, scalar;
     Vector<double>        f;
@@ -493,6 +507,14 @@ struct ElasticSegment::Impl
   evaluate(
       const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f,
       const PETScWrappers::MPI::Vector &u) const;
+  /// The functionals (as from probe_functionals) as the rows of a sparse matrix over the dofs,
+  /// all rows on the first process, every constrained dof's coefficient moved onto the dofs
+  /// it is bound to: row j times a solution of K is functional j of the displacement field
+  /// the constraints complete it to. Collective; the caller destroys it.
+  Mat
+  functional_matrix(
+      const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f)
+      const;
   /// Sets columns 0 .. cols - 1 of the dense matrix B to the load vectors first .. first +
   /// cols - 1 (B zero before, assembled after).
   using BlockFill = std::function<void(std::size_t first, PetscInt cols, Mat B)>;
@@ -880,37 +902,35 @@ void
 ElasticSegment::Impl::local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell,
                                    FEValues<3> &values, FullMatrix<double> &local) const
 {
-  // Shape function i moves component c_i by phi_i: with g = grad phi, tr eps_i = g_i[c_i] and
-  // 2 eps_i : eps_j = delta(c_i, c_j) g_i . g_j + g_i[c_j] g_j[c_i].
+  // With the scalar shape functions' gradients weighted by sqrt(JxW), B(q, 3 a + c) =
+  // sqrt(w_q) d phi_a / dx_c, and M = B^T B, shape function i (phi_a moving component c) and j
+  // (phi_b moving d) couple by 2 mu eps_i : eps_j + lambda tr eps_i tr eps_j =
+  // lambda M(3a + c, 3b + d) + mu M(3a + d, 3b + c) + delta(c, d) mu sum_e M(3a + e, 3b + e).
   values.reinit(cell);
-  local                   = 0;
-  const unsigned        n = fe.n_dofs_per_cell();
-  std::vector<unsigned> component(n);
+  const unsigned  n = fe.n_dofs_per_cell(), nq = values.n_quadrature_points;
+  Eigen::MatrixXd B(nq, n);
   for (unsigned i = 0; i < n; ++i)
-    component[i] = fe.system_to_component_index(i).first;
-  std::vector<Tensor<1, 3>> g(n);
-  for (unsigned q = 0; q < values.n_quadrature_points; ++q)
-    {
-      const double w = values.JxW(q);
-      for (unsigned i = 0; i < n; ++i)
-        g[i] = values.shape_grad(i, q) * w;
-      for (unsigned i = 0; i < n; ++i)
+    if (const auto [c, a] = fe.system_to_component_index(i); c == 0)
+      for (unsigned q = 0; q < nq; ++q)
         {
-          const unsigned     ci = component[i];
-          const Tensor<1, 3> gi = values.shape_grad(i, q);
-          for (unsigned j = 0; j <= i; ++j)
-            {
-              const unsigned cj = component[j];
-              double         k  = lambda * gi[ci] * g[j][cj] + mu * gi[cj] * g[j][ci];
-              if (ci == cj)
-                k += mu * (gi * g[j]);
-              local(i, j) += k;
-            }
+          const Tensor<1, 3> g = values.shape_grad(i, q) * std::sqrt(values.JxW(q));
+          for (unsigned d = 0; d < 3; ++d)
+            B(q, 3 * a + d) = g[d];
+        }
+  Eigen::MatrixXd M(n, n);
+  M.noalias() = B.transpose() * B;
+  for (unsigned i = 0; i < n; ++i)
+    {
+      const auto [c, a] = fe.system_to_component_index(i);
+      for (unsigned j = 0; j <= i; ++j)
+        {
+          const auto [d, b] = fe.system_to_component_index(j);
+          double k          = lambda * M(3 * a + c, 3 * b + d) + mu * M(3 * a + d, 3 * b + c);
+          if (c == d)
+            k += mu * (M(3 * a, 3 * b) + M(3 * a + 1, 3 * b + 1) + M(3 * a + 2, 3 * b + 2));
+          local(i, j) = local(j, i) = k;
         }
     }
-  for (unsigned i = 0; i < n; ++i)
-    for (unsigned j = i + 1; j < n; ++j)
-      local(i, j) = local(j, i);
 }
 
 ElasticSegment::~ElasticSegment() = default;
@@ -1337,6 +1357,7 @@ ElasticSegment::Impl::split_face_rule(const typename Triangulation<3>::active_ce
 ElasticSegment::Impl::RemainderScratch::RemainderScratch(const Impl &m)
     : near_face(m.mapping, m.scalar_fe, QIterated<2>(QGauss<1>(m.options.degree + 1), 8),
                 update_values | update_quadrature_points | update_JxW_values)
+    , body(m.scalar_fe.n_dofs_per_cell(), 3)
     , f(m.dofs.n_dofs())
 {
   for (unsigned i = 0; i < m.fe.n_dofs_per_cell(); ++i)
@@ -1345,11 +1366,31 @@ ElasticSegment::Impl::RemainderScratch::RemainderScratch(const Impl &m)
   const auto flags = update_values | update_quadrature_points | update_JxW_values;
   for (unsigned k = 1; k <= max_rule_subdivisions; ++k)
     {
-      volume.push_back(std::make_unique<FEValues<3>>(
-          m.mapping, m.scalar_fe, QIterated<3>(QGauss<1>(m.options.degree + 2), k), flags));
+      volume.emplace_back(m.scalar_fe, m.options.degree + 2, k);
       face.push_back(std::make_unique<FEFaceValues<3>>(
           m.mapping, m.scalar_fe, QIterated<2>(QGauss<1>(m.options.degree + 2), k), flags));
     }
+}
+
+ElasticSegment::Impl::SubdividedRule::SubdividedRule(const FiniteElement<3> &scalar_fe,
+                                                     unsigned gauss, unsigned subdivisions)
+    : k(subdivisions)
+{
+  const QGauss<3> base(gauss);
+  per_subcell = base.size();
+  for (unsigned sz = 0; sz < k; ++sz)
+    for (unsigned sy = 0; sy < k; ++sy)
+      for (unsigned sx = 0; sx < k; ++sx)
+        for (unsigned q = 0; q < base.size(); ++q)
+          {
+            const Point<3> &p = base.point(q);
+            points.emplace_back((sx + p[0]) / k, (sy + p[1]) / k, (sz + p[2]) / k);
+            weights.push_back(base.weight(q) / (k * k * k));
+          }
+  phi.resize(scalar_fe.n_dofs_per_cell(), Eigen::Index(points.size()));
+  for (unsigned a = 0; a < scalar_fe.n_dofs_per_cell(); ++a)
+    for (std::size_t q = 0; q < points.size(); ++q)
+      phi(a, Eigen::Index(q)) = scalar_fe.shape_value(a, points[q]);
 }
 
 void
@@ -1412,6 +1453,22 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
     const bool   steps  = elevation + spread > pi / 6 && elevation - spread < pi / 3;
     return steps ? std::min(shell, 0.5 * (reach - radius)) : shell;
   };
+  // chi (near_field_cutoff: radial step from inner to outer times the elevation step from 30
+  // to 60 degrees) constant, 0 or 1, on the ball about centre of the given radius (with a
+  // margin of rounding)
+  const auto cutoff_constant_on = [&](const Point<3> &centre, double radius) {
+    const double reach = centre.distance(x0), margin = 1e-9 * load.outer;
+    if (reach - radius >= load.outer + margin)
+      return true; // chi = 0
+    if (reach <= radius + margin)
+      return false; // contains the force
+    const double elevation =
+        std::asin(std::clamp(-((centre - x0) * point(axis)) / reach, -1.0, 1.0));
+    const double spread = std::asin(std::min(1.0, (radius + margin) / reach));
+    if (elevation - spread > pi / 3 + 1e-9)
+      return true;                                                                      // chi = 0
+    return reach + radius <= load.inner - margin && elevation + spread < pi / 6 - 1e-9; // chi = 1
+  };
   // the cells whose bounding boxes meet the cube about the outer sphere
   Point<3> low = x0, high = x0;
   for (unsigned d = 0; d < 3; ++d)
@@ -1431,19 +1488,67 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
       const double resolved = scale(cell->center(), radius);
       if (reach + radius > load.inner || resolved < shell)
         {
-          FEValues<3> &values =
-              *scratch.volume[rule_subdivisions(2 * radius / std::sqrt(3.0), resolved) - 1];
-          values.reinit(tria_cell);
-          for (unsigned q = 0; q < values.n_quadrature_points; ++q)
+          const SubdividedRule &rule =
+              scratch.volume[rule_subdivisions(2 * radius / std::sqrt(3.0), resolved) - 1];
+          // the cell's trilinear map (MappingQ1's), x = c0 + c1 xi + c2 eta + c3 zeta + c4 xi eta
+          // + c5 xi zeta + c6 eta zeta + c7 xi eta zeta from its vertices (lexicographic)
+          std::array<Tensor<1, 3>, 8> c;
+          {
+            std::array<Tensor<1, 3>, 8> X;
+            for (unsigned v = 0; v < 8; ++v)
+              X[v] = tria_cell->vertex(v);
+            c = {{X[0], X[1] - X[0], X[2] - X[0], X[4] - X[0], X[3] - X[1] - X[2] + X[0],
+                  X[5] - X[1] - X[4] + X[0], X[6] - X[2] - X[4] + X[0],
+                  X[7] - X[3] - X[5] - X[6] + X[1] + X[2] + X[4] - X[0]}};
+          }
+          const auto map = [&c](const Point<3> &xi) {
+            return Point<3>(c[0] + xi[0] * c[1] + xi[1] * c[2] + xi[2] * c[3] +
+                            xi[0] * xi[1] * c[4] + xi[0] * xi[2] * c[5] + xi[1] * xi[2] * c[6] +
+                            xi[0] * xi[1] * xi[2] * c[7]);
+          };
+          const auto jacobian_determinant = [&c](const Point<3> &xi) {
+            const Tensor<1, 3> d0 = c[1] + xi[1] * c[4] + xi[2] * c[5] + xi[1] * xi[2] * c[7],
+                               d1 = c[2] + xi[0] * c[4] + xi[2] * c[6] + xi[0] * xi[2] * c[7],
+                               d2 = c[3] + xi[0] * c[5] + xi[1] * c[6] + xi[0] * xi[1] * c[7];
+            return d0 * cross_product_3d(d1, d2);
+          };
+          const unsigned m_q = rule.per_subcell, k = rule.k;
+          scratch.body.setZero();
+          for (unsigned sub = 0; sub < k * k * k; ++sub)
             {
-              const Cutoff chi = cutoff(values.quadrature_point(q));
-              if (!(chi.value > 0 && chi.value < 1))
-                continue; // chi constant: no body force
-              const Vec3 b =
-                  near(values.quadrature_point(q), chi, Tensor<1, 3>()).body * values.JxW(q);
-              for (unsigned i = 0; i < n; ++i)
-                local(i) += values.shape_value(scratch.scalar[i], q) * b[scratch.component[i]];
+              // a sub-cell lies within the ball about its mapped corners' mean through the
+              // farthest of them (a trilinear map keeps it in their convex hull): skipped where
+              // chi is constant on that ball
+              const unsigned          sx = sub % k, sy = (sub / k) % k, sz = sub / (k * k);
+              std::array<Point<3>, 8> corner;
+              Point<3>                centre;
+              for (unsigned v = 0; v < 8; ++v)
+                {
+                  corner[v] =
+                      map(Point<3>(double(sx + (v & 1)) / k, double(sy + ((v >> 1) & 1)) / k,
+                                   double(sz + ((v >> 2) & 1)) / k));
+                  centre += corner[v] / 8;
+                }
+              double rho = 0;
+              for (const Point<3> &c : corner)
+                rho = std::max(rho, c.distance(centre));
+              if (cutoff_constant_on(centre, rho))
+                continue;
+              scratch.forces.setZero(m_q, 3);
+              for (unsigned q = 0; q < m_q; ++q)
+                {
+                  const Point<3> &xi  = rule.points[sub * m_q + q];
+                  const Point<3>  x   = map(xi);
+                  const Cutoff    chi = cutoff(x);
+                  if (!(chi.value > 0 && chi.value < 1))
+                    continue; // chi constant: no body force
+                  scratch.forces.row(q) = near(x, chi, Tensor<1, 3>()).body *
+                                          (jacobian_determinant(xi) * rule.weights[sub * m_q + q]);
+                }
+              scratch.body.noalias() += rule.phi.middleCols(sub * m_q, m_q) * scratch.forces;
             }
+          for (unsigned i = 0; i < n; ++i)
+            local(i) += scratch.body(scratch.scalar[i], scratch.component[i]);
         }
       for (unsigned face = 0; face < GeometryInfo<3>::faces_per_cell; ++face)
         if (cell->face(face)->at_boundary() &&
@@ -1492,6 +1597,46 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
     }
 }
 
+Mat
+ElasticSegment::Impl::functional_matrix(
+    const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f)
+    const
+{
+  // condensed: coefficients on unconstrained dofs only (the constraints are closed, chains
+  // resolved; held dofs are zero, hanging ones weighted sums of their parents)
+  std::vector<std::map<types::global_dof_index, double>> rows(f.size());
+  PetscInt                                               longest = 0;
+  for (std::size_t j = 0; j < f.size(); ++j)
+    {
+      for (std::size_t i = 0; i < f[j].first.size(); ++i)
+        {
+          const types::global_dof_index dof = f[j].first[i];
+          if (const auto *line = constraints.get_constraint_entries(dof))
+            for (const auto &[parent, weight] : *line)
+              rows[j][parent] += f[j].second[i] * weight;
+          else
+            rows[j][dof] += f[j].second[i];
+        }
+      longest = std::max(longest, PetscInt(rows[j].size()));
+    }
+  longest              = Utilities::MPI::max(longest, comm);
+  const bool     first = Utilities::MPI::this_mpi_process(comm) == 0;
+  const PetscInt n     = PetscInt(f.size());
+  Mat            F;
+  petsc_check(MatCreateAIJ(comm, first ? n : 0, PetscInt(owned.n_elements()), n,
+                           PetscInt(dofs.n_dofs()), longest, nullptr, longest, nullptr, &F),
+              "MatCreateAIJ");
+  for (PetscInt j = 0; j < n; ++j)
+    for (const auto &[dof, value] : rows[std::size_t(j)])
+      {
+        const PetscInt column = PetscInt(dof);
+        petsc_check(MatSetValues(F, 1, &j, 1, &column, &value, ADD_VALUES), "MatSetValues");
+      }
+  petsc_check(MatAssemblyBegin(F, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(F, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return F;
+}
+
 Eigen::MatrixXd
 ElasticSegment::Impl::responses(
     std::size_t n_loads, const BlockFill &fill,
@@ -1507,6 +1652,9 @@ ElasticSegment::Impl::responses(
   const std::size_t block =
       std::clamp<std::size_t>((std::size_t(1) << 30) / (16 * m.dofs.n_dofs()), 16, solve_block);
   const PetscInt local = PetscInt(m.owned.n_elements());
+  if (functionals.empty() || n_loads == 0)
+    return D;
+  Mat F = m.functional_matrix(functionals);
   for (std::size_t first = 0; first < n_loads; first += block)
     {
       const PetscInt cols = PetscInt(std::min<std::size_t>(block, n_loads - first));
@@ -1520,21 +1668,28 @@ ElasticSegment::Impl::responses(
         petsc_check(MatMatSolve(m.factor, B, X), "MatMatSolve");
       else
         petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
-      for (PetscInt c = 0; c < cols; ++c)
+      // the block's responses at once: F X on the first process, then on every process
+      Mat product;
+      petsc_check(MatMatMult(F, X, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &product), "MatMatMult");
+      Eigen::MatrixXd found(D.rows(), cols);
+      if (Utilities::MPI::this_mpi_process(m.comm) == 0)
         {
-          PETScWrappers::MPI::Vector x(m.owned, m.comm);
-          Vec                        column;
-          petsc_check(MatDenseGetColumnVecRead(X, c, &column), "MatDenseGetColumnVecRead");
-          petsc_check(VecCopy(column, x), "VecCopy");
-          petsc_check(MatDenseRestoreColumnVecRead(X, c, &column), "MatDenseRestoreColumnVecRead");
-          m.constraints.distribute(x);
-          PETScWrappers::MPI::Vector ghosted(m.owned, m.relevant, m.comm);
-          ghosted                        = x;
-          D.col(Eigen::Index(first + c)) = m.evaluate(functionals, ghosted);
+          const PetscScalar *values;
+          PetscInt           lda;
+          petsc_check(MatDenseGetLDA(product, &lda), "MatDenseGetLDA");
+          petsc_check(MatDenseGetArrayRead(product, &values), "MatDenseGetArrayRead");
+          for (PetscInt c = 0; c < cols; ++c)
+            for (Eigen::Index j = 0; j < D.rows(); ++j)
+              found(j, c) = values[c * lda + j];
+          petsc_check(MatDenseRestoreArrayRead(product, &values), "MatDenseRestoreArrayRead");
         }
+      MatDestroy(&product);
+      MPI_Bcast(found.data(), int(found.size()), MPI_DOUBLE, 0, m.comm);
+      D.middleCols(Eigen::Index(first), cols) = found;
       MatDestroy(&B);
       MatDestroy(&X);
     }
+  MatDestroy(&F);
   return D;
 }
 

@@ -377,10 +377,11 @@ member_compliance(const MemberFlanks &flanks, const std::string &member_name,
     }
   phase(o, "assembly and factorisation");
   const ElasticSegment body(mesh_file, eo);
-  out.hexahedra     = body.cells(); // after the local refinement
-  out.dofs          = body.dofs();
-  out.out_of_core   = body.factors_out_of_core();
-  out.setup_seconds = seconds_since(t0);
+  out.hexahedra      = body.cells(); // after the local refinement
+  out.dofs           = body.dofs();
+  out.out_of_core    = body.factors_out_of_core();
+  out.setup_seconds  = seconds_since(t0);
+  out.factor_seconds = body.factorisation_seconds();
   phase(o, std::to_string(table.load_points().size()) + " unit loads on " +
                std::to_string(out.dofs) + " dofs");
 

@@ -76,6 +76,7 @@ struct MemberComplianceInfo
   /// option where the body comes back across a point's normal or a held face is near).
   double min_near_field_radius = 0;
   double mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
+  double factor_seconds = 0; ///< the part of setup_seconds the factorisation took
   /// The processes that computed the table (member_compliances: a group's or all).
   int processes = 1;
   /// The factors kept in files: in memory they did not fit (ElasticSegment).

@@ -1,7 +1,9 @@
 // OpenBLAS's kernels in a process whose main asked for fitting ones (mpi_gtest_main.cc, as the
 // gearkit executable does): not the generic fallback where the processor runs better ones, and
-// right on this processor (a product in every transpose against a plain loop).
+// right on this processor (a product in every transpose against a plain loop); one BLAS thread
+// inside jobs on threads of the program's own.
 #include "base/blas_kernels.h"
+#include "base/parallel.h"
 
 #include <gtest/gtest.h>
 
@@ -67,4 +69,24 @@ TEST(BlasKernels, ProductsAgreeWithAPlainLoop)
             worst = std::max(worst, std::abs(c[i] - expected[i]));
           EXPECT_LT(worst, 1e-12 * k) << m << " x " << n << " x " << k << " " << ta << tb;
         }
+}
+
+TEST(BlasKernels, OneBlasThreadInsideJobsOnThreadsThenAsBefore)
+{
+  ASSERT_FALSE(blas_core_name().empty()) << "the BLAS is not OpenBLAS";
+  const int before = blas_threads();
+  set_blas_threads(2);
+  ASSERT_EQ(blas_threads(), 2);
+  std::vector<int> inside(6, 0);
+  parallel_for(inside.size(), 2, [&](std::size_t i) { inside[i] = blas_threads(); });
+  EXPECT_EQ(inside, std::vector<int>(6, 1)); // two threads of ours, one of OpenBLAS's each
+  EXPECT_EQ(blas_threads(), 2);              // restored
+  parallel_for(inside.size(), 1, [&](std::size_t i) { inside[i] = blas_threads(); });
+  EXPECT_EQ(inside, std::vector<int>(6, 2)); // on the calling thread alone: unchanged
+  {
+    const BlasThreads one(1);
+    EXPECT_EQ(blas_threads(), 1);
+  }
+  EXPECT_EQ(blas_threads(), 2);
+  set_blas_threads(before);
 }

@@ -1540,7 +1540,7 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
                   const Point<3> &xi  = rule.points[sub * m_q + q];
                   const Point<3>  x   = map(xi);
                   const Cutoff    chi = cutoff(x);
-                  if (!(chi.value > 0 && chi.value < 1))
+                  if (!chi.varies())
                     continue; // chi constant: no body force
                   scratch.forces.row(q) = near(x, chi, Tensor<1, 3>()).body *
                                           (jacobian_determinant(xi) * rule.weights[sub * m_q + q]);

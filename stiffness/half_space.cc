@@ -22,13 +22,15 @@ corner(double X, double Y)
 }
 
 /// The quintic step from 1 at a to 0 at b (second derivatives continuous) at a < x < b: its
-/// value and first and second derivatives in x.
+/// value and first and second derivatives in x. With s = (x - a) / w and t = (b - x) / w, the
+/// value 1 - s^3 (10 - 15 s + 6 s^2) is written t^3 (10 - 15 t + 6 t^2): near b it is then
+/// tiny and positive to its last digits, not 1 less almost 1 (rounding noise of either sign).
 std::tuple<double, double, double>
 quintic_step(double x, double a, double b)
 {
-  const double w = b - a, s = (x - a) / w;
-  return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s) / w,
-          -60 * s * (1 - s) * (1 - 2 * s) / (w * w)};
+  const double w = b - a, s = (x - a) / w, t = (b - x) / w;
+  return {t * t * t * (10 - 15 * t + 6 * t * t), -30 * s * s * t * t / w,
+          -60 * s * t * (t - s) / (w * w)};
 }
 } // namespace
 

@@ -66,6 +66,14 @@ struct Cutoff
   double          value    = 0;
   Vec3            gradient = Vec3::Zero();
   Eigen::Matrix3d hessian  = Eigen::Matrix3d::Zero();
+  /// Where chi is not constant (0 or 1): there chi u leaves a body force. Decided by where x
+  /// lies (the constant parts have zero derivatives exactly), not by the value, which rounds to
+  /// 1 or 0 just inside the step's ends, where the body force is small but not yet zero.
+  bool
+  varies() const
+  {
+    return !gradient.isZero(0) || !hessian.isZero(0);
+  }
 };
 Cutoff
 radial_cutoff(const Vec3 &x, const Vec3 &centre, double inner, double outer);

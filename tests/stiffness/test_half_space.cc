@@ -258,6 +258,47 @@ TEST(HalfSpace, CutOffNearFieldBodyForceAndTraction)
       0);
 }
 
+TEST(HalfSpace, CutOffStepResolvedToItsEnds)
+{
+  // Just inside either end of the step the cut-off still varies (its body force is small, not
+  // zero): varies() says so from where x lies, while the value rounds to 1 near the inner end;
+  // near the outer end the value is the tiny positive 10 t^3 (t = (outer - r) / w), not 1 less
+  // almost 1 (rounding noise of either sign, which once made a quadrature point next to the
+  // outer sphere count or not with the last bit of its coordinates).
+  const Vec3   x0 = Vec3::Zero();
+  const double r1 = 1e-3, r2 = 2e-3, w = r2 - r1;
+  // s and t of the point as stored (r2 - x and x - r1 are exact next to either end)
+  const auto value = [&](double x) {
+    const double t = (r2 - x) / w;
+    return t * t * t * (10 - 15 * t + 6 * t * t);
+  };
+  const auto slope = [&](double x) {
+    const double s = (x - r1) / w, t = (r2 - x) / w;
+    return -30 * s * s * t * t / w;
+  };
+  for (const double t : {1e-3, 1e-5, 1e-6, 1e-7})
+    {
+      const double x     = r2 - t * w;
+      const Cutoff outer = radial_cutoff(Vec3(x, 0, 0), x0, r1, r2);
+      EXPECT_TRUE(outer.varies()) << t;
+      EXPECT_GT(outer.value, 0) << t;
+      EXPECT_NEAR(outer.value, value(x), 1e-12 * value(x)) << t; // to its last digits
+      EXPECT_NEAR(outer.gradient.x(), slope(x), 1e-12 * std::abs(slope(x))) << t;
+      const double y     = r1 + t * w;
+      const Cutoff inner = radial_cutoff(Vec3(0, 0, y), x0, r1, r2);
+      EXPECT_TRUE(inner.varies()) << t;
+      EXPECT_NEAR(inner.gradient.z(), slope(y), 1e-12 * std::abs(slope(y))) << t;
+    }
+  EXPECT_FALSE(radial_cutoff(Vec3(0.99e-3, 0, 0), x0, r1, r2).varies());
+  EXPECT_FALSE(radial_cutoff(Vec3(0, 2e-3, 0), x0, r1, r2).varies());
+  EXPECT_FALSE(radial_cutoff(Vec3(0, 3e-3, 0), x0, r1, r2).varies());
+  // the elevation step alike, and the product of both constant where either is 0
+  const Vec3 d = Vec3::UnitZ();
+  EXPECT_TRUE(near_field_cutoff(Vec3(1e-3, 0, -1e-3), x0, d, r1 * 2, r2 * 2).varies());  // 45 deg
+  EXPECT_FALSE(near_field_cutoff(Vec3(1e-4, 0, -1e-3), x0, d, r1 * 2, r2 * 2).varies()); // 84 deg
+  EXPECT_FALSE(near_field_cutoff(Vec3(1e-3, 0, 1e-3), x0, d, r1 * 2, r2 * 2).varies());  // below
+}
+
 TEST(HalfSpace, ElevationCutOffKeepsTheFieldOffTheRayOppositeTheForce)
 {
   // The near field's cut-off also by elevation above the load's tangent plane: 1 below it and

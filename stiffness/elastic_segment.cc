@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -431,6 +432,21 @@ struct ElasticSegment::Impl
     Vector<double>        f;
     explicit RemainderScratch(const Impl &m);
   };
+  /// The exact-surface points and normals (surface_point) of a boundary face's quadrature
+  /// points on one of its rules: the same for every load, and costly on a generated spiral
+  /// bevel flank (a Newton solve each). Per (active cell, face, rule: the subdivided ones, then
+  /// near_face), filled as the loads first need them, from any thread; kept with the body.
+  struct SurfacePoints
+  {
+    std::vector<Point<3>>     at;
+    std::vector<Tensor<1, 3>> normal;
+  };
+  static constexpr unsigned                               face_rules = max_rule_subdivisions + 1;
+  mutable std::unique_ptr<std::atomic<SurfacePoints *>[]> surface_points;
+  const SurfacePoints &
+  face_surface_points(const typename Triangulation<3>::active_cell_iterator &cell, unsigned face,
+                      unsigned rule, const FaceNormals &normals,
+                      const FEFaceValues<3> &values) const;
   /// A fine face quadrature for the faces a patch's edge cuts (a patch's area and centroid
   /// then do not jump with where its edge falls between the Gauss points).
   std::unique_ptr<FEFaceValues<3>> fine_face_values;
@@ -445,6 +461,9 @@ struct ElasticSegment::Impl
   }
   ~Impl()
   {
+    if (surface_points)
+      for (std::size_t i = 0; i < tria.n_active_cells() * 6 * face_rules; ++i)
+        delete surface_points[i].load();
     if (factor)
       MatDestroy(&factor);
     if (ksp)
@@ -1246,6 +1265,9 @@ ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
   const Impl &m = *impl;
   m.check_near_field_loads(loads);
   m.cache_ptr->get_locally_owned_cell_bounding_boxes_rtree(); // built here, read by threads
+  if (!m.surface_points)
+    m.surface_points.reset(
+        new std::atomic<Impl::SurfacePoints *>[m.tria.n_active_cells() * 6 * Impl::face_rules]());
   // A block's load vectors on threads (each its own quadratures and vector over all dofs),
   // their entries then added to B (entries of other processes' dofs travel with the assembly).
   const auto fill = [&](std::size_t first, PetscInt cols, Mat B) {
@@ -1425,6 +1447,27 @@ ElasticSegment::Impl::check_near_field_loads(const std::vector<NearFieldLoad> &l
       }
 }
 
+const ElasticSegment::Impl::SurfacePoints &
+ElasticSegment::Impl::face_surface_points(
+    const typename Triangulation<3>::active_cell_iterator &cell, unsigned face, unsigned rule,
+    const FaceNormals &normals, const FEFaceValues<3> &values) const
+{
+  std::atomic<SurfacePoints *> &slot =
+      surface_points[(cell->active_cell_index() * 6 + face) * face_rules + rule];
+  if (const SurfacePoints *known = slot.load(std::memory_order_acquire))
+    return *known;
+  auto made = std::make_unique<SurfacePoints>();
+  for (unsigned q = 0; q < values.n_quadrature_points; ++q)
+    {
+      const auto [at, normal] = surface_point(normals, values.quadrature_point(q));
+      made->at.push_back(at), made->normal.push_back(normal);
+    }
+  SurfacePoints *expected = nullptr; // another thread may have made it meanwhile: the same
+  if (slot.compare_exchange_strong(expected, made.get(), std::memory_order_acq_rel))
+    return *made.release();
+  return *expected;
+}
+
 void
 ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
                                               RemainderScratch    &scratch) const
@@ -1568,14 +1611,18 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
             // exact for the residual traction's 1/r there, wherever the force falls)
             const SplitRule split =
                 close ? split_face_rule(tria_cell, face, x0, 0.25 * diameter) : SplitRule();
-            FEFaceValues<3> &v =
-                close ? scratch.near_face
-                      : *scratch.face[rule_subdivisions(
-                                          diameter / std::sqrt(2.0),
+            const unsigned rule =
+                close ? face_rules - 1
+                      : rule_subdivisions(diameter / std::sqrt(2.0),
                                           scale(cell->face(face)->center(), diameter / 2)) -
-                                      1];
+                            1;
+            FEFaceValues<3>     &v      = close ? scratch.near_face : *scratch.face[rule];
+            const SurfacePoints *cached = nullptr;
             if (!split.values)
-              v.reinit(tria_cell, face);
+              {
+                v.reinit(tria_cell, face);
+                cached = &face_surface_points(tria_cell, face, rule, normals, v);
+              }
             const unsigned n_q =
                 split.values ? split.values->n_quadrature_points : v.n_quadrature_points;
             for (unsigned q = 0; q < n_q; ++q)
@@ -1584,8 +1631,8 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
                 // point stands for: the force lies on it, so the traction left to the elements
                 // is the surface's curvature's, ~ 1 / r, not the facets' tilt's, ~ 1 / r^2
                 const auto [at, normal] =
-                    surface_point(normals, split.values ? split.values->quadrature_point(q)
-                                                        : v.quadrature_point(q));
+                    cached ? std::make_pair(cached->at[q], cached->normal[q])
+                           : surface_point(normals, split.values->quadrature_point(q));
                 if (at.distance(x0) < 1e-12 * cell->diameter())
                   continue; // the force itself (its part is carried by chi u)
                 const Cutoff chi = cutoff(at);

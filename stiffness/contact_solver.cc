@@ -2,15 +2,10 @@
 
 #include "geometry/types.h"
 
+#include <deal.II/lac/lapack_templates.h>
+
 #include <sstream>
 #include <vector>
-
-// LAPACK's Cholesky factorisation and solve (OpenBLAS's kernels for this processor)
-extern "C" void
-dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
-extern "C" void
-dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
-        const int *ldb, int *info);
 
 namespace gearkit
 {
@@ -43,20 +38,23 @@ solve_contact(const ContactProblem &p)
           A.push_back(j);
       const Eigen::Index m = Eigen::Index(A.size());
       Eigen::MatrixXd    C(m, m);
-      Eigen::MatrixXd    x(m, 2); // the levers and the gaps of the active cells, then C^-1 of them
       Eigen::VectorXd    lA(m), gA(m);
       for (Eigen::Index b = 0; b < m; ++b)
         {
-          x(b, 0) = lA[b] = p.lever[A[b]], x(b, 1) = gA[b] = p.gap[A[b]];
+          lA[b] = p.lever[A[b]], gA[b] = p.gap[A[b]];
           for (Eigen::Index a = b; a < m; ++a) // the lower triangle
             C(a, b) = p.compliance(A[a], A[b]);
         }
-      const int size = int(m), columns = 2;
-      int       info = 0;
-      dpotrf_("L", &size, C.data(), &size, &info);
+      // LAPACK's Cholesky factorisation and solve (OpenBLAS's kernels for this processor):
+      // x = C^-1 [lA gA]
+      Eigen::MatrixXd               x(m, 2);
+      const dealii::types::blas_int size = dealii::types::blas_int(m), columns = 2;
+      dealii::types::blas_int       info = 0;
+      x << lA, gA;
+      dealii::potrf("L", &size, C.data(), &size, &info);
       if (info != 0)
         throw InputError("contact solver: the compliance matrix is not positive definite");
-      dpotrs_("L", &size, &columns, C.data(), &size, x.data(), &size, &info);
+      dealii::potrs("L", &size, &columns, C.data(), &size, x.data(), &size, &info);
       const Eigen::VectorXd x1 = x.col(0), x2 = x.col(1);
       s.approach               = (p.load + lA.dot(x2)) / lA.dot(x1);
       const Eigen::VectorXd FA = s.approach * x1 - x2;

@@ -1493,14 +1493,21 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
   // force). The length the rules must resolve: the shell's thickness, or the elevation step's
   // width at the distance of an object (centre, radius) that may meet it.
   const double shell = load.outer - load.inner;
-  auto         scale = [&](const Point<3> &centre, double radius) {
+  // the lowest and highest elevation above the force's tangent plane of the ball about centre
+  // of the given radius (which must not contain the force), seen from it
+  const auto elevations = [&](const Point<3> &centre, double radius) {
     const double reach = centre.distance(x0);
-    if (reach <= radius)
-      return 0.0; // contains the force: the finest rule
     const double elevation =
         std::asin(std::clamp(-((centre - x0) * point(axis)) / reach, -1.0, 1.0));
     const double spread = std::asin(std::min(1.0, radius / reach));
-    const bool   steps  = elevation + spread > pi / 6 && elevation - spread < pi / 3;
+    return std::make_pair(elevation - spread, elevation + spread);
+  };
+  auto scale = [&](const Point<3> &centre, double radius) {
+    const double reach = centre.distance(x0);
+    if (reach <= radius)
+      return 0.0; // contains the force: the finest rule
+    const auto [lowest, highest] = elevations(centre, radius);
+    const bool steps             = highest > pi / 6 && lowest < pi / 3;
     return steps ? std::min(shell, 0.5 * (reach - radius)) : shell;
   };
   // chi (near_field_cutoff: radial step from inner to outer times the elevation step from 30
@@ -1512,12 +1519,10 @@ ElasticSegment::Impl::assemble_remainder_load(const NearFieldLoad &load,
       return true; // chi = 0
     if (reach <= radius + margin)
       return false; // contains the force
-    const double elevation =
-        std::asin(std::clamp(-((centre - x0) * point(axis)) / reach, -1.0, 1.0));
-    const double spread = std::asin(std::min(1.0, (radius + margin) / reach));
-    if (elevation - spread > pi / 3 + 1e-9)
-      return true;                                                                      // chi = 0
-    return reach + radius <= load.inner - margin && elevation + spread < pi / 6 - 1e-9; // chi = 1
+    const auto [lowest, highest] = elevations(centre, radius + margin);
+    if (lowest > pi / 3 + 1e-9)
+      return true;                                                           // chi = 0
+    return reach + radius <= load.inner - margin && highest < pi / 6 - 1e-9; // chi = 1
   };
   // the cells whose bounding boxes meet the cube about the outer sphere
   Point<3> low = x0, high = x0;

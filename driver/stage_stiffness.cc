@@ -217,9 +217,10 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             else
               log << info.shallow_points << " read shallower), ";
             log << info.mesh_seconds + info.setup_seconds + info.solve_seconds << " s (mesh "
-                << info.mesh_seconds << ", assembly and factorisation " << info.setup_seconds
-                << " of it factorisation " << info.factor_seconds << ", unit loads "
-                << info.solve_seconds << ")"
+                << info.mesh_seconds << ", set-up " << info.setup_seconds << ", unit loads "
+                << info.solve_seconds << " with the matrix's assembly and factorisation "
+                << info.solver_seconds << " beside their assembly, of it factorisation "
+                << info.factor_seconds << ")"
                 << (info.out_of_core ? ", factors out of core (in memory they did not fit)" : "")
                 << (processes > 1 ? " on " + std::to_string(info.processes) + " of " +
                                         std::to_string(processes) + " processes"

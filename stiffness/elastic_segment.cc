@@ -40,7 +40,9 @@
 #include <fstream>
 #include <functional>
 #include <malloc.h>
+#include <limits>
 #include <map>
+#include <stdexcept>
 #include <petscksp.h>
 #include <petscversion.h>
 #include <sstream>
@@ -342,7 +344,7 @@ struct ElasticSegment::Impl
   std::unique_ptr<GridTools::Cache<3>> cache_ptr; ///< cell search (R-tree) for probes
   IndexSet                             owned, relevant;
   AffineConstraints<double>            constraints;
-  PETScWrappers::MPI::SparseMatrix     K;
+  Mat                                  K = nullptr; ///< the stiffness matrix (assemble_matrix)
   KSP                                  ksp = nullptr;
   std::string                          solver_name; ///< KSP type / PC type
   /// The MUMPS Cholesky factor (the default); null where run-time options chose another solver
@@ -350,6 +352,12 @@ struct ElasticSegment::Impl
   Mat    factor         = nullptr;
   bool   out_of_core    = false; ///< the factors in files (factorise: in core they did not fit)
   double factor_seconds = 0;
+  /// The stiffness matrix's assembly and the factorisation (or whatever the run-time options
+  /// chose) wait for the first solve (set_up_solver), so that a block of right-hand sides can
+  /// be assembled beside them (remainder_response).
+  std::string mesh_file;
+  bool        solver_ready     = false;
+  double      solver_seconds   = 0; ///< the matrix's assembly and the factorisation
   double lambda = 0, mu = 0;
 
   /// Boundary quadrature of the faces with a boundary id, cached for fast load assembly.
@@ -468,6 +476,8 @@ struct ElasticSegment::Impl
       MatDestroy(&factor);
     if (ksp)
       KSPDestroy(&ksp);
+    if (K)
+      MatDestroy(&K);
   }
 
   bool
@@ -501,6 +511,14 @@ struct ElasticSegment::Impl
   /// else MemAvailable), before factorising.
   void
   factorise(const std::string &file);
+  /// Assembles the stiffness matrix and sets its solver up (MUMPS: factorises), once;
+  /// collective.
+  void
+  set_up_solver();
+  /// The stiffness matrix K, sigma = lambda tr(eps) I + 2 mu eps, condensed by the
+  /// constraints (see the definition).
+  void
+  assemble_matrix();
   /// Element stiffness of a cell (values: gradients and JxW on the cell quadrature).
   void
   local_matrix(const typename DoFHandler<3>::active_cell_iterator &cell, FEValues<3> &values,
@@ -535,12 +553,13 @@ struct ElasticSegment::Impl
   functional_matrix(
       const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>> &f)
       const;
-  /// Sets columns 0 .. cols - 1 of the dense matrix B to the load vectors first .. first +
-  /// cols - 1 (B zero before, assembled after).
-  using BlockFill = std::function<void(std::size_t first, PetscInt cols, Mat B)>;
+  /// Load vector i's entries from this process (global dofs, values; dofs of other processes
+  /// too: they are added where they live).
+  using LoadEntries =
+      std::function<void(std::size_t i, std::vector<PetscInt> &dofs, std::vector<double> &values)>;
   /// D(j, i): functional j of the displacement under load vector i alone (n load vectors).
   Eigen::MatrixXd
-  responses(std::size_t n, const BlockFill &fill,
+  responses(std::size_t n, const LoadEntries &entries,
             const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
                 &functionals) const;
 };
@@ -652,27 +671,6 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     }
   m.constraints.close();
 
-  DynamicSparsityPattern dsp(m.relevant);
-  DoFTools::make_sparsity_pattern(m.dofs, dsp, m.constraints, false);
-  SparsityTools::distribute_sparsity_pattern(dsp, m.owned, m.comm, m.relevant);
-  m.K.reinit(m.owned, m.owned, dsp, m.comm);
-
-  // Assembly: sigma = lambda tr(eps) I + 2 mu eps.
-  {
-    const QGauss<3>    quadrature(o.degree + 1);
-    FEValues<3>        values(m.mapping, m.fe, quadrature, update_gradients | update_JxW_values);
-    FullMatrix<double> local(m.fe.n_dofs_per_cell(), m.fe.n_dofs_per_cell());
-    std::vector<types::global_dof_index> indices(m.fe.n_dofs_per_cell());
-    for (const auto &cell : m.dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          m.local_matrix(cell, values, local);
-          cell->get_dof_indices(indices);
-          m.constraints.distribute_local_to_global(local, indices, m.K);
-        }
-  }
-  m.K.compress(VectorOperation::add);
-
   // Boundary quadrature cache for the loads.
   const unsigned  n = m.fe.n_dofs_per_cell();
   const QGauss<2> face_quadrature(o.degree + 2);
@@ -725,6 +723,140 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
       m.mapping, m.fe, QIterated<2>(QGauss<1>(o.degree + 1), 8),
       update_values | update_quadrature_points | update_JxW_values);
 
+  m.mesh_file = file;
+}
+
+void
+ElasticSegment::Impl::assemble_matrix()
+{
+  // The rows of this process's dofs, condensed by the constraints (a hanging dof's entries go
+  // to its parents, held dofs drop out; a constrained dof's row keeps a positive diagonal
+  // alone, its right-hand side is zero), in CSR arrays on deal.II's sparsity pattern, handed
+  // to PETSc at once. Every cell that reaches an owned row adds to it here (the shared
+  // triangulation has them all), so no entry travels between processes; deal.II's matrix
+  // with distribute_local_to_global built the same in twice the time.
+  DynamicSparsityPattern dsp(relevant);
+  DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);
+  SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+  const std::size_t            rows = owned.n_elements();
+  std::vector<PetscInt>        start(rows + 1, 0);
+  std::vector<PetscInt>        columns;
+  std::vector<double>          entries;
+  {
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < rows; ++r)
+      total += dsp.row_length(owned.nth_index_in_set(r));
+    if (total > std::size_t(std::numeric_limits<PetscInt>::max()))
+      throw MemoryRefusal("elastic segment: " + mesh_file + " has " +
+                          std::to_string(dofs.n_dofs()) + " degrees of freedom and " +
+                          std::to_string(total) +
+                          " matrix entries on one process, more than PETSc's 32-bit indices "
+                          "hold; use coarser elements or more processes under mpirun");
+    columns.resize(total);
+    entries.assign(total, 0.0);
+    for (std::size_t r = 0; r < rows; ++r)
+      {
+        const types::global_dof_index row = owned.nth_index_in_set(r);
+        const unsigned                length = dsp.row_length(row);
+        start[r + 1]                         = start[r] + PetscInt(length);
+        for (unsigned k = 0; k < length; ++k)
+          columns[std::size_t(start[r]) + k] = PetscInt(dsp.column_number(row, k));
+        std::sort(columns.begin() + start[r], columns.begin() + start[r + 1]);
+      }
+  }
+  dsp = DynamicSparsityPattern();
+  const auto at = [&](std::size_t r, types::global_dof_index column) -> double & {
+    const auto first = columns.begin() + start[r], last = columns.begin() + start[r + 1];
+    const auto found = std::lower_bound(first, last, PetscInt(column));
+    if (found == last || *found != PetscInt(column))
+      throw std::logic_error("elastic segment: an element entry outside the sparsity pattern");
+    return entries[std::size_t(found - columns.begin())];
+  };
+
+  const QGauss<3>    quadrature(options.degree + 1);
+  FEValues<3>        values(mapping, fe, quadrature, update_gradients | update_JxW_values);
+  FullMatrix<double> local(fe.n_dofs_per_cell(), fe.n_dofs_per_cell());
+  std::vector<types::global_dof_index> indices(fe.n_dofs_per_cell());
+  struct Resolved
+  {
+    unsigned                local;  ///< the cell's dof
+    types::global_dof_index global; ///< an unconstrained dof it stands for
+    double                  weight;
+    std::size_t             row; ///< the owned row of `global`, or rows if another's
+  };
+  std::vector<Resolved> resolved;
+  for (const auto &cell : dofs.active_cell_iterators())
+    {
+      if (cell->is_artificial())
+        continue;
+      cell->get_dof_indices(indices);
+      resolved.clear();
+      bool reaches = false;
+      const auto add = [&](unsigned i, types::global_dof_index j, double w) {
+        const std::size_t r = owned.is_element(j) ? owned.index_within_set(j) : rows;
+        reaches             = reaches || r < rows;
+        resolved.push_back({i, j, w, r});
+      };
+      for (unsigned i = 0; i < indices.size(); ++i)
+        if (!constraints.is_constrained(indices[i]))
+          add(i, indices[i], 1.0);
+        else if (const auto *parents = constraints.get_constraint_entries(indices[i]))
+          for (const auto &[j, w] : *parents)
+            add(i, j, w);
+      if (!reaches)
+        continue;
+      local_matrix(cell, values, local);
+      // by column: a row's entries then found in one pass along its sorted columns
+      std::sort(resolved.begin(), resolved.end(),
+                [](const Resolved &a, const Resolved &b) { return a.global < b.global; });
+      for (const Resolved &a : resolved)
+        if (a.row < rows)
+          {
+            std::size_t k = std::size_t(start[a.row]);
+            for (const Resolved &b : resolved)
+              {
+                while (k < std::size_t(start[a.row + 1]) && columns[k] < PetscInt(b.global))
+                  ++k;
+                if (k == std::size_t(start[a.row + 1]) || columns[k] != PetscInt(b.global))
+                  throw std::logic_error(
+                      "elastic segment: an element entry outside the sparsity pattern");
+                entries[k] += a.weight * b.weight * local(a.local, b.local);
+              }
+          }
+    }
+  // a constrained dof's row: the mean diagonal of the others (any positive value would do;
+  // this one keeps the matrix's scale)
+  double            diagonal = 0;
+  std::size_t       free     = 0;
+  for (std::size_t r = 0; r < rows; ++r)
+    if (!constraints.is_constrained(owned.nth_index_in_set(r)))
+      diagonal += at(r, owned.nth_index_in_set(r)), ++free;
+  diagonal = Utilities::MPI::sum(diagonal, comm) /
+             double(std::max<std::size_t>(1, Utilities::MPI::sum(free, comm)));
+  for (std::size_t r = 0; r < rows; ++r)
+    if (constraints.is_constrained(owned.nth_index_in_set(r)))
+      at(r, owned.nth_index_in_set(r)) = diagonal;
+
+  petsc_check(MatCreate(comm, &K), "MatCreate");
+  petsc_check(MatSetSizes(K, PetscInt(rows), PetscInt(rows), PetscInt(dofs.n_dofs()),
+                          PetscInt(dofs.n_dofs())),
+              "MatSetSizes");
+  petsc_check(MatSetType(K, MATAIJ), "MatSetType");
+  petsc_check(MatSeqAIJSetPreallocationCSR(K, start.data(), columns.data(), entries.data()),
+              "MatSeqAIJSetPreallocationCSR");
+  petsc_check(MatMPIAIJSetPreallocationCSR(K, start.data(), columns.data(), entries.data()),
+              "MatMPIAIJSetPreallocationCSR");
+}
+
+void
+ElasticSegment::Impl::set_up_solver()
+{
+  if (solver_ready)
+    return;
+  Impl &m = *this;
+  Timer all;
+  m.assemble_matrix();
+
   // The factorisation (or whatever the run-time options ask for), kept for every solve.
   Timer timer;
   petsc_check(KSPCreate(m.comm, &m.ksp), "KSPCreate");
@@ -749,11 +881,11 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   m.solver_name = std::string(KSPPREONLY) + "/" + chosen;
   if (solver_type && std::string(solver_type) == MATSOLVERMUMPS)
     {
-      m.factorise(file); // MUMPS's analysis once, for the memory check and the factorisation
+      m.factorise(m.mesh_file); // MUMPS's analysis once, for the memory check and the factorisation
       // MUMPS keeps its own copy of the entries: the matrix and the solver object that holds it
       // go (a quarter of a member's memory at the recommended settings)
       KSPDestroy(&m.ksp);
-      m.K.clear();
+      MatDestroy(&m.K);
     }
   else
     {
@@ -763,6 +895,8 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
       m.solver_name = std::string(ksp_type) + "/" + chosen;
     }
   m.factor_seconds = timer.wall_time();
+  m.solver_seconds = all.wall_time();
+  m.solver_ready   = true;
 }
 
 void
@@ -982,12 +1116,21 @@ ElasticSegment::dofs() const
 double
 ElasticSegment::factorisation_seconds() const
 {
+  impl->set_up_solver();
   return impl->factor_seconds;
+}
+
+double
+ElasticSegment::solver_seconds() const
+{
+  impl->set_up_solver();
+  return impl->solver_seconds;
 }
 
 bool
 ElasticSegment::factors_out_of_core() const
 {
+  impl->set_up_solver();
   return impl->out_of_core;
 }
 
@@ -1031,6 +1174,7 @@ ElasticSegment::contains(const std::vector<Vec3> &points) const
 std::string
 ElasticSegment::solver() const
 {
+  impl->set_up_solver();
   return impl->solver_name;
 }
 
@@ -1222,20 +1366,20 @@ ElasticSegment::Impl::load_functionals(const std::vector<PatchLoad> &loads) cons
 namespace
 {
 /// Patch loads one after the other (their assembly is collective).
-std::function<void(std::size_t, PetscInt, Mat)>
-patch_columns(const std::function<PETScWrappers::MPI::Vector(std::size_t)> &load_vector)
+/// A patch load's vector as its nonzero entries (those of this process's dofs).
+std::function<void(std::size_t, std::vector<PetscInt> &, std::vector<double> &)>
+patch_entries(const std::function<PETScWrappers::MPI::Vector(std::size_t)> &load_vector)
 {
-  return [load_vector](std::size_t first, PetscInt cols, Mat B) {
-    for (PetscInt c = 0; c < cols; ++c)
-      {
-        const PETScWrappers::MPI::Vector f = load_vector(first + std::size_t(c));
-        Vec                              column;
-        petsc_check(MatDenseGetColumnVecWrite(B, c, &column), "MatDenseGetColumnVecWrite");
-        petsc_check(VecCopy(f, column), "VecCopy");
-        petsc_check(MatDenseRestoreColumnVecWrite(B, c, &column), "MatDenseRestoreColumnVecWrite");
-      }
-    petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return [load_vector](std::size_t i, std::vector<PetscInt> &dofs, std::vector<double> &values) {
+    const PETScWrappers::MPI::Vector f = load_vector(i);
+    PetscInt                         first, last;
+    petsc_check(VecGetOwnershipRange(f, &first, &last), "VecGetOwnershipRange");
+    const PetscScalar *v;
+    petsc_check(VecGetArrayRead(f, &v), "VecGetArrayRead");
+    for (PetscInt k = 0; k < last - first; ++k)
+      if (v[k] != 0)
+        dofs.push_back(first + k), values.push_back(v[k]);
+    petsc_check(VecRestoreArrayRead(f, &v), "VecRestoreArrayRead");
   };
 }
 } // namespace
@@ -1244,8 +1388,9 @@ Eigen::MatrixXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads,
                          const std::vector<Probe>     &probes) const
 {
+  impl->set_up_solver();
   return impl->responses(
-      loads.size(), patch_columns([&](std::size_t i) { return impl->assemble_loads({loads[i]}); }),
+      loads.size(), patch_entries([&](std::size_t i) { return impl->assemble_loads({loads[i]}); }),
       impl->probe_functionals(probes));
 }
 
@@ -1253,8 +1398,9 @@ Eigen::MatrixXd
 ElasticSegment::patch_response(const std::vector<PatchLoad> &loads,
                                const std::vector<PatchLoad> &measures) const
 {
+  impl->set_up_solver();
   return impl->responses(
-      loads.size(), patch_columns([&](std::size_t i) { return impl->assemble_loads({loads[i]}); }),
+      loads.size(), patch_entries([&](std::size_t i) { return impl->assemble_loads({loads[i]}); }),
       impl->load_functionals(measures));
 }
 
@@ -1268,29 +1414,30 @@ ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
   if (!m.surface_points)
     m.surface_points.reset(
         new std::atomic<Impl::SurfacePoints *>[m.tria.n_active_cells() * 6 * Impl::face_rules]());
-  // A block's load vectors on threads (each its own quadratures and vector over all dofs),
-  // their entries then added to B (entries of other processes' dofs travel with the assembly).
-  const auto fill = [&](std::size_t first, PetscInt cols, Mat B) {
-    std::vector<std::vector<PetscInt>> rows(static_cast<std::size_t>(cols));
-    std::vector<std::vector<double>>   values(static_cast<std::size_t>(cols));
-    parallel_for(
-        std::size_t(cols), m.options.threads, [&] { return Impl::RemainderScratch(m); },
-        [&](Impl::RemainderScratch &scratch, std::size_t c) {
-          scratch.f = 0;
-          m.assemble_remainder_load(loads[first + c], scratch);
-          for (types::global_dof_index i = 0; i < scratch.f.size(); ++i)
-            if (scratch.f(i) != 0)
-              rows[c].push_back(PetscInt(i)), values[c].push_back(scratch.f(i));
-        });
-    for (PetscInt c = 0; c < cols; ++c)
-      petsc_check(MatSetValues(B, PetscInt(rows[std::size_t(c)].size()),
-                               rows[std::size_t(c)].data(), 1, &c, values[std::size_t(c)].data(),
-                               ADD_VALUES),
-                  "MatSetValues");
-    petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // The load vectors on threads (each its own quadratures and a vector over all dofs), their
+  // entries kept (nonzero only about each load): beside the stiffness matrix's assembly and
+  // factorisation if they are still to come (a helper thread starts on the loads; the calling
+  // thread sets the solver up, which uses both cores only in part, then joins the loads), then
+  // added to the blocks of right-hand sides (entries of other processes' dofs travel with the
+  // assembly).
+  std::vector<std::vector<PetscInt>> rows(loads.size());
+  std::vector<std::vector<double>>   values(loads.size());
+  parallel_for_beside(
+      [&] { impl->set_up_solver(); }, loads.size(), m.options.threads,
+      [&] { return Impl::RemainderScratch(m); },
+      [&](Impl::RemainderScratch &scratch, std::size_t c) {
+        scratch.f = 0;
+        m.assemble_remainder_load(loads[c], scratch);
+        for (types::global_dof_index i = 0; i < scratch.f.size(); ++i)
+          if (scratch.f(i) != 0)
+            rows[c].push_back(PetscInt(i)), values[c].push_back(scratch.f(i));
+      });
+  const auto entries = [&](std::size_t i, std::vector<PetscInt> &dofs,
+                           std::vector<double> &v) {
+    dofs.swap(rows[i]);
+    v.swap(values[i]);
   };
-  return m.responses(loads.size(), fill, m.probe_functionals(probes));
+  return m.responses(loads.size(), entries, m.probe_functionals(probes));
 }
 
 ElasticSegment::Impl::FaceNormals
@@ -1698,54 +1845,91 @@ ElasticSegment::Impl::functional_matrix(
 
 Eigen::MatrixXd
 ElasticSegment::Impl::responses(
-    std::size_t n_loads, const BlockFill &fill,
+    std::size_t n_loads, const LoadEntries &entries,
     const std::vector<std::pair<std::vector<types::global_dof_index>, std::vector<double>>>
         &functionals) const
 {
   const Impl     &m = *this;
   Eigen::MatrixXd D(functionals.size(), Eigen::Index(n_loads));
-  // All right-hand sides in blocks of columns of a dense matrix, solved together (the direct
-  // factorisation does a block solve: one pass over the factor per block; an iterative
-  // run-time choice solves column by column); a block's right-hand sides and solutions take
-  // at most about 1 GB together (at least 16 columns) and at most solve_block columns.
+  // All right-hand sides in blocks of columns, solved together (the direct factorisation
+  // does a block solve: one pass over the factor per block; an iterative run-time choice
+  // solves column by column); a block's solutions take at most about 1 GB (at least 16
+  // columns) and at most solve_block columns.
   const std::size_t block =
-      std::clamp<std::size_t>((std::size_t(1) << 30) / (16 * m.dofs.n_dofs()), 16, solve_block);
+      std::clamp<std::size_t>((std::size_t(1) << 30) / (8 * m.dofs.n_dofs()), 16, solve_block);
   const PetscInt local = PetscInt(m.owned.n_elements());
+  const PetscInt N     = PetscInt(m.dofs.n_dofs());
+  const bool     root  = Utilities::MPI::this_mpi_process(m.comm) == 0;
   if (functionals.empty() || n_loads == 0)
     return D;
   Mat F = m.functional_matrix(functionals);
   for (std::size_t first = 0; first < n_loads; first += block)
     {
       const PetscInt cols = PetscInt(std::min<std::size_t>(block, n_loads - first));
-      Mat            B, X;
-      petsc_check(
-          MatCreateDense(m.comm, local, PETSC_DECIDE, PetscInt(m.dofs.n_dofs()), cols, nullptr, &B),
-          "MatCreateDense");
-      fill(first, cols, B);
-      petsc_check(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X), "MatDuplicate");
+      std::vector<std::vector<PetscInt>> dofs(static_cast<std::size_t>(cols));
+      std::vector<std::vector<double>>   values(static_cast<std::size_t>(cols));
+      std::vector<PetscInt>              counts(static_cast<std::size_t>(cols));
+      for (PetscInt c = 0; c < cols; ++c)
+        {
+          entries(first + std::size_t(c), dofs[std::size_t(c)], values[std::size_t(c)]);
+          counts[std::size_t(c)] = PetscInt(dofs[std::size_t(c)].size());
+        }
+      Mat X;
+      petsc_check(MatCreateDense(m.comm, local, PETSC_DECIDE, N, cols, nullptr, &X),
+                  "MatCreateDense");
       if (m.factor)
-        petsc_check(MatMatSolve(m.factor, B, X), "MatMatSolve");
+        {
+          // MUMPS takes sparse right-hand sides by column on the first process: their
+          // transpose, all its rows there (its forward elimination then skips the parts of
+          // the elimination tree a block's loads do not reach)
+          MPI_Allreduce(MPI_IN_PLACE, counts.data(), int(cols), MPIU_INT, MPI_SUM, m.comm);
+          Mat Bt;
+          petsc_check(MatCreateAIJ(m.comm, root ? cols : 0, root ? N : 0, cols, N, 0,
+                                   root ? counts.data() : nullptr, 0, nullptr, &Bt),
+                      "MatCreateAIJ");
+          for (PetscInt c = 0; c < cols; ++c)
+            petsc_check(MatSetValues(Bt, 1, &c, PetscInt(dofs[std::size_t(c)].size()),
+                                     dofs[std::size_t(c)].data(), values[std::size_t(c)].data(),
+                                     ADD_VALUES),
+                        "MatSetValues");
+          petsc_check(MatAssemblyBegin(Bt, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+          petsc_check(MatAssemblyEnd(Bt, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+          petsc_check(MatMatTransposeSolve(m.factor, Bt, X), "MatMatTransposeSolve");
+          MatDestroy(&Bt);
+        }
       else
-        petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
+        {
+          Mat B;
+          petsc_check(MatCreateDense(m.comm, local, PETSC_DECIDE, N, cols, nullptr, &B),
+                      "MatCreateDense");
+          for (PetscInt c = 0; c < cols; ++c)
+            petsc_check(MatSetValues(B, PetscInt(dofs[std::size_t(c)].size()),
+                                     dofs[std::size_t(c)].data(), 1, &c,
+                                     values[std::size_t(c)].data(), ADD_VALUES),
+                        "MatSetValues");
+          petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+          petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+          petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
+          MatDestroy(&B);
+        }
       // the block's responses at once: F X on the first process, then on every process
       Mat product;
       petsc_check(MatMatMult(F, X, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &product), "MatMatMult");
       Eigen::MatrixXd found(D.rows(), cols);
-      if (Utilities::MPI::this_mpi_process(m.comm) == 0)
+      if (root)
         {
-          const PetscScalar *values;
+          const PetscScalar *v;
           PetscInt           lda;
           petsc_check(MatDenseGetLDA(product, &lda), "MatDenseGetLDA");
-          petsc_check(MatDenseGetArrayRead(product, &values), "MatDenseGetArrayRead");
+          petsc_check(MatDenseGetArrayRead(product, &v), "MatDenseGetArrayRead");
           for (PetscInt c = 0; c < cols; ++c)
             for (Eigen::Index j = 0; j < D.rows(); ++j)
-              found(j, c) = values[c * lda + j];
-          petsc_check(MatDenseRestoreArrayRead(product, &values), "MatDenseRestoreArrayRead");
+              found(j, c) = v[c * lda + j];
+          petsc_check(MatDenseRestoreArrayRead(product, &v), "MatDenseRestoreArrayRead");
         }
       MatDestroy(&product);
       MPI_Bcast(found.data(), int(found.size()), MPI_DOUBLE, 0, m.comm);
       D.middleCols(Eigen::Index(first), cols) = found;
-      MatDestroy(&B);
       MatDestroy(&X);
     }
   MatDestroy(&F);
@@ -1756,6 +1940,7 @@ Eigen::VectorXd
 ElasticSegment::response(const std::vector<PatchLoad> &loads, const std::vector<Probe> &probes,
                          Vec3 *reaction) const
 {
+  impl->set_up_solver();
   const Impl                      &m = *impl;
   const PETScWrappers::MPI::Vector f = m.assemble_loads(loads);
   const PETScWrappers::MPI::Vector u = m.solve(f);
@@ -1806,6 +1991,7 @@ ElasticSegment::response(const std::vector<PatchLoad> &loads, const std::vector<
 void
 ElasticSegment::write_vtu(const std::vector<PatchLoad> &loads, const std::string &path) const
 {
+  impl->set_up_solver();
   const Impl                      &m = *impl;
   const PETScWrappers::MPI::Vector u = m.solve(m.assemble_loads(loads));
   DataOut<3>                       out;

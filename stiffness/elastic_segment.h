@@ -135,9 +135,12 @@ struct Probe
 class ElasticSegment
 {
 public:
-  /// Reads the gmsh mesh (hexahedra; physical surface tags become boundary ids), assembles and
-  /// factorises. Throws InputError for a missing or non-hexahedral file, a bad material, degree
-  /// or an unknown boundary id, and a body that is not held (singular stiffness).
+  /// Reads the gmsh mesh (hexahedra; physical surface tags become boundary ids), refines it and
+  /// numbers its dofs; the stiffness matrix is assembled and factorised at the first solve (or
+  /// the first question about the solver below), remainder_response's loads beside it. Throws
+  /// InputError for a missing or non-hexahedral file, a bad material, degree or an unknown
+  /// boundary id, and a body that is not held (singular stiffness); MemoryRefusal where the
+  /// matrix would not fit (here) or its factors (at the first solve).
   ElasticSegment(const std::string &mesh_file, const ElasticSegmentOptions &options);
   ~ElasticSegment();
 
@@ -186,8 +189,12 @@ public:
   cells() const;
   std::size_t
   dofs() const;
+  /// The factorisation's wall time, and that of the matrix's assembly and factorisation
+  /// together (solver set-up) [s]. These and the two below set the solver up if no solve has.
   double
   factorisation_seconds() const;
+  double
+  solver_seconds() const;
   /// Whether MUMPS keeps its factors in files: taken where they did not fit in memory but do
   /// so (ElasticSegmentOptions::memory_available).
   bool

@@ -58,8 +58,8 @@ struct MemberComplianceOptions
   /// (ElasticSegmentOptions::memory_available).
   double   memory_available = 0;
   unsigned threads          = 0; ///< threads per process for the unit loads; 0: the hardware's
-  /// Told what comes next ("meshing", "assembly and factorisation, 103095 dofs", "189 unit
-  /// loads"): a progress line's note (base/progress.h); may be empty.
+  /// Told what comes next ("meshing", "set-up", "189 unit loads on 103095 dofs"): a progress
+  /// line's note (base/progress.h); may be empty.
   std::function<void(const std::string &)> on_phase;
 };
 
@@ -75,8 +75,11 @@ struct MemberComplianceInfo
   /// With the analytic near field: the smallest cut-off radius used [m] (less than the
   /// option where the body comes back across a point's normal or a held face is near).
   double min_near_field_radius = 0;
+  /// Wall times [s]: the segment's mesh; reading, refining and numbering it (set-up); the unit
+  /// loads (solve), which include the stiffness matrix's assembly and factorisation (solver,
+  /// beside the loads' assembly) and of that the factorisation (factor).
   double mesh_seconds = 0, setup_seconds = 0, solve_seconds = 0;
-  double factor_seconds = 0; ///< the part of setup_seconds the factorisation took
+  double solver_seconds = 0, factor_seconds = 0;
   /// The processes that computed the table (member_compliances: a group's or all).
   int processes = 1;
   /// The factors kept in files: in memory they did not fit (ElasticSegment).

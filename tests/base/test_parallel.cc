@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 using namespace gearkit;
 
@@ -62,4 +65,86 @@ TEST(ParallelFor, TheLowestFailedJobsErrorReachesTheCaller)
         // lower wins
         EXPECT_EQ(std::string(e.what()), "job 7") << threads;
       }
+}
+
+TEST(ParallelForBeside, TheTaskRunsOnceBesideTheJobsThenTheCallerJoinsThem)
+{
+  for (unsigned threads : {1u, 2u, 3u})
+    {
+      std::vector<int>         runs(200, 0);
+      std::atomic<int>         tasks{0};
+      std::atomic<std::size_t> done_during_task{0};
+      std::atomic<std::size_t> done{0};
+      const std::thread::id    caller = std::this_thread::get_id();
+      std::atomic<bool>        caller_took_a_job{false};
+      parallel_for_beside(
+          [&] {
+            ++tasks;
+            // with helpers, jobs proceed meanwhile: wait (bounded) until some have run
+            for (int k = 0; k < 2000 && threads > 1 && done < 10; ++k)
+              std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            done_during_task = done.load();
+          },
+          runs.size(), threads, [] { return 0; },
+          [&](int, std::size_t i) {
+            runs[i] += int(i) + 1;
+            caller_took_a_job = caller_took_a_job || std::this_thread::get_id() == caller;
+            if (threads > 1 && std::this_thread::get_id() != caller)
+              std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            ++done;
+          });
+      EXPECT_EQ(tasks, 1) << threads;
+      for (std::size_t i = 0; i < runs.size(); ++i)
+        EXPECT_EQ(runs[i], int(i) + 1) << threads;
+      if (threads == 1)
+        {
+          EXPECT_EQ(done_during_task, 0u); // the task first, then the jobs on the caller
+        }
+      else
+        {
+          EXPECT_GE(done_during_task, 10u) << threads; // the helpers did not wait for the task
+        }
+      EXPECT_TRUE(caller_took_a_job) << threads;      // the caller joined the jobs
+    }
+}
+
+TEST(ParallelForBeside, TheTasksErrorFirstAndNoJobStartsAfterIt)
+{
+  for (unsigned threads : {1u, 2u})
+    {
+      std::atomic<int> started{0};
+      try
+        {
+          parallel_for_beside([] { throw InputError("task"); }, 1000, threads,
+                              [] { return 0; },
+                              [&](int, std::size_t i) {
+                                ++started;
+                                if (i == 3)
+                                  throw InputError("job 3");
+                              });
+          ADD_FAILURE() << "no exception with " << threads << " threads";
+        }
+      catch (const InputError &e)
+        {
+          EXPECT_EQ(std::string(e.what()), "task") << threads;
+        }
+      EXPECT_LT(started, 1000) << threads; // the jobs stopped (one thread: none started)
+      if (threads == 1)
+        {
+          EXPECT_EQ(started, 0);
+        }
+    }
+  // without a failing task, the lowest failed job's error
+  try
+    {
+      parallel_for_beside([] {}, 40, 2, [] { return 0; }, [](int, std::size_t i) {
+        if (i == 7)
+          throw InputError("job 7");
+      });
+      ADD_FAILURE() << "no exception";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_EQ(std::string(e.what()), "job 7");
+    }
 }

@@ -83,6 +83,12 @@ TEST(BlasKernels, OneBlasThreadInsideJobsOnThreadsThenAsBefore)
   EXPECT_EQ(blas_threads(), 2);              // restored
   parallel_for(inside.size(), 1, [&](std::size_t i) { inside[i] = blas_threads(); });
   EXPECT_EQ(inside, std::vector<int>(6, 2)); // on the calling thread alone: unchanged
+  int in_task = 0;
+  parallel_for_beside([&] { in_task = blas_threads(); }, inside.size(), 2, [] { return 0; },
+                      [&](int, std::size_t i) { inside[i] = blas_threads(); });
+  EXPECT_EQ(in_task, 1); // a task beside jobs on threads: one OpenBLAS thread too
+  EXPECT_EQ(inside, std::vector<int>(6, 1));
+  EXPECT_EQ(blas_threads(), 2);
   {
     const BlasThreads one(1);
     EXPECT_EQ(blas_threads(), 1);

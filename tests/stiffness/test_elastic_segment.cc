@@ -490,7 +490,8 @@ TEST(ElasticSegment, ABodyThatWouldNotFitIsRefusedBeforeItIsBuilt)
 {
   // Two checks, each with its estimate in the message (never killed half way): the matrix
   // (about 40 bytes per nonzero) before it is built, then MUMPS's analysis sizes the
-  // factorisation before it starts; with enough memory the body is factorised and solves.
+  // factorisation before it starts (at the first solve, or question about the solver); with
+  // enough memory the body is factorised and solves.
   ElasticSegmentOptions o;
   o.clamped = {5}, o.degree = 2;
   const std::string mesh    = box("memory", Vec3(20e-3, 20e-3, 10e-3), 6, 6, 3);
@@ -499,6 +500,7 @@ TEST(ElasticSegment, ABodyThatWouldNotFitIsRefusedBeforeItIsBuilt)
     try
       {
         ElasticSegment body(mesh, o);
+        body.solver();
       }
     catch (const InputError &e)
       {
@@ -567,11 +569,13 @@ TEST(ElasticSegment, FactorsOutOfCoreWhereInCoreTheyDoNotFit)
   const Eigen::MatrixXd D = out_of_core.response(loads, probes);
   EXPECT_LT((D - expected).norm(), 1e-12 * expected.norm());
   EXPECT_GT(expected.norm(), 1e-9);
-  // the factors' files in a folder that is not there
+  // the factors' files in a folder that is not there: refused at the first solve, before any
+  // factorisation (the matrix itself fits: the segment is made)
   PetscOptionsSetValue(nullptr, "-gearkit_mat_mumps_ooc_tmpdir", "/nonexistent/gearkit");
   try
     {
       const ElasticSegment refused(mesh, o);
+      refused.response(loads, probes);
       ADD_FAILURE() << "not refused";
     }
   catch (const MemoryRefusal &e)

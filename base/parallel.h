@@ -25,8 +25,8 @@ namespace gearkit
 /// one thread meanwhile (BlasThreads), the task's BLAS calls included.
 template <class Task, class MakeState, class Job>
 void
-parallel_for_beside(const Task &task, std::size_t n, unsigned threads,
-                    const MakeState &make_state, const Job &job)
+parallel_for_beside(const Task &task, std::size_t n, unsigned threads, const MakeState &make_state,
+                    const Job &job)
 {
   if (threads == 0)
     threads = std::max(1u, std::thread::hardware_concurrency());

@@ -39,13 +39,13 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <malloc.h>
 #include <limits>
+#include <malloc.h>
 #include <map>
-#include <stdexcept>
 #include <petscksp.h>
 #include <petscversion.h>
 #include <sstream>
+#include <stdexcept>
 
 namespace gearkit
 {
@@ -344,7 +344,7 @@ struct ElasticSegment::Impl
   std::unique_ptr<GridTools::Cache<3>> cache_ptr; ///< cell search (R-tree) for probes
   IndexSet                             owned, relevant;
   AffineConstraints<double>            constraints;
-  Mat                                  K = nullptr; ///< the stiffness matrix (assemble_matrix)
+  Mat                                  K   = nullptr; ///< the stiffness matrix (assemble_matrix)
   KSP                                  ksp = nullptr;
   std::string                          solver_name; ///< KSP type / PC type
   /// The MUMPS Cholesky factor (the default); null where run-time options chose another solver
@@ -356,9 +356,9 @@ struct ElasticSegment::Impl
   /// chose) wait for the first solve (set_up_solver), so that a block of right-hand sides can
   /// be assembled beside them (remainder_response).
   std::string mesh_file;
-  bool        solver_ready     = false;
-  double      solver_seconds   = 0; ///< the matrix's assembly and the factorisation
-  double lambda = 0, mu = 0;
+  bool        solver_ready   = false;
+  double      solver_seconds = 0; ///< the matrix's assembly and the factorisation
+  double      lambda = 0, mu = 0;
 
   /// Boundary quadrature of the faces with a boundary id, cached for fast load assembly.
   struct FaceData
@@ -738,10 +738,10 @@ ElasticSegment::Impl::assemble_matrix()
   DynamicSparsityPattern dsp(relevant);
   DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);
   SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
-  const std::size_t            rows = owned.n_elements();
-  std::vector<PetscInt>        start(rows + 1, 0);
-  std::vector<PetscInt>        columns;
-  std::vector<double>          entries;
+  const std::size_t     rows = owned.n_elements();
+  std::vector<PetscInt> start(rows + 1, 0);
+  std::vector<PetscInt> columns;
+  std::vector<double>   entries;
   {
     std::size_t total = 0;
     for (std::size_t r = 0; r < rows; ++r)
@@ -756,7 +756,7 @@ ElasticSegment::Impl::assemble_matrix()
     entries.assign(total, 0.0);
     for (std::size_t r = 0; r < rows; ++r)
       {
-        const types::global_dof_index row = owned.nth_index_in_set(r);
+        const types::global_dof_index row    = owned.nth_index_in_set(r);
         const unsigned                length = dsp.row_length(row);
         start[r + 1]                         = start[r] + PetscInt(length);
         for (unsigned k = 0; k < length; ++k)
@@ -764,7 +764,7 @@ ElasticSegment::Impl::assemble_matrix()
         std::sort(columns.begin() + start[r], columns.begin() + start[r + 1]);
       }
   }
-  dsp = DynamicSparsityPattern();
+  dsp           = DynamicSparsityPattern();
   const auto at = [&](std::size_t r, types::global_dof_index column) -> double & {
     const auto first = columns.begin() + start[r], last = columns.begin() + start[r + 1];
     const auto found = std::lower_bound(first, last, PetscInt(column));
@@ -791,8 +791,8 @@ ElasticSegment::Impl::assemble_matrix()
         continue;
       cell->get_dof_indices(indices);
       resolved.clear();
-      bool reaches = false;
-      const auto add = [&](unsigned i, types::global_dof_index j, double w) {
+      bool       reaches = false;
+      const auto add     = [&](unsigned i, types::global_dof_index j, double w) {
         const std::size_t r = owned.is_element(j) ? owned.index_within_set(j) : rows;
         reaches             = reaches || r < rows;
         resolved.push_back({i, j, w, r});
@@ -826,8 +826,8 @@ ElasticSegment::Impl::assemble_matrix()
     }
   // a constrained dof's row: the mean diagonal of the others (any positive value would do;
   // this one keeps the matrix's scale)
-  double            diagonal = 0;
-  std::size_t       free     = 0;
+  double      diagonal = 0;
+  std::size_t free     = 0;
   for (std::size_t r = 0; r < rows; ++r)
     if (!constraints.is_constrained(owned.nth_index_in_set(r)))
       diagonal += at(r, owned.nth_index_in_set(r)), ++free;
@@ -1415,25 +1415,22 @@ ElasticSegment::remainder_response(const std::vector<NearFieldLoad> &loads,
     m.surface_points.reset(
         new std::atomic<Impl::SurfacePoints *>[m.tria.n_active_cells() * 6 * Impl::face_rules]());
   // The load vectors on threads (each its own quadratures and a vector over all dofs), their
-  // entries kept (nonzero only about each load): beside the stiffness matrix's assembly and
-  // factorisation if they are still to come (a helper thread starts on the loads; the calling
-  // thread sets the solver up, which uses both cores only in part, then joins the loads), then
-  // added to the blocks of right-hand sides (entries of other processes' dofs travel with the
-  // assembly).
+  // entries kept (nonzero only about each load), beside the stiffness matrix's assembly and
+  // factorisation if those are still to come: a helper thread starts on the loads while the
+  // calling thread sets the solver up (no load needs it; PETSc and MPI stay on this thread),
+  // then joins the loads. Entries of other processes' dofs travel with the right-hand sides.
   std::vector<std::vector<PetscInt>> rows(loads.size());
   std::vector<std::vector<double>>   values(loads.size());
-  parallel_for_beside(
-      [&] { impl->set_up_solver(); }, loads.size(), m.options.threads,
-      [&] { return Impl::RemainderScratch(m); },
-      [&](Impl::RemainderScratch &scratch, std::size_t c) {
-        scratch.f = 0;
-        m.assemble_remainder_load(loads[c], scratch);
-        for (types::global_dof_index i = 0; i < scratch.f.size(); ++i)
-          if (scratch.f(i) != 0)
-            rows[c].push_back(PetscInt(i)), values[c].push_back(scratch.f(i));
-      });
-  const auto entries = [&](std::size_t i, std::vector<PetscInt> &dofs,
-                           std::vector<double> &v) {
+  parallel_for_beside([&] { impl->set_up_solver(); }, loads.size(), m.options.threads,
+                      [&] { return Impl::RemainderScratch(m); },
+                      [&](Impl::RemainderScratch &scratch, std::size_t c) {
+                        scratch.f = 0;
+                        m.assemble_remainder_load(loads[c], scratch);
+                        for (types::global_dof_index i = 0; i < scratch.f.size(); ++i)
+                          if (scratch.f(i) != 0)
+                            rows[c].push_back(PetscInt(i)), values[c].push_back(scratch.f(i));
+                      });
+  const auto entries = [&](std::size_t i, std::vector<PetscInt> &dofs, std::vector<double> &v) {
     dofs.swap(rows[i]);
     v.swap(values[i]);
   };

@@ -104,7 +104,7 @@ TEST(ParallelForBeside, TheTaskRunsOnceBesideTheJobsThenTheCallerJoinsThem)
         {
           EXPECT_GE(done_during_task, 10u) << threads; // the helpers did not wait for the task
         }
-      EXPECT_TRUE(caller_took_a_job) << threads;      // the caller joined the jobs
+      EXPECT_TRUE(caller_took_a_job) << threads; // the caller joined the jobs
     }
 }
 
@@ -115,8 +115,7 @@ TEST(ParallelForBeside, TheTasksErrorFirstAndNoJobStartsAfterIt)
       std::atomic<int> started{0};
       try
         {
-          parallel_for_beside([] { throw InputError("task"); }, 1000, threads,
-                              [] { return 0; },
+          parallel_for_beside([] { throw InputError("task"); }, 1000, threads, [] { return 0; },
                               [&](int, std::size_t i) {
                                 ++started;
                                 if (i == 3)
@@ -137,10 +136,11 @@ TEST(ParallelForBeside, TheTasksErrorFirstAndNoJobStartsAfterIt)
   // without a failing task, the lowest failed job's error
   try
     {
-      parallel_for_beside([] {}, 40, 2, [] { return 0; }, [](int, std::size_t i) {
-        if (i == 7)
-          throw InputError("job 7");
-      });
+      parallel_for_beside([] {}, 40, 2, [] { return 0; },
+                          [](int, std::size_t i) {
+                            if (i == 7)
+                              throw InputError("job 7");
+                          });
       ADD_FAILURE() << "no exception";
     }
   catch (const InputError &e)

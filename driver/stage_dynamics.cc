@@ -12,6 +12,7 @@
 #include "dynamics/modes.h"
 #include "dynamics/newmark_error.h"
 #include "dynamics/sweep.h"
+#include "stiffness/collective.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -77,7 +78,9 @@ run_everywhere(const std::vector<SweepTask> &tasks, const std::string &progress)
     mine.push_back(tasks[i]), index.push_back(i);
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency() / size);
   std::vector<std::vector<SweepPoint>> results(tasks.size());
-  const auto                           done = run_sweeps(mine, threads, progress);
+  std::vector<std::vector<SweepPoint>> done;
+  // a failure on any process is thrown on all (before the results are gathered)
+  collectively(MPI_COMM_WORLD, [&] { done = run_sweeps(mine, threads, progress); });
   if (size == 1)
     {
       for (std::size_t k = 0; k < mine.size(); ++k)

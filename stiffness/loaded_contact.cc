@@ -1,6 +1,7 @@
 #include "stiffness/loaded_contact.h"
 
 #include "base/parallel.h"
+#include "stiffness/collective.h"
 #include "stiffness/contact_solver.h"
 
 #include <deal.II/base/mpi.h>
@@ -233,43 +234,32 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   for (std::size_t j = rank; j < jobs; j += size)
     mine.push_back(j);
   std::vector<Solved> solved(jobs);
-  std::string         failure; // this process's lowest failed job's message
   std::mutex          progress;
-  try
-    {
-      parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
-        const std::size_t    job = mine[k];
-        const LoadedPosition r   = loaded_contact(t, positions[job % std::size_t(n)],
-                                                  torques[job / std::size_t(n)], lo, sp, sg);
-        Solved              &s   = solved[job];
-        s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
-        s.normal_force = r.normal_force, s.lever = r.lever;
-        s.pair_force = r.pair_force;
-        for (std::size_t j = 0; j < r.cells.size(); ++j)
-          {
-            const ContactCell &cell = r.cells[j];
-            s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1,
-                                r.force[Eigen::Index(j)] / (cell.ds * cell.dt)}});
-          }
-        if (step)
-          {
-            const std::lock_guard<std::mutex> lock(progress);
-            step();
-          }
-      });
-    }
-  catch (const std::exception &e)
-    {
-      failure = e.what();
-      if (size == 1)
-        throw;
-    }
+  // a failure on any process is thrown on all (the first failed process's)
+  collectively(comm, [&] {
+    parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
+      const std::size_t    job = mine[k];
+      const LoadedPosition r   = loaded_contact(t, positions[job % std::size_t(n)],
+                                                torques[job / std::size_t(n)], lo, sp, sg);
+      Solved              &s   = solved[job];
+      s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
+      s.normal_force = r.normal_force, s.lever = r.lever;
+      s.pair_force = r.pair_force;
+      for (std::size_t j = 0; j < r.cells.size(); ++j)
+        {
+          const ContactCell &cell = r.cells[j];
+          s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1,
+                              r.force[Eigen::Index(j)] / (cell.ds * cell.dt)}});
+        }
+      if (step)
+        {
+          const std::lock_guard<std::mutex> lock(progress);
+          step();
+        }
+    });
+  });
   if (size > 1)
     {
-      // a failure on any process is thrown on all (the first process's with one)
-      for (const std::string &message : dealii::Utilities::MPI::all_gather(comm, failure))
-        if (!message.empty())
-          throw InputError(message);
       std::vector<double> payload;
       for (const std::size_t job : mine)
         {

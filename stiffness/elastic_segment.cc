@@ -504,12 +504,12 @@ struct ElasticSegment::Impl
   /// it (about 40 bytes per nonzero, the nonzeros estimated from the element's couplings) would
   /// not fit in the memory available on some machine: refused before they are built.
   void
-  check_assembly_fits(const std::string &file) const;
+  check_assembly_fits() const;
   /// The MUMPS Cholesky factor of K; throws InputError when MUMPS's analysis estimates more
   /// memory for it on some machine than the machine has available (options.memory_available,
   /// else MemAvailable), before factorising.
   void
-  factorise(const std::string &file);
+  factorise();
   /// Assembles the stiffness matrix and sets its solver up (MUMPS: factorises), once;
   /// collective.
   void
@@ -573,11 +573,12 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
     throw InputError("elastic segment: the material needs E > 0 and Poisson's ratio in (-1, 0.5)");
   if (!std::ifstream(file).good())
     throw InputError("elastic segment: cannot read the mesh file " + file);
-  impl      = std::make_unique<Impl>(o.degree, o.communicator);
-  Impl &m   = *impl;
-  m.options = o;
-  m.lambda  = lame(o.material).lambda;
-  m.mu      = lame(o.material).mu;
+  impl        = std::make_unique<Impl>(o.degree, o.communicator);
+  Impl &m     = *impl;
+  m.options   = o;
+  m.mesh_file = file;
+  m.lambda    = lame(o.material).lambda;
+  m.mu        = lame(o.material).mu;
 
   Triangulation<3> coarse;
   {
@@ -648,7 +649,7 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   m.dofs.reinit(m.tria);
   m.dofs.distribute_dofs(m.fe);
   m.owned = m.dofs.locally_owned_dofs();
-  m.check_assembly_fits(file);
+  m.check_assembly_fits();
   DoFTools::extract_locally_relevant_dofs(m.dofs, m.relevant);
   m.constraints.reinit(m.relevant);
   DoFTools::make_hanging_node_constraints(m.dofs, m.constraints);
@@ -721,8 +722,6 @@ ElasticSegment::ElasticSegment(const std::string &file, const ElasticSegmentOpti
   m.fine_face_values = std::make_unique<FEFaceValues<3>>(
       m.mapping, m.fe, QIterated<2>(QGauss<1>(o.degree + 1), 8),
       update_values | update_quadrature_points | update_JxW_values);
-
-  m.mesh_file = file;
 }
 
 void
@@ -763,13 +762,15 @@ ElasticSegment::Impl::assemble_matrix()
         std::sort(columns.begin() + start[r], columns.begin() + start[r + 1]);
       }
   }
-  dsp           = DynamicSparsityPattern();
-  const auto at = [&](std::size_t r, types::global_dof_index column) -> double & {
-    const auto first = columns.begin() + start[r], last = columns.begin() + start[r + 1];
-    const auto found = std::lower_bound(first, last, PetscInt(column));
-    if (found == last || *found != PetscInt(column))
+  dsp = DynamicSparsityPattern();
+  // the entry of row r and the given column, searched along the row's sorted columns from k on
+  const auto position = [&](std::size_t r, types::global_dof_index column, std::size_t k) {
+    const std::size_t end = std::size_t(start[r + 1]);
+    while (k < end && columns[k] < PetscInt(column))
+      ++k;
+    if (k == end || columns[k] != PetscInt(column))
       throw std::logic_error("elastic segment: an element entry outside the sparsity pattern");
-    return entries[std::size_t(found - columns.begin())];
+    return k;
   };
 
   const QGauss<3>    quadrature(options.degree + 1);
@@ -814,27 +815,26 @@ ElasticSegment::Impl::assemble_matrix()
             std::size_t k = std::size_t(start[a.row]);
             for (const Resolved &b : resolved)
               {
-                while (k < std::size_t(start[a.row + 1]) && columns[k] < PetscInt(b.global))
-                  ++k;
-                if (k == std::size_t(start[a.row + 1]) || columns[k] != PetscInt(b.global))
-                  throw std::logic_error(
-                      "elastic segment: an element entry outside the sparsity pattern");
+                k = position(a.row, b.global, k);
                 entries[k] += a.weight * b.weight * local(a.local, b.local);
               }
           }
     }
   // a constrained dof's row: the mean diagonal of the others (any positive value would do;
   // this one keeps the matrix's scale)
+  const auto diagonal_of = [&](std::size_t r) -> double & {
+    return entries[position(r, owned.nth_index_in_set(r), std::size_t(start[r]))];
+  };
   double      diagonal = 0;
   std::size_t free     = 0;
   for (std::size_t r = 0; r < rows; ++r)
     if (!constraints.is_constrained(owned.nth_index_in_set(r)))
-      diagonal += at(r, owned.nth_index_in_set(r)), ++free;
+      diagonal += diagonal_of(r), ++free;
   diagonal = Utilities::MPI::sum(diagonal, comm) /
              double(std::max<std::size_t>(1, Utilities::MPI::sum(free, comm)));
   for (std::size_t r = 0; r < rows; ++r)
     if (constraints.is_constrained(owned.nth_index_in_set(r)))
-      at(r, owned.nth_index_in_set(r)) = diagonal;
+      diagonal_of(r) = diagonal;
 
   petsc_check(MatCreate(comm, &K), "MatCreate");
   petsc_check(MatSetSizes(K, PetscInt(rows), PetscInt(rows), PetscInt(dofs.n_dofs()),
@@ -880,7 +880,7 @@ ElasticSegment::Impl::set_up_solver()
   m.solver_name = std::string(KSPPREONLY) + "/" + chosen;
   if (solver_type && std::string(solver_type) == MATSOLVERMUMPS)
     {
-      m.factorise(m.mesh_file); // MUMPS's analysis once, for the memory check and the factorisation
+      m.factorise(); // MUMPS's analysis once, for the memory check and the factorisation
       // MUMPS keeps its own copy of the entries: the matrix and the solver object that holds it
       // go (a quarter of a member's memory at the recommended settings)
       KSPDestroy(&m.ksp);
@@ -899,7 +899,7 @@ ElasticSegment::Impl::set_up_solver()
 }
 
 void
-ElasticSegment::Impl::check_assembly_fits(const std::string &file) const
+ElasticSegment::Impl::check_assembly_fits() const
 {
   const double need = double(owned.n_elements()) * matrix_bytes_per_dof(options.degree);
   const double have =
@@ -909,7 +909,7 @@ ElasticSegment::Impl::check_assembly_fits(const std::string &file) const
     {
       std::ostringstream msg;
       msg.precision(3);
-      msg << "elastic segment: " << file << " has " << dofs.n_dofs()
+      msg << "elastic segment: " << mesh_file << " has " << dofs.n_dofs()
           << " degrees of freedom; assembling its stiffness matrix needs about "
           << Utilities::MPI::max(here, comm) / 1e9 << " GB on a machine with "
           << Utilities::MPI::min(have, comm) / 1e9
@@ -920,7 +920,7 @@ ElasticSegment::Impl::check_assembly_fits(const std::string &file) const
 }
 
 void
-ElasticSegment::Impl::factorise(const std::string &file)
+ElasticSegment::Impl::factorise()
 {
   // MUMPS's analysis (ordering, symbolic factorisation) first: its estimates of the in-core
   // factorisation's memory, the largest process's (INFOG(16)) and all processes' (INFOG(17)),
@@ -977,7 +977,7 @@ ElasticSegment::Impl::factorise(const std::string &file)
           const double       short_have = Utilities::MPI::min(have, comm);
           std::ostringstream msg;
           msg.precision(3);
-          msg << "elastic segment: " << file << " has " << dofs.n_dofs()
+          msg << "elastic segment: " << mesh_file << " has " << dofs.n_dofs()
               << " degrees of freedom; its direct factorisation (MUMPS) needs about "
               << double(total) / 1e3 << " GB (" << short_need / 1e9 << " GB on a machine with "
               << short_have / 1e9 << " GB available); with its factors out of core "
@@ -1870,6 +1870,21 @@ ElasticSegment::Impl::responses(
           entries(first + std::size_t(c), dofs[std::size_t(c)], values[std::size_t(c)]);
           counts[std::size_t(c)] = PetscInt(dofs[std::size_t(c)].size());
         }
+      // the block's loads added to B by column (transposed: to B^T by row), then assembled
+      const auto add_loads = [&](Mat B, bool transposed) {
+        for (PetscInt c = 0; c < cols; ++c)
+          {
+            const auto    &d = dofs[std::size_t(c)];
+            const PetscInt n = PetscInt(d.size());
+            petsc_check(transposed ? MatSetValues(B, 1, &c, n, d.data(),
+                                                  values[std::size_t(c)].data(), ADD_VALUES)
+                                   : MatSetValues(B, n, d.data(), 1, &c,
+                                                  values[std::size_t(c)].data(), ADD_VALUES),
+                        "MatSetValues");
+          }
+        petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+        petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+      };
       Mat X;
       petsc_check(MatCreateDense(m.comm, local, PETSC_DECIDE, N, cols, nullptr, &X),
                   "MatCreateDense");
@@ -1883,13 +1898,7 @@ ElasticSegment::Impl::responses(
           petsc_check(MatCreateAIJ(m.comm, root ? cols : 0, root ? N : 0, cols, N, 0,
                                    root ? counts.data() : nullptr, 0, nullptr, &Bt),
                       "MatCreateAIJ");
-          for (PetscInt c = 0; c < cols; ++c)
-            petsc_check(MatSetValues(Bt, 1, &c, PetscInt(dofs[std::size_t(c)].size()),
-                                     dofs[std::size_t(c)].data(), values[std::size_t(c)].data(),
-                                     ADD_VALUES),
-                        "MatSetValues");
-          petsc_check(MatAssemblyBegin(Bt, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-          petsc_check(MatAssemblyEnd(Bt, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+          add_loads(Bt, true);
           petsc_check(MatMatTransposeSolve(m.factor, Bt, X), "MatMatTransposeSolve");
           MatDestroy(&Bt);
         }
@@ -1898,13 +1907,7 @@ ElasticSegment::Impl::responses(
           Mat B;
           petsc_check(MatCreateDense(m.comm, local, PETSC_DECIDE, N, cols, nullptr, &B),
                       "MatCreateDense");
-          for (PetscInt c = 0; c < cols; ++c)
-            petsc_check(MatSetValues(B, PetscInt(dofs[std::size_t(c)].size()),
-                                     dofs[std::size_t(c)].data(), 1, &c,
-                                     values[std::size_t(c)].data(), ADD_VALUES),
-                        "MatSetValues");
-          petsc_check(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-          petsc_check(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+          add_loads(B, false);
           petsc_check(KSPMatSolve(m.ksp, B, X), "KSPMatSolve");
           MatDestroy(&B);
         }

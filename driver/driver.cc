@@ -101,6 +101,8 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
       fs::create_directories(cache);
   });
   log << "gearkit: scene " << scene.file << " -> " << dir.string() << "\n";
+  for (const std::string &w : scene.warnings)
+    log << "gearkit: WARNING: " << w << "\n";
 
   RunSummary                                     summary;
   std::map<std::string, std::unique_ptr<H5File>> files;
@@ -171,6 +173,10 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
     root.attribute("versions", "gearkit " GEARKIT_VERSION ", " + finite_element_versions() +
                                    ", compiler " __VERSION__);
     root.attribute("machine", machine_description());
+    std::string warnings;
+    for (const std::string &w : scene.warnings)
+      warnings += w + "\n";
+    root.attribute("warnings", warnings);
   }
   for (const StageRun &r : summary.stages)
     results.copy_from(*files.at(r.name), "/" + r.name, "/" + r.name);

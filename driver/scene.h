@@ -368,6 +368,10 @@ struct Scene
   /// The scene's parameters in canonical text form, one block per top-level subsection
   /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
   std::map<std::string, std::string> sections;
+  /// Values a real design can have but that look like a unit slip or a typing error (the
+  /// parameter, the value, the plausible range, the likely slip): the run goes on, and the log,
+  /// results.h5 (root attribute `warnings`) and report.html show each loudly.
+  std::vector<std::string> warnings;
 
   const PairScene &
   pair(const std::string &name) const;

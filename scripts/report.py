@@ -216,6 +216,13 @@ def main():
                f"Results: <code>results.h5</code> beside this page (SI units; shown here in µm, "
                f"µrad, N/µm, MPa).", "meta")
 
+        # 0. Warnings of the scene's plausibility checks, before anything else
+        warnings = [w for w in attr(f, "warnings").splitlines() if w.strip()]
+        if warnings:
+            page.h(2, f"Warnings ({len(warnings)})", "warnings")
+            page.raw('<div class="warnings"><ul>' + "".join(f"<li>{esc(w)}</li>" for w in warnings)
+                     + "</ul></div>")
+
         # 1. Key numbers and their accuracy
         page.h(2, "Key numbers", "key")
         rows = []
@@ -313,6 +320,7 @@ h1{font-size:1.6em} h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-t
 table{border-collapse:collapse;margin:.5em 0} td,th{border:1px solid #ddd;padding:.25em .6em;
 text-align:left;vertical-align:top} th{background:#f3f3f3} table.key td:first-child{color:#666}
 figure{margin:1em 0} img{max-width:100%;border:1px solid #eee} figcaption{font-size:.9em;color:#444}
+.warnings{background:#fff3cd;border:2px solid #d39e00;padding:.2em 1em;font-weight:600}
 pre{background:#f7f7f7;padding:.6em;overflow:auto;font-size:.85em} .meta{color:#555}
 """
     # For the browser check (tests): how many pictures decoded, on the body once the page loaded.

@@ -1,21 +1,30 @@
 #include "driver/driver.h"
 
 #include "base/blas_kernels.h"
+#include "driver/cache.h"
 #include "driver/stages.h"
 #include "stiffness/elastic_segment.h"
 
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <set>
+#include <spawn.h>
 #include <sstream>
+#include <sys/file.h>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
+
+extern char **environ;
 
 namespace gearkit
 {
@@ -65,6 +74,73 @@ machine_description()
       }
   return m.str();
 }
+
+/// One writer per output folder: an exclusive lock (flock) on <folder>/.gearkit.lock, which
+/// holds the process id of the run that has it. The kernel frees the lock when that process
+/// ends, however it ends; the file stays.
+class FolderLock
+{
+public:
+  explicit FolderLock(const fs::path &folder)
+  {
+    const fs::path file = folder / ".gearkit.lock";
+    descriptor          = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (descriptor < 0)
+      throw InputError("cannot open " + file.string() + " (" + std::strerror(errno) +
+                       "); is the output folder writable?");
+    if (::flock(descriptor, LOCK_EX | LOCK_NB) != 0)
+      {
+        std::string other;
+        std::ifstream(file) >> other;
+        ::close(descriptor);
+        throw InputError("the output folder " + folder.string() +
+                         " is in use by another gearkit run (process " +
+                         (other.empty() ? "unknown" : other) +
+                         "); wait for it to end, or give this run another --output-root or "
+                         "Scene/name");
+      }
+    // the process id, for the other run's message (nothing depends on it being written)
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(descriptor, 0) == 0)
+      {
+        [[maybe_unused]] const auto written = ::write(descriptor, pid.data(), pid.size());
+      }
+  }
+  FolderLock(const FolderLock &) = delete;
+  FolderLock &
+  operator=(const FolderLock &) = delete;
+  ~FolderLock()
+  {
+    ::close(descriptor); // releases the lock
+  }
+
+private:
+  int descriptor = -1;
+};
+
+/// Runs a program from an argument vector (no shell: quotes, $(...) and spaces in the
+/// arguments are plain characters) with this process's environment; waits for it. Its exit
+/// status, or a sentence saying why it did not run or end normally.
+std::string
+run_program(const std::vector<std::string> &arguments)
+{
+  std::vector<char *> argv;
+  for (const std::string &a : arguments)
+    argv.push_back(const_cast<char *>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t     child  = 0;
+  const int failed = posix_spawn(&child, argv[0], nullptr, nullptr, argv.data(), environ);
+  if (failed != 0)
+    return std::string("could not start ") + argv[0] + " (" + std::strerror(failed) + ")";
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0)
+    if (errno != EINTR)
+      return std::string("lost ") + argv[0] + " (" + std::strerror(errno) + ")";
+  if (WIFEXITED(status))
+    return WEXITSTATUS(status) == 0 ? ""
+                                    : "exited with status " + std::to_string(WEXITSTATUS(status));
+  return "ended by signal " + std::to_string(WTERMSIG(status));
+}
 } // namespace
 
 std::string
@@ -110,11 +186,27 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
     {
       const StageDefinition &s = stage_definition(name);
       StageRun               run;
-      run.name         = name;
-      run.cache_file   = (cache / (name + "-" + stage_key(scene, name) + ".h5")).string();
-      const auto start = std::chrono::steady_clock::now();
-      run.reused       = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD,
-                                                           rank == 0 && fs::exists(run.cache_file), 0);
+      run.name                = name;
+      const auto        start = std::chrono::steady_clock::now();
+      const std::string key   = stage_key(scene, name);
+      run.cache_file          = (cache / (name + "-" + key + ".h5")).string();
+      // A cache file is reused only when it verifies (driver/cache.h); one that does not is
+      // recomputed, with a line saying why.
+      if (rank == 0 && fs::exists(run.cache_file))
+        {
+          if (const std::string problem = cache_file_problem(run.cache_file, name, key);
+              problem.empty())
+            run.reused = true;
+          else
+            {
+              log << "stage " << name << ": cache file " << run.cache_file
+                  << " not reused: " << problem << "; recomputing" << std::endl;
+              std::error_code ignored; // the new file replaces it by a rename in any case
+              fs::remove(run.cache_file, ignored);
+              fs::remove(run.cache_file + ".digest", ignored);
+            }
+        }
+      run.reused = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, run.reused, 0);
       if (!run.reused)
         {
           log << "stage " << name << ": running (" << s.description << ")" << std::endl;
@@ -133,7 +225,11 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
                 rank == 0 ? run.cache_file : run.cache_file + ".process" + std::to_string(rank));
             s.run(scene, upstream, out.root().group(name), log);
             if (rank == 0)
-              out.commit(); // the other processes' private files go with `out`
+              {
+                seal_cache_file(out, name, key);
+                out.commit(); // the other processes' private files go with `out`
+                record_cache_digest(run.cache_file);
+              }
           });
         }
       MPI_Barrier(MPI_COMM_WORLD);
@@ -252,6 +348,10 @@ options:
   --print-parameters      every scene parameter with its default, allowed values and help
   --output-root DIR       where scene result folders go (default: out)
   --plot                  also draw the PNG pictures of the results (scripts/plot_results.py)
+
+exit status: 0 done; 1 an error (the message says what; no results.h5 written); 2 a wrong
+command line; 3 results.h5 written, but the pictures or the report failed (the message says
+which).
 )";
 
 /// OpenBLAS (the dense fronts of the direct solver) on this process's share of the cores,
@@ -295,8 +395,16 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
           print_parameters(out);
           return 0;
         }
-      else if (a == "--output-root" && i + 1 < args.size())
-        output_root = args[++i];
+      else if (a == "--output-root")
+        {
+          if (i + 1 == args.size() || args[i + 1].empty())
+            {
+              err << "gearkit: --output-root needs a value: the folder where scene result "
+                     "folders go (e.g. --output-root out)\n";
+              return 2;
+            }
+          output_root = args[++i];
+        }
       else if (a == "--plot")
         plot = true;
       else if (!a.empty() && a[0] == '-')
@@ -319,27 +427,38 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
     }
   try
     {
-      const Scene      scene   = read_scene(scene_file);
+      const Scene scene = read_scene(scene_file);
+      // One run at a time in a scene's output folder (the first process holds the lock).
+      std::unique_ptr<FolderLock> lock;
+      together([&] {
+        if (!first)
+          return;
+        fs::create_directories(fs::path(output_root) / scene.name);
+        lock = std::make_unique<FolderLock>(fs::path(output_root) / scene.name);
+      });
       const RunSummary summary = run_scene(scene, output_root, out);
       // The first process draws the pictures (if asked for), then the report that shows them
-      // (every run).
+      // (every run). Both from an argument vector: no shell sees the paths.
       std::vector<std::pair<std::string, std::string>> scripts;
       if (first && plot)
         scripts.emplace_back("plot_results.py", "plotting");
       if (first)
         scripts.emplace_back("report.py", "writing the report");
+      int status = 0;
       for (const auto &[script, what] : scripts)
         {
           out.flush(); // the log first, then the script's lines
-          const std::string cmd = "/usr/bin/python3 '" GEARKIT_SOURCE_DIR "/scripts/" + script +
-                                  "' '" + summary.results_file + "'";
-          if (std::system(cmd.c_str()) != 0)
+          const std::string path = GEARKIT_SOURCE_DIR "/scripts/" + script;
+          if (const std::string failed =
+                  run_program({"/usr/bin/python3", path, summary.results_file});
+              !failed.empty())
             {
-              err << "gearkit: " << what << " failed (" << cmd << ")\n";
-              return 1;
+              err << "gearkit: " << what << " failed (/usr/bin/python3 " << path << ": " << failed
+                  << "); the results are complete in " << summary.results_file << "\n";
+              status = 3;
             }
         }
-      return 0;
+      return status;
     }
   catch (const std::exception &e) // InputError and the rest
     {

@@ -2,8 +2,10 @@
 
 #include "geometry/types.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace gearkit
@@ -17,12 +19,51 @@ struct SilenceHdf5
 };
 const SilenceHdf5 silence_hdf5;
 
-hid_t
-check(hid_t id, const std::string &what)
+} // namespace
+
+std::string
+hdf5_error_cause()
 {
-  if (id < 0)
-    throw std::runtime_error("HDF5: " + what + " failed");
-  return id;
+  // HDF5 records the failure on its error stack (printing is off): its innermost entry that
+  // carries the system's error message ("errno = 28, error message = 'No space left on
+  // device'") says why, else the innermost description.
+  std::vector<std::string> descriptions;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t *e, void *data) -> herr_t {
+        static_cast<std::vector<std::string> *>(data)->push_back(e->desc ? e->desc : "");
+        return 0;
+      },
+      &descriptions);
+  H5Eclear2(H5E_DEFAULT);
+  for (const std::string &d : descriptions)
+    if (const auto p = d.find("error message = '"); p != std::string::npos)
+      {
+        const auto b = p + 17, e = d.find('\'', b);
+        return d.substr(b, e == std::string::npos ? std::string::npos : e - b);
+      }
+  return descriptions.empty() ? "" : descriptions.front();
+}
+
+namespace
+{
+hid_t
+check(hid_t id, const std::string &what, hid_t where = -1)
+{
+  if (id >= 0)
+    return id;
+  const std::string cause   = hdf5_error_cause(); // before any other HDF5 call clears it
+  std::string       message = "HDF5: " + what + " failed";
+  if (where >= 0)
+    {
+      const ssize_t n = H5Fget_name(where, nullptr, 0);
+      std::string   file(std::size_t(std::max<ssize_t>(n, 0)), '\0');
+      if (n > 0 && H5Fget_name(where, file.data(), std::size_t(n) + 1) > 0)
+        message += " in " + file;
+    }
+  if (!cause.empty())
+    message += " (" + cause + ")";
+  throw std::runtime_error(message);
 }
 
 // Variable-length UTF-8 strings: h5py reads them as str.
@@ -37,10 +78,10 @@ write_string_attribute(hid_t object, const std::string &name, const std::string 
     H5Adelete(object, name.c_str());
   H5Handle attr(
       check(H5Acreate2(object, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
-            "attribute " + name),
+            "attribute " + name, object),
       H5Aclose);
   const char *text = value.c_str();
-  check(H5Awrite(attr.id(), type.id(), &text), "attribute write");
+  check(H5Awrite(attr.id(), type.id(), &text), "write attribute " + name, object);
 }
 
 template <typename T>
@@ -60,11 +101,11 @@ write_dataset(hid_t group, const std::string &path, const std::string &name, hid
                  H5Sclose);
   H5Handle set(check(H5Dcreate2(group, name.c_str(), file_type, space.id(), H5P_DEFAULT,
                                 H5P_DEFAULT, H5P_DEFAULT),
-                     "create dataset " + path + name),
+                     "create dataset " + path + name, group),
                H5Dclose);
   if (count > 0)
     check(H5Dwrite(set.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-          "write dataset " + path + name);
+          "write dataset " + path + name, group);
   write_string_attribute(set.id(), "units", units);
   write_string_attribute(set.id(), "description", description);
 }
@@ -74,10 +115,11 @@ std::vector<T>
 read_dataset(hid_t group, const std::string &path, const std::string &name, hid_t mem_type,
              std::vector<hsize_t> *shape)
 {
-  H5Handle  set(check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open dataset " + path + name),
-                H5Dclose);
-  H5Handle  space(check(H5Dget_space(set.id()), "data space"), H5Sclose);
-  const int rank = H5Sget_simple_extent_ndims(space.id());
+  H5Handle set(
+      check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open dataset " + path + name, group),
+      H5Dclose);
+  H5Handle             space(check(H5Dget_space(set.id()), "data space"), H5Sclose);
+  const int            rank = H5Sget_simple_extent_ndims(space.id());
   std::vector<hsize_t> dims(rank);
   H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
   hsize_t count = 1;
@@ -86,7 +128,7 @@ read_dataset(hid_t group, const std::string &path, const std::string &name, hid_
   std::vector<T> values(count);
   if (count > 0)
     check(H5Dread(set.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-          "read dataset " + path + name);
+          "read dataset " + path + name, group);
   if (shape)
     *shape = dims;
   return values;
@@ -114,10 +156,16 @@ H5Handle::operator=(H5Handle &&o) noexcept
   return *this;
 }
 
-H5Handle::~H5Handle()
+H5Handle::~H5Handle() { close(); }
+
+herr_t
+H5Handle::close()
 {
+  herr_t status = 0;
   if (handle >= 0 && closer)
-    closer(handle);
+    status = closer(handle);
+  handle = -1;
+  return status;
 }
 
 H5Group::H5Group(H5Handle h, std::string path)
@@ -148,7 +196,7 @@ H5Group::group(const std::string &name) const
   const hid_t id =
       has(name) ? H5Gopen2(handle.id(), name.c_str(), H5P_DEFAULT)
                 : H5Gcreate2(handle.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  return H5Group(H5Handle(check(id, "group " + group_path + name), H5Gclose),
+  return H5Group(H5Handle(check(id, "group " + group_path + name, handle.id()), H5Gclose),
                  group_path + name + "/");
 }
 
@@ -222,7 +270,8 @@ H5Group::read_double(const std::string &name) const
 std::string
 H5Group::read_attribute(const std::string &name) const
 {
-  H5Handle attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT), "attribute " + name),
+  H5Handle attr(check(H5Aopen(handle.id(), name.c_str(), H5P_DEFAULT),
+                      "attribute " + group_path + name, handle.id()),
                 H5Aclose);
   H5Handle type(check(H5Aget_type(attr.id()), "attribute type"), H5Tclose);
   if (!H5Tis_variable_str(type.id()))
@@ -258,10 +307,21 @@ H5File::H5File(H5Handle h, std::string path, bool w)
 H5File
 H5File::create(const std::string &path)
 {
+  // The file is built in memory and written out whole when it is flushed (HDF5's core driver
+  // with a backing store): a disk that fills fails that one write, with the system's reason.
+  // Writes that fail half-way through HDF5's own operations are not safe in HDF5 1.10: a
+  // failing destination crashed H5Ocopy (SIGSEGV in its clean-up).
   const std::string tmp = path + ".tmp";
-  const hid_t       id  = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  H5Handle          access(check(H5Pcreate(H5P_FILE_ACCESS), "file access list"), H5Pclose);
+  check(H5Pset_fapl_core(access.id(), std::size_t(16) << 20, 1), "in-memory file driver");
+  const hid_t id = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.id());
   if (id < 0)
-    throw InputError("cannot create " + tmp + " (is the directory writable?)");
+    {
+      const std::string cause = hdf5_error_cause();
+      std::remove(tmp.c_str());
+      throw InputError("cannot create " + tmp + (cause.empty() ? "" : " (" + cause + ")") +
+                       "; is the folder there and writable, with space left?");
+    }
   return H5File(H5Handle(id, H5Fclose), path, true);
 }
 
@@ -270,7 +330,10 @@ H5File::open(const std::string &path)
 {
   const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (id < 0)
-    throw InputError("cannot open HDF5 file " + path);
+    {
+      const std::string cause = hdf5_error_cause();
+      throw InputError("cannot open HDF5 file " + path + (cause.empty() ? "" : " (" + cause + ")"));
+    }
   return H5File(H5Handle(id, H5Fclose), path, false);
 }
 
@@ -278,7 +341,9 @@ H5File::~H5File()
 {
   if (writing && !committed)
     {
-      handle = H5Handle();
+      // A failed write: the file may not close cleanly (no space left); it goes either way.
+      handle.close();
+      H5Eclear2(H5E_DEFAULT);
       std::remove((final_path + ".tmp").c_str());
     }
 }
@@ -295,16 +360,25 @@ H5File::copy_from(const H5File &source, const std::string &source_path,
 {
   check(H5Ocopy(source.handle.id(), source_path.c_str(), handle.id(), target_path.c_str(),
                 H5P_DEFAULT, H5P_DEFAULT),
-        "copy " + source_path);
+        "copy " + source_path + " from " + source.final_path, handle.id());
 }
 
 void
 H5File::commit()
 {
-  handle                = H5Handle(); // closes the file
+  // Everything onto the disk before the rename: a write that fails (no space left) fails here,
+  // naming the file, and leaves nothing under the final name.
   const std::string tmp = final_path + ".tmp";
+  check(H5Fflush(handle.id(), H5F_SCOPE_GLOBAL), "write", handle.id());
+  if (handle.close() < 0)
+    {
+      const std::string cause = hdf5_error_cause();
+      throw std::runtime_error("HDF5: closing " + tmp + " failed" +
+                               (cause.empty() ? "" : " (" + cause + ")"));
+    }
   if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
-    throw std::runtime_error("cannot rename " + tmp + " to " + final_path);
+    throw std::runtime_error("cannot rename " + tmp + " to " + final_path + " (" +
+                             std::strerror(errno) + ")");
   committed = true;
 }
 } // namespace gearkit

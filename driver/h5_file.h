@@ -27,11 +27,20 @@ public:
   {
     return handle;
   }
+  /// Closes now (the status of the H5*close: negative when it failed, e.g. a file whose
+  /// buffers could not be written); the handle is empty afterwards either way.
+  herr_t
+  close();
 
 private:
   hid_t handle            = -1;
   herr_t (*closer)(hid_t) = nullptr;
 };
+
+/// Why the last HDF5 call failed, from HDF5's error stack (the system's message where there is
+/// one: "No space left on device"); clears the stack. Empty when HDF5 recorded nothing.
+std::string
+hdf5_error_cause();
 
 /// A group (or the root of a file) to write to and read from.
 class H5Group
@@ -116,6 +125,18 @@ public:
   /// Close and rename the temporary into place (files opened for writing only).
   void
   commit();
+  /// The file's name (the final one for a file being written).
+  const std::string &
+  path() const
+  {
+    return final_path;
+  }
+  /// The file's identifier (for walks over all of it: driver/cache.h).
+  hid_t
+  id() const
+  {
+    return handle.id();
+  }
 
 private:
   H5File(H5Handle handle, std::string path, bool writing);

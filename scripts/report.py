@@ -299,8 +299,8 @@ def main():
             stage_rows.append([esc(name), esc(how), f"{float(seconds or 0):.2f} s",
                                f"<code>cache/{esc(cache)}</code>"])
         page.table(["stage", "ran or reused", "time", "cache file (name-key)"], stage_rows)
-        others = sorted(p for p in os.listdir(folder)
-                        if not p.endswith(".png") and p not in ("report.html", "cache"))
+        others = sorted(p for p in os.listdir(folder) if not p.endswith(".png")
+                        and not p.startswith(".") and p not in ("report.html", "cache"))
         page.p("Other files beside this page: " + ", ".join(f"<code>{esc(o)}</code>" for o in others))
 
         # 4. Parameters, all scalars, versions
@@ -332,9 +332,13 @@ document.body.setAttribute('data-images',n+'/'+i.length);});</script>"""
             + "\n".join(page.parts) + "\n</body></html>\n")
     out = os.path.join(folder, "report.html")
     tmp = out + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    os.replace(tmp, out)
+    try:
+        with open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, out)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)  # nothing half-written: the page is there whole, or not at all
     print(f"report: {out}")
 
 

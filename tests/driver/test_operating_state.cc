@@ -310,3 +310,83 @@ TEST_F(OperatingStateTest, OperatingCentreDistanceOfAScene)
   EXPECT_GT(g->data().active_profile_start_radius,
             pair.involute_members().second->data().active_profile_start_radius);
 }
+
+namespace
+{
+// One train mesh of the issue's pair, 0.3 mm of circumferential backlash by the centre
+// distance (a = 105.405 mm), the gear's drive flanks with f_Halpha = `slope` um; 2 ms.
+std::string
+train_scene(double slope)
+{
+  std::string s = issue_scene("", "train");
+  s = std::regex_replace(s, std::regex("set pairs   = p"), "set pairs   = p\n  set trains  = t");
+  s = std::regex_replace(s, std::regex("profile slope deviation = -6"),
+                         "profile slope deviation = " + std::to_string(slope));
+  return s + R"(
+subsection Train
+  subsection t
+    set bodies = a, b
+    set meshes = m
+    subsection Run
+      set duration    = 0.002
+      set sample rate = 20000
+    end
+    subsection Spectrum
+      set spectrogram window = 2
+    end
+    subsection Bodies
+      subsection a
+        set inertia       = 1e-3
+        set initial speed = 50
+        set drive         = constant speed
+      end
+      subsection b
+        set inertia = 2e-3
+        set torque  = -0.5
+      end
+    end
+    subsection Meshes
+      subsection m
+        set pair        = p
+        set pinion body = a
+        set gear body   = b
+        set backlash    = 0.3
+      end
+    end
+  end
+end
+)";
+}
+} // namespace
+
+TEST_F(OperatingStateTest, TrainMeshTakesTheActiveProfileAtItsOwnCentreDistance)
+{
+  // The backlash band's half width is r_b2 (coast - drive) / 2 of the nominal teeth at local
+  // angle 0 (pinion tooth 0 on the line of centres): half the normal backlash, less half the
+  // gear drive flank's deviation where it touches. Tooth 0's drive flank meets the line of
+  // action at the roll angle xi_1 = pi / (2 z1) + inv(alpha_t) + alpha'_t (its base point
+  // lies at s_t / (2 r) + inv(alpha_t) from its middle), so the gear touches at the roll length
+  // L_g = a sin(alpha'_t) - r_b1 xi_1, where f_Halpha gives f_Halpha (L_g - L_mid) / L_alpha,
+  // L_mid and L_alpha those of the evaluation range at the train's centre distance (compared
+  // between runs with and without it, so the perfect flanks' part cancels). The slope's tilt
+  // of the normal moves the contact: second order, (f_Halpha / L_alpha)^2 times the radius of
+  // curvature ~ 0.01 um, so 0.03 um; the range taken at a_w would give 0.28 um less.
+  double half[2];
+  for (int k : {0, 1})
+    {
+      fs::remove_all(dir / "out");
+      ASSERT_EQ(run(train_scene(k == 0 ? 0 : -10)), 0) << err.str();
+      half[k] = results().root().group("train/t/meshes/m").read_double("band_half_width");
+    }
+  const double a = results().root().group("train/t/meshes/m").read_double("centre_distance");
+  EXPECT_GT(a, 105.4e-3); // 0.3 mm of backlash opens a_w by about 0.4 mm
+  const LineOfAction l(a), l_w(105e-3);
+  const double       xi_1      = pi / 58 + (std::tan(20 * deg) - 20 * deg) + l.alpha_wt;
+  const double       L_g       = a * std::sin(l.alpha_wt) - l.rb1 * xi_1;
+  auto               deviation = [&](const LineOfAction &range) {
+    const double L0 = range.gear_start_roll(), L1 = L0 + range.gear_evaluation_length();
+    return -10e-6 * (L_g - (L0 + L1) / 2) / (L1 - L0);
+  };
+  EXPECT_NEAR(half[1] - half[0], -deviation(l) / 2, 0.03e-6);
+  EXPECT_GT(std::abs(-deviation(l_w) / 2 - (half[1] - half[0])), 0.2e-6);
+}

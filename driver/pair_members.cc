@@ -26,12 +26,19 @@ theoretical_members(const PairScene &pair, const TcaScene &t, const H5Group &fla
       return {f.pinion, f.gear, f.assembly, 0,
               g.mean_cone_distance * std::sin(g.pitch_angle_pinion)};
     }
-  const auto [pinion, gear] = pair.involute_members();
+  // The flanks as the flanks stage made them: each member's start of active profile (so its
+  // profile evaluation range) at the centre distance the pair runs at in the scene. Read, not
+  // computed from `t`: an assembly moved by a deflection (the dynamics) meets the same flanks.
+  InvoluteGearData dp = pair.pinion, dg = pair.gear;
+  dp.active_profile_start_radius =
+      flanks.group("pinion").read_double("active_profile_start_radius");
+  dg.active_profile_start_radius = flanks.group("gear").read_double("active_profile_start_radius");
+  const auto [pinion, gear]      = create_pair(dp, dg);
   const double a =
       t.centre_distance > 0 ? t.centre_distance : working_centre_distance(*pinion, *gear);
   const int z1 = pinion->teeth(), z2 = gear->teeth();
   return {std::make_shared<InvoluteMemberFlanks>(pinion),
           std::make_shared<InvoluteMemberFlanks>(gear), Assembly(a, z2, t.misalignment),
-          a + t.misalignment.centre_distance_error, a * z1 / (z1 + z2)};
+          operating_centre_distance(a, t.misalignment), a * z1 / (z1 + z2)};
 }
 } // namespace gearkit

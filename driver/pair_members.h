@@ -14,7 +14,9 @@ struct PairMembers
 {
   std::shared_ptr<const MemberFlanks> pinion, gear;
   Assembly                            assembly;
-  double centre_distance = 0; ///< parallel axes: of the analysis; bevel pairs: 0
+  /// Parallel axes: the centre distance of the analysis (operating_centre_distance: with its
+  /// error and offset); bevel pairs: 0.
+  double centre_distance = 0;
   /// Pinion radius at which the transmission error is expressed as a displacement: the
   /// operating pitch radius (involute) or the mean pitch radius (spiral bevel) [m].
   double pitch_radius = 0;
@@ -32,7 +34,8 @@ PinionMismatch
 synthesised_mismatch(const PairScene &pair, const H5Group &flanks);
 
 /// The theoretical members of `pair` assembled as `tca` says; `flanks` is the pair's group of
-/// the flanks stage.
+/// the flanks stage, whose starts of active profile (at the centre distance the scene runs the
+/// pair at) the involute members take, whatever `tca` moves them to.
 PairMembers
 theoretical_members(const PairScene &pair, const TcaScene &tca, const H5Group &flanks);
 } // namespace gearkit

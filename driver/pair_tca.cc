@@ -119,7 +119,8 @@ write_tca_tables(const TcaResult &r, const TcaScene &t, const PairMembers &membe
 
   if (members.centre_distance > 0)
     g.write("centre_distance", members.centre_distance, "m",
-            "centre distance of the analysis (with its error added)");
+            "centre distance of the analysis (with its error added and the offset: the axes' "
+            "distance in the face's middle section)");
   g.write("pitch_radius", r_p, "m",
           "pinion radius of transmission_error_pitch: operating pitch radius (parallel axes) or "
           "mean pitch radius (bevel)");

@@ -33,6 +33,7 @@ namespace gearkit
 {
 using dealii::ParameterHandler;
 struct Scene;
+struct TcaScene;
 
 enum class PairType
 {
@@ -63,9 +64,25 @@ struct PairScene
   void
   check() const;
   /// The involute members, each with its start of active profile (where f_Halpha's evaluation
-  /// range starts) from the other in the design mesh (geometry: create_pair).
+  /// range starts) from the other in the design mesh, at the zero-backlash working centre
+  /// distance (geometry: create_pair). Only for what does not depend on the operating state
+  /// (radii, a_w, masses, checks): an analysis takes the members at the centre distance it runs
+  /// at (below).
   std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
   involute_members() const;
+  /// The involute members as they run at `operating_centre_distance` (the distance of the axes
+  /// [m], > 0): each with its start of active profile, and so its profile evaluation range, from
+  /// the other's tip circle on the line of action there.
+  std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+  involute_members(double operating_centre_distance) const;
+  /// The same at the centre distance the pair runs at in the contact analysis `tca`.
+  std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+  involute_members(const TcaScene &tca) const;
+  /// The centre distance an involute pair runs at in `tca`: its centre distance (0: the
+  /// zero-backlash working one) plus the centre distance error, with the offset
+  /// (operating_centre_distance in tca/assembly.h; the angles do not change it).
+  double
+  operating_centre_distance(const TcaScene &tca) const;
 };
 
 /// Tooth counts (z1, z2) of a pair of either type.

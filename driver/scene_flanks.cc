@@ -303,4 +303,28 @@ PairScene::involute_members() const
 {
   return create_pair(pinion, gear);
 }
+
+std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+PairScene::involute_members(double operating_centre_distance) const
+{
+  return create_pair(pinion, gear, operating_centre_distance);
+}
+
+// The start of active profile is where the mate's tip circle crosses the line of action, so it
+// moves with the centre distance the pair runs at (up the flank when it opens): a profile
+// evaluation range taken at the zero-backlash centre distance would give f_Halpha another slope.
+std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
+PairScene::involute_members(const TcaScene &tca) const
+{
+  return involute_members(operating_centre_distance(tca));
+}
+
+double
+PairScene::operating_centre_distance(const TcaScene &tca) const
+{
+  const double a = tca.centre_distance > 0 ? tca.centre_distance
+                                           : working_centre_distance(*InvoluteGear::create(pinion),
+                                                                     *InvoluteGear::create(gear));
+  return gearkit::operating_centre_distance(a, tca.misalignment);
+}
 } // namespace gearkit

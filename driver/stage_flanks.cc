@@ -39,6 +39,13 @@ write_member(const InvoluteGear &g, int n_u, int n_v, const H5Group &out, std::o
   out.write("root_radius", g.root_radius, "m", "r_f = r - (h_fP* - x) m_n");
   out.write("form_radius", g.form_radius, "m",
             "start of the involute, end of the rack-generated root fillet");
+  out.write("active_profile_start_radius", d.active_profile_start_radius, "m",
+            "start of active profile (SAP): the mate's tip circle on the line of action at the "
+            "operating centre distance (the form radius where the mate reaches below it)");
+  const auto [L0, L1] = profile_evaluation_range(g.modification_frame());
+  out.write("profile_evaluation_range", std::vector<double>{L0, L1}, {2}, "m",
+            "ISO 1328-1 profile evaluation range of f_Halpha as roll lengths from the base "
+            "circle: from the start of active profile over 92 % of the active length");
   out.write("base_helix_angle", g.base_helix_angle, "rad", "beta_b");
   out.write("lead", g.lead, "m", "helix lead p_z = 2 pi r / tan beta (0 for spur gears)");
   out.write("tooth_thickness_reference", g.tooth_thickness_reference, "m",
@@ -232,7 +239,12 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
           continue;
         }
       pg.attribute("type", "involute");
-      const auto [pinion, gear] = pair.involute_members();
+      // The flanks as the pair runs: what is defined on the active profile (the start of active
+      // profile, f_Halpha's evaluation range) at the centre distance of its contact analysis.
+      // The stages after this one build the members with the starts stored here
+      // (theoretical_members).
+      const double a            = pair.operating_centre_distance(scene.tca.at(pair.name));
+      const auto [pinion, gear] = pair.involute_members(a);
       write_member(*pinion, pair.grid_profile_points, pair.grid_face_points, pg.group("pinion"),
                    log, progress);
       write_member(*gear, pair.grid_profile_points, pair.grid_face_points, pg.group("gear"), log,
@@ -241,6 +253,17 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
                "transverse working pressure angle for zero backlash");
       pg.write("working_centre_distance", working_centre_distance(*pinion, *gear), "m",
                "centre distance for zero backlash, a_w = (r_b1 + r_b2) / cos alpha_wt");
+      pg.write("operating_centre_distance", a, "m",
+               "centre distance the pair runs at (TCA: centre distance, or a_w, plus the centre "
+               "distance error, with the offset): the active profiles refer to it");
+      pg.write("operating_pressure_angle", std::acos((pinion->base_radius + gear->base_radius) / a),
+               "rad",
+               "transverse pressure angle at the operating centre distance, cos alpha'_t = (r_b1 "
+               "+ r_b2) / a");
+      const ContactRatios eps = contact_ratios(*pinion, *gear, a);
+      pg.write("transverse_contact_ratio", eps.transverse, "1",
+               "eps_alpha at the operating centre distance");
+      pg.write("overlap_ratio", eps.overlap, "1", "eps_beta = b sin(beta) / (pi m_n)");
     }
 }
 } // namespace gearkit

@@ -54,10 +54,13 @@ train_model(const Scene &scene, const TrainScene &train, const Upstream &upstrea
   TrainModel model = train.model(scene);
   for (std::size_t i = 0; i < train.meshes.size(); ++i)
     {
-      const TrainMeshScene &s   = train.meshes[i];
-      TrainMesh            &m   = model.meshes[i];
-      const auto [pinion, gear] = scene.pair(s.pair).involute_members();
+      const TrainMeshScene &s = train.meshes[i];
+      TrainMesh            &m = model.meshes[i];
+      // the flanks as this mesh runs: their active profiles at its own centre distance (the
+      // backlash opens it) with the pair's centre distance error and offset
       const double a            = train_mesh_centre_distance(scene, s);
+      const auto [pinion, gear] = scene.pair(s.pair).involute_members(
+          operating_centre_distance(a, scene.tca.at(s.pair).misalignment));
       m.teeth                   = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
                                                     std::make_shared<InvoluteMemberFlanks>(gear), a,
                                                     scene.tca.at(s.pair).misalignment, train.curves);
@@ -234,8 +237,9 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
           const TrainMeshScene &s   = train.meshes[i];
           const MeshSeries     &ms  = r.meshes[i];
           const H5Group         mg  = g.group("meshes").group(m.name);
-          const auto [pinion, gear] = scene.pair(s.pair).involute_members();
-          const double a            = train_mesh_centre_distance(scene, s);
+          const double          a   = train_mesh_centre_distance(scene, s);
+          const auto [pinion, gear] = scene.pair(s.pair).involute_members(
+              operating_centre_distance(a, scene.tca.at(s.pair).misalignment));
           const auto [drive, coast] = band_edges(m.teeth);
           mg.attribute("pair", s.pair);
           mg.attribute("pinion_body", s.pinion_body);

@@ -52,7 +52,19 @@ stage_definitions()
        {"Flanks"},
        {"base", "geometry", "tca"}, // tca: the spiral bevel's modified-roll synthesis
        [](const Scene &) { return std::vector<std::string>{}; },
-       run_flanks_stage},
+       run_flanks_stage,
+       nullptr,
+       [](const Scene &scene) {
+         // the centre distance each involute pair runs at (TCA section): the active profiles
+         // refer to it; the rest of the TCA section does not change the flanks
+         std::ostringstream s;
+         s << std::hexfloat;
+         for (const PairScene &pair : scene.pairs)
+           if (pair.type == PairType::involute)
+             s << pair.name << " operating centre distance "
+               << pair.operating_centre_distance(scene.tca.at(pair.name)) << "\n";
+         return s.str();
+       }},
       {"measured",
        "measured flank point sets (virtual CMM, synthesised, or read from files)",
        {"flanks"},
@@ -192,6 +204,8 @@ stage_key(const Scene &scene, const std::string &stage)
       const auto it = scene.sections.find(section);
       text += "[" + section + "]\n" + (it == scene.sections.end() ? "" : it->second);
     }
+  if (s.derived_parameters)
+    text += "[derived]\n" + s.derived_parameters(scene);
   for (const std::string &f : s.input_files(scene))
     text += "file " + f + " " + std::to_string(fnv1a(file_contents(f))) + "\n";
   for (const std::string &up : upstream_of(scene, s))

@@ -48,6 +48,9 @@ struct StageDefinition
   std::function<void(const Scene &, const Upstream &, const H5Group &, std::ostream &)> run;
   /// Stages whose results this one needs only when the scene says so (empty: none).
   std::function<std::vector<std::string>(const Scene &)> upstream_if = nullptr;
+  /// Values the stage takes from sections not in `sections` (text; they enter the key): so that
+  /// the stage re-runs when they change, and only then (empty: none).
+  std::function<std::string(const Scene &)> derived_parameters = nullptr;
 };
 
 /// The stage's upstream stages for this scene (upstream and upstream_if).

@@ -31,6 +31,12 @@ Assembly::Assembly(double a, int z2, const Misalignment &m)
 {
 }
 
+double
+operating_centre_distance(double a, const Misalignment &m)
+{
+  return std::hypot(a + m.centre_distance_error, m.offset);
+}
+
 Assembly
 Assembly::bevel(double shaft_angle, double gamma_1, int z2, const Misalignment &m)
 {

@@ -89,6 +89,15 @@ private:
   double          gear_shift;
 };
 
+/// The centre distance a parallel-axis pair runs at: the distance of the gear axis from the
+/// pinion axis in the pinion's middle transverse section z = 0 (where the gear centre of
+/// Assembly(centre_distance, z2, m) lies), sqrt((a + Delta a)^2 + offset^2). The crossing and
+/// intersecting angles turn the gear axis about that point: they change the contact along the
+/// face (the local centre distance by z * intersecting angle, and to second order by the
+/// crossing angle), not the centre distance of the middle section.
+double
+operating_centre_distance(double centre_distance, const Misalignment &m);
+
 /// The misalignment of the pair once the gear has made the small rigid motion `motion` relative
 /// to the pinion (the motion a static deflection of shafts and bearings gives, in the pinion's
 /// frame): `m` (the one `assembly` was built with) plus the change. Turns of either member about

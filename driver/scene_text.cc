@@ -283,13 +283,16 @@ SceneText::Reader::read(const int file, const int depth)
               opened_at.pop_back();
             }
           else if (file != 0)
-            throw InputError(at(file, line) + ": this 'end' closes the subsection " + join(open) +
-                             ", which the included file did not open; an included file closes "
-                             "the subsections it opens, and only those");
+            throw InputError(at(file, line) + ": this 'end' closes " +
+                             (open.empty() ? std::string("no subsection")
+                                           : "the subsection " + join(open) +
+                                                 ", which the included file did not open") +
+                             "; an included file closes the subsections it opens, and only those");
         }
       else if (starts("set ", "SET ") && content.find('=') != std::string::npos)
         {
-          const std::string key      = join(open, trim(content.substr(4, content.find('=') - 4)));
+          const std::string name     = trim(content.substr(4, content.find('=') - 4));
+          const std::string key      = open.empty() ? name : join(open) + "/" + name;
           const auto [p, first_time] = set_at.emplace(key, std::pair{file, line});
           if (!first_time)
             throw InputError(key + " is set twice, at " + at(p->second.first, p->second.second) +

@@ -217,6 +217,9 @@ struct SceneText::Reader
 
   void
   read(int file, int depth);
+  bool
+  statement(int file, int line, const std::string &content, const std::string &as_written,
+            std::size_t base_depth, int depth);
   void
   include(int file, int line, const std::string &target, int depth);
 };
@@ -234,17 +237,18 @@ SceneText::Reader::read(const int file, const int depth)
       // One statement: a line ending in a backslash continues on the next (deal.II reports the
       // statement at its first line).
       const std::size_t first = i;
-      std::string       statement;
+      std::string       joined;
       for (bool continued = true; i < lines.size() && continued; ++i)
         {
           std::string part = trim(lines[i]);
           continued        = !part.empty() && part.back() == '\\';
           if (continued)
             part.pop_back();
-          statement += part;
+          joined += part;
         }
-      const int   line    = int(first) + 1;
-      std::string content = trim(statement.substr(0, statement.find('#')));
+      const int         line       = int(first) + 1;
+      const std::string as_written = trim(joined.substr(0, joined.find('#')));
+      std::string       content    = as_written;
 
       // Keywords in any letter case, written in lower case (deal.II reads lower and upper case).
       const std::string word  = content.substr(0, content.find(' '));
@@ -264,46 +268,8 @@ SceneText::Reader::read(const int file, const int depth)
             }
         }
 
-      // The statement as deal.II's scan_line classifies it; what deal.II refuses (an unknown
-      // statement, `end` with more on the line, `set` without =) is left to its message.
-      const auto starts = [&](const char *a, const char *b) {
-        return content.rfind(a, 0) == 0 || content.rfind(b, 0) == 0;
-      };
-      if (starts("subsection ", "SUBSECTION "))
+      if (statement(file, line, content, as_written, base_depth, depth))
         {
-          open.push_back(trim(content.substr(11)));
-          opened_at.push_back({file, line});
-          t.subsections_.insert(join(open));
-        }
-      else if (starts("end", "END") && trim(content.substr(3)).empty())
-        {
-          if (open.size() > base_depth)
-            {
-              open.pop_back();
-              opened_at.pop_back();
-            }
-          else if (file != 0)
-            throw InputError(at(file, line) + ": this 'end' closes " +
-                             (open.empty() ? std::string("no subsection")
-                                           : "the subsection " + join(open) +
-                                                 ", which the included file did not open") +
-                             "; an included file closes the subsections it opens, and only those");
-        }
-      else if (starts("set ", "SET ") && content.find('=') != std::string::npos)
-        {
-          const std::string name     = trim(content.substr(4, content.find('=') - 4));
-          const std::string key      = open.empty() ? name : join(open) + "/" + name;
-          const auto [p, first_time] = set_at.emplace(key, std::pair{file, line});
-          if (!first_time)
-            throw InputError(key + " is set twice, at " + at(p->second.first, p->second.second) +
-                             " and at " + at(file, line) +
-                             " (deal.II would keep the second value without a word); set it once");
-        }
-      else if (content == "include" || content == "INCLUDE")
-        throw InputError(at(file, line) + ": 'include' names no file");
-      else if (starts("include ", "INCLUDE "))
-        {
-          include(file, line, trim(content.substr(8)), depth);
           // ends a continued last line of the included file, as deal.II's reading of the file
           // on its own would
           emit("", file, line);
@@ -317,6 +283,71 @@ SceneText::Reader::read(const int file, const int depth)
                      ": the subsection " + join({open.begin(), open.begin() + base_depth + 1}) +
                      " has no 'end' in " + name +
                      (file == 0 ? "" : " (an included file closes the subsections it opens)"));
+}
+
+// A statement as deal.II's scan_line classifies it. What deal.II would refuse is refused here,
+// at its line, so that the first mistake in the file is the one reported (deal.II only reads
+// the text after this reader). True for an include (its file already read).
+bool
+SceneText::Reader::statement(const int file, const int line, const std::string &content,
+                             const std::string &as_written, const std::size_t base_depth,
+                             const int depth)
+{
+  const auto starts = [&](const char *a, const char *b) {
+    return content.rfind(a, 0) == 0 || content.rfind(b, 0) == 0;
+  };
+  const std::string quoted =
+      "'" + (as_written.size() > 80 ? as_written.substr(0, 80) + "..." : as_written) + "'";
+  if (content.empty())
+    return false;
+  if (starts("subsection ", "SUBSECTION "))
+    {
+      open.push_back(trim(content.substr(11)));
+      opened_at.push_back({file, line});
+      t.subsections_.insert(join(open));
+    }
+  else if (starts("end", "END"))
+    {
+      if (!trim(content.substr(3)).empty())
+        throw InputError(at(file, line) + ": " + quoted + ": 'end' stands alone on its line");
+      if (open.size() > base_depth)
+        {
+          open.pop_back();
+          opened_at.pop_back();
+        }
+      else if (open.empty())
+        throw InputError(at(file, line) +
+                         ": this 'end' closes no subsection (one 'end' too many?)");
+      else
+        throw InputError(at(file, line) + ": this 'end' closes the subsection " + join(open) +
+                         ", which the included file did not open; an included file closes the "
+                         "subsections it opens, and only those");
+    }
+  else if (starts("set ", "SET "))
+    {
+      const std::size_t equals = content.find('=');
+      if (equals == std::string::npos)
+        throw InputError(at(file, line) + ": " + quoted + ": 'set' needs 'set <name> = <value>'");
+      const std::string entry    = trim(content.substr(4, equals - 4));
+      const std::string key      = open.empty() ? entry : join(open) + "/" + entry;
+      const auto [p, first_time] = set_at.emplace(key, std::pair{file, line});
+      if (!first_time)
+        throw InputError(key + " is set twice, at " + at(p->second.first, p->second.second) +
+                         " and at " + at(file, line) +
+                         " (deal.II would keep the second value without a word); set it once");
+    }
+  else if (content == "include" || content == "INCLUDE")
+    throw InputError(at(file, line) + ": 'include' names no file");
+  else if (starts("include ", "INCLUDE "))
+    {
+      include(file, line, trim(content.substr(8)), depth);
+      return true;
+    }
+  else
+    throw InputError(at(file, line) + ": " + quoted +
+                     " is not a statement: a line is empty, a # comment, or starts with "
+                     "subsection <name>, set <name> = <value>, end or include <file>");
+  return false;
 }
 
 void

@@ -205,6 +205,33 @@ TEST_F(SceneSyntax, WhatCannotBeNormalisedIsRefusedByName)
   expect_refused(bytes("scene.txt", plain), {"scene.txt", "'.txt'", ".prm"});
 }
 
+// deal.II refused these too, but the pre-reader reads the file first: it refuses them at their
+// line, so that the first mistake in the file is the one reported.
+TEST_F(SceneSyntax, AStatementThatIsNoneIsRefusedAtItsLine)
+{
+  struct Case
+  {
+    std::string from, to, at, expected; // `at` begins the line refused
+  };
+  const std::vector<Case> cases = {
+      {"  set pairs   = p1", "  sett pairs   = p1", "sett", "'sett pairs   = p1' is not a statement"},
+      {"  set pairs   = p1", "  set pairs p1", "set pairs p1", "'set pairs p1': 'set' needs"},
+      {"    end\n    subsection Gear", "    END SUBSECTION\n    subsection Gear", "END SUB",
+       "'END SUBSECTION': 'end' stands alone"},
+      {"end\nsubsection Measured", "end\nend\nsubsection Measured", "end\nsubsection Measured",
+       "this 'end' closes no subsection"},
+      {"subsection Measured flanks", "subsection\nsubsection Measured flanks", "subsection\n",
+       "'subsection' is not a statement"},
+  };
+  for (const Case &c : cases)
+    {
+      const std::string text = replace_all(plain, c.from, c.to);
+      ASSERT_NE(text, plain) << c.to;
+      expect_refused(bytes("scene.prm", text),
+                     {"scene.prm:" + std::to_string(line_of(text, c.at)) + ": ", c.expected});
+    }
+}
+
 TEST_F(SceneSyntax, IncludesReadAsTheirTextWithLinesNamedInTheirFiles)
 {
   // The pair's flanks in an included file written on Windows, included from inside the Flanks

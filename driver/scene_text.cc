@@ -457,6 +457,10 @@ SceneText::read_tree()
         for (const auto &[key, child] : node)
           {
             const std::string in = path.empty() ? file : file + ", in " + join(path);
+            if (format_ == Format::xml && key == "<xmlattr>" && !child.empty())
+              throw InputError(in + ": an XML attribute (" + child.begin()->first + "=\"" +
+                               child.begin()->second.data() +
+                               "\"); deal.II reads a parameter as an element only");
             if (key.empty())
               throw InputError(in + ": a JSON array; give a list as one string of "
                                     "comma-separated values (\"pairs\": \"p, q\")");

@@ -214,7 +214,8 @@ TEST_F(SceneSyntax, AStatementThatIsNoneIsRefusedAtItsLine)
     std::string from, to, at, expected; // `at` begins the line refused
   };
   const std::vector<Case> cases = {
-      {"  set pairs   = p1", "  sett pairs   = p1", "sett", "'sett pairs   = p1' is not a statement"},
+      {"  set pairs   = p1", "  sett pairs   = p1", "sett",
+       "'sett pairs   = p1' is not a statement"},
       {"  set pairs   = p1", "  set pairs p1", "set pairs p1", "'set pairs p1': 'set' needs"},
       {"    end\n    subsection Gear", "    END SUBSECTION\n    subsection Gear", "END SUB",
        "'END SUBSECTION': 'end' stands alone"},
@@ -438,4 +439,6 @@ TEST_F(SceneSyntax, XmlAndJsonScenesReadAsThePlainFileAndPassTheSameChecks)
                  {"scene.json", "Scene", "JSON array"});
   expect_refused(bytes("scene.json", replace_all(json_scene, "\"Flanks\": {", "\"Flanks\" {")),
                  {"scene.json:3"});
+  expect_refused(bytes("scene.xml", replace_all(xml_scene, "<Gear>", "<Gear teeth=\"37\">")),
+                 {"scene.xml, in Flanks/p1/Gear", "XML attribute (teeth=\"37\")"});
 }

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -159,6 +160,50 @@ demangle(const std::string &s, const std::string &where)
                        "_20, _ as _5f, - as _2d), here '" +
                        mangle(s) + "'");
   return d;
+}
+/// The deepest nesting of JSON objects and arrays, or of XML elements (a scan that skips
+/// strings, comments and declarations; an attribute value holding '>' may miscount, which a
+/// bound needs no better). boost's parsers and deal.II's reader recurse once per level.
+int
+nesting_depth(const std::string &text, const bool json)
+{
+  int depth = 0, deepest = 0;
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (json)
+      {
+        if (text[i] == '"')
+          for (++i; i < text.size() && text[i] != '"'; ++i)
+            i += text[i] == '\\';
+        else if (text[i] == '{' || text[i] == '[')
+          deepest = std::max(deepest, ++depth);
+        else if (text[i] == '}' || text[i] == ']')
+          --depth;
+      }
+    else if (text[i] == '<')
+      {
+        const auto skip_to = [&](const char *end) {
+          const std::size_t e = text.find(end, i);
+          i                   = e == std::string::npos ? text.size() : e + std::strlen(end) - 1;
+        };
+        if (text.compare(i, 4, "<!--") == 0)
+          skip_to("-->");
+        else if (text.compare(i, 9, "<![CDATA[") == 0)
+          skip_to("]]>");
+        else if (text.compare(i, 2, "<?") == 0)
+          skip_to("?>");
+        else if (text.compare(i, 2, "</") == 0 || text.compare(i, 2, "<!") == 0)
+          {
+            depth -= text[i + 1] == '/';
+            skip_to(">");
+          }
+        else
+          {
+            skip_to(">");
+            if (i < text.size() && text[i - 1] != '/')
+              deepest = std::max(deepest, ++depth);
+          }
+      }
+  return deepest;
 }
 } // namespace
 
@@ -422,7 +467,11 @@ void
 SceneText::read_tree()
 {
   const std::string &file = files_[0].name;
-  pt::ptree          tree;
+  if (const int depth = nesting_depth(text_, format_ == Format::json); depth > max_nesting)
+    throw InputError(file + ": " + (format_ == Format::json ? "objects and arrays" : "elements") +
+                     " nested " + std::to_string(depth) + " deep; a scene nests at most " +
+                     std::to_string(max_nesting) + " (its sections are a few levels deep)");
+  pt::ptree tree;
   try
     {
       std::istringstream in(text_);

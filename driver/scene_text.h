@@ -50,6 +50,9 @@ public:
   /// At most this many include statements in the scene and its includes together (a file
   /// including another twice, at every level, would otherwise grow as 2^depth).
   static constexpr int max_includes = 100;
+  /// JSON objects or XML elements nested at most this deep (a scene's sections nest a few
+  /// levels; the parsers recurse once per level).
+  static constexpr int max_nesting = 64;
   /// The scene's files together hold at most this many bytes.
   static constexpr std::size_t max_bytes = 16 << 20;
 

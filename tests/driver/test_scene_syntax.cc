@@ -439,6 +439,14 @@ TEST_F(SceneSyntax, XmlAndJsonScenesReadAsThePlainFileAndPassTheSameChecks)
                  {"scene.json", "Scene", "JSON array"});
   expect_refused(bytes("scene.json", replace_all(json_scene, "\"Flanks\": {", "\"Flanks\" {")),
                  {"scene.json:3"});
+  // boost's parsers and deal.II's reader recurse once per level: a bound before them
+  const std::string deep_json =
+      "{\"a\": " + std::string(20000, '[') + std::string(20000, ']') + "}";
+  expect_refused(bytes("scene.json", deep_json), {"scene.json", "nested 20001 deep", "at most 64"});
+  std::string deep_xml = "<ParameterHandler>";
+  for (int i = 0; i < 100; ++i)
+    deep_xml += "<a" + std::to_string(i) + " >";
+  expect_refused(bytes("scene.xml", deep_xml), {"scene.xml", "elements nested 101 deep"});
   expect_refused(bytes("scene.xml", replace_all(xml_scene, "<Gear>", "<Gear teeth=\"37\">")),
                  {"scene.xml, in Flanks/p1/Gear", "XML attribute (teeth=\"37\")"});
 }

@@ -119,6 +119,23 @@ split_lines(const std::string &bytes, const std::string &name)
   return lines;
 }
 
+/// Refuses the invisible characters a word processor or a joined file leaves in a statement,
+/// where deal.II would read them as part of a keyword, name or value that then looks right in
+/// its message but is not (comments may hold anything).
+void
+check_invisible(const std::string &statement, const std::string &where)
+{
+  static const std::pair<const char *, const char *> invisible[] = {
+      {"\xC2\xA0", "a no-break space (U+00A0)"},
+      {"\xE2\x80\x8B", "a zero-width space (U+200B)"},
+      {"\xEF\xBB\xBF", "a byte-order mark (U+FEFF; files joined?)"}};
+  for (const auto &[bytes, what] : invisible)
+    if (const auto p = statement.find(bytes); p != std::string::npos)
+      throw InputError(where + ": " + what + " after '" +
+                       statement.substr(0, std::min<std::size_t>(p, 60)) +
+                       "'; write plain spaces (or nothing) there");
+}
+
 bool
 is_hex(char c)
 {
@@ -293,7 +310,8 @@ SceneText::Reader::read(const int file, const int depth)
         }
       const int         line       = int(first) + 1;
       const std::string as_written = trim(joined.substr(0, joined.find('#')));
-      std::string       content    = as_written;
+      check_invisible(as_written, at(file, line));
+      std::string content = as_written;
 
       // Keywords in any letter case, written in lower case (deal.II reads lower and upper case).
       const std::string word  = content.substr(0, content.find(' '));

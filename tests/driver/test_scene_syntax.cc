@@ -203,6 +203,11 @@ TEST_F(SceneSyntax, WhatCannotBeNormalisedIsRefusedByName)
   nul[plain.find("set pairs")] = '\0';
   expect_refused(bytes("nul.prm", nul), {"nul.prm:5", "NUL byte"});
   expect_refused(bytes("scene.txt", plain), {"scene.txt", "'.txt'", ".prm"});
+  // invisible characters outside comments looked right in deal.II's messages; in comments fine
+  expect_refused(bytes("nbsp.prm", replace_all(plain, "set pairs   = p1", "set pairs\xC2\xA0= p1")),
+                 {"nbsp.prm:5", "no-break space (U+00A0) after 'set pairs'"});
+  EXPECT_EQ(refusal(bytes("comment.prm", replace_all(plain, "# mm", "# mm\xC2\xA0\xE2\x80\x8B"))),
+            "");
 }
 
 // deal.II refused these too, but the pre-reader reads the file first: it refuses them at their

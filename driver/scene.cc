@@ -1,6 +1,7 @@
 #include "driver/scene.h"
 
 #include "driver/scene_parameters.h"
+#include "driver/scene_text.h"
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -9,7 +10,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <set>
@@ -126,26 +126,6 @@ names_of(const std::string &text, const std::string &where, std::size_t most)
   return names;
 }
 
-// deal.II exceptions carry a long report; the user needs the "Additional information" part,
-// which names the file, the line and the pattern.
-std::string
-brief(const dealii::ExceptionBase &e)
-{
-  std::string       text = e.what();
-  const std::string key  = "Additional information:";
-  if (const auto p = text.find(key); p != std::string::npos)
-    text = text.substr(p + key.size());
-  if (const auto p = text.find("Stacktrace:"); p != std::string::npos)
-    text = text.substr(0, p);
-  std::string out;
-  for (char c : text) // collapse whitespace and line breaks
-    if (!std::isspace(static_cast<unsigned char>(c)) || (!out.empty() && out.back() != ' '))
-      out += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;
-  while (!out.empty() && (out.back() == ' ' || out.back() == '-'))
-    out.pop_back();
-  return out;
-}
-
 // Top-level "subsection X ... end" blocks of a ShortPRM print, keyed by X.
 std::map<std::string, std::string>
 section_blocks(const std::string &prm_text)
@@ -178,50 +158,15 @@ section_blocks(const std::string &prm_text)
   return blocks;
 }
 
-// The pairs of `pairs` that have no Flanks/<pair> subsection in the scene file: a pair named but
-// not described would silently run with default gears. Scene files in deal.II's PRM or JSON
-// form are checked; XML files (their names are mangled) are not.
+// The pairs of `pairs` that have no Flanks/<pair> subsection in the scene: a pair named but not
+// described would silently run with default gears. The scene's text knows the subsections it
+// opens, in every format (.prm, JSON, XML with deal.II's mangled names).
 std::vector<std::string>
-undescribed_pairs(const std::string &file, const std::vector<std::string> &pairs)
+undescribed_pairs(const SceneText &text, const std::vector<std::string> &pairs)
 {
-  std::set<std::string> described;
-  if (fs::path(file).extension() == ".json")
-    {
-      boost::property_tree::ptree tree;
-      boost::property_tree::read_json(file, tree);
-      if (const auto flanks = tree.get_child_optional("Flanks"))
-        for (const auto &[name, child] : *flanks)
-          described.insert(name);
-    }
-  else if (fs::path(file).extension() == ".xml")
-    return {};
-  else
-    {
-      std::ifstream            in(file);
-      std::string              line;
-      std::vector<std::string> open; // the subsections we are in
-      while (std::getline(in, line))
-        {
-          std::istringstream words(line.substr(0, line.find('#')));
-          std::string        first;
-          if (!(words >> first))
-            continue;
-          if (first == "subsection")
-            {
-              std::string name;
-              std::getline(words, name);
-              const auto b = name.find_first_not_of(" \t"), e = name.find_last_not_of(" \t");
-              open.push_back(b == std::string::npos ? "" : name.substr(b, e - b + 1));
-              if (open.size() == 2 && open[0] == "Flanks")
-                described.insert(open[1]);
-            }
-          else if (first == "end" && !open.empty())
-            open.pop_back();
-        }
-    }
   std::vector<std::string> missing;
   for (const std::string &p : pairs)
-    if (!described.count(p))
+    if (!text.has_subsection("Flanks/" + p))
       missing.push_back(p);
   return missing;
 }
@@ -253,10 +198,15 @@ read_scene(const std::string &file)
   scene.file = file;
   try
     {
+      // 0. The file's text, read once and normalised (line breaks, byte-order mark, keyword
+      //    case, includes), its structure checked (a parameter set twice); every step below
+      //    reads this text.
+      const SceneText text(file);
+
       // 1. The scene header alone, to learn the pair names the other sections use.
       ParameterHandler header;
       in_subsection(header, {"Scene"}, [&] { Scene::declare(header); });
-      header.parse_input(file, "", true);
+      text.parse(header, true);
       std::vector<std::string> pairs;
       in_subsection(header, {"Scene"}, [&] { pairs = split_list(header.get("pairs")); });
       for (const std::string &p : pairs)
@@ -268,7 +218,7 @@ read_scene(const std::string &file)
                          " pairs is not allowed; at most 20 in one scene (split it)");
       if (std::set<std::string>(pairs.begin(), pairs.end()).size() != pairs.size())
         throw InputError("Scene/pairs: a pair name appears twice; each pair needs its own name");
-      if (const auto missing = undescribed_pairs(file, pairs); !missing.empty())
+      if (const auto missing = undescribed_pairs(text, pairs); !missing.empty())
         throw InputError("Scene/pairs: the pair '" + missing.front() +
                          "' has no subsection Flanks/" + missing.front() +
                          "; describe every pair named in pairs (or remove the name)");
@@ -285,7 +235,7 @@ read_scene(const std::string &file)
           in_subsection(names, {"Scene"}, [&] { Scene::declare(names); });
           for (const TrainNames &t : trains)
             in_subsection(names, {"Train", t.name}, [&] { TrainScene::declare(names, {}, {}); });
-          names.parse_input(file, "", true);
+          text.parse(names, true);
           for (TrainNames &t : trains)
             in_subsection(names, {"Train", t.name}, [&] {
               t.bodies = names_of(names.get("bodies"), "Train/" + t.name + "/bodies", 50);
@@ -296,7 +246,7 @@ read_scene(const std::string &file)
       // 2. Everything, strictly: unknown entries and values outside their patterns are errors.
       ParameterHandler prm;
       declare_all(prm, pairs, trains);
-      prm.parse_input(file);
+      text.parse(prm);
 
       // 3. Each section parses itself.
       in_subsection(prm, {"Scene"}, [&] {
@@ -351,13 +301,13 @@ read_scene(const std::string &file)
         t.check(scene);
 
       // 5. The parameters as text, one block per section: the cache keys hash these.
-      std::ostringstream text;
-      prm.print_parameters(text, ParameterHandler::ShortPRM);
-      scene.sections = section_blocks(text.str());
+      std::ostringstream printed;
+      prm.print_parameters(printed, ParameterHandler::ShortPRM);
+      scene.sections = section_blocks(printed.str());
     }
   catch (const dealii::ExceptionBase &e)
     {
-      throw InputError("scene " + file + ": " + brief(e));
+      throw InputError("scene " + file + ": " + deal_ii_message(e));
     }
   catch (const boost::property_tree::ptree_error &e)
     {

@@ -35,9 +35,16 @@ cmake -S "$top" -B "$build" -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=cla
 cmake --build "$build" --parallel "${JOBS:-$(nproc 2>/dev/null || echo 2)}" --target $targets
 
 # The scene dictionary from the reader's own declarations (subsections, entries, selections), so
-# that it follows driver/scene*.cc, plus the syntax and boundary numbers (as in tests/fuzz/cmm.dict).
+# that it follows driver/scene*.cc, plus the syntax and boundary numbers (as in tests/fuzz/cmm.dict),
+# and what the pre-reader (driver/scene_text.cc) normalises or refuses: keyword case, include and
+# the target's file marker "#=== <name>" (tests/fuzz/fuzz_scene.cc), CR, byte-order marks, line
+# continuation, JSON and XML with deal.II's mangled names.
 {
   printf '"subsection "\n"set "\n"end"\n" = "\n"true"\n"false"\n", "\n"\\x0a"\n"#"\n'
+  printf '"SUBSECTION "\n"SET "\n"END"\n"Subsection "\n"include "\n"INCLUDE "\n"\\x0d"\n"\\x09"\n'
+  printf '"\\\\\\x0a"\n"\\xef\\xbb\\xbf"\n"\\xff\\xfe"\n"\\x0a#=== a.prm\\x0a"\n"\\x0a#=== fuzz.prm\\x0a"\n'
+  printf '"include a.prm"\n"include fuzz.prm"\n"{"\n"}"\n"\\"value\\""\n"\\"alias\\""\n"_20"\n"_5f"\n"_"\n'
+  printf '"<ParameterHandler>"\n"</ParameterHandler>"\n"<value>"\n"<!--"\n"-->"\n"[]"\n'
   printf '"%s"\n' 0 -1 1e308 1e-320 nan inf 2147483647 2147483648 100000
   grep -ohE '(declare_entry|enter_subsection)\("[^"]*"' "$top"/driver/scene*.cc |
     sed -E 's/^[a-z_]+\(//'

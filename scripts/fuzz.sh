@@ -6,6 +6,8 @@
 # after the other:
 #   fuzz_cmm    CMM point files and flank topography files (geometry/measured_flank.h)
 #   fuzz_scene  scene files (gearkit::read_scene, driver/scene.h)
+#   fuzz_cache  stage cache files and their digest records (gearkit::cache_file_problem,
+#               driver/cache.h)
 # Every input must end normally or with gearkit::InputError. Anything else (another exception, a
 # crash, a sanitizer report, an input running longer than 10 s, more than 2 GB) is a finding: its
 # input lands in build-fuzz/findings/<target>/, and the run goes on (fork mode, -ignore_crashes)
@@ -13,14 +15,14 @@
 # only); what the fuzzer adds goes to build-fuzz/corpus/<target>/ and is reused by the next run.
 # Log per target: build-fuzz/fuzz_<target>.log. Exit status 1 when a target has findings.
 #
-# Environment: JOBS (build jobs, default nproc), FUZZ_TARGETS (default "fuzz_cmm fuzz_scene").
+# Environment: JOBS (build jobs, default nproc), FUZZ_TARGETS (default "fuzz_cmm fuzz_scene fuzz_cache").
 # CI does not run this script; it installs its own packages (clang, libFuzzer and the sanitizer
 # runtimes) when they are missing.
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-60}
 build=$top/build-fuzz
-targets=${FUZZ_TARGETS:-fuzz_cmm fuzz_scene}
+targets=${FUZZ_TARGETS:-fuzz_cmm fuzz_scene fuzz_cache}
 
 # clang-14 and libclang-rt-14-dev (libFuzzer, ASan and UBSan runtimes) on Debian bookworm; the
 # project's own packages (packages.txt) are assumed present (./test or ./run installs them).
@@ -55,8 +57,9 @@ cmake --build "$build" --parallel "${JOBS:-$(nproc 2>/dev/null || echo 2)}" --ta
   done
 } | sort -u >"$build/scene.dict"
 
-declare -A max_len=([fuzz_cmm]=4096 [fuzz_scene]=20000)
-declare -A dict=([fuzz_cmm]="$top/tests/fuzz/cmm.dict" [fuzz_scene]="$build/scene.dict")
+declare -A max_len=([fuzz_cmm]=4096 [fuzz_scene]=20000 [fuzz_cache]=262144)
+declare -A dict=([fuzz_cmm]="$top/tests/fuzz/cmm.dict" [fuzz_scene]="$build/scene.dict"
+  [fuzz_cache]="$top/tests/fuzz/cache.dict")
 # Every report fatal and symbolised; UBSan's with a stack.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-symbolize=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

@@ -335,8 +335,7 @@ read_scene(const std::string &file)
       //    Implausible values a real design can have go to scene.warnings; the dynamics' and
       //    the trains' plausibility (masses, speeds, cost) only where they run.
       auto wanted = [&](const char *output) {
-        return std::find(scene.outputs.begin(), scene.outputs.end(), output) !=
-               scene.outputs.end();
+        return std::find(scene.outputs.begin(), scene.outputs.end(), output) != scene.outputs.end();
       };
       for (const PairScene &pair : scene.pairs)
         {

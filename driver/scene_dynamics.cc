@@ -218,23 +218,23 @@ check_body(const BodyParameters &b, const MemberSize &m, const std::string &wher
         std::tuple{" transverse inertia", b.transverse_inertia, m.mass.diametral_inertia, 1e3,
                    1e5}})
     if (m.has_mass && value > 0)
-      check_plausible(
-          where + member + key + " = " + plausible_number(value) + " kg m^2", value / implied,
-          "its ratio to the gear's inertia from its geometry (" + plausible_number(implied) +
-              " kg m^2)",
-          0.1, high, 1.0 / 300, highest,
-          {{1e-6, "kg mm^2 typed in a kg m^2 field (" + plausible_number(value) +
-                      " kg mm^2 = " + plausible_number(value * 1e-6) + " kg m^2)"},
-           {1e-7, "g cm^2 typed in a kg m^2 field (" + plausible_number(value) +
-                      " g cm^2 = " + plausible_number(value * 1e-7) + " kg m^2)"},
-           {1e-4, "kg cm^2 typed in a kg m^2 field (" + plausible_number(value) +
-                      " kg cm^2 = " + plausible_number(value * 1e-4) + " kg m^2)"}},
-          warnings);
+      check_plausible(where + member + key + " = " + plausible_number(value) + " kg m^2",
+                      value / implied,
+                      "its ratio to the gear's inertia from its geometry (" +
+                          plausible_number(implied) + " kg m^2)",
+                      0.1, high, 1.0 / 300, highest,
+                      {{1e-6, "kg mm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                  " kg mm^2 = " + plausible_number(value * 1e-6) + " kg m^2)"},
+                       {1e-7, "g cm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                  " g cm^2 = " + plausible_number(value * 1e-7) + " kg m^2)"},
+                       {1e-4, "kg cm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                  " kg cm^2 = " + plausible_number(value * 1e-4) + " kg m^2)"}},
+                      warnings);
   // Bearing positions: the bearings of a body stand at least about a tenth of its size apart
   // (a double-row bearing, an overhung pinion) and at most some 50 sizes (a long shaft);
   // closer than a hundredth of the size they hold nothing (bearings 0.09 mm apart under an
   // 83 mm gear: positions in metres), and 1e4 sizes is no gearbox.
-  double lo = 0, hi = 0;
+  double              lo = 0, hi = 0;
   std::vector<double> x;
   for (const RadialBearing &r : b.bearings)
     x.push_back(r.position);
@@ -262,10 +262,10 @@ check_stiffness(const std::string &parameter, double k, double scale, const std:
   const double v = k / N_per_um;
   check_plausible(parameter + " = " + plausible_number(v) + " N/um", v / scale, what, low, high,
                   lowest, highest,
-                  {{1e-6, "N/m typed in a N/um field (" + plausible_number(v) + " N/m = " +
-                              plausible_number(v * 1e-6) + " N/um)"},
-                   {1e-3, "N/mm typed in a N/um field (" + plausible_number(v) + " N/mm = " +
-                              plausible_number(v * 1e-3) + " N/um)"}},
+                  {{1e-6, "N/m typed in a N/um field (" + plausible_number(v) +
+                              " N/m = " + plausible_number(v * 1e-6) + " N/um)"},
+                   {1e-3, "N/mm typed in a N/um field (" + plausible_number(v) +
+                              " N/mm = " + plausible_number(v * 1e-3) + " N/um)"}},
                   warnings);
 }
 } // namespace
@@ -326,7 +326,7 @@ DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string
     {
       const BevelPairGeometry g = bevel_geometry(pair.bevel);
       for (MemberSize &m : sizes)
-        m.size = g.outer_cone_distance,
+        m.size      = g.outer_cone_distance,
         m.size_text = "outer cone distance " + plausible_number(g.outer_cone_distance / mm) + " mm";
       pinion_radius = g.mean_cone_distance * std::sin(g.pitch_angle_pinion);
       face_width    = pair.bevel.face_width;
@@ -356,10 +356,10 @@ DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string
   // beyond); at 500 m/s the rim's hoop stress rho v^2 is 2 GPa in steel, beyond its strength:
   // refused. A mesh frequency beyond 50 kHz reaches the teeth's own bending modes, which this
   // lumped model (rigid teeth on a mesh spring) does not have: warned.
-  const double v    = speed_to * pinion_radius;
-  const double rpm  = speed_to / from_rpm(1);
-  const int    z1   = pair_teeth(pair).first;
-  const double f    = z1 * speed_to / (2 * pi);
+  const double      v     = speed_to * pinion_radius;
+  const double      rpm   = speed_to / from_rpm(1);
+  const int         z1    = pair_teeth(pair).first;
+  const double      f     = z1 * speed_to / (2 * pi);
   const std::string speed = where + "speed to = " + plausible_number(rpm) + " rpm";
   check_plausible(speed, v,
                   "the pinion's pitch-line velocity [m/s] (pitch radius " +

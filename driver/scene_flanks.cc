@@ -290,10 +290,9 @@ check_plausible(const std::string &parameter, double measure, const std::string 
   if (measure >= plausible_low && measure <= plausible_high)
     return;
   const bool  refused = !(measure >= possible_low && measure <= possible_high);
-  std::string text    = parameter + (refused ? " is not allowed: " : " is unusual: ") +
-                     measure_text + " is " + plausible_number(measure) +
-                     ", where real designs have " + plausible_number(plausible_low) + " to " +
-                     plausible_number(plausible_high);
+  std::string text = parameter + (refused ? " is not allowed: " : " is unusual: ") + measure_text +
+                     " is " + plausible_number(measure) + ", where real designs have " +
+                     plausible_number(plausible_low) + " to " + plausible_number(plausible_high);
   if (refused)
     text += measure < possible_low ? " (none below " + plausible_number(possible_low) + ")"
                                    : " (none above " + plausible_number(possible_high) + ")";
@@ -341,10 +340,10 @@ check_member_plausibility(const InvoluteGearData &d, const std::string &where,
   // standard and special design; 5..12 and 35..45 deg warn.
   check_angle_in_degrees(where + "/normal pressure angle", d.normal_pressure_angle, 5,
                          "12 to 35 deg", false);
-  check_plausible(where + "/normal pressure angle = " +
-                      plausible_number(d.normal_pressure_angle / deg) + " deg",
-                  d.normal_pressure_angle / deg, "the pressure angle [deg]", 12, 35, 5, 45, {},
-                  warnings);
+  check_plausible(
+      where + "/normal pressure angle = " + plausible_number(d.normal_pressure_angle / deg) +
+          " deg",
+      d.normal_pressure_angle / deg, "the pressure angle [deg]", 12, 35, 5, 45, {}, warnings);
   // Helix angles: 0 (spur) or from about 5 deg (helical gears exist for their overlap; below
   // 1 deg the overlap ratio is < 0.05 and nobody cuts one). Below 1.05 deg (= 60 deg in
   // radians) refused as radians; above 45 deg (double helical at most) a warning.
@@ -358,9 +357,8 @@ check_member_plausibility(const InvoluteGearData &d, const std::string &where,
   // pitch) and above 1000 no gear exists: refused; the slips are metres (x 1000) and inches
   // (x 25.4) typed in the mm field, or micrometres typed as mm.
   const double b = d.face_width / mm, ratio = d.face_width / d.normal_module;
-  check_plausible(where + "/face width = " + plausible_number(b) + " mm",
-                  ratio, "b/m_n on a normal module of " + plausible_number(d.normal_module / mm) +
-                             " mm",
+  check_plausible(where + "/face width = " + plausible_number(b) + " mm", ratio,
+                  "b/m_n on a normal module of " + plausible_number(d.normal_module / mm) + " mm",
                   1, 40, 0.1, 1000,
                   {{1000, "metres typed in a mm field (" + plausible_number(b) +
                               " m = " + plausible_number(b * 1000) + " mm)"},
@@ -391,10 +389,9 @@ PairScene::check(std::vector<std::string> &warnings) const
       const std::string where = "Flanks/" + name + "/Spiral bevel";
       check_angle_in_degrees(where + "/pressure angle", bevel.pressure_angle, 5, "12 to 35 deg",
                              false);
-      check_plausible(where + "/pressure angle = " + plausible_number(bevel.pressure_angle / deg) +
-                          " deg",
-                      bevel.pressure_angle / deg, "the pressure angle [deg]", 12, 35, 5, 45, {},
-                      warnings);
+      check_plausible(
+          where + "/pressure angle = " + plausible_number(bevel.pressure_angle / deg) + " deg",
+          bevel.pressure_angle / deg, "the pressure angle [deg]", 12, 35, 5, 45, {}, warnings);
       // Spiral angles: 0 (zerol) or from about 10 deg (spiral bevel gears 25..40 deg); below
       // 1.05 deg (60 deg in radians) refused as radians.
       check_angle_in_degrees(where + "/mean spiral angle", bevel.mean_spiral_angle, 1.05,
@@ -406,14 +403,14 @@ PairScene::check(std::vector<std::string> &warnings) const
       // Face width against the module: F / m from about 1 to 20 (the usual limit F <= 10 m_et
       // and A_0 / 3); refused below 0.1 and above 1000 as for involute members.
       const double f = bevel.face_width / mm, ratio = bevel.face_width / bevel.module;
-      check_plausible(
-          where + "/face width = " + plausible_number(f) + " mm", ratio,
-          "F/m on a module of " + plausible_number(bevel.module / mm) + " mm", 1, 20, 0.1, 1000,
-          {{1000, "metres typed in a mm field (" + plausible_number(f) + " m = " +
-                      plausible_number(f * 1000) + " mm)"},
-           {25.4, "inches typed in a mm field (" + plausible_number(f) + " in = " +
-                      plausible_number(f * 25.4) + " mm)"}},
-          warnings);
+      check_plausible(where + "/face width = " + plausible_number(f) + " mm", ratio,
+                      "F/m on a module of " + plausible_number(bevel.module / mm) + " mm", 1, 20,
+                      0.1, 1000,
+                      {{1000, "metres typed in a mm field (" + plausible_number(f) +
+                                  " m = " + plausible_number(f * 1000) + " mm)"},
+                       {25.4, "inches typed in a mm field (" + plausible_number(f) +
+                                  " in = " + plausible_number(f * 25.4) + " mm)"}},
+                      warnings);
       try
         {
           bevel_geometry(bevel);

@@ -456,9 +456,8 @@ train_cost_estimate(const TrainScene &train, const TrainModel &model)
   const double per_cycle = 60 * std::pow(1e-6 / train.run.relative_tolerance, 0.19);
   const double samples   = train.run.duration * train.run.sample_rate;
   c.steps                = per_cycle * c.mesh_cycles + samples;
-  const double pairs =
-      double(model.meshes.size()) * 2 * (2 * train.run.pairings_each_side + 1);
-  c.seconds = c.steps * (1 + 0.2 * pairs) * 1e-6;
+  const double pairs     = double(model.meshes.size()) * 2 * (2 * train.run.pairings_each_side + 1);
+  c.seconds              = c.steps * (1 + 0.2 * pairs) * 1e-6;
   return c;
 }
 
@@ -478,7 +477,7 @@ check_constant_speeds(const TrainScene &train, const TrainModel &m)
       const std::vector<double> w = train_speeds(m, int(i), m.bodies[i].initial_speed);
       for (std::size_t j = i + 1; j < train.bodies.size(); ++j)
         {
-          const TrainBodyScene &b = train.bodies[j];
+          const TrainBodyScene &b    = train.bodies[j];
           const double          held = m.bodies[j].initial_speed;
           if (!b.constant_speed || !std::isfinite(w[j]) ||
               std::abs(held - w[j]) <= 1e-9 * std::abs(w[j]) + 1e-12)
@@ -492,7 +491,8 @@ check_constant_speeds(const TrainScene &train, const TrainModel &m)
           throw InputError(
               speed_text(a, wa) + " and " + speed_text(b, held) +
               ", both with drive = constant speed, are not allowed: the tooth ratio between "
-              "them (speed of " + b.name + " / speed of " + a.name + " = " +
+              "them (speed of " +
+              b.name + " / speed of " + a.name + " = " +
               (wa != 0 ? plausible_number(w[j] / wa) : std::string("that of the meshes")) +
               " through the meshes) turns " + b.name + " at " + plausible_number(w[j]) +
               " rad/s when " + a.name + " turns at " + plausible_number(wa) +
@@ -692,10 +692,11 @@ TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> 
       if (c.seconds > maximum_cost)
         {
           const auto n = [](double x) { return plausible_number(std::round(x)); };
-          fail("/Run/duration = " + plausible_number(run.duration) + " s at sample rate = " +
-               plausible_number(run.sample_rate) + " Hz is not allowed: it is estimated to take " +
-               n(c.seconds) + " s (" + plausible_number(c.steps) + " integrator steps: " +
-               plausible_number(c.mesh_cycles) + " mesh cycles at the initial speeds, about " +
+          fail("/Run/duration = " + plausible_number(run.duration) +
+               " s at sample rate = " + plausible_number(run.sample_rate) +
+               " Hz is not allowed: it is estimated to take " + n(c.seconds) + " s (" +
+               plausible_number(c.steps) + " integrator steps: " + plausible_number(c.mesh_cycles) +
+               " mesh cycles at the initial speeds, about " +
                n(60 * std::pow(1e-6 / run.relative_tolerance, 0.19)) +
                " steps each at relative tolerance " + plausible_number(run.relative_tolerance) +
                ", and " + plausible_number(run.duration * run.sample_rate) +
@@ -726,24 +727,24 @@ TrainScene::check_plausibility(const Scene &scene, const TrainModel &m,
       const TrainMeshScene &s      = meshes[k];
       const TrainMesh      &mesh   = m.meshes[k];
       const int             driver = mesh.driver;
-      const int named = bodies[std::size_t(driver)].kinematic_speed ? source : driver;
-      const double w  = std::abs(m.bodies[std::size_t(driver)].initial_speed);
-      const auto [pinion, gear] = scene.pair(s.pair).involute_members();
-      const double v            = w * pinion->reference_radius;
-      const double given        = bodies[std::size_t(named)].initial_speed;
+      const int             named  = bodies[std::size_t(driver)].kinematic_speed ? source : driver;
+      const double          w      = std::abs(m.bodies[std::size_t(driver)].initial_speed);
+      const auto [pinion, gear]    = scene.pair(s.pair).involute_members();
+      const double v               = w * pinion->reference_radius;
+      const double given           = bodies[std::size_t(named)].initial_speed;
       // As in Dynamics/<pair>/speed to: 200 m/s (turbo gears) warns, 500 m/s (hoop stress
       // rho v^2 = 2 GPa in steel) is refused. rpm typed in the rad/s field is 9.5 times fast.
-      check_plausible(where + "/Bodies/" + bodies[std::size_t(named)].name +
-                          "/initial speed = " + number_text(given) + " rad/s",
-                      v,
-                      "the pitch-line velocity [m/s] of mesh " + s.name + " (pinion pitch radius " +
-                          plausible_number(pinion->reference_radius / mm) + " mm, " +
-                          plausible_number(w) + " rad/s)",
-                      0, 200, 0, 500,
-                      {{2 * pi / 60, "rpm typed in a rad/s field (" + number_text(given) +
-                                         " rpm = " + plausible_number(from_rpm(given)) +
-                                         " rad/s)"}},
-                      warnings);
+      check_plausible(
+          where + "/Bodies/" + bodies[std::size_t(named)].name +
+              "/initial speed = " + number_text(given) + " rad/s",
+          v,
+          "the pitch-line velocity [m/s] of mesh " + s.name + " (pinion pitch radius " +
+              plausible_number(pinion->reference_radius / mm) + " mm, " + plausible_number(w) +
+              " rad/s)",
+          0, 200, 0, 500,
+          {{2 * pi / 60, "rpm typed in a rad/s field (" + number_text(given) +
+                             " rpm = " + plausible_number(from_rpm(given)) + " rad/s)"}},
+          warnings);
       const double f = mesh.teeth.pinion_teeth * w / (2 * pi);
       if (f > run.sample_rate / 2)
         warnings.push_back(where + "/Run/sample rate = " + number_text(run.sample_rate) +
@@ -751,8 +752,9 @@ TrainScene::check_plausibility(const Scene &scene, const TrainModel &m,
                            plausible_number(f) + " Hz at the initial speeds, above the " +
                            "Nyquist frequency " + plausible_number(run.sample_rate / 2) +
                            " Hz, so the mesh force spectra cannot show it (aliased); plausible: "
-                           "a sample rate above " + plausible_number(2 * f * harmonics) +
-                           " Hz (" + std::to_string(harmonics) +
+                           "a sample rate above " +
+                           plausible_number(2 * f * harmonics) + " Hz (" +
+                           std::to_string(harmonics) +
                            " harmonics); the run goes on with the value as given");
     }
 }

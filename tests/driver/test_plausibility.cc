@@ -263,25 +263,25 @@ TEST_F(PlausibilityTest, SpiralBevelAnglesInRadiansAreRefusedByName)
                          "set grid face points    = 4\n    set type = spiral bevel\n    "
                          "subsection Spiral bevel\n      set pinion teeth = 12\n    end");
   ASSERT_TRUE(read_scene(file("scene.prm", bevel)).warnings.empty());
-  expect_refused(bevel,
-                 {{"mean spiral angle in radians",
-                   "set pinion teeth = 12",
-                   "set pinion teeth = 12\n      set mean spiral angle = 0.611",
-                   {"Flanks/p1/Spiral bevel/mean spiral angle = 0.611 deg", "radians",
-                    "0.611 rad = 35.01 deg"}},
-                  {"pressure angle in radians",
-                   "set pinion teeth = 12",
-                   "set pinion teeth = 12\n      set pressure angle = 0.349",
-                   {"Flanks/p1/Spiral bevel/pressure angle = 0.349 deg", "0.349 rad = 20 deg"}},
-                  {"shaft angle in radians",
-                   "set pinion teeth = 12",
-                   "set pinion teeth = 12\n      set shaft angle = 1.571",
-                   {"Flanks/p1/Spiral bevel/shaft angle = 1.571 deg", "1.571 rad = 90.01 deg"}},
-                  {"face width in metres",
-                   "set pinion teeth = 12",
-                   "set pinion teeth = 12\n      set face width = 0.0254",
-                   {"Flanks/p1/Spiral bevel/face width = 0.0254 mm", "F/m",
-                    "metres typed in a mm field"}}});
+  expect_refused(
+      bevel,
+      {{"mean spiral angle in radians",
+        "set pinion teeth = 12",
+        "set pinion teeth = 12\n      set mean spiral angle = 0.611",
+        {"Flanks/p1/Spiral bevel/mean spiral angle = 0.611 deg", "radians",
+         "0.611 rad = 35.01 deg"}},
+       {"pressure angle in radians",
+        "set pinion teeth = 12",
+        "set pinion teeth = 12\n      set pressure angle = 0.349",
+        {"Flanks/p1/Spiral bevel/pressure angle = 0.349 deg", "0.349 rad = 20 deg"}},
+       {"shaft angle in radians",
+        "set pinion teeth = 12",
+        "set pinion teeth = 12\n      set shaft angle = 1.571",
+        {"Flanks/p1/Spiral bevel/shaft angle = 1.571 deg", "1.571 rad = 90.01 deg"}},
+       {"face width in metres",
+        "set pinion teeth = 12",
+        "set pinion teeth = 12\n      set face width = 0.0254",
+        {"Flanks/p1/Spiral bevel/face width = 0.0254 mm", "F/m", "metres typed in a mm field"}}});
 }
 
 TEST_F(PlausibilityTest, DynamicsSlipsAreRefusedByTheirParameter)
@@ -328,38 +328,36 @@ TEST_F(PlausibilityTest, DynamicsSlipsAreRefusedByTheirParameter)
        {"a sweep to 1e9 rpm",
         "set speed to                  = 6000",
         "set speed to                  = 1e9",
-        {"Dynamics/p1/speed to = 1e+09 rpm", "pitch-line velocity", "0 to 200",
-         "above 500"}}});
+        {"Dynamics/p1/speed to = 1e+09 rpm", "pitch-line velocity", "0 to 200", "above 500"}}});
 }
 
 TEST_F(PlausibilityTest, DynamicsValuesARealDesignCanHaveAreWarned)
 {
-  expect_warned(
-      dynamics_scene,
-      {{"a body 20 times the gear's mass (a long shaft)",
-        "set pinion mass               = 0.2",
-        "set pinion mass               = 4",
-        {"Dynamics/p1/pinion mass = 4 kg is unusual", "0.1 to 10", "the run goes on"}},
-       {"a soft elastomer bearing",
-        "set mesh stiffness            = 300",
-        "set mesh stiffness            = 300\n    set bearing stiffness = 0.5",
-        {"Dynamics/p1/bearing stiffness = 0.5 N/um is unusual", "1 to 100000"}},
-       {"a polymer mesh",
-        "set mesh stiffness            = 300",
-        "set mesh stiffness            = 10",
-        {"Dynamics/p1/mesh stiffness = 10 N/um is unusual", "per face width"}},
-       {"a turbo gear speed",
-        "set speed to                  = 6000",
-        "set speed to                  = 120000",
-        {"Dynamics/p1/speed to = 120000 rpm is unusual", "pitch-line velocity"}}});
+  expect_warned(dynamics_scene,
+                {{"a body 20 times the gear's mass (a long shaft)",
+                  "set pinion mass               = 0.2",
+                  "set pinion mass               = 4",
+                  {"Dynamics/p1/pinion mass = 4 kg is unusual", "0.1 to 10", "the run goes on"}},
+                 {"a soft elastomer bearing",
+                  "set mesh stiffness            = 300",
+                  "set mesh stiffness            = 300\n    set bearing stiffness = 0.5",
+                  {"Dynamics/p1/bearing stiffness = 0.5 N/um is unusual", "1 to 100000"}},
+                 {"a polymer mesh",
+                  "set mesh stiffness            = 300",
+                  "set mesh stiffness            = 10",
+                  {"Dynamics/p1/mesh stiffness = 10 N/um is unusual", "per face width"}},
+                 {"a turbo gear speed",
+                  "set speed to                  = 6000",
+                  "set speed to                  = 120000",
+                  {"Dynamics/p1/speed to = 120000 rpm is unusual", "pitch-line velocity"}}});
 
   // The same values are not judged where the dynamics does not run (its defaults suit no
   // particular pair).
   const Scene flanks_only = read_scene(file(
-      "scene.prm", std::regex_replace(edited(dynamics_scene, {"", "pinion mass               = 0.2",
-                                                              "pinion mass = 200", {}}),
-                                      std::regex("set outputs = dynamics"),
-                                      "set outputs = flanks")));
+      "scene.prm",
+      std::regex_replace(
+          edited(dynamics_scene, {"", "pinion mass               = 0.2", "pinion mass = 200", {}}),
+          std::regex("set outputs = dynamics"), "set outputs = flanks")));
   EXPECT_TRUE(flanks_only.warnings.empty());
 }
 
@@ -399,12 +397,13 @@ TEST_F(PlausibilityTest, TrainCostEstimateFollowsTheRunAndItsLimitCanBeRaised)
   // 20 x 51.35 / 2 pi = 163 Hz: 4.66e5 mesh cycles at 60 (1e-6/1e-10)^0.19 = 345 steps each,
   // and 2e7 samples; 28 tooth pairs at 0.2 us and 1 us a step.
   const std::string long_run =
-      edited(train_scene, {"", "set duration    = 0.005",
+      edited(train_scene, {"",
+                           "set duration    = 0.005",
                            "set duration    = 1000\n      set relative tolerance = 1e-10\n      "
                            "set maximum estimated cost = 5000",
                            {}});
-  const Scene     scene = read_scene(file("scene.prm", long_run));
-  const TrainCost c     = train_cost_estimate(scene.trains[0], scene.trains[0].model(scene));
+  const Scene     scene  = read_scene(file("scene.prm", long_run));
+  const TrainCost c      = train_cost_estimate(scene.trains[0], scene.trains[0].model(scene));
   const double    cycles = (19 * 100 + 20 * 100 * 19.0 / 37) / (2 * pi) * 1000;
   EXPECT_NEAR(c.mesh_cycles, cycles, 1e-6 * cycles);
   const double steps = 60 * std::pow(1e4, 0.19) * cycles + 2e7;
@@ -418,11 +417,12 @@ TEST_F(PlausibilityTest, WarningsReachTheLogAndTheResultFile)
 {
   // b = 0.5 mm on m 2 (b/m_n 0.25: inches in the mm field?) and a wooden gear: real designs
   // can have either, so the run goes on and says so twice.
-  const std::string text = edited(
-      edited(pair_scene, {"", "set face width      = 20", "set face width      = 0.5", {}}),
-      {"", "set face width      = 20\n    end\n  end",
-       "set face width      = 20\n      set density = 700\n    end\n  end",
-       {}});
+  const std::string text =
+      edited(edited(pair_scene, {"", "set face width      = 20", "set face width      = 0.5", {}}),
+             {"",
+              "set face width      = 20\n    end\n  end",
+              "set face width      = 20\n      set density = 700\n    end\n  end",
+              {}});
   ASSERT_EQ(run(text), 0) << err.str();
   const std::string face = "Flanks/p1/Pinion/face width = 0.5 mm is unusual";
   const std::string wood = "Flanks/p1/Gear/density = 700 kg/m^3 is unusual";
@@ -441,7 +441,8 @@ TEST_F(PlausibilityTest, TrainWarningReachesTheLogAndTheResultFile)
   // 1 kHz of samples with mesh m1 at 19 x 200 / 2 pi = 605 Hz: above the Nyquist frequency
   const std::string text = edited(
       edited(edited(train_scene, {"", "set initial speed = 100", "set initial speed = 200", {}}),
-             {"", "set duration    = 0.005\n      set sample rate = 20000",
+             {"",
+              "set duration    = 0.005\n      set sample rate = 20000",
               "set duration    = 0.04\n      set sample rate = 1000",
               {}}),
       {"", "set spectrogram window = 2", "set spectrogram window = 0", {}});

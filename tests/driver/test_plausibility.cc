@@ -395,7 +395,7 @@ TEST_F(PlausibilityTest, TrainCostEstimateFollowsTheRunAndItsLimitCanBeRaised)
 {
   // 1000 s with a at 100 rad/s: mesh m1 19 x 100 / 2 pi = 302 Hz, m2 (b at 100 x 19/37 rad/s)
   // 20 x 51.35 / 2 pi = 163 Hz: 4.66e5 mesh cycles at 60 (1e-6/1e-10)^0.19 = 345 steps each,
-  // and 2e7 samples; 28 tooth pairs at 0.2 us and 1 us a step.
+  // and 2e7 samples; 28 tooth pairs at 0.3 us and 2 us a step.
   const std::string long_run =
       edited(train_scene, {"",
                            "set duration    = 0.005",
@@ -408,7 +408,7 @@ TEST_F(PlausibilityTest, TrainCostEstimateFollowsTheRunAndItsLimitCanBeRaised)
   EXPECT_NEAR(c.mesh_cycles, cycles, 1e-6 * cycles);
   const double steps = 60 * std::pow(1e4, 0.19) * cycles + 2e7;
   EXPECT_NEAR(c.steps, steps, 1e-9 * steps);
-  EXPECT_NEAR(c.seconds, steps * 6.6e-6, 1e-9 * steps);
+  EXPECT_NEAR(c.seconds, steps * 10.4e-6, 1e-9 * steps);
   EXPECT_GT(c.seconds, 600); // refused at the default limit (TrainSlipsAre...)
   // the shipped seed 002 steady run (4.5 s) stays far below it: TheShippedCases... reads it
 }

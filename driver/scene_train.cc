@@ -725,6 +725,7 @@ TrainScene::check_plausibility(const Scene &scene, const TrainModel &m,
         source = int(i);
         break;
       }
+  std::vector<double> gears(bodies.size(), 0); // polar inertia of each body's gears
   for (std::size_t k = 0; k < meshes.size(); ++k)
     {
       const TrainMeshScene &s      = meshes[k];
@@ -733,8 +734,10 @@ TrainScene::check_plausibility(const Scene &scene, const TrainModel &m,
       const int             named  = bodies[std::size_t(driver)].kinematic_speed ? source : driver;
       const double          w      = std::abs(m.bodies[std::size_t(driver)].initial_speed);
       const auto [pinion, gear]    = scene.pair(s.pair).involute_members();
-      const double v               = w * pinion->reference_radius;
-      const double given           = bodies[std::size_t(named)].initial_speed;
+      gears[std::size_t(driver)] += pinion->mass_properties().polar_inertia;
+      gears[std::size_t(mesh.driven)] += gear->mass_properties().polar_inertia;
+      const double v     = w * pinion->reference_radius;
+      const double given = bodies[std::size_t(named)].initial_speed;
       // As in Dynamics/<pair>/speed to: 200 m/s (turbo gears) warns, 500 m/s (hoop stress
       // rho v^2 = 2 GPa in steel) is refused. rpm typed in the rad/s field is 9.5 times fast.
       check_plausible(
@@ -759,6 +762,32 @@ TrainScene::check_plausibility(const Scene &scene, const TrainModel &m,
                            plausible_number(2 * f * harmonics) + " Hz (" +
                            std::to_string(harmonics) +
                            " harmonics); the run goes on with the value as given");
+    }
+
+  // A given inertia against its gears' own (their geometry, as inertia = auto takes it): the
+  // body adds its shaft, couplings, a flywheel or a crank, so tens of times the gears' is a
+  // real design and a thousand times warns (seed 002's output body: its gear and a shaft
+  // inertia of 64 times that, the crank and flywheel); below a third of them the gears alone
+  // would be heavier (lightening holes take less); 1e5 times or below 1/300 no design (kg mm^2
+  // typed as kg m^2 is 1e6). A shaft inertia (added with auto) likewise, from 0.
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+      const TrainBodyScene &b      = bodies[i];
+      const bool            given  = !b.inertia_auto;
+      const double          value  = given ? b.inertia : b.shaft_inertia;
+      const std::string     key    = given ? "/inertia = " : "/shaft inertia = ";
+      const double          lowest = given ? 1.0 / 300 : 0;
+      if (gears[i] > 0 && (given || value > 0))
+        check_plausible(where + "/Bodies/" + b.name + key + plausible_number(value) + " kg m^2",
+                        value / gears[i],
+                        "its ratio to the polar inertia of its gears from their geometry (" +
+                            plausible_number(gears[i]) + " kg m^2, Flanks section)",
+                        given ? 0.3 : 0, 1000, lowest, 1e5,
+                        {{1e-6, "kg mm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                    " kg mm^2 = " + plausible_number(value * 1e-6) + " kg m^2)"},
+                         {1e-4, "kg cm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                    " kg cm^2 = " + plausible_number(value * 1e-4) + " kg m^2)"}},
+                        warnings);
     }
 }
 } // namespace gearkit

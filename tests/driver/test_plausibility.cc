@@ -384,6 +384,15 @@ TEST_F(PlausibilityTest, TrainSlipsAreRefusedByTheirParameter)
         "set initial speed = 30000",
         {"Train/t/Bodies/a/initial speed = 30000 rad/s", "pitch-line velocity", "mesh m1",
          "rpm typed in a rad/s field (30000 rpm = 3142 rad/s)"}},
+       {"a body's inertia in kg mm^2",
+        "set inertia       = 1e-4",
+        "set inertia       = 100",
+        {"Train/t/Bodies/a/inertia = 100 kg m^2", "polar inertia of its gears", "0.3 to 1000",
+         "kg mm^2 typed in a kg m^2 field (100 kg mm^2 = 0.0001 kg m^2)"}},
+       {"a shaft inertia in kg mm^2",
+        "set inertia = auto\n",
+        "set inertia = auto\n        set shaft inertia = 2000\n",
+        {"Train/t/Bodies/b/shaft inertia = 2000 kg m^2", "kg mm^2 typed in a kg m^2 field"}},
        {"1000 s at 20 kHz",
         "set duration    = 0.005",
         "set duration    = 1000\n      set relative tolerance = 1e-10",
@@ -455,17 +464,22 @@ TEST_F(PlausibilityTest, TrainWarningReachesTheLogAndTheResultFile)
   EXPECT_NE(stored.find(warning), std::string::npos) << stored;
 }
 
-TEST_F(PlausibilityTest, TheShippedCasesReadCleanlyWithoutWarnings)
+TEST_F(PlausibilityTest, TheShippedScenesReadCleanlyWithoutWarnings)
 {
-  int cases = 0;
-  for (const auto &entry : fs::recursive_directory_iterator(source_dir + "/cases"))
-    if (entry.path().extension() == ".prm")
+  // the cases, and the recommended scenes of bench/README.md
+  int                   cases = 0;
+  std::vector<fs::path> files;
+  for (const char *folder : {"/cases", "/bench/scenes"})
+    for (const auto &entry : fs::recursive_directory_iterator(source_dir + folder))
+      files.push_back(entry.path());
+  for (const fs::path &path : files)
+    if (path.extension() == ".prm")
       {
         ++cases;
         Scene scene;
-        EXPECT_NO_THROW(scene = read_scene(entry.path().string())) << entry.path();
+        EXPECT_NO_THROW(scene = read_scene(path.string())) << path;
         for (const std::string &w : scene.warnings)
-          ADD_FAILURE() << entry.path() << ": " << w;
+          ADD_FAILURE() << path << ": " << w;
       }
-  EXPECT_GE(cases, 12);
+  EXPECT_GE(cases, 16);
 }

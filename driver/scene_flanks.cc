@@ -351,11 +351,15 @@ check_member_plausibility(const InvoluteGearData &d, const std::string &where,
                          true);
   check_plausible(where + "/helix angle = " + plausible_number(d.helix_angle / deg) + " deg",
                   d.helix_angle / deg, "the helix angle [deg]", 0, 45, 0, 60, {}, warnings);
+  if (d.helix_angle > 0 && d.helix_angle < 5 * deg)
+    warnings.push_back(where + "/helix angle = " + plausible_number(d.helix_angle / deg) +
+                       " deg is unusual: real designs have 0 (spur) or 5 to 45 deg (a helix this "
+                       "small gives hardly any overlap); the run goes on with the value as given");
   // Face width against the normal module: b / m_n from about 1 (thin clock and instrument
   // gears) to about 40 (wide pinions, rolling mill drives); the ISO 6336 rating asks b/m_n <=
-  // 30 for most designs. Below 0.1 (a blade thinner than a tenth of the tooth's thickness-ish
-  // pitch) and above 1000 no gear exists: refused; the slips are metres (x 1000) and inches
-  // (x 25.4) typed in the mm field, or micrometres typed as mm.
+  // 30 for most designs. Below 0.1 (a disc a twentieth as thick as its teeth; 0.01 mm on m 3:
+  // a pinion of 0.09 g) and above 1000 no gear exists: refused; the slips are metres (x 1000)
+  // and inches (x 25.4) typed in the mm field, or micrometres typed as mm.
   const double b = d.face_width / mm, ratio = d.face_width / d.normal_module;
   check_plausible(where + "/face width = " + plausible_number(b) + " mm", ratio,
                   "b/m_n on a normal module of " + plausible_number(d.normal_module / mm) + " mm",

@@ -256,6 +256,34 @@ TEST_F(PlausibilityTest, FlankSlipsAreRefusedByTheirParameter)
         {"Flanks/p1/Pinion/helix angle = 0.262 deg", "radians", "0.262 rad = 15.01 deg"}}});
 }
 
+TEST_F(PlausibilityTest, FlankValuesARealDesignCanHaveAreWarned)
+{
+  // a 3 deg helix (both members, opposite hands): hardly any overlap, but it can be cut
+  const std::string helix =
+      std::regex_replace(std::regex_replace(pair_scene, std::regex("set face width      = 20"),
+                                            "set face width      = 20\n      set helix angle = 3"),
+                         std::regex("(subsection Gear\n)"), "$1      set hand = left\n");
+  const Scene scene = read_scene(file("scene.prm", helix));
+  ASSERT_EQ(scene.warnings.size(), 2u);
+  EXPECT_NE(scene.warnings[0].find("Flanks/p1/Pinion/helix angle = 3 deg is unusual"),
+            std::string::npos)
+      << scene.warnings[0];
+  EXPECT_NE(scene.warnings[1].find("Flanks/p1/Gear/helix angle = 3 deg is unusual"),
+            std::string::npos)
+      << scene.warnings[1];
+  // a 10 deg pressure angle (both members): unusual, not impossible
+  const Scene low = read_scene(
+      file("scene.prm", std::regex_replace(pair_scene, std::regex("set normal module   = 2\n"),
+                                           "set normal module   = 2\n      set normal pressure "
+                                           "angle = 10\n")));
+  ASSERT_EQ(low.warnings.size(), 2u);
+  EXPECT_NE(low.warnings[0].find("Flanks/p1/Pinion/normal pressure angle = 10 deg is unusual: "
+                                 "the pressure angle [deg] is 10, where real designs have 12 "
+                                 "to 35; the run goes on"),
+            std::string::npos)
+      << low.warnings[0];
+}
+
 TEST_F(PlausibilityTest, SpiralBevelAnglesInRadiansAreRefusedByName)
 {
   const std::string bevel =

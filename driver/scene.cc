@@ -344,7 +344,7 @@ read_scene(const std::string &file)
           scene.measured.at(p).check(pair);
           scene.tca.at(p).complete_and_check(pair, scene.measured.at(p));
           scene.fe.at(p).check(pair);
-          scene.loaded.at(p).check(pair, scene.measured.at(p));
+          scene.loaded.at(p).check(pair, scene.measured.at(p), wanted("stiffness"), scene.warnings);
           scene.dynamics.at(p).check(pair, scene.tca.at(p), wanted("dynamics"), scene.warnings);
         }
       const bool train_wanted = wanted("train");

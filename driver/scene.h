@@ -210,8 +210,10 @@ struct LoadedScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
+  /// With `run` (the stiffness stage is an output) also the torques' plausibility.
   void
-  check(const PairScene &pair, const MeasuredScene &measured) const;
+  check(const PairScene &pair, const MeasuredScene &measured, bool run,
+        std::vector<std::string> &warnings) const;
 };
 
 /// 14-DOF pair dynamics (stage "dynamics"): the model's parameters and the speed sweep.
@@ -436,6 +438,22 @@ check_plausible(const std::string &parameter, double measure, const std::string 
 /// A number as the plausibility messages print it (4 significant digits).
 std::string
 plausible_number(double x);
+
+/// The scales of a pair the plausibility checks compare with: the pinion's pitch radius (a
+/// bevel pinion's at the mean point), the face width (the narrower member's) and the normal
+/// module (a bevel pair's mean normal module) [m].
+struct PairScale
+{
+  double pinion_radius = 0, face_width = 0, module = 0;
+};
+PairScale
+pair_scale(const PairScene &pair);
+
+/// A pinion torque [N m] against what the teeth carry: the nominal tooth load F_t / (b m_n)
+/// [MPa] (scene_stiffness.cc).
+void
+check_torque(const std::string &parameter, double torque, const PairScene &pair,
+             std::vector<std::string> &warnings);
 
 /// Reads and checks a scene file. Throws InputError naming the file, line, parameter and what is
 /// allowed.

@@ -352,6 +352,46 @@ DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string
     check_stiffness(where + "axial stiffness", model.pinion.axial_stiffness, 1,
                     "the axial stiffness [N/um]", 1, 1e5, 1e-3, 1e7, warnings);
 
+  check_torque(where + "pinion torque", torque, pair, warnings);
+  // Half backlash: j_t of 0.02 to 0.3 mm for modules of 1 to 10 mm; below 1 um (but not 0, a
+  // zero-backlash model) it is mm typed in the um field: warned. Beyond 0.8 m_n the teeth
+  // would be thinned to nothing (a tooth is about 1.57 m_n thick): refused.
+  const PairScale   scale = pair_scale(pair);
+  const double      bc    = model.half_backlash;
+  const std::string half  = where + "half backlash = " + plausible_number(bc / um) + " um";
+  if (bc > 0.8 * scale.module)
+    throw InputError(half + " is not allowed: " + plausible_number(bc / scale.module) +
+                     " normal modules (m_n " + plausible_number(scale.module / mm) +
+                     " mm), where a tooth is about 1.57 m_n thick: real designs have up to "
+                     "about 0.1 m_n; expected a half backlash below 0.8 m_n (" +
+                     plausible_number(0.8 * scale.module / um) + " um)");
+  if (bc > 0 && bc < 1 * um)
+    warnings.push_back(half +
+                       " is unusual: real designs have 10 to 300 um; it looks like mm "
+                       "typed in a um field (" +
+                       plausible_number(bc / um) + " mm = " + plausible_number(bc / um * 1000) +
+                       " um); the run goes on with the value as given");
+  // Motor and load inertias against the pinion's and gear's own: a motor rotor or a brake
+  // drum is tens to thousands of times a small pinion's (the default 0.05 kg m^2 is 160 times
+  // the FZG pinion's): warned beyond 1e4 times, refused beyond 1e6 (kg mm^2 typed as kg m^2).
+  if (pair.type == PairType::involute)
+    {
+      const auto [p, g] = pair.involute_members();
+      for (const auto &[key, value, implied] :
+           {std::tuple{"motor inertia", model.motor_inertia, p->mass_properties().polar_inertia},
+            std::tuple{"load inertia", model.load_inertia, g->mass_properties().polar_inertia}})
+        if (value > 0)
+          check_plausible(where + key + " = " + plausible_number(value) + " kg m^2",
+                          value / implied,
+                          std::string("its ratio to the polar inertia of the ") +
+                              (key[0] == 'm' ? "pinion" : "gear") + " from its geometry (" +
+                              plausible_number(implied) + " kg m^2)",
+                          0, 1e4, 0, 1e6,
+                          {{1e-6, "kg mm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                      " kg mm^2 = " + plausible_number(value * 1e-6) + " kg m^2)"}},
+                          warnings);
+    }
+
   // Speeds: the pitch-line velocity of the fastest turbo gears is about 200 m/s (warned
   // beyond); at 500 m/s the rim's hoop stress rho v^2 is 2 GPa in steel, beyond its strength:
   // refused. A mesh frequency beyond 50 kHz reaches the teeth's own bending modes, which this

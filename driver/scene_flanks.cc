@@ -307,6 +307,20 @@ check_plausible(const std::string &parameter, double measure, const std::string 
   warnings.push_back(text + "; the run goes on with the value as given");
 }
 
+PairScale
+pair_scale(const PairScene &pair)
+{
+  if (pair.type == PairType::spiral_bevel)
+    {
+      const BevelPairGeometry g = bevel_geometry(pair.bevel);
+      return {g.mean_cone_distance * std::sin(g.pitch_angle_pinion), pair.bevel.face_width,
+              g.mean_normal_module};
+    }
+  const InvoluteGearData &p = pair.pinion;
+  return {p.teeth * p.normal_module / std::cos(p.helix_angle) / 2,
+          std::min(p.face_width, pair.gear.face_width), p.normal_module};
+}
+
 namespace
 {
 // Angles entered in radians where the scene asks degrees: every angle of a gear below
@@ -371,6 +385,19 @@ check_member_plausibility(const InvoluteGearData &d, const std::string &where,
                    {1e-3, "micrometres typed in a mm field (" + plausible_number(b) +
                               " um = " + plausible_number(b / 1000) + " mm)"}},
                   warnings);
+  // A bore below a hundredth of the root diameter holds no shaft: metres typed in the mm field
+  // (0.03 for 30 mm) - warned, as the gear's mass hardly changes (a solid gear is computed).
+  const double root_diameter = d.teeth * d.normal_module / std::cos(d.helix_angle) -
+                               2 * (d.dedendum_factor - d.profile_shift) * d.normal_module;
+  if (d.bore_diameter > 0 && d.bore_diameter < 0.01 * root_diameter)
+    warnings.push_back(where + "/bore diameter = " + plausible_number(d.bore_diameter / mm) +
+                       " mm is unusual: a bore of " +
+                       plausible_number(d.bore_diameter / root_diameter) +
+                       " of the root diameter (" + plausible_number(root_diameter / mm) +
+                       " mm) holds no shaft; it looks like metres typed in a mm field (" +
+                       plausible_number(d.bore_diameter / mm) +
+                       " m = " + plausible_number(d.bore_diameter / mm * 1000) +
+                       " mm); the run goes on with the value as given");
   // Density: gear materials from polymers (POM 1410, PA 1140 kg/m^3) to tungsten alloys
   // (19300); wood gears (500..900) are real but rare: warned below 900 and above 20000;
   // below 100 (no solid) or above 23000 (osmium, the densest element, 22590) refused. The slip
@@ -415,14 +442,30 @@ PairScene::check(std::vector<std::string> &warnings) const
                        {25.4, "inches typed in a mm field (" + plausible_number(f) +
                                   " in = " + plausible_number(f * 25.4) + " mm)"}},
                       warnings);
+      BevelPairGeometry g;
       try
         {
-          bevel_geometry(bevel);
+          g = bevel_geometry(bevel);
         }
       catch (const InputError &e)
         {
           throw InputError("Flanks/" + name + "/Spiral bevel: " + e.what());
         }
+      // Face-milling cutters have radii of about 0.5 to 2 mean cone distances (the blades'
+      // lengthwise curvature against the spiral); below 0.03 or beyond 30 no cutter generates a
+      // tooth (the flanks stage failed with "the equation of meshing has no solution"): refused;
+      // metres or inches typed in the mm field are the slips.
+      const double rc = bevel.cutter_radius / mm;
+      check_plausible(where + "/cutter radius = " + plausible_number(rc) + " mm",
+                      bevel.cutter_radius / g.mean_cone_distance,
+                      "r_c over the mean cone distance (" +
+                          plausible_number(g.mean_cone_distance / mm) + " mm)",
+                      0.3, 3, 0.03, 30,
+                      {{1000, "metres typed in a mm field (" + plausible_number(rc) +
+                                  " m = " + plausible_number(rc * 1000) + " mm)"},
+                       {25.4, "inches typed in a mm field (" + plausible_number(rc) +
+                                  " in = " + plausible_number(rc * 25.4) + " mm)"}},
+                      warnings);
       return;
     }
   check_member_plausibility(pinion, "Flanks/" + name + "/Pinion", warnings);

@@ -284,6 +284,45 @@ TEST_F(PlausibilityTest, FlankValuesARealDesignCanHaveAreWarned)
       << low.warnings[0];
 }
 
+TEST_F(PlausibilityTest, StiffnessSlipsAreRefusedByTheirParameter)
+{
+  const std::string stiffness =
+      std::regex_replace(pair_scene, std::regex("set outputs = flanks"),
+                         "set outputs = stiffness") +
+      "subsection Loaded contact\n  subsection p1\n    set torques = 100, 200\n  end\nend\n";
+  ASSERT_TRUE(read_scene(file("scene.prm", stiffness)).warnings.empty());
+  expect_refused(
+      stiffness,
+      {{"torque in N mm",
+        "set torques = 100, 200",
+        "set torques = 100, 200000",
+        {"Loaded contact/p1/torques = 200000 N m", "nominal tooth load F_t / (b m_n) [MPa]",
+         "(pitch radius 19 mm, b 20 mm, m_n 2 mm) is 2.632e+05", "none above 5000",
+         "N mm typed in a N m field (200000 N mm = 200 N m)"}},
+       {"Young's modulus in MPa",
+        "set torques = 100, 200",
+        "set torques = 100, 200\n  end\nend\nsubsection Finite elements\n  subsection p1\n "
+        "   set Young's modulus = 206000",
+        {"Finite elements/p1/Young's modulus = 206000 GPa", "1 to 1200 GPa",
+         "MPa typed in a GPa field (206000 MPa = 206 GPa)"}}});
+  // torques are judged where the stiffness stage runs
+  EXPECT_NO_THROW(read_scene(file("scene.prm", pair_scene + "subsection Loaded contact\n  "
+                                                            "subsection p1\n    set torques = "
+                                                            "2e6\n  end\nend\n")));
+  // a bore of 0.03 mm: a warning (the mass hardly changes)
+  const Scene bore = read_scene(
+      file("scene.prm",
+           std::regex_replace(pair_scene, std::regex("set face width      = 20\n    end\n    sub"),
+                              "set face width      = 20\n      set bore diameter = 0.03\n    "
+                              "end\n    sub")));
+  ASSERT_EQ(bore.warnings.size(), 1u);
+  EXPECT_NE(bore.warnings[0].find("Flanks/p1/Pinion/bore diameter = 0.03 mm is unusual"),
+            std::string::npos)
+      << bore.warnings[0];
+  EXPECT_NE(bore.warnings[0].find("metres typed in a mm field (0.03 m = 30 mm)"), std::string::npos)
+      << bore.warnings[0];
+}
+
 TEST_F(PlausibilityTest, SpiralBevelAnglesInRadiansAreRefusedByName)
 {
   const std::string bevel =
@@ -306,6 +345,11 @@ TEST_F(PlausibilityTest, SpiralBevelAnglesInRadiansAreRefusedByName)
         "set pinion teeth = 12",
         "set pinion teeth = 12\n      set shaft angle = 1.571",
         {"Flanks/p1/Spiral bevel/shaft angle = 1.571 deg", "1.571 rad = 90.01 deg"}},
+       {"cutter radius in metres",
+        "set pinion teeth = 12",
+        "set pinion teeth = 12\n      set cutter radius = 0.0762",
+        {"Flanks/p1/Spiral bevel/cutter radius = 0.0762 mm", "mean cone distance",
+         "metres typed in a mm field (0.0762 m = 76.2 mm)"}},
        {"face width in metres",
         "set pinion teeth = 12",
         "set pinion teeth = 12\n      set face width = 0.0254",
@@ -353,6 +397,21 @@ TEST_F(PlausibilityTest, DynamicsSlipsAreRefusedByTheirParameter)
         "set pinion bearing positions  = -0.04, 0.04",
         {"Dynamics/p1/pinion bearing positions = -0.04, 0.04 mm", "member's size",
          "metres typed in a mm field (-0.04, 0.04 m = -40, 40 mm)"}},
+       {"pinion torque in N mm",
+        "set mesh stiffness            = 300",
+        "set mesh stiffness            = 300\n    set pinion torque = 200000",
+        {"Dynamics/p1/pinion torque = 200000 N m", "nominal tooth load", "0 to 500",
+         "N mm typed in a N m field (200000 N mm = 200 N m)"}},
+       {"half backlash beyond the tooth",
+        "set mesh stiffness            = 300",
+        "set mesh stiffness            = 300\n    set half backlash = 5000",
+        {"Dynamics/p1/half backlash = 5000 um is not allowed", "2.5 normal modules",
+         "below 0.8 m_n (1600 um)"}},
+       {"motor inertia in kg mm^2",
+        "set mesh stiffness            = 300",
+        "set mesh stiffness            = 300\n    set motor inertia = 50000",
+        {"Dynamics/p1/motor inertia = 50000 kg m^2", "polar inertia of the pinion",
+         "kg mm^2 typed in a kg m^2 field (50000 kg mm^2 = 0.05 kg m^2)"}},
        {"a sweep to 1e9 rpm",
         "set speed to                  = 6000",
         "set speed to                  = 1e9",
@@ -374,6 +433,11 @@ TEST_F(PlausibilityTest, DynamicsValuesARealDesignCanHaveAreWarned)
                   "set mesh stiffness            = 300",
                   "set mesh stiffness            = 10",
                   {"Dynamics/p1/mesh stiffness = 10 N/um is unusual", "per face width"}},
+                 {"a half backlash in mm",
+                  "set mesh stiffness            = 300",
+                  "set mesh stiffness            = 300\n    set half backlash = 0.05",
+                  {"Dynamics/p1/half backlash = 0.05 um is unusual",
+                   "mm typed in a um field (0.05 mm = 50 um)"}},
                  {"a turbo gear speed",
                   "set speed to                  = 6000",
                   "set speed to                  = 120000",

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <tuple>
 
 namespace gearkit
@@ -302,13 +303,14 @@ DynamicsScene::check(const PairScene &pair, const TcaScene &tca, bool run,
 void
 DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string> &warnings) const
 {
-  const std::string where = "Dynamics/" + pair.name + "/";
-  MemberSize        sizes[2];
-  double            pinion_radius = 0, face_width = 0;
+  const std::string                   where = "Dynamics/" + pair.name + "/";
+  MemberSize                          sizes[2];
+  double                              pinion_radius = 0, face_width = 0;
+  std::shared_ptr<const InvoluteGear> p, g;
   if (pair.type == PairType::involute)
     {
-      const auto [p, g] = pair.involute_members();
-      int i             = 0;
+      std::tie(p, g) = pair.involute_members();
+      int i          = 0;
       for (const auto &member : {p, g})
         {
           MemberSize &m = sizes[i++];
@@ -324,11 +326,11 @@ DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string
     }
   else
     {
-      const BevelPairGeometry g = bevel_geometry(pair.bevel);
+      const BevelPairGeometry b = bevel_geometry(pair.bevel);
       for (MemberSize &m : sizes)
-        m.size      = g.outer_cone_distance,
-        m.size_text = "outer cone distance " + plausible_number(g.outer_cone_distance / mm) + " mm";
-      pinion_radius = g.mean_cone_distance * std::sin(g.pitch_angle_pinion);
+        m.size      = b.outer_cone_distance,
+        m.size_text = "outer cone distance " + plausible_number(b.outer_cone_distance / mm) + " mm";
+      pinion_radius = b.mean_cone_distance * std::sin(b.pitch_angle_pinion);
       face_width    = pair.bevel.face_width;
     }
   check_body(model.pinion, sizes[0], where, "pinion", warnings);
@@ -374,9 +376,8 @@ DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string
   // Motor and load inertias against the pinion's and gear's own: a motor rotor or a brake
   // drum is tens to thousands of times a small pinion's (the default 0.05 kg m^2 is 160 times
   // the FZG pinion's): warned beyond 1e4 times, refused beyond 1e6 (kg mm^2 typed as kg m^2).
-  if (pair.type == PairType::involute)
+  if (p)
     {
-      const auto [p, g] = pair.involute_members();
       for (const auto &[key, value, implied] :
            {std::tuple{"motor inertia", model.motor_inertia, p->mass_properties().polar_inertia},
             std::tuple{"load inertia", model.load_inertia, g->mass_properties().polar_inertia}})

@@ -6,6 +6,7 @@
 #include "driver/scene.h"
 #include "driver/scene_parameters.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -467,8 +468,11 @@ train_cost_estimate(const TrainScene &train, const TrainModel &model)
 namespace
 {
 // Constant-speed bodies are held at their speeds for the whole run: two of them joined through
-// meshes or shafts whose ratio their speeds contradict would have the teeth run into each other
-// without end (penetrations of many mm, forces of 1e8 N): refused naming both.
+// meshes or shafts whose ratio their speeds contradict drive the teeth into each other without
+// end (penetrations of many mm, forces of 1e8 N). Refused naming both, where the teeth would
+// drift by more than 1 um over the run (at the largest base radius on the second body): speeds
+// rounded to 8 digits pass, a ratio rounded to 4 only in a short run (the message gives the
+// speed to 9 digits).
 void
 check_constant_speeds(const TrainScene &train, const TrainModel &m)
 {
@@ -477,29 +481,41 @@ check_constant_speeds(const TrainScene &train, const TrainModel &m)
       const TrainBodyScene &a = train.bodies[i];
       if (!a.constant_speed)
         continue;
-      const std::vector<double> w = train_speeds(m, int(i), m.bodies[i].initial_speed);
+      const double              wa = m.bodies[i].initial_speed;
+      const std::vector<double> w  = train_speeds(m, int(i), wa);
       for (std::size_t j = i + 1; j < train.bodies.size(); ++j)
         {
-          const TrainBodyScene &b    = train.bodies[j];
-          const double          held = m.bodies[j].initial_speed;
-          if (!b.constant_speed || !std::isfinite(w[j]) ||
-              std::abs(held - w[j]) <= 1e-9 * std::abs(w[j]) + 1e-12)
+          const TrainBodyScene &b      = train.bodies[j];
+          const double          held   = m.bodies[j].initial_speed;
+          double                radius = 0;
+          for (const TrainMesh &mesh : m.meshes)
+            {
+              if (mesh.driver == int(j))
+                radius = std::max(radius, mesh.pinion_base_radius);
+              if (mesh.driven == int(j))
+                radius = std::max(radius, mesh.gear_base_radius);
+            }
+          if (radius == 0) // a body on shafts only: a gear's size
+            radius = 0.05;
+          const double drift = std::abs(held - w[j]) * train.run.duration * radius;
+          if (!b.constant_speed || !std::isfinite(w[j]) || !(drift > 1e-6))
             continue;
           auto speed_text = [&](const TrainBodyScene &x, double speed) {
             return "Train/" + train.name + "/Bodies/" + x.name + "/initial speed = " +
                    (x.kinematic_speed ? "kinematic (" + plausible_number(speed) + " rad/s)"
                                       : plausible_number(speed) + " rad/s");
           };
-          const double wa = m.bodies[i].initial_speed;
           throw InputError(
               speed_text(a, wa) + " and " + speed_text(b, held) +
               ", both with drive = constant speed, are not allowed: the tooth ratio between "
               "them (speed of " +
               b.name + " / speed of " + a.name + " = " +
               (wa != 0 ? plausible_number(w[j] / wa) : std::string("that of the meshes")) +
-              " through the meshes) turns " + b.name + " at " + plausible_number(w[j]) +
-              " rad/s when " + a.name + " turns at " + plausible_number(wa) +
-              " rad/s; hold one of them (the other drive = free), or give speeds in that ratio");
+              " through the meshes) turns " + b.name + " at " + number_text(w[j]) + " rad/s when " +
+              a.name + " turns at " + plausible_number(wa) + " rad/s: its teeth would run " +
+              plausible_number(drift / mm) +
+              " mm into their mates' over the run; hold one of them (the other drive = free), "
+              "or give speeds in that ratio");
         }
     }
 }

@@ -653,10 +653,19 @@ read_topography(std::istream &stream, const std::string &path)
   const Header h = read_header(in, "gearkit-topography 1", {"deviation units"});
   in.choice(h.keys, "units", {"mm"}, "units = mm (diameters and face positions)");
   in.choice(h.keys, "deviation units", {"um"}, "deviation units = um");
+  // values beyond 1 km are points at infinity (as in read_cmm): said here with their line
   auto values = [&](int line, const std::string &text, const std::string &what, double per_metre) {
     std::vector<double> v;
     for (const std::string &t : tokens(text))
-      v.push_back(in.number(line, t, what) / per_metre);
+      {
+        v.push_back(in.number(line, t, what) / per_metre);
+        if (std::abs(v.back()) > 1e3)
+          in.fail(line,
+                  what + " " + quoted(t) +
+                      " is not a finite number a flank can have (beyond 1 "
+                      "km: a point at infinity)",
+                  "finite values within 1 km");
+      }
     return v;
   };
 

@@ -6,6 +6,8 @@
 #include "driver/driver.h"
 #include "driver/h5_file.h"
 #include "driver/scene.h"
+#include "geometry/measured_flank.h"
+#include "tests/malformed_cmm.h"
 #include "tests/temp_directory_test.h"
 
 #include <gtest/gtest.h>
@@ -588,4 +590,48 @@ TEST_F(PlausibilityTest, TheShippedScenesReadCleanlyWithoutWarnings)
           ADD_FAILURE() << path << ": " << w;
       }
   EXPECT_GE(cases, 16);
+}
+
+TEST_F(PlausibilityTest, MeasuredPointsAtInfinityAreNamedWithTheirLine)
+{
+  // 1e308 parses as a finite number; it lay "inf um" from its flank, with no line
+  const auto error = [](auto read) -> std::string {
+    try
+      {
+        read();
+      }
+    catch (const InputError &e)
+      {
+        return e.what();
+      }
+    return "";
+  };
+  std::istringstream cmm(
+      std::regex_replace(test_data::valid_cmm(), std::regex("11.0 1.1 1.0"), "11.0 1.1 -1e308"));
+  EXPECT_EQ(error([&] { read_cmm(cmm, "points.cmm"); }),
+            "points.cmm:14: z '-1e308' is not a finite number a point can have (mm, beyond 1 km "
+            "from the axis: a point at infinity); expected finite coordinates within 1 km of the "
+            "member's axis");
+  const std::string  topography = R"(format = gearkit-topography 1
+member = pinion
+teeth = 23
+units = mm
+deviation units = um
+
+begin flank
+tooth = 2
+side = coast
+diameters = 56 57 58
+face = -5 0 5
+0.5 1.0 1.5
+0.4 1e308 1.4
+0.3 0.8 1.3
+end flank
+)";
+  std::istringstream topo(topography);
+  EXPECT_EQ(error([&] { read_topography(topo, "grid.topo"); }),
+            "grid.topo:13: deviation '1e308' is not a finite number a flank can have (beyond 1 "
+            "km: a point at infinity); expected finite values within 1 km");
+  std::istringstream valid(std::regex_replace(topography, std::regex("1e308"), "0.9"));
+  EXPECT_EQ(read_topography(valid, "grid.topo").flanks.at(0).deviations.at(4), 0.9 / 1e6);
 }

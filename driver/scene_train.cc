@@ -519,6 +519,31 @@ check_constant_speeds(const TrainScene &train, const TrainModel &m)
         }
     }
 }
+
+// The run's estimated cost (train_cost_estimate) within the user's limit: a 1000 s run at
+// 20 kHz ran on without an estimate of its cost (issue 35).
+void
+check_cost(const TrainScene &train, const TrainModel &m)
+{
+  const TrainRunOptions &run   = train.run;
+  const std::string      where = "Train/" + train.name;
+  const TrainCost        c     = train_cost_estimate(train, m);
+  if (c.seconds <= train.maximum_cost)
+    return;
+  const auto n = [](double x) { return plausible_number(std::round(x)); };
+  throw InputError(
+      where + "/Run/duration = " + plausible_number(run.duration) +
+      " s at sample rate = " + plausible_number(run.sample_rate) +
+      " Hz is not allowed: it is estimated to take " + plausible_number(c.seconds) + " s (" +
+      plausible_number(c.steps) + " integrator steps: " + plausible_number(c.mesh_cycles) +
+      " mesh cycles at the initial speeds, about " +
+      n(60 * std::pow(1e-6 / run.relative_tolerance, 0.19)) + " steps each at relative tolerance " +
+      plausible_number(run.relative_tolerance) + ", and " +
+      plausible_number(run.duration * run.sample_rate) +
+      " samples), more than maximum estimated cost = " + plausible_number(train.maximum_cost) +
+      " s; shorten the duration, loosen the relative tolerance, or raise " + where +
+      "/Run/maximum estimated cost if you mean to wait for it");
+}
 } // namespace
 
 void
@@ -706,24 +731,7 @@ TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> 
 
   // what the run will cost, before it runs
   if (run_wanted)
-    {
-      const TrainCost c = train_cost_estimate(*this, m);
-      if (c.seconds > maximum_cost)
-        {
-          const auto n = [](double x) { return plausible_number(std::round(x)); };
-          fail("/Run/duration = " + plausible_number(run.duration) + " s at sample rate = " +
-               plausible_number(run.sample_rate) + " Hz is not allowed: it is estimated to take " +
-               plausible_number(c.seconds) + " s (" + plausible_number(c.steps) +
-               " integrator steps: " + plausible_number(c.mesh_cycles) +
-               " mesh cycles at the initial speeds, about " +
-               n(60 * std::pow(1e-6 / run.relative_tolerance, 0.19)) +
-               " steps each at relative tolerance " + plausible_number(run.relative_tolerance) +
-               ", and " + plausible_number(run.duration * run.sample_rate) +
-               " samples), more than maximum estimated cost = " + plausible_number(maximum_cost) +
-               " s; shorten the duration, loosen the relative tolerance, or raise " + where +
-               "/Run/maximum estimated cost if you mean to wait for it");
-        }
-    }
+    check_cost(*this, m);
 }
 
 // Speeds a train's gears cannot run at: the pitch-line velocity at the initial speeds (a

@@ -339,11 +339,28 @@ DynamicsScene::check_plausibility(const PairScene &pair, std::vector<std::string
   // Mesh stiffness per face width: steel pairs 10..25 N/(mm um) (ISO 6336-1: c_gamma about
   // 20), polymer pairs down to about 1; beyond 1000 (50 times steel's) or below 1e-3 nothing
   // meshes so. 3e8 "N/um" on 20 mm is N/m.
-  if (!fe_stiffness && mesh_stiffness > 0)
-    check_stiffness(where + "mesh stiffness", mesh_stiffness, face_width / mm,
-                    "the mesh stiffness per face width [N/(mm um)] on " +
-                        plausible_number(face_width / mm) + " mm",
-                    1, 50, 1e-3, 1000, warnings);
+  // With K_m from the finite elements the value is not used: what would be refused warns.
+  if (mesh_stiffness > 0)
+    try
+      {
+        std::vector<std::string> found;
+        check_stiffness(where + "mesh stiffness", mesh_stiffness, face_width / mm,
+                        "the mesh stiffness per face width [N/(mm um)] on " +
+                            plausible_number(face_width / mm) + " mm",
+                        1, 50, 1e-3, 1000, found);
+        if (!fe_stiffness)
+          warnings.insert(warnings.end(), found.begin(), found.end());
+      }
+    catch (const InputError &e)
+      {
+        if (!fe_stiffness)
+          throw;
+        std::string text = e.what();
+        if (const auto k = text.find(" is not allowed: "); k != std::string::npos)
+          text.replace(k, 17, " would not be allowed: ");
+        warnings.push_back(text + "; it is not used (mesh stiffness source = finite elements), "
+                                  "so the run goes on");
+      }
   // Bearings: rolling and journal bearings 50..2000 N/um, elastic mounts from about 1; "rigid"
   // modelled as up to 1e5. Beyond 1e7 N/um (a solid steel block of the gear's size is about
   // 1e4) it is no support but a slip.

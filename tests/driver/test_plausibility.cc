@@ -445,6 +445,21 @@ TEST_F(PlausibilityTest, DynamicsValuesARealDesignCanHaveAreWarned)
                   "set speed to                  = 120000",
                   {"Dynamics/p1/speed to = 120000 rpm is unusual", "pitch-line velocity"}}});
 
+  // A mesh stiffness in N/m where K_m comes from the finite elements is not used: a warning
+  const Scene unused = read_scene(
+      file("scene.prm", edited(dynamics_scene, {"",
+                                                "set mesh stiffness source     = constant\n"
+                                                "    set mesh stiffness            = 300",
+                                                "set mesh stiffness = 3e8",
+                                                {}})));
+  ASSERT_EQ(unused.warnings.size(), 1u);
+  EXPECT_NE(unused.warnings[0].find("Dynamics/p1/mesh stiffness = 3e+08 N/um would not be allowed"),
+            std::string::npos)
+      << unused.warnings[0];
+  EXPECT_NE(unused.warnings[0].find("it is not used (mesh stiffness source = finite elements)"),
+            std::string::npos)
+      << unused.warnings[0];
+
   // The same values are not judged where the dynamics does not run (its defaults suit no
   // particular pair).
   const Scene flanks_only = read_scene(file(

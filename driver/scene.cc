@@ -282,23 +282,27 @@ read_scene(const std::string &file)
 
       // 4. Each section checks itself against the rest of the scene: everything the scene
       //    alone can tell is refused here, before any stage runs.
+      //    Implausible values a real design can have go to scene.warnings; the dynamics' and
+      //    the trains' plausibility (masses, speeds, cost) only where they run.
+      auto wanted = [&](const char *output) {
+        return std::find(scene.outputs.begin(), scene.outputs.end(), output) != scene.outputs.end();
+      };
       for (const PairScene &pair : scene.pairs)
         {
           const std::string &p = pair.name;
-          pair.check();
+          pair.check(scene.warnings);
           scene.measured.at(p).check(pair);
           scene.tca.at(p).complete_and_check(pair, scene.measured.at(p));
           scene.fe.at(p).check(pair);
-          scene.loaded.at(p).check(pair, scene.measured.at(p));
-          scene.dynamics.at(p).check(pair, scene.tca.at(p));
+          scene.loaded.at(p).check(pair, scene.measured.at(p), wanted("stiffness"), scene.warnings);
+          scene.dynamics.at(p).check(pair, scene.tca.at(p), wanted("dynamics"), scene.warnings);
         }
-      const bool train_wanted =
-          std::find(scene.outputs.begin(), scene.outputs.end(), "train") != scene.outputs.end();
+      const bool train_wanted = wanted("train");
       if (train_wanted && scene.trains.empty())
         throw InputError("Scene/trains is empty with outputs = train; name the trains to run "
                          "(each with a subsection Train/<name>)");
       for (const TrainScene &t : scene.trains)
-        t.check(scene);
+        t.check(scene, train_wanted, scene.warnings);
 
       // 5. The parameters as text, one block per section: the cache keys hash these.
       std::ostringstream printed;

@@ -60,9 +60,11 @@ struct PairScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
-  /// Both members build and mesh with each other; modifications fit on the teeth.
+  /// Both members build and mesh with each other; modifications fit on the teeth. Before
+  /// that, the values a unit slip gives (face width against the module, density, angles in
+  /// radians) are refused by name, or added to `warnings` where a real design can have them.
   void
-  check() const;
+  check(std::vector<std::string> &warnings) const;
   /// The involute members, each with its start of active profile (where f_Halpha's evaluation
   /// range starts) from the other in the design mesh, at the zero-backlash working centre
   /// distance (geometry: create_pair). Only for what does not depend on the operating state
@@ -225,8 +227,10 @@ struct LoadedScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
+  /// With `run` (the stiffness stage is an output) also the torques' plausibility.
   void
-  check(const PairScene &pair, const MeasuredScene &measured) const;
+  check(const PairScene &pair, const MeasuredScene &measured, bool run,
+        std::vector<std::string> &warnings) const;
 };
 
 /// 14-DOF pair dynamics (stage "dynamics"): the model's parameters and the speed sweep.
@@ -265,8 +269,15 @@ struct DynamicsScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
+  /// With `run` (the dynamics is an output) also the plausibility of the model: masses and
+  /// inertias against those the geometry implies, stiffness magnitudes, bearing positions
+  /// against the member's size, speeds against the pitch-line velocity a gear survives;
+  /// refused by name, or added to `warnings` where a real design can have them.
   void
-  check(const PairScene &pair, const TcaScene &tca) const;
+  check(const PairScene &pair, const TcaScene &tca, bool run,
+        std::vector<std::string> &warnings) const;
+  void
+  check_plausibility(const PairScene &pair, std::vector<std::string> &warnings) const;
 };
 
 /// One body of a gear train (Train/<train>/Bodies/<body>): a rigid rotor with its gears.
@@ -339,6 +350,9 @@ struct TrainScene
   /// The body whose mean speed over the spectrum interval sets the kinematic frequencies (empty:
   /// the first constant-speed body, else the first body).
   std::string reference_body;
+  /// The most estimated run time allowed [s] (train_cost_estimate); beyond it the scene is
+  /// refused before any stage.
+  double maximum_cost = 600;
 
   /// Declares the section of a train with these body and mesh names.
   static void
@@ -347,9 +361,17 @@ struct TrainScene
   void
   parse(ParameterHandler &prm);
   /// Pairs named and involute, bodies named, no mesh from a body to itself, inertias, ratios
-  /// and centre distances that close, a speed to start from, run and spectrum settings.
+  /// and centre distances that close, a speed to start from, constant speeds that agree with
+  /// the ratios, plausible pitch-line velocities, run and spectrum settings, and (with `run`:
+  /// the train is an output) an estimated cost within maximum_cost. Values a real design can
+  /// have but that look like a slip go to `warnings`.
   void
-  check(const Scene &scene) const;
+  check(const Scene &scene, bool run, std::vector<std::string> &warnings) const;
+  /// The pitch-line velocities at the initial speeds, and the mesh frequencies against the
+  /// sample rate (check()).
+  void
+  check_plausibility(const Scene &scene, const TrainModel &model,
+                     std::vector<std::string> &warnings) const;
 
   /// Index of a body by name (-1: none).
   int
@@ -364,6 +386,17 @@ struct TrainScene
   TrainModel
   model(const Scene &scene) const;
 };
+
+/// What a train's run will cost: the CVODE steps and the run time they take on the 2-core
+/// machine of bench/README.md (bench_train_startup), estimated from the initial speeds.
+struct TrainCost
+{
+  double mesh_cycles = 0; ///< of every mesh over the run
+  double steps       = 0;
+  double seconds     = 0;
+};
+TrainCost
+train_cost_estimate(const TrainScene &train, const TrainModel &model);
 
 /// The centre distance of a train's mesh [m]: the pair's TCA centre distance (0 there: the
 /// zero-backlash working one) opened by the mesh's backlash.
@@ -397,6 +430,47 @@ struct Scene
   static void
   declare(ParameterHandler &prm);
 };
+
+/// A unit slip a plausibility check looks for: the value times `factor` is what the user
+/// meant if it was typed in the other unit; `what` says so with both values ("metres in a mm
+/// field: 0.01 m = 10 mm").
+struct UnitSlip
+{
+  double      factor;
+  std::string what;
+};
+
+/// A plausibility check (scene_flanks.cc). `parameter` names the entry and its value with its
+/// unit ("Flanks/p/Pinion/face width = 0.01 mm"), `measure` is the quantity judged (the value or
+/// a ratio such as b / m_n) and `measure_text` says what it is. Within [plausible_low,
+/// plausible_high]: nothing. Outside [possible_low, possible_high], where no real design goes:
+/// an InputError naming the parameter, the value, the plausible range and the first slip that
+/// brings the measure into the plausible range. In between: the same words in `warnings`.
+void
+check_plausible(const std::string &parameter, double measure, const std::string &measure_text,
+                double plausible_low, double plausible_high, double possible_low,
+                double possible_high, const std::vector<UnitSlip> &slips,
+                std::vector<std::string> &warnings);
+
+/// A number as the plausibility messages print it (4 significant digits).
+std::string
+plausible_number(double x);
+
+/// The scales of a pair the plausibility checks compare with: the pinion's pitch radius (a
+/// bevel pinion's at the mean point), the face width (the narrower member's) and the normal
+/// module (a bevel pair's mean normal module) [m].
+struct PairScale
+{
+  double pinion_radius = 0, face_width = 0, module = 0;
+};
+PairScale
+pair_scale(const PairScene &pair);
+
+/// A pinion torque [N m] against what the teeth carry: the nominal tooth load F_t / (b m_n)
+/// [MPa] (scene_stiffness.cc).
+void
+check_torque(const std::string &parameter, double torque, const PairScene &pair,
+             std::vector<std::string> &warnings);
 
 /// Reads and checks a scene file. Throws InputError naming the file, line, parameter and what is
 /// allowed.

@@ -5,6 +5,7 @@
 #include "driver/scene_parameters.h"
 
 #include <cmath>
+#include <sstream>
 
 namespace gearkit
 {
@@ -264,23 +265,211 @@ PairScene::parse(ParameterHandler &prm)
   in_subsection(prm, {"Spiral bevel"}, [&] { parse_bevel(prm, *this); });
 }
 
-// Both members must build (InvoluteGear checks every parameter, modifications included) and
-// mesh with each other.
+std::string
+plausible_number(double x)
+{
+  // whole numbers as they are typed (7850, 20000; also after a unit conversion's rounding),
+  // others to 4 digits (0.349, 3e+08)
+  std::ostringstream s;
+  if (std::abs(x - std::round(x)) <= 1e-12 * std::abs(x) && std::abs(x) < 1e6)
+    s << static_cast<long long>(x);
+  else
+    {
+      s.precision(4);
+      s << x;
+    }
+  return s.str();
+}
+
 void
-PairScene::check() const
+check_plausible(const std::string &parameter, double measure, const std::string &measure_text,
+                double plausible_low, double plausible_high, double possible_low,
+                double possible_high, const std::vector<UnitSlip> &slips,
+                std::vector<std::string> &warnings)
+{
+  if (measure >= plausible_low && measure <= plausible_high)
+    return;
+  const bool  refused = !(measure >= possible_low && measure <= possible_high);
+  std::string text = parameter + (refused ? " is not allowed: " : " is unusual: ") + measure_text +
+                     " is " + plausible_number(measure) + ", where real designs have " +
+                     plausible_number(plausible_low) + " to " + plausible_number(plausible_high);
+  if (refused)
+    text += measure < possible_low ? " (none below " + plausible_number(possible_low) + ")"
+                                   : " (none above " + plausible_number(possible_high) + ")";
+  const UnitSlip *slip = nullptr;
+  for (const UnitSlip &u : slips)
+    if (!slip && measure * u.factor >= plausible_low && measure * u.factor <= plausible_high)
+      slip = &u;
+  if (slip)
+    text += "; it looks like " + slip->what;
+  if (refused)
+    throw InputError(text + (slip ? "" : "; expected a value in the plausible range"));
+  warnings.push_back(text + "; the run goes on with the value as given");
+}
+
+PairScale
+pair_scale(const PairScene &pair)
+{
+  if (pair.type == PairType::spiral_bevel)
+    {
+      const BevelPairGeometry g = bevel_geometry(pair.bevel);
+      return {g.mean_cone_distance * std::sin(g.pitch_angle_pinion), pair.bevel.face_width,
+              g.mean_normal_module};
+    }
+  const InvoluteGearData &p = pair.pinion;
+  return {p.teeth * p.normal_module / std::cos(p.helix_angle) / 2,
+          std::min(p.face_width, pair.gear.face_width), p.normal_module};
+}
+
+namespace
+{
+// Angles entered in radians where the scene asks degrees: every angle of a gear below
+// 60 deg is at most 1.05 in radians. `lowest` [deg]: below it no gear has the angle (0 excluded
+// where 0 means spur or zerol).
+void
+check_angle_in_degrees(const std::string &parameter, double angle, double lowest,
+                       const std::string &plausible, bool zero_allowed)
+{
+  const double d = angle / deg;
+  if ((zero_allowed && d == 0) || d >= lowest)
+    return;
+  std::string text = parameter + " = " + plausible_number(d) +
+                     " deg is not allowed: real designs have " + plausible + " (none " +
+                     (zero_allowed ? "between 0 and " : "below ") + plausible_number(lowest) +
+                     " deg)";
+  if (d > 0 && d < 3.1416 && d / deg >= lowest)
+    text += "; it looks like radians typed in a degrees field (" + plausible_number(d) +
+            " rad = " + plausible_number(d / deg) + " deg)";
+  throw InputError(text);
+}
+
+// The plausibility of an involute member's data: what a unit slip gives, checked by name before
+// the member is built (whose own checks would blame a consequence: "no tooth pair meets").
+void
+check_member_plausibility(const InvoluteGearData &d, const std::string &where,
+                          std::vector<std::string> &warnings)
+{
+  // Pressure angles below 5 deg do not exist (the tooth would be undercut to nothing; real
+  // ones 14.5 to 30 deg): refused, and 0.349 named as radians. 12..35 deg covers every
+  // standard and special design; 5..12 and 35..45 deg warn.
+  check_angle_in_degrees(where + "/normal pressure angle", d.normal_pressure_angle, 5,
+                         "12 to 35 deg", false);
+  check_plausible(
+      where + "/normal pressure angle = " + plausible_number(d.normal_pressure_angle / deg) +
+          " deg",
+      d.normal_pressure_angle / deg, "the pressure angle [deg]", 12, 35, 5, 45, {}, warnings);
+  // Helix angles: 0 (spur) or from about 5 deg (helical gears exist for their overlap; below
+  // 1 deg the overlap ratio is < 0.05 and nobody cuts one). Below 1.05 deg (= 60 deg in
+  // radians) refused as radians; above 45 deg (double helical at most) a warning.
+  check_angle_in_degrees(where + "/helix angle", d.helix_angle, 1.05, "0 (spur) or 5 to 45 deg",
+                         true);
+  check_plausible(where + "/helix angle = " + plausible_number(d.helix_angle / deg) + " deg",
+                  d.helix_angle / deg, "the helix angle [deg]", 0, 45, 0, 60, {}, warnings);
+  if (d.helix_angle > 0 && d.helix_angle < 5 * deg)
+    warnings.push_back(where + "/helix angle = " + plausible_number(d.helix_angle / deg) +
+                       " deg is unusual: real designs have 0 (spur) or 5 to 45 deg (a helix this "
+                       "small gives hardly any overlap); the run goes on with the value as given");
+  // Face width against the normal module: b / m_n from about 1 (thin clock and instrument
+  // gears) to about 40 (wide pinions, rolling mill drives); the ISO 6336 rating asks b/m_n <=
+  // 30 for most designs. Below 0.1 (a disc a twentieth as thick as its teeth; 0.01 mm on m 3:
+  // a pinion of 0.09 g) and above 1000 no gear exists: refused; the slips are metres (x 1000)
+  // and inches (x 25.4) typed in the mm field, or micrometres typed as mm.
+  const double b = d.face_width / mm, ratio = d.face_width / d.normal_module;
+  check_plausible(where + "/face width = " + plausible_number(b) + " mm", ratio,
+                  "b/m_n on a normal module of " + plausible_number(d.normal_module / mm) + " mm",
+                  1, 40, 0.1, 1000,
+                  {{1000, "metres typed in a mm field (" + plausible_number(b) +
+                              " m = " + plausible_number(b * 1000) + " mm)"},
+                   {25.4, "inches typed in a mm field (" + plausible_number(b) +
+                              " in = " + plausible_number(b * 25.4) + " mm)"},
+                   {1e-3, "micrometres typed in a mm field (" + plausible_number(b) +
+                              " um = " + plausible_number(b / 1000) + " mm)"}},
+                  warnings);
+  // A bore below a hundredth of the root diameter holds no shaft: metres typed in the mm field
+  // (0.03 for 30 mm) - warned, as the gear's mass hardly changes (a solid gear is computed).
+  const double root_diameter = d.teeth * d.normal_module / std::cos(d.helix_angle) -
+                               2 * (d.dedendum_factor - d.profile_shift) * d.normal_module;
+  if (d.bore_diameter > 0 && d.bore_diameter < 0.01 * root_diameter)
+    warnings.push_back(where + "/bore diameter = " + plausible_number(d.bore_diameter / mm) +
+                       " mm is unusual: a bore of " +
+                       plausible_number(d.bore_diameter / root_diameter) +
+                       " of the root diameter (" + plausible_number(root_diameter / mm) +
+                       " mm) holds no shaft; it looks like metres typed in a mm field (" +
+                       plausible_number(d.bore_diameter / mm) +
+                       " m = " + plausible_number(d.bore_diameter / mm * 1000) +
+                       " mm); the run goes on with the value as given");
+  // Density: gear materials from polymers (POM 1410, PA 1140 kg/m^3) to tungsten alloys
+  // (19300); wood gears (500..900) are real but rare: warned below 900 and above 20000;
+  // below 100 (no solid) or above 23000 (osmium, the densest element, 22590) refused. The slip
+  // of note is g/cm^3 (7.85 for steel's 7850).
+  check_plausible(where + "/density = " + plausible_number(d.density) + " kg/m^3", d.density,
+                  "the density [kg/m^3]", 900, 20000, 100, 23000,
+                  {{1000, "g/cm^3 typed in a kg/m^3 field (" + plausible_number(d.density) +
+                              " g/cm^3 = " + plausible_number(d.density * 1000) + " kg/m^3)"}},
+                  warnings);
+}
+} // namespace
+
+// Both members must build (InvoluteGear checks every parameter, modifications included) and
+// mesh with each other; first the values a unit slip gives, each by its name.
+void
+PairScene::check(std::vector<std::string> &warnings) const
 {
   if (type == PairType::spiral_bevel)
     {
+      const std::string where = "Flanks/" + name + "/Spiral bevel";
+      check_angle_in_degrees(where + "/pressure angle", bevel.pressure_angle, 5, "12 to 35 deg",
+                             false);
+      check_plausible(
+          where + "/pressure angle = " + plausible_number(bevel.pressure_angle / deg) + " deg",
+          bevel.pressure_angle / deg, "the pressure angle [deg]", 12, 35, 5, 45, {}, warnings);
+      // Spiral angles: 0 (zerol) or from about 10 deg (spiral bevel gears 25..40 deg); below
+      // 1.05 deg (60 deg in radians) refused as radians.
+      check_angle_in_degrees(where + "/mean spiral angle", bevel.mean_spiral_angle, 1.05,
+                             "0 (zerol) or 10 to 45 deg", true);
+      // Shaft angles below 3.15 deg: a near-parallel bevel pair does not exist, and pi rad is
+      // 180 deg: read as radians.
+      check_angle_in_degrees(where + "/shaft angle", bevel.shaft_angle, 3.15, "10 to 170 deg",
+                             false);
+      // Face width against the module: F / m from about 1 to 20 (the usual limit F <= 10 m_et
+      // and A_0 / 3); refused below 0.1 and above 1000 as for involute members.
+      const double f = bevel.face_width / mm, ratio = bevel.face_width / bevel.module;
+      check_plausible(where + "/face width = " + plausible_number(f) + " mm", ratio,
+                      "F/m on a module of " + plausible_number(bevel.module / mm) + " mm", 1, 20,
+                      0.1, 1000,
+                      {{1000, "metres typed in a mm field (" + plausible_number(f) +
+                                  " m = " + plausible_number(f * 1000) + " mm)"},
+                       {25.4, "inches typed in a mm field (" + plausible_number(f) +
+                                  " in = " + plausible_number(f * 25.4) + " mm)"}},
+                      warnings);
+      BevelPairGeometry g;
       try
         {
-          bevel_geometry(bevel);
+          g = bevel_geometry(bevel);
         }
       catch (const InputError &e)
         {
           throw InputError("Flanks/" + name + "/Spiral bevel: " + e.what());
         }
+      // Face-milling cutters have radii of about 0.5 to 2 mean cone distances (the blades'
+      // lengthwise curvature against the spiral); below 0.03 or beyond 30 no cutter generates a
+      // tooth (the flanks stage failed with "the equation of meshing has no solution"): refused;
+      // metres or inches typed in the mm field are the slips.
+      const double rc = bevel.cutter_radius / mm;
+      check_plausible(where + "/cutter radius = " + plausible_number(rc) + " mm",
+                      bevel.cutter_radius / g.mean_cone_distance,
+                      "r_c over the mean cone distance (" +
+                          plausible_number(g.mean_cone_distance / mm) + " mm)",
+                      0.3, 3, 0.03, 30,
+                      {{1000, "metres typed in a mm field (" + plausible_number(rc) +
+                                  " m = " + plausible_number(rc * 1000) + " mm)"},
+                       {25.4, "inches typed in a mm field (" + plausible_number(rc) +
+                                  " in = " + plausible_number(rc * 25.4) + " mm)"}},
+                      warnings);
       return;
     }
+  check_member_plausibility(pinion, "Flanks/" + name + "/Pinion", warnings);
+  check_member_plausibility(gear, "Flanks/" + name + "/Gear", warnings);
   involute_members();
   const InvoluteGearData &a = pinion, &b = gear;
   auto                    fail = [&](const std::string &what) {

@@ -173,6 +173,19 @@ FeScene::check(const PairScene &pair) const
     throw InputError("Finite elements/" + pair.name +
                      "/whole rims and whole gears both name a member; expected one of them "
                      "(a whole gear has its rim already)");
+  // Young's modulus: polymers from 1 GPa to tungsten carbide's 600 (diamond 1050); beyond
+  // 1200 GPa no material, MPa typed in the GPa field (206000 for steel's 206).
+  if (material.youngs_modulus > 1200 * GPa)
+    {
+      const double e = material.youngs_modulus / GPa;
+      throw InputError("Finite elements/" + pair.name +
+                       "/Young's modulus = " + plausible_number(e) +
+                       " GPa is not allowed: real materials have 1 to 1200 GPa (steel 206)" +
+                       (e / 1000 >= 1 && e / 1000 <= 1200
+                            ? "; it looks like MPa typed in a GPa field (" + plausible_number(e) +
+                                  " MPa = " + plausible_number(e / 1000) + " GPa)"
+                            : std::string("; expected a value in that range")));
+    }
   const int z = std::min(pair_teeth(pair).first, pair_teeth(pair).second);
   if (segment_teeth > z)
     throw InputError(where + std::to_string(segment_teeth) +
@@ -229,10 +242,35 @@ LoadedScene::parse(ParameterHandler &prm)
   reference_elements_per_cell = prm.get_double("reference elements per cell");
 }
 
+// The nominal tooth load F_t / (b m_n) of carburised test gears reaches about 400 MPa (FZG
+// load stage 14 on the C pair: 415 MPa); beyond 500 MPa a warning. At 5000 MPa the root stress
+// (a form factor of about 2.5 more) is some 6 times any steel's tensile strength: no gear
+// carries it, refused; N mm typed in the N m field is the slip (1000 times).
 void
-LoadedScene::check(const PairScene &pair, const MeasuredScene &measured_flanks) const
+check_torque(const std::string &parameter, double torque, const PairScene &pair,
+             std::vector<std::string> &warnings)
+{
+  const PairScale s    = pair_scale(pair);
+  const double    load = torque / s.pinion_radius / (s.face_width * s.module) / 1e6;
+  check_plausible(parameter + " = " + plausible_number(torque) + " N m", load,
+                  "the nominal tooth load F_t / (b m_n) [MPa] (pitch radius " +
+                      plausible_number(s.pinion_radius / mm) + " mm, b " +
+                      plausible_number(s.face_width / mm) + " mm, m_n " +
+                      plausible_number(s.module / mm) + " mm)",
+                  0, 500, 0, 5000,
+                  {{1e-3, "N mm typed in a N m field (" + plausible_number(torque) +
+                              " N mm = " + plausible_number(torque / 1000) + " N m)"}},
+                  warnings);
+}
+
+void
+LoadedScene::check(const PairScene &pair, const MeasuredScene &measured_flanks, bool run,
+                   std::vector<std::string> &warnings) const
 {
   const std::string where = "Loaded contact/" + pair.name + "/";
+  if (run)
+    for (const double t : torques)
+      check_torque(where + "torques", t, pair, warnings);
   for (const int i : reference_positions)
     if (i >= positions)
       throw InputError(where + "reference positions: " + std::to_string(i) +

@@ -6,6 +6,7 @@
 #include "driver/scene.h"
 #include "driver/scene_parameters.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -209,6 +210,13 @@ TrainScene::declare(ParameterHandler &prm, const std::vector<std::string> &bodie
                       "CVODE steps allowed in the whole run (beyond: a clear failure).");
     prm.declare_entry("pairings each side", "3", Patterns::Integer(1, 50),
                       "Tooth pairings examined on each side of the one at the line of centres.");
+    prm.declare_entry(
+        "maximum estimated cost", "600", Patterns::Double(0, 1e9),
+        "[s] The run is refused before any stage when its estimated run time is beyond this "
+        "(CVODE steps: about 60 (1e-6 / relative tolerance)^0.19 per mesh cycle of each mesh at "
+        "the initial speeds, plus one per sample; 2 + 0.3 per tooth pair examined us a step, "
+        "the 2-core machine of bench/README.md); raise it for a long run you mean to wait for. "
+        "A run-up from rest is estimated at its initial speeds, so below its cost.");
   });
   in_subsection(prm, {"Spectrum"}, [&] {
     prm.declare_entry("start", "0", Patterns::Double(0, 1000),
@@ -323,6 +331,7 @@ TrainScene::parse(ParameterHandler &prm)
     run.energy_tolerance   = prm.get_double("energy tolerance");
     run.max_steps          = prm.get_integer("max steps");
     run.pairings_each_side = prm.get_integer("pairings each side");
+    maximum_cost           = prm.get_double("maximum estimated cost");
   });
   in_subsection(prm, {"Spectrum"}, [&] {
     spectrum_start            = prm.get_double("start");
@@ -432,8 +441,113 @@ TrainScene::model(const Scene &scene) const
   return m;
 }
 
+TrainCost
+train_cost_estimate(const TrainScene &train, const TrainModel &model)
+{
+  // Fit to bench_train_startup (bench/README.md, 2-core Xeon: seed 002's two meshes, 3 pairings
+  // each side): BDF at relative tolerance 1e-6, 1e-8, 1e-10 took 60, 167 and 335 CVODE steps
+  // per mesh cycle (summed over the meshes; the steady sweep of stage 1 alike: 336 at 1e-10),
+  // 6.2 us a step for its 28 tooth pairs (2 flank sides x 7 pairings x 2 meshes) on the idle
+  // machine. Measured again with two other builds running (the test's small train, 0.5 s at
+  // 1e-10): 130k steps where this estimates 90k, 13.6 us a step. The estimate takes 2 us + 0.3
+  // us per tooth pair (10.4 us for 28): between the idle and the loaded machine, so that a
+  // refusal is never far off. Adams takes about half the steps: the estimate is BDF's. Each
+  // output sample costs at least a step's work (the root functions and the record).
+  TrainCost c;
+  for (const TrainMesh &m : model.meshes)
+    c.mesh_cycles += std::abs(model.bodies[std::size_t(m.driver)].initial_speed) *
+                     m.teeth.pinion_teeth / (2 * pi) * train.run.duration;
+  const double per_cycle = 60 * std::pow(1e-6 / train.run.relative_tolerance, 0.19);
+  const double samples   = train.run.duration * train.run.sample_rate;
+  c.steps                = per_cycle * c.mesh_cycles + samples;
+  const double pairs     = double(model.meshes.size()) * 2 * (2 * train.run.pairings_each_side + 1);
+  c.seconds              = c.steps * (2 + 0.3 * pairs) * 1e-6;
+  return c;
+}
+
+namespace
+{
+// Constant-speed bodies are held at their speeds for the whole run: two of them joined through
+// meshes or shafts whose ratio their speeds contradict drive the teeth into each other without
+// end (penetrations of many mm, forces of 1e8 N). Refused naming both, where the teeth would
+// drift by more than 1 um over the run (at the largest base radius on the second body): speeds
+// rounded to 8 digits pass, a ratio rounded to 4 only in a short run (the message gives the
+// speed to 9 digits).
 void
-TrainScene::check(const Scene &scene) const
+check_constant_speeds(const TrainScene &train, const TrainModel &m)
+{
+  for (std::size_t i = 0; i < train.bodies.size(); ++i)
+    {
+      const TrainBodyScene &a = train.bodies[i];
+      if (!a.constant_speed)
+        continue;
+      const double              wa = m.bodies[i].initial_speed;
+      const std::vector<double> w  = train_speeds(m, int(i), wa);
+      for (std::size_t j = i + 1; j < train.bodies.size(); ++j)
+        {
+          const TrainBodyScene &b      = train.bodies[j];
+          const double          held   = m.bodies[j].initial_speed;
+          double                radius = 0;
+          for (const TrainMesh &mesh : m.meshes)
+            {
+              if (mesh.driver == int(j))
+                radius = std::max(radius, mesh.pinion_base_radius);
+              if (mesh.driven == int(j))
+                radius = std::max(radius, mesh.gear_base_radius);
+            }
+          if (radius == 0) // a body on shafts only: a gear's size
+            radius = 0.05;
+          const double drift = std::abs(held - w[j]) * train.run.duration * radius;
+          if (!b.constant_speed || !std::isfinite(w[j]) || !(drift > 1e-6))
+            continue;
+          auto speed_text = [&](const TrainBodyScene &x, double speed) {
+            return "Train/" + train.name + "/Bodies/" + x.name + "/initial speed = " +
+                   (x.kinematic_speed ? "kinematic (" + plausible_number(speed) + " rad/s)"
+                                      : plausible_number(speed) + " rad/s");
+          };
+          throw InputError(
+              speed_text(a, wa) + " and " + speed_text(b, held) +
+              ", both with drive = constant speed, are not allowed: the tooth ratio between "
+              "them (speed of " +
+              b.name + " / speed of " + a.name + " = " +
+              (wa != 0 ? plausible_number(w[j] / wa) : std::string("that of the meshes")) +
+              " through the meshes) turns " + b.name + " at " + number_text(w[j]) + " rad/s when " +
+              a.name + " turns at " + plausible_number(wa) + " rad/s: its teeth would run " +
+              plausible_number(drift / mm) +
+              " mm into their mates' over the run; hold one of them (the other drive = free), "
+              "or give speeds in that ratio");
+        }
+    }
+}
+
+// The run's estimated cost (train_cost_estimate) within the user's limit: a 1000 s run at
+// 20 kHz ran on without an estimate of its cost (issue 35).
+void
+check_cost(const TrainScene &train, const TrainModel &m)
+{
+  const TrainRunOptions &run   = train.run;
+  const std::string      where = "Train/" + train.name;
+  const TrainCost        c     = train_cost_estimate(train, m);
+  if (c.seconds <= train.maximum_cost)
+    return;
+  const auto n = [](double x) { return plausible_number(std::round(x)); };
+  throw InputError(
+      where + "/Run/duration = " + plausible_number(run.duration) +
+      " s at sample rate = " + plausible_number(run.sample_rate) +
+      " Hz is not allowed: it is estimated to take " + plausible_number(c.seconds) + " s (" +
+      plausible_number(c.steps) + " integrator steps: " + plausible_number(c.mesh_cycles) +
+      " mesh cycles at the initial speeds, about " +
+      n(60 * std::pow(1e-6 / run.relative_tolerance, 0.19)) + " steps each at relative tolerance " +
+      plausible_number(run.relative_tolerance) + ", and " +
+      plausible_number(run.duration * run.sample_rate) +
+      " samples), more than maximum estimated cost = " + plausible_number(train.maximum_cost) +
+      " s; shorten the duration, loosen the relative tolerance, or raise " + where +
+      "/Run/maximum estimated cost if you mean to wait for it");
+}
+} // namespace
+
+void
+TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> &warnings) const
 {
   const std::string where = "Train/" + name;
   auto              fail  = [&](const std::string &what) { throw InputError(where + what); };
@@ -565,6 +679,8 @@ TrainScene::check(const Scene &scene) const
     if (!(b.inertia > 0))
       fail("/Bodies/" + b.name + "/inertia: auto gives " + number_text(b.inertia) +
            " kg m^2, which is not allowed; expected > 0");
+  check_constant_speeds(*this, m);
+  check_plausibility(scene, m, warnings);
 
   // centre distances: the teeth reach each other; placed axes agree with them
   for (const TrainMeshScene &s : meshes)
@@ -593,6 +709,9 @@ TrainScene::check(const Scene &scene) const
     }
 
   // run and spectra
+  if (!(run.duration > 0))
+    fail("/Run/duration = " + number_text(run.duration) +
+         " s is not allowed; expected a simulated time > 0 s");
   if (run.duration * run.sample_rate > 5e7)
     fail("/Run/sample rate: " + number_text(run.sample_rate) + " Hz over " +
          number_text(run.duration) + " s is not allowed; at most 5e7 samples in a run");
@@ -609,5 +728,90 @@ TrainScene::check(const Scene &scene) const
     fail("/Spectrum/spectrogram window: " + number_text(spectrogram_window / ms) +
          " ms is not allowed; expected at least 4 samples and at most the run (" +
          number_text(run.duration / ms) + " ms), or 0 for none");
+
+  // what the run will cost, before it runs
+  if (run_wanted)
+    check_cost(*this, m);
+}
+
+// Speeds a train's gears cannot run at: the pitch-line velocity at the initial speeds (a
+// constant-speed body's for the whole run), and mesh frequencies the samples cannot show.
+void
+TrainScene::check_plausibility(const Scene &scene, const TrainModel &m,
+                               std::vector<std::string> &warnings) const
+{
+  const std::string where = "Train/" + name;
+  // the body whose number the kinematic speeds follow from
+  int source = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!bodies[i].kinematic_speed)
+      {
+        source = int(i);
+        break;
+      }
+  std::vector<double> gears(bodies.size(), 0); // polar inertia of each body's gears
+  for (std::size_t k = 0; k < meshes.size(); ++k)
+    {
+      const TrainMeshScene &s      = meshes[k];
+      const TrainMesh      &mesh   = m.meshes[k];
+      const int             driver = mesh.driver;
+      const int             named  = bodies[std::size_t(driver)].kinematic_speed ? source : driver;
+      const double          w      = std::abs(m.bodies[std::size_t(driver)].initial_speed);
+      const auto [pinion, gear]    = scene.pair(s.pair).involute_members();
+      gears[std::size_t(driver)] += pinion->mass_properties().polar_inertia;
+      gears[std::size_t(mesh.driven)] += gear->mass_properties().polar_inertia;
+      const double v     = w * pinion->reference_radius;
+      const double given = bodies[std::size_t(named)].initial_speed;
+      // As in Dynamics/<pair>/speed to: 200 m/s (turbo gears) warns, 500 m/s (hoop stress
+      // rho v^2 = 2 GPa in steel) is refused. rpm typed in the rad/s field is 9.5 times fast.
+      check_plausible(
+          where + "/Bodies/" + bodies[std::size_t(named)].name +
+              "/initial speed = " + number_text(given) + " rad/s",
+          v,
+          "the pitch-line velocity [m/s] of mesh " + s.name + " (pinion pitch radius " +
+              plausible_number(pinion->reference_radius / mm) + " mm, " + plausible_number(w) +
+              " rad/s)",
+          0, 200, 0, 500,
+          {{2 * pi / 60, "rpm typed in a rad/s field (" + number_text(given) +
+                             " rpm = " + plausible_number(from_rpm(given)) + " rad/s)"}},
+          warnings);
+      const double f = mesh.teeth.pinion_teeth * w / (2 * pi);
+      if (f > run.sample_rate / 2)
+        warnings.push_back(where + "/Run/sample rate = " + number_text(run.sample_rate) +
+                           " Hz is unusual: the mesh frequency of mesh " + s.name + " is " +
+                           plausible_number(f) + " Hz at the initial speeds, above the " +
+                           "Nyquist frequency " + plausible_number(run.sample_rate / 2) +
+                           " Hz, so the mesh force spectra cannot show it (aliased); plausible: "
+                           "a sample rate above " +
+                           plausible_number(2 * f * harmonics) + " Hz (" +
+                           std::to_string(harmonics) +
+                           " harmonics); the run goes on with the value as given");
+    }
+
+  // A given inertia against its gears' own (their geometry, as inertia = auto takes it): the
+  // body adds its shaft, couplings, a flywheel or a crank, so tens of times the gears' is a
+  // real design and a thousand times warns (seed 002's output body: its gear and a shaft
+  // inertia of 64 times that, the crank and flywheel); below a third of them the gears alone
+  // would be heavier (lightening holes take less); 1e5 times or below 1/300 no design (kg mm^2
+  // typed as kg m^2 is 1e6). A shaft inertia (added with auto) likewise, from 0.
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+      const TrainBodyScene &b      = bodies[i];
+      const bool            given  = !b.inertia_auto;
+      const double          value  = given ? b.inertia : b.shaft_inertia;
+      const std::string     key    = given ? "/inertia = " : "/shaft inertia = ";
+      const double          lowest = given ? 1.0 / 300 : 0;
+      if (gears[i] > 0 && (given || value > 0))
+        check_plausible(where + "/Bodies/" + b.name + key + plausible_number(value) + " kg m^2",
+                        value / gears[i],
+                        "its ratio to the polar inertia of its gears from their geometry (" +
+                            plausible_number(gears[i]) + " kg m^2, Flanks section)",
+                        given ? 0.3 : 0, 1000, lowest, 1e5,
+                        {{1e-6, "kg mm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                    " kg mm^2 = " + plausible_number(value * 1e-6) + " kg m^2)"},
+                         {1e-4, "kg cm^2 typed in a kg m^2 field (" + plausible_number(value) +
+                                    " kg cm^2 = " + plausible_number(value * 1e-4) + " kg m^2)"}},
+                        warnings);
+    }
 }
 } // namespace gearkit

@@ -148,7 +148,8 @@ public:
       fail(line, what + " " + quoted(token) + " is not a number",
            "a decimal number such as -12.345");
     if (!std::isfinite(v))
-      fail(line, what + " is " + quoted(token), "a finite number (no NaN or inf)");
+      fail(line, what + " " + quoted(token) + " is not a finite number",
+           "a finite number (no NaN or inf)");
     return v;
   }
 
@@ -560,6 +561,17 @@ read_cmm(std::istream &stream, const std::string &path)
           std::array<double, 6> v{};
           for (std::size_t c = 2; c < columns; ++c)
             v[c - 2] = in.number(l.number, t[c], names[c - 2]);
+          // A coordinate beyond 1 km is a point at infinity for any gear (a CMM's marker of a
+          // missing value, an overflow): said here, with its line, not later as a distance
+          // of "inf um" from the flank.
+          for (std::size_t c = 0; c < 3; ++c)
+            if (std::abs(v[c]) / per_metre > 1e3)
+              in.fail(l.number,
+                      std::string(names[c]) + " " + quoted(t[c + 2]) +
+                          " is not a finite number a point can have (" +
+                          (per_metre == 1 ? "m" : "mm") +
+                          ", beyond 1 km from the axis: a point at infinity)",
+                      "finite coordinates within 1 km of the member's axis");
           if (!by_index.emplace(std::size_t(i) * f.n_face + j, v).second)
             in.fail(l.number, "grid point (" + t[0] + ", " + t[1] + ") appears twice",
                     "each grid index once");
@@ -641,10 +653,19 @@ read_topography(std::istream &stream, const std::string &path)
   const Header h = read_header(in, "gearkit-topography 1", {"deviation units"});
   in.choice(h.keys, "units", {"mm"}, "units = mm (diameters and face positions)");
   in.choice(h.keys, "deviation units", {"um"}, "deviation units = um");
+  // values beyond 1 km are points at infinity (as in read_cmm): said here with their line
   auto values = [&](int line, const std::string &text, const std::string &what, double per_metre) {
     std::vector<double> v;
     for (const std::string &t : tokens(text))
-      v.push_back(in.number(line, t, what) / per_metre);
+      {
+        v.push_back(in.number(line, t, what) / per_metre);
+        if (std::abs(v.back()) > 1e3)
+          in.fail(line,
+                  what + " " + quoted(t) +
+                      " is not a finite number a flank can have (beyond 1 "
+                      "km: a point at infinity)",
+                  "finite values within 1 km");
+      }
     return v;
   };
 

@@ -46,6 +46,9 @@ malformed_cmm_cases()
       {"wrong count", "1 1 11.0 1.1 1.0\n", "", ":14:", "4 = 2 x 2"},
       {"non-numeric", "11.0 1.1 1.0", "11.0 one 1.0", ":14:", "a decimal number"},
       {"NaN", "11.0 1.1 1.0", "11.0 nan 1.0", ":14:", "finite"},
+      // finite to the parser, but a distance of "inf um" from the flank later
+      {"point at infinity", "11.0 1.1 1.0", "11.0 1e308 1.0",
+       ":14:", "y '1e308' is not a finite number a point can have"},
       {"duplicate index", "1 1 11.0", "1 0 11.0", ":14:", "each grid index once"},
       {"duplicate point", "1 1 11.0 1.1 1.0", "1 1 11.0 0.9 -1.0", ":14:", "line 13"},
       {"index outside the grid", "1 1 11.0", "2 1 11.0", ":14:", "[0, 1]"},

@@ -5,8 +5,8 @@
 #include "driver/stages.h"
 #include "geometry/involute_gear.h"
 #include "geometry/measured_flank.h"
+#include "tests/driver/driver_fixture.h"
 #include "tests/malformed_cmm.h"
-#include "tests/temp_directory_test.h"
 
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@ namespace
 {
 const std::string source_dir = GEARKIT_SOURCE_DIR;
 
-class DriverTest : public test_data::TempDirectoryTest
+class DriverTest : public test_data::GearkitRun
 {
 protected:
   // Writes a scene file with the given text; returns its path.
@@ -34,18 +34,6 @@ protected:
   {
     return file(name, text);
   }
-
-  // Runs the command line; returns the exit code and captures the output.
-  int
-  run(std::vector<std::string> args)
-  {
-    out.str("");
-    err.str("");
-    args.insert(args.begin(), {"--output-root", (dir / "out").string()});
-    return gearkit_main(args, out, err);
-  }
-
-  std::ostringstream out, err;
 };
 
 const std::string small_scene = R"(

@@ -6,7 +6,7 @@
 #include "driver/cache.h"
 #include "driver/driver.h"
 #include "driver/h5_file.h"
-#include "tests/temp_directory_test.h"
+#include "tests/driver/driver_fixture.h"
 
 #include <gtest/gtest.h>
 
@@ -29,16 +29,13 @@ namespace fs = std::filesystem;
 
 namespace
 {
-class CacheIntegrity : public test_data::TempDirectoryTest
+class CacheIntegrity : public test_data::GearkitRun
 {
 protected:
   int
   run(const std::string &scene_file, const std::string &root = "")
   {
-    out.str("");
-    err.str("");
-    return gearkit_main({"--output-root", root.empty() ? (dir / "out").string() : root, scene_file},
-                        out, err);
+    return GearkitRun::run({scene_file}, root);
   }
   /// The cache file of `stage` in the last run's log.
   fs::path
@@ -51,7 +48,6 @@ protected:
         << log;
     return dir / "out/small/cache" / m[1].str();
   }
-  std::ostringstream out, err;
 };
 
 // flanks -> measured (synthesised: noise from a seed) -> ste: three stages, a few seconds.

@@ -7,7 +7,7 @@
 #include "driver/scene.h"
 #include "geometry/member_flanks.h"
 #include "tca/unloaded_tca.h"
-#include "tests/temp_directory_test.h"
+#include "tests/driver/driver_fixture.h"
 
 #include <gtest/gtest.h>
 
@@ -21,16 +21,13 @@ namespace fs = std::filesystem;
 
 namespace
 {
-class OperatingStateTest : public test_data::TempDirectoryTest
+class OperatingStateTest : public test_data::GearkitRun
 {
 protected:
   int
   run(const std::string &scene_text)
   {
-    out.str("");
-    err.str("");
-    const std::string scene = file("scene.prm", scene_text);
-    return gearkit_main({"--output-root", (dir / "out").string(), scene}, out, err);
+    return GearkitRun::run({file("scene.prm", scene_text)});
   }
   bool
   ran(const std::string &stage) const
@@ -47,8 +44,6 @@ protected:
   {
     return H5File::open((dir / "out/op/results.h5").string());
   }
-
-  std::ostringstream out, err;
 };
 
 // The pair: 29/41 teeth, m 3 mm, spur, unshifted (a_w = 105 mm), f_Halpha = -6 um on

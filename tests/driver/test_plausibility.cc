@@ -7,8 +7,8 @@
 #include "driver/h5_file.h"
 #include "driver/scene.h"
 #include "geometry/measured_flank.h"
+#include "tests/driver/driver_fixture.h"
 #include "tests/malformed_cmm.h"
-#include "tests/temp_directory_test.h"
 
 #include <gtest/gtest.h>
 
@@ -165,16 +165,13 @@ edited(const std::string &text, const Slip &s)
                             std::regex_constants::format_first_only);
 }
 
-class PlausibilityTest : public test_data::TempDirectoryTest
+class PlausibilityTest : public test_data::GearkitRun
 {
 protected:
   int
   run(const std::string &scene_text)
   {
-    out.str("");
-    err.str("");
-    const std::string scene = file("scene.prm", scene_text);
-    return gearkit_main({"--output-root", (dir / "out").string(), scene}, out, err);
+    return GearkitRun::run({file("scene.prm", scene_text)});
   }
 
   // Every slip refused by name: exit 1, the message's key words, no stage ran, no result file.
@@ -208,8 +205,6 @@ protected:
               << s.what << ": " << scene.warnings[0];
       }
   }
-
-  std::ostringstream out, err;
 };
 } // namespace
 

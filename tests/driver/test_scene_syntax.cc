@@ -7,7 +7,7 @@
 #include "driver/scene.h"
 #include "driver/scene_text.h"
 #include "driver/stages.h"
-#include "tests/temp_directory_test.h"
+#include "tests/driver/driver_fixture.h"
 
 #include <gtest/gtest.h>
 
@@ -19,18 +19,9 @@ namespace fs = std::filesystem;
 
 namespace
 {
-class SceneSyntax : public test_data::TempDirectoryTest
+class SceneSyntax : public test_data::GearkitRun
 {
 protected:
-  int
-  run(std::vector<std::string> args)
-  {
-    out.str("");
-    err.str("");
-    args.insert(args.begin(), {"--output-root", (dir / "out").string()});
-    return gearkit_main(args, out, err);
-  }
-
   // Writes bytes exactly (no text-mode translation); returns the path.
   std::string
   bytes(const std::string &name, const std::string &content) const
@@ -67,8 +58,6 @@ protected:
         EXPECT_EQ(f.path().filename().string().rfind("results.h5", 0), std::string::npos)
             << f.path();
   }
-
-  std::ostringstream out, err;
 };
 
 // The first line is a comment: a byte-order mark in front of it made deal.II refuse "the line

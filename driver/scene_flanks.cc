@@ -33,7 +33,9 @@ declare_modifications(ParameterHandler &prm)
   prm.declare_entry("end relief length", "0", Patterns::Double(0),
                     "[mm] Axial length from each face end over which the end relief acts.");
   prm.declare_entry("profile crowning", "0", Patterns::Double(0),
-                    "[um] C_alpha, parabolic removal at both ends of the active profile.");
+                    "[um] C_alpha, parabolic removal at both ends of the active profile (from "
+                    "the start of active profile in mesh with the mate at the TCA's centre "
+                    "distance to the tip), none in its middle.");
   prm.declare_entry("profile slope deviation", "0", Patterns::Double(),
                     "[um] f_Halpha over the ISO 1328-1 profile evaluation range (from the start "
                     "of active profile in mesh with the mate, 92 % of the active length toward "

@@ -36,13 +36,20 @@ ramp(ReliefShape shape, double s, double &value, double &slope)
 } // namespace
 
 std::pair<double, double>
-profile_evaluation_range(const ModificationFrame &f)
+active_profile(const ModificationFrame &f)
 {
   // Without a mate (a gear on its own) the active profile is not known: the whole involute
   // from the form circle stands in for it.
   const double start =
       std::isnan(f.roll_length_active_start) ? f.roll_length_form : f.roll_length_active_start;
-  return {start, start + 0.92 * (f.roll_length_tip - start)};
+  return {start, f.roll_length_tip};
+}
+
+std::pair<double, double>
+profile_evaluation_range(const ModificationFrame &f)
+{
+  const auto [start, end] = active_profile(f);
+  return {start, start + 0.92 * (end - start)};
 }
 
 std::pair<double, double>
@@ -56,9 +63,7 @@ NormalDeviation
 evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, double L, double z)
 {
   NormalDeviation d;
-  const double    L_alpha = f.roll_length_tip - f.roll_length_form;
-  const double    L_mid   = 0.5 * (f.roll_length_tip + f.roll_length_form);
-  const double    half_b  = 0.5 * f.face_width;
+  const double    half_b = 0.5 * f.face_width;
 
   if (m.tip_relief != 0 && m.tip_relief_length > 0)
     {
@@ -84,9 +89,12 @@ evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, 
     }
   if (m.profile_crowning != 0)
     {
-      const double s = 2 * (L - L_mid) / L_alpha;
+      // C_alpha at both ends of the active profile (the start of active profile in mesh, and
+      // the tip), none in its middle; the parabola goes on below the start.
+      const auto [L0, L1] = active_profile(f);
+      const double length = L1 - L0, s = 2 * (L - 0.5 * (L0 + L1)) / length;
       d.value -= m.profile_crowning * s * s;
-      d.d_dL -= m.profile_crowning * 2 * s * 2 / L_alpha;
+      d.d_dL -= m.profile_crowning * 2 * s * 2 / length;
     }
   if (m.profile_slope != 0)
     {

@@ -25,21 +25,22 @@ enum class ReliefShape
 /// Design modifications and form deviations of one flank side (the same on every tooth).
 struct ToothModifications
 {
-  double      tip_relief          = 0; ///< Ca: removal at the tip [m]
-  double      tip_relief_length   = 0; ///< roll length from the tip over which it acts [m]
-  ReliefShape tip_relief_shape    = ReliefShape::linear;
-  double      root_relief         = 0; ///< Cf: removal at the start of the involute [m]
-  double      root_relief_length  = 0; ///< roll length from the form point [m]
-  ReliefShape root_relief_shape   = ReliefShape::linear;
-  double      lead_crowning       = 0; ///< C_beta: removal at each face end, parabolic [m]
-  double      end_relief          = 0; ///< C_I: linear removal at each face end [m]
-  double      end_relief_length   = 0; ///< axial length over which the end relief acts [m]
-  double      profile_crowning    = 0; ///< C_alpha: parabolic removal at both profile ends [m]
-  double      profile_slope       = 0; ///< f_Halpha over L_alpha; > 0 adds at the tip [m]
-  double      helix_slope         = 0; ///< f_Hbeta over L_beta; > 0 adds at +z [m]
-  double      waviness_amplitude  = 0; ///< profile waviness amplitude [m]
-  double      waviness_wavelength = 0; ///< along the roll length [m]; 0 = none
-  double      waviness_phase      = 0; ///< [rad], phase at the form point
+  double      tip_relief         = 0; ///< Ca: removal at the tip [m]
+  double      tip_relief_length  = 0; ///< roll length from the tip over which it acts [m]
+  ReliefShape tip_relief_shape   = ReliefShape::linear;
+  double      root_relief        = 0; ///< Cf: removal at the start of the involute [m]
+  double      root_relief_length = 0; ///< roll length from the form point [m]
+  ReliefShape root_relief_shape  = ReliefShape::linear;
+  double      lead_crowning      = 0; ///< C_beta: removal at each face end, parabolic [m]
+  double      end_relief         = 0; ///< C_I: linear removal at each face end [m]
+  double      end_relief_length  = 0; ///< axial length over which the end relief acts [m]
+  double      profile_crowning =
+      0; ///< C_alpha: parabolic removal at both ends of the active profile [m]
+  double profile_slope       = 0; ///< f_Halpha over L_alpha; > 0 adds at the tip [m]
+  double helix_slope         = 0; ///< f_Hbeta over L_beta; > 0 adds at +z [m]
+  double waviness_amplitude  = 0; ///< profile waviness amplitude [m]
+  double waviness_wavelength = 0; ///< along the roll length [m]; 0 = none
+  double waviness_phase      = 0; ///< [rad], phase at the form point
 
   bool
   any() const;
@@ -56,6 +57,11 @@ struct ModificationFrame
   /// mate is known: then the profile evaluation range starts at the form circle instead.
   double roll_length_active_start = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// The active profile as roll lengths [L_A, L_E]: from the start of active profile in mesh
+/// with the mate (the form circle's roll length without a mate) to the tip.
+std::pair<double, double>
+active_profile(const ModificationFrame &frame);
 
 /// ISO 1328-1 profile evaluation range L_alpha as roll lengths [L_A, L_A + 0.92 (L_E - L_A)]:
 /// the active length from the start of active profile L_A to its end L_E (the tip; no tip

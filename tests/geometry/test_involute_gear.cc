@@ -585,11 +585,12 @@ TEST(InvoluteModifications, HelixSlopeIsTheDifferenceOverTheIsoEvaluationRange)
     }
 }
 
-TEST(InvoluteModifications, OtherModificationsDoNotDependOnTheMate)
+TEST(InvoluteModifications, OnlyTheProfileShapesReferToTheActiveProfile)
 {
-  // Only the slope deviations refer to the evaluation ranges: every other modification is the
-  // same with and without the mate (bit for bit), and has its closed-form value (rounding of
-  // point differences ~1e-17 m; 1e-13 m) at the places that define it.
+  // Only the slope deviations and the profile crowning refer to the active profile (its start
+  // in mesh with the mate): every other modification is the same with and without the mate
+  // (bit for bit), and each has its closed-form value (rounding of point differences ~1e-17 m;
+  // 1e-13 m) at the places that define it.
   auto [dp, dg]         = test_data::fzg_c_pair();
   ToothModifications &m = dp.drive_modifications;
   m.tip_relief = 20e-6, m.tip_relief_length = 1.5e-3;
@@ -622,23 +623,26 @@ TEST(InvoluteModifications, OtherModificationsDoNotDependOnTheMate)
   n.lead_crowning = 8e-6, n.end_relief = 5e-6, n.end_relief_length = 3e-3;
   n.profile_crowning   = 3e-6;
   n.waviness_amplitude = 1e-6, n.waviness_wavelength = 0.4e-3, n.waviness_phase = 30 * deg;
-  const auto   alone2 = InvoluteGear::create(dp);
-  const auto   mated2 = create_pair(dp, dg).first;
-  const double L_mid  = 0.5 * (L_F + L_E);
-  // at the middle of the profile: the crowning's vertex; the waviness there
-  const double wave = 1e-6 * std::sin(2 * pi * (L_mid - L_F) / 0.4e-3 + 30 * deg);
+  const auto alone2 = InvoluteGear::create(dp);
+  const auto mated2 = create_pair(dp, dg).first;
+  auto wave = [&](double L) { return 1e-6 * std::sin(2 * pi * (L - L_F) / 0.4e-3 + 30 * deg); };
   for (const InvoluteGear *gear : {alone2.get(), mated2.get()})
     {
-      EXPECT_NEAR(dev(*gear, L_mid, 0), wave, 1e-13);
-      EXPECT_NEAR(dev(*gear, L_mid, b / 2), wave - 8e-6 - 5e-6, 1e-13); // C_beta + C_I at the end
-      EXPECT_NEAR(dev(*gear, L_mid, -b / 4), wave - 2e-6, 1e-13);       // C_beta / 4
+      // C_alpha at both ends of the active profile: from the start of active profile in mesh
+      // (the form circle on a gear alone) to the tip; its vertex in the middle
+      const double L_S =
+          gear == alone2.get() ? L_F : gear->modification_frame().roll_length_active_start;
+      const double L_mid = 0.5 * (L_S + L_E);
+      EXPECT_NEAR(dev(*gear, L_mid, 0), wave(L_mid), 1e-13);
+      EXPECT_NEAR(dev(*gear, L_mid, b / 2), wave(L_mid) - 8e-6 - 5e-6, 1e-13); // C_beta + C_I
+      EXPECT_NEAR(dev(*gear, L_mid, -b / 4), wave(L_mid) - 2e-6, 1e-13);       // C_beta / 4
       EXPECT_NEAR(dev(*gear, L_mid, b / 2 - 1.5e-3),
-                  wave - 8e-6 * std::pow(1 - 3e-3 / b, 2) - 2.5e-6, 1e-13);
-      // C_alpha at both ends of the involute, with the waviness from its phase at the form point
-      EXPECT_NEAR(dev(*gear, L_F, 0), -3e-6 + 1e-6 * std::sin(30 * deg), 1e-13);
-      EXPECT_NEAR(dev(*gear, L_E, 0),
-                  -3e-6 + 1e-6 * std::sin(2 * pi * (L_E - L_F) / 0.4e-3 + 30 * deg), 1e-13);
+                  wave(L_mid) - 8e-6 * std::pow(1 - 3e-3 / b, 2) - 2.5e-6, 1e-13);
+      EXPECT_NEAR(dev(*gear, L_S, 0), -3e-6 + wave(L_S), 1e-13);
+      EXPECT_NEAR(dev(*gear, L_E, 0), -3e-6 + wave(L_E), 1e-13);
     }
+  // the FZG C pinion's active profile starts above its form circle: the two crowns differ
+  EXPECT_GT(mated2->modification_frame().roll_length_active_start, L_F + 1e-3);
 }
 
 // Backlash by the centre distance (seed 001, reference-data.md §2): j_t on the operating pitch

@@ -128,6 +128,37 @@ TEST(OperatingState, ProfileEvaluationRangeAndSlopeAtTheOperatingCentreDistance)
   EXPECT_LT(slope_ratio - 1, 0.035);
 }
 
+// C_alpha is removed at both ends of the active profile (the start of active profile at the
+// operating centre distance, and the tip), none in its middle - as its help text says; before
+// issue 35 the crown spanned the whole involute (form circle to tip), so that less than C_alpha
+// was removed at the start of active profile and some in the middle of the active profile.
+TEST(OperatingState, ProfileCrowningOverTheActiveProfileAtTheOperatingCentreDistance)
+{
+  const double     a                      = 105.15e-3;
+  InvoluteGearData dg                     = member("gear", z2);
+  dg.drive_modifications.profile_crowning = 5e-6;
+  const auto [p, g]                       = create_pair(member("pinion", z1), dg, a);
+  const LineOfAction        l(a);
+  const double              L_A = l.gear_start_roll(), L_E = LineOfAction::tip_roll(l.ra2, l.rb2);
+  const ToothModifications &m = g->data().drive_modifications;
+  const ModificationFrame  &f = g->modification_frame();
+  EXPECT_NEAR(evaluate_modifications(m, f, L_A, 0).value, -5e-6, 1e-15);
+  EXPECT_NEAR(evaluate_modifications(m, f, L_E, 0).value, -5e-6, 1e-15);
+  EXPECT_NEAR(evaluate_modifications(m, f, 0.5 * (L_A + L_E), 0).value, 0, 1e-15);
+  // a quarter of the way: (1/2)^2 of C_alpha; the slope there by the parabola's derivative
+  const double L_q = L_A + 0.25 * (L_E - L_A);
+  EXPECT_NEAR(evaluate_modifications(m, f, L_q, 0).value, -1.25e-6, 1e-15);
+  EXPECT_NEAR(evaluate_modifications(m, f, L_q, 0).d_dL, 2 * 5e-6 / (L_E - L_A), 1e-12);
+  // at the zero-backlash centre distance the active profile starts 0.44 mm lower
+  const auto [p_w, g_w] = create_pair(member("pinion", z1), dg);
+  EXPECT_NEAR(evaluate_modifications(m, g_w->modification_frame(), l.gear_start_roll(), 0).value,
+              -5e-6 * std::pow((l.gear_start_roll() -
+                                0.5 * (LineOfAction(105e-3).gear_start_roll() + L_E)) /
+                                   (0.5 * (L_E - LineOfAction(105e-3).gear_start_roll())),
+                               2),
+              1e-15);
+}
+
 TEST(OperatingState, TransverseContactRatioAtTheOperatingCentreDistance)
 {
   const auto [p, g] = create_pair(member("pinion", z1), member("gear", z2));

@@ -440,7 +440,8 @@ check_convention(double helix)
 
       // The separation of UnloadedTca::at against the curves: the gear sits at the leading
       // pair's touch angle; every other pair stands off by s arm (psi - psi_touch).
-      for (double phi : {0.013, 0.41, -1.7, 2.9, 0.2, 0.77, -0.35, 1.3, 0.05, -0.11})
+      for (double phi :
+           {0.013, 0.41, -1.7, 2.9, 0.2, 0.77, -0.35, 1.3, 0.05, -0.11, 0.61, -0.83, 1.9, 2.2})
         {
           const TcaPosition p = tca.at(phi);
           for (const PairContact &c : p.pairs)

@@ -251,14 +251,19 @@ TEST(UnloadedTca, FlanksThatDoNotMeshAreRefused)
 
 TEST(UnloadedTca, ProfileCrowningGivesParabolicArcs)
 {
-  // C_alpha on the pinion: the leading pair is the one nearer the middle of the profile, and
-  // e_0 = -delta(L)/r_b1 = C_alpha (2 (L - L_mid) / L_alpha)^2 / r_b1 at its contact roll length
-  // L, to first order (the normal tilts by <= 4 C_alpha / L_alpha ~ 1e-3: tolerance 1 %).
+  // C_alpha on the pinion: the leading pair is the one nearer the middle of the active
+  // profile, and e_0 = -delta(L)/r_b1 = C_alpha (2 (L - L_mid) / L_alpha)^2 / r_b1 at its
+  // contact roll length L, L_alpha the active profile from the start of active profile L_A in
+  // mesh to the tip, to first order (the normal tilts by <= 4 C_alpha / L_alpha ~ 1e-3:
+  // tolerance 1 %). L_A from the line of action: the gear's tip circle crosses it there.
   auto d                                       = c_pair();
   d.first.drive_modifications.profile_crowning = 4e-6;
   const Pair   s                               = make(d);
-  const double rb = s.pinion->base_radius, Lf = rb * s.pinion->roll_angle_form,
-               Lt = rb * s.pinion->roll_angle_tip;
+  const double rb = s.pinion->base_radius, Lt = rb * s.pinion->roll_angle_tip;
+  const double rb2 = s.gear->base_radius, ra2 = s.gear->tip_radius;
+  const double Lf =
+      std::sqrt(s.a_w * s.a_w - (rb + rb2) * (rb + rb2)) - std::sqrt(ra2 * ra2 - rb2 * rb2); // L_A
+  ASSERT_GT(Lf, rb * s.pinion->roll_angle_form);
   TcaOptions o;
   o.positions_per_mesh = 30;
   const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();

@@ -544,13 +544,17 @@ check_cost(const TrainScene &train, const TrainModel &m)
       " s; shorten the duration, loosen the relative tolerance, or raise " + where +
       "/Run/maximum estimated cost if you mean to wait for it");
 }
-} // namespace
 
+// Names: pairs, bodies and shafts that exist, every body in a mesh or on a shaft, given
+// inertias, crank geometry, no name twice.
 void
-TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> &warnings) const
+check_train_names(const TrainScene &t, const Scene &scene)
 {
-  const std::string where = "Train/" + name;
-  auto              fail  = [&](const std::string &what) { throw InputError(where + what); };
+  const std::string where      = "Train/" + t.name;
+  auto              fail       = [&](const std::string &what) { throw InputError(where + what); };
+  const auto       &bodies     = t.bodies;
+  const auto       &meshes     = t.meshes;
+  auto              body_index = [&](const std::string &b) { return t.body_index(b); };
   if (bodies.size() < 2 || bodies.size() > 50)
     fail("/bodies: " + std::to_string(bodies.size()) +
          " bodies is not allowed; name 2 to 50 bodies (each with a subsection in Bodies)");
@@ -650,9 +654,80 @@ TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> 
   for (const TrainMeshScene &m : meshes)
     if (!mesh_names.insert(m.name).second)
       fail("/meshes: '" + m.name + "' appears twice; each mesh needs its own name");
-  if (!reference_body.empty() && body_index(reference_body) < 0)
-    fail("/reference body: '" + reference_body + "' is not allowed; expected a body of " + where +
+  if (!t.reference_body.empty() && body_index(t.reference_body) < 0)
+    fail("/reference body: '" + t.reference_body + "' is not allowed; expected a body of " + where +
          "/bodies or nothing");
+}
+
+// Centre distances: the teeth reach each other; placed axes agree with them.
+void
+check_train_centre_distances(const TrainScene &t, const Scene &scene)
+{
+  const std::string where  = "Train/" + t.name;
+  auto              fail   = [&](const std::string &what) { throw InputError(where + what); };
+  const auto       &bodies = t.bodies;
+  for (const TrainMeshScene &s : t.meshes)
+    {
+      const std::string here    = "/Meshes/" + s.name;
+      const auto [pinion, gear] = scene.pair(s.pair).involute_members();
+      const double a            = train_mesh_centre_distance(scene, s);
+      const double a_actual     = a + scene.tca.at(s.pair).misalignment.centre_distance_error;
+      if (contact_ratios(*pinion, *gear, a_actual).transverse <= 0)
+        fail(here + "/backlash: " + number_text(s.backlash / mm) + " mm (centre distance " +
+             number_text(a_actual / mm) +
+             " mm) is not allowed; the teeth no longer reach each other there (the path of "
+             "contact would be empty)");
+      const TrainBodyScene &p = bodies[std::size_t(t.body_index(s.pinion_body))];
+      const TrainBodyScene &g = bodies[std::size_t(t.body_index(s.gear_body))];
+      if (p.placed && g.placed)
+        {
+          const double axes = std::hypot(g.x - p.x, g.y - p.y);
+          if (std::abs(axes - a) > 1e-6)
+            fail(here + ": the axes of " + p.name + " and " + g.name + " are " +
+                 number_text(axes / mm) + " mm apart (Bodies/<body>/axis position), which is " +
+                 "not allowed; the mesh's centre distance is " + number_text(a / mm) +
+                 " mm (pair " + s.pair + ", backlash " + number_text(s.backlash / mm) +
+                 " mm): expected the same within 1 um");
+        }
+    }
+}
+
+// The run and its spectra: a duration, samples within bounds, a penetration depth with damping,
+// a spectrum and a spectrogram window within the run.
+void
+check_train_run(const TrainScene &t)
+{
+  const std::string where = "Train/" + t.name;
+  auto              fail  = [&](const std::string &what) { throw InputError(where + what); };
+  const auto       &run   = t.run;
+  if (!(run.duration > 0))
+    fail("/Run/duration = " + number_text(run.duration) +
+         " s is not allowed; expected a simulated time > 0 s");
+  if (run.duration * run.sample_rate > 5e7)
+    fail("/Run/sample rate: " + number_text(run.sample_rate) + " Hz over " +
+         number_text(run.duration) + " s is not allowed; at most 5e7 samples in a run");
+  if (t.law.damping > 0 && !(t.law.depth > 0))
+    fail("/Contact/penetration depth: 0 with damping is not allowed; expected > 0");
+  const double start = t.spectrum_start > 0 ? t.spectrum_start : run.duration / 2;
+  if ((run.duration - start) * run.sample_rate < 16)
+    fail("/Spectrum/start: " + number_text(t.spectrum_start) +
+         " s is not allowed; expected a "
+         "time that leaves at least 16 samples before the end of the run (" +
+         number_text(run.duration) + " s)");
+  if (t.spectrogram_window > 0 &&
+      (t.spectrogram_window > run.duration || t.spectrogram_window * run.sample_rate < 4))
+    fail("/Spectrum/spectrogram window: " + number_text(t.spectrogram_window / ms) +
+         " ms is not allowed; expected at least 4 samples and at most the run (" +
+         number_text(run.duration / ms) + " ms), or 0 for none");
+}
+} // namespace
+
+void
+TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> &warnings) const
+{
+  const std::string where = "Train/" + name;
+  auto              fail  = [&](const std::string &what) { throw InputError(where + what); };
+  check_train_names(*this, scene);
 
   // ratios that close, and a speed to start from
   bool numbered = false;
@@ -681,53 +756,8 @@ TrainScene::check(const Scene &scene, bool run_wanted, std::vector<std::string> 
            " kg m^2, which is not allowed; expected > 0");
   check_constant_speeds(*this, m);
   check_plausibility(scene, m, warnings);
-
-  // centre distances: the teeth reach each other; placed axes agree with them
-  for (const TrainMeshScene &s : meshes)
-    {
-      const std::string here    = "/Meshes/" + s.name;
-      const auto [pinion, gear] = scene.pair(s.pair).involute_members();
-      const double a            = train_mesh_centre_distance(scene, s);
-      const double a_actual     = a + scene.tca.at(s.pair).misalignment.centre_distance_error;
-      if (contact_ratios(*pinion, *gear, a_actual).transverse <= 0)
-        fail(here + "/backlash: " + number_text(s.backlash / mm) + " mm (centre distance " +
-             number_text(a_actual / mm) +
-             " mm) is not allowed; the teeth no longer reach each other there (the path of "
-             "contact would be empty)");
-      const TrainBodyScene &p = bodies[std::size_t(body_index(s.pinion_body))];
-      const TrainBodyScene &g = bodies[std::size_t(body_index(s.gear_body))];
-      if (p.placed && g.placed)
-        {
-          const double axes = std::hypot(g.x - p.x, g.y - p.y);
-          if (std::abs(axes - a) > 1e-6)
-            fail(here + ": the axes of " + p.name + " and " + g.name + " are " +
-                 number_text(axes / mm) + " mm apart (Bodies/<body>/axis position), which is " +
-                 "not allowed; the mesh's centre distance is " + number_text(a / mm) +
-                 " mm (pair " + s.pair + ", backlash " + number_text(s.backlash / mm) +
-                 " mm): expected the same within 1 um");
-        }
-    }
-
-  // run and spectra
-  if (!(run.duration > 0))
-    fail("/Run/duration = " + number_text(run.duration) +
-         " s is not allowed; expected a simulated time > 0 s");
-  if (run.duration * run.sample_rate > 5e7)
-    fail("/Run/sample rate: " + number_text(run.sample_rate) + " Hz over " +
-         number_text(run.duration) + " s is not allowed; at most 5e7 samples in a run");
-  if (law.damping > 0 && !(law.depth > 0))
-    fail("/Contact/penetration depth: 0 with damping is not allowed; expected > 0");
-  const double start = spectrum_start > 0 ? spectrum_start : run.duration / 2;
-  if ((run.duration - start) * run.sample_rate < 16)
-    fail("/Spectrum/start: " + number_text(spectrum_start) +
-         " s is not allowed; expected a "
-         "time that leaves at least 16 samples before the end of the run (" +
-         number_text(run.duration) + " s)");
-  if (spectrogram_window > 0 &&
-      (spectrogram_window > run.duration || spectrogram_window * run.sample_rate < 4))
-    fail("/Spectrum/spectrogram window: " + number_text(spectrogram_window / ms) +
-         " ms is not allowed; expected at least 4 samples and at most the run (" +
-         number_text(run.duration / ms) + " ms), or 0 for none");
+  check_train_centre_distances(*this, scene);
+  check_train_run(*this);
 
   // what the run will cost, before it runs
   if (run_wanted)

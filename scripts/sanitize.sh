@@ -5,7 +5,8 @@
 # Builds base_tests, geometry_tests, tca_tests and dynamics_tests (the libraries without deal.II,
 # PETSc, gmsh and MPI) and driver_tests (scene files, stages, cache, HDF5: every library) with
 # -O1 -g and runs them through ctest: the four light suites, then the driver's GoogleTest cases
-# (not the mpirun and case tests of the `driver` label). Any memory error or undefined behaviour
+# (scenes and their text, plausibility, operating state, cache integrity; not the mpirun and
+# case tests of the `driver` label). Any memory error or undefined behaviour
 # ends the test with a report on its output, and the script fails; so does a leak in the light
 # suites. Run after ./test (which installs the packages); CI calls it from .ci/run.
 #
@@ -54,7 +55,8 @@ status=0
 ctest --test-dir "$build" --output-on-failure -L "$labels" -E "$exclude" -j "$jobs" "$@" ||
   status=$?
 if ((driver)); then
-  ASAN_OPTIONS=$driver_asan ctest --test-dir "$build" --output-on-failure -R '^DriverTest\.' \
+  ASAN_OPTIONS=$driver_asan ctest --test-dir "$build" --output-on-failure \
+    -R '^(DriverTest|SceneSyntax|CacheIntegrity|PlausibilityTest|OperatingStateTest)\.' \
     -j "$jobs" "$@" || status=$?
 fi
 end=$(date +%s)

@@ -56,8 +56,9 @@ LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
   std::size_t                  line  = 0;
   while (line < size && bytes[line] != '\n')
     ++line;
-  const std::string request(bytes, line), stage = request.substr(0, request.find(' ')),
-      key = request.find(' ') == std::string::npos ? "" : request.substr(request.find(' ') + 1);
+  const std::string request(bytes, line),
+      stage = request.substr(0, request.find(' ')),
+      key   = request.find(' ') == std::string::npos ? "" : request.substr(request.find(' ') + 1);
   const std::size_t start = std::min(size, line + 1);
   std::size_t       split = start;
   while (split < size && bytes[split] != '\0')

@@ -75,12 +75,6 @@ digest(const void *data, std::size_t size)
   return d.hex();
 }
 
-std::string
-digest(const std::string &text)
-{
-  return digest(text.data(), text.size());
-}
-
 void
 check(long status, const std::string &what)
 {
@@ -325,6 +319,12 @@ file_digest(const std::string &path)
 const char *digest_header = "gearkit cache digest 1";
 } // namespace
 
+std::string
+text_digest(const std::string &text)
+{
+  return digest(text.data(), text.size());
+}
+
 void
 seal_cache_file(const H5File &file, const std::string &stage, const std::string &key)
 {
@@ -333,7 +333,7 @@ seal_cache_file(const H5File &file, const std::string &stage, const std::string 
   root.attribute(stage_attribute, stage);
   root.attribute(key_attribute, key);
   root.attribute(manifest_attribute, manifest);
-  root.attribute(digest_attribute, digest(stage + "\n" + key + "\n" + manifest));
+  root.attribute(digest_attribute, text_digest(stage + "\n" + key + "\n" + manifest));
 }
 
 void
@@ -383,7 +383,7 @@ cache_file_problem(const std::string &path, const std::string &stage, const std:
                         was_key   = root.read_attribute(key_attribute),
                         manifest  = root.read_attribute(manifest_attribute);
       if (root.read_attribute(digest_attribute) !=
-          digest(was_stage + "\n" + was_key + "\n" + manifest))
+          text_digest(was_stage + "\n" + was_key + "\n" + manifest))
         return "its integrity record is damaged (the digest of its manifest differs)";
       if (was_stage != stage)
         return "it holds the results of stage '" + was_stage + "', not '" + stage + "'";

@@ -15,6 +15,11 @@
 
 namespace gearkit
 {
+/// The digest (64-bit FNV-1a over 8-byte words, 16 hex digits) of a text: cache files' records
+/// and the stages' cache keys.
+std::string
+text_digest(const std::string &text);
+
 /// Records in the root of `file` (being written, before commit) the stage, the key and the
 /// manifest of everything in it, with the manifest's digest.
 void

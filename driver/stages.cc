@@ -3,6 +3,7 @@
 // outputs a scene can ask for.
 #include "driver/stages.h"
 
+#include "driver/cache.h"
 #include "driver/source_hashes.h"
 
 #include <algorithm>
@@ -19,18 +20,6 @@ namespace gearkit
 {
 namespace
 {
-// FNV-1a, 64 bit: a cache key, not a security measure.
-std::uint64_t
-fnv1a(const std::string &text, std::uint64_t h = 1469598103934665603ull)
-{
-  for (unsigned char c : text)
-    {
-      h ^= c;
-      h *= 1099511628211ull;
-    }
-  return h;
-}
-
 std::string
 file_contents(const std::string &path)
 {
@@ -207,12 +196,10 @@ stage_key(const Scene &scene, const std::string &stage)
   if (s.derived_parameters)
     text += "[derived]\n" + s.derived_parameters(scene);
   for (const std::string &f : s.input_files(scene))
-    text += "file " + f + " " + std::to_string(fnv1a(file_contents(f))) + "\n";
+    text += "file " + f + " " + text_digest(file_contents(f)) + "\n";
   for (const std::string &up : upstream_of(scene, s))
     text += "upstream " + up + " " + stage_key(scene, up) + "\n";
-  std::ostringstream hex;
-  hex << std::hex << std::setw(16) << std::setfill('0') << fnv1a(text);
-  return hex.str();
+  return text_digest(text); // a cache key, not a security measure
 }
 
 unsigned

@@ -78,11 +78,7 @@ digest(const void *data, std::size_t size)
 void
 check(long status, const std::string &what)
 {
-  if (status < 0)
-    {
-      const std::string cause = hdf5_error_cause();
-      throw std::runtime_error(what + (cause.empty() ? "" : " (" + cause + ")"));
-    }
+  hdf5_check(hid_t(status), what);
 }
 
 // The manifest of one file: a line per group, dataset and attribute, in name order.

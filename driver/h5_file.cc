@@ -45,10 +45,8 @@ hdf5_error_cause()
   return descriptions.empty() ? "" : descriptions.front();
 }
 
-namespace
-{
 hid_t
-check(hid_t id, const std::string &what, hid_t where = -1)
+hdf5_check(hid_t id, const std::string &what, hid_t where)
 {
   if (id >= 0)
     return id;
@@ -64,6 +62,14 @@ check(hid_t id, const std::string &what, hid_t where = -1)
   if (!cause.empty())
     message += " (" + cause + ")";
   throw std::runtime_error(message);
+}
+
+namespace
+{
+hid_t
+check(hid_t id, const std::string &what, hid_t where = -1)
+{
+  return hdf5_check(id, what, where);
 }
 
 // Variable-length UTF-8 strings: h5py reads them as str.

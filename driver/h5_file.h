@@ -42,6 +42,11 @@ private:
 std::string
 hdf5_error_cause();
 
+/// `id` when it is valid (>= 0); else throws "HDF5: <what> failed [in <file of `where`>]
+/// (<cause>)" with the cause from hdf5_error_cause().
+hid_t
+hdf5_check(hid_t id, const std::string &what, hid_t where = -1);
+
 /// A group (or the root of a file) to write to and read from.
 class H5Group
 {

@@ -54,9 +54,11 @@ protected:
       EXPECT_NE(err.str().find(e), std::string::npos) << "'" << e << "' in: " << err.str();
     // nothing written for any scene name: no results.h5, no temporary file
     if (fs::exists(dir / "out"))
-      for (const auto &f : fs::recursive_directory_iterator(dir / "out"))
-        EXPECT_EQ(f.path().filename().string().rfind("results.h5", 0), std::string::npos)
-            << f.path();
+      {
+        for (const auto &f : fs::recursive_directory_iterator(dir / "out"))
+          EXPECT_EQ(f.path().filename().string().rfind("results.h5", 0), std::string::npos)
+              << f.path();
+      }
   }
 };
 

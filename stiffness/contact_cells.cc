@@ -63,7 +63,7 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
   for (std::size_t k = 0; k < position.pairs.size(); ++k)
     {
       const PairContact &c = position.pairs[k];
-      if (!c.found || c.separation > o.gap_band)
+      if (!c.found || c.separation > std::max(o.gap_band, o.pair_gap))
         continue;
       const Flank &flank = tca.pinion_flanks().flank(c.pinion_tooth, topt.side);
       const Vec3   n     = c.normal_pinion;
@@ -148,7 +148,28 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
           }
         return in;
       };
-      const double t0 = -reach(-1), t1 = reach(+1);
+      double t0 = -reach(-1), t1 = reach(+1);
+      // Along the line the zone ends at the flank's edges, or where the gap on the line opens
+      // beyond twice the band (crowning: a point contact): there its end column is a zone edge.
+      auto within_band = [&](double t_) {
+        ContactCell probe;
+        return !gap_at(c.position + t_ * e_t, 0, t_, probe) ||
+               probe.gap - c.separation <= 2 * o.gap_band;
+      };
+      bool band_end[2] = {false, false};
+      for (int e = 0; e < 2; ++e)
+        {
+          double &end = e == 0 ? t0 : t1;
+          if (within_band(end))
+            continue;
+          double in = 0, out = end;
+          for (int it = 0; it < 40 && std::abs(out - in) > 1e-9 * (t1 - t0); ++it)
+            {
+              const double mid         = (in + out) / 2;
+              (within_band(mid) ? in : out) = mid;
+            }
+          end = out, band_end[e] = true;
+        }
       // Across the line the gap opens as k_max s^2 / 2 near the contact point; where the gap
       // opens more slowly (measured flanks: the local curvature carries the measurement's noise
       // and waviness), the band is widened until the gap at its edges reaches the band.
@@ -164,7 +185,7 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
             }
           if (opening == HUGE_VAL || opening >= o.gap_band / 2)
             break;
-          w_band *= std::min(4.0, std::sqrt(o.gap_band / std::max(opening, 1e-12)));
+          w_band *= std::min(4.0, std::sqrt(o.gap_band / std::max(opening, 1e-6 * o.gap_band)));
         }
       const double w  = std::min(w_band, span / 2);
       const double dt = (t1 - t0) / o.cells_along, ds = 2 * w / o.cells_across;
@@ -227,7 +248,11 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
               cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth,
               cell.gear_tooth = c.gear_tooth;
               cell.dt = dt, cell.ds = size;
-              cell.zone_edge = w == w_band && (a <= -w + tol || b >= w - tol);
+              cell.zone_edge = (w == w_band && (a <= -w + tol || b >= w - tol)) ||
+                               (i == 0 && band_end[0]) || (i == o.cells_along - 1 && band_end[1]);
+              cell.flank_edge = (i == 0 && !band_end[0]) ||
+                                (i == o.cells_along - 1 && !band_end[1]) ||
+                                (cut && ((s_lo > -w && a <= s_lo + tol) || (s_hi < w && b >= s_hi - tol)));
               if (!gap_at(c.position + s_cell * e_s + t_cell * e_t, s_cell, t_cell, cell))
                 continue;
               cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;

@@ -15,10 +15,15 @@ struct ContactCellOptions
 {
   int cells_across = 17; ///< cells across the contact line (s); odd: a row on the line
   int cells_along  = 24; ///< cells along it (t), over the flank
-  /// Largest unloaded gap the zone covers [m]: the band across the line reaches where the
-  /// relative curvature opens the gap to this (s = sqrt(2 g / k_max)); choose it above the
-  /// largest elastic approach expected.
+  /// Largest unloaded gap the zone covers [m], measured from each pair's own contact point:
+  /// the band across the line reaches where the relative curvature opens the gap to this
+  /// (s = sqrt(2 g / k_max)), and along the line where the gap on the line (crowning, a
+  /// point contact) opens to twice this; choose it above the local elastic approach expected
+  /// (loaded_contact sets it from the load).
   double gap_band = 10e-6;
+  /// Pairs standing apart by up to max(gap_band, pair_gap) [m] get cells (a pair further apart
+  /// than the zone's band can still touch under a load whose approach exceeds its separation).
+  double pair_gap = 0;
   /// Set the contact line's direction and the zone's width from a quadratic fitted to the
   /// unloaded gaps about each contact point (where it disagrees with the local curvature), not
   /// from the local curvature alone: for measured flanks, whose curvature at a point carries the
@@ -43,6 +48,9 @@ struct ContactCell
   /// In the outermost row across of a zone the gap band cut short of the flank: contact here
   /// means the zone is too narrow for the load.
   bool zone_edge = false;
+  /// At an edge of either flank (tip, face end, start of the working flank): the cell's side
+  /// on the edge; contact here is edge contact, whose pressure the half-space does not bound.
+  bool flank_edge = false;
 };
 
 /// Cells of every pair of `position` that touches or stands within the gap band. Where an edge

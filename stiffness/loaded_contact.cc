@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <mutex>
 #include <sstream>
 
@@ -89,34 +90,107 @@ loaded_contact_in_zone(const UnloadedTca &, const TcaPosition &, double,
                        const LoadedContactOptions &, const StructuralCompliance &,
                        const StructuralCompliance &);
 
+namespace
+{
+/// The gap band to start from when the scene leaves it to the load: four times the gap at the
+/// edge of Hertz's line contact, 2 q / (pi E*), for the torque on the leading pair alone along
+/// the pinion flank's face (a thousandth of the face with no load: only the cells' positions
+/// matter then).
+double
+starting_band(const UnloadedTca &tca, const TcaPosition &position, double torque, double Estar)
+{
+  const PairContact &c     = position.pairs[std::size_t(position.leading)];
+  const Flank       &flank = tca.pinion_flanks().flank(c.pinion_tooth, tca.options_data().side);
+  const FlankDomain  d     = flank.domain();
+  const double       u     = (d.u_min + d.u_max) / 2;
+  const double       face =
+      (flank.evaluate(u, d.v_max).position - flank.evaluate(u, d.v_min).position).norm();
+  const double lever = std::abs(Vec3::UnitZ().cross(c.position).dot(c.normal_pinion));
+  if (!(torque > 0) || !(lever > 0))
+    return 1e-3 * face;
+  return 4 * 2 * (torque / lever / face) / (pi * Estar);
+}
+
+/// The gap at the edge of the solved contact (relative to each pair's separation). A column
+/// with one loaded cell shows no gap of its own (the contact is narrower than a cell): there
+/// Hertz's 2 q / (pi E*) for the column's load per length q, at most the gap at half a cell's
+/// width (band / cells across^2), which the next zone resolves.
+double
+contact_edge_gap(const TcaPosition &position, const LoadedPosition &r,
+                 const ContactCellOptions &cells, double Estar)
+{
+  struct Column
+  {
+    double q = 0;
+    int    loaded = 0;
+  };
+  double                                 g = 0;
+  std::map<std::pair<int, long>, Column> column;
+  for (std::size_t i = 0; i < r.cells.size(); ++i)
+    {
+      const ContactCell &c = r.cells[i];
+      const double       f = r.force[Eigen::Index(i)];
+      if (!(f > 0))
+        continue;
+      g = std::max(g, c.gap - std::max(0.0, position.pairs[std::size_t(c.pair)].separation));
+      Column &k = column[{c.pair, std::lround(c.t / c.dt)}];
+      k.q += f / c.dt, ++k.loaded;
+    }
+  for (const auto &[key, k] : column)
+    if (k.loaded == 1)
+      g = std::max(g, std::min(2 * k.q / (pi * Estar),
+                               cells.gap_band / (cells.cells_across * cells.cells_across)));
+  return g;
+}
+} // namespace
+
 LoadedPosition
 loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
                const LoadedContactOptions &options, const StructuralCompliance &pinion,
                const StructuralCompliance &gear)
 {
-  LoadedContactOptions o = options;
-  for (int widening = 0;; ++widening)
+  LoadedContactOptions o     = options;
+  const double         Estar = contact_modulus(o.pinion_material, o.gear_material);
+  if (!(o.cells.gap_band > 0))
+    o.cells.gap_band = starting_band(tca, position, torque, Estar);
+  bool widened = false;
+  for (int zone = 1;; ++zone)
     {
       LoadedPosition r = loaded_contact_in_zone(tca, position, torque, o, pinion, gear);
-      if (!r.zone_edge_reached)
-        return r;
-      if (widening == 4)
+      r.zones          = zone;
+      if (zone == 60)
         {
-          const ContactCell &c = r.cells[std::size_t(r.zone_edge_cell)];
           std::ostringstream msg;
           msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and "
-              << torque << " N m the contact spreads beyond a cell zone of gap band "
-              << o.cells.gap_band * 1e6 << " um (pinion tooth " << c.pinion_tooth << ", gear tooth "
-              << c.gear_tooth << ", pinion point z = " << c.position.z() * 1e3
-              << " mm, r = " << c.position.head<2>().norm() * 1e3 << " mm, "
-              << r.force[r.zone_edge_cell] << " N of " << r.normal_force
-              << " N); check the load and the compliances, or raise the gap band (scene: "
-                 "Loaded contact/<pair>/gap band [um])";
+              << torque << " N m the cell zone did not settle after 60 zones (last gap band "
+              << o.cells.gap_band * 1e6 << " um); check the load and the compliances";
           throw InputError(msg.str());
         }
-      o.cells.gap_band *= 2;
-      // the zone's width grows with the square root of the gap band: cells of the same size
-      o.cells.cells_across = int(std::ceil(o.cells.cells_across * std::sqrt(2.0))) | 1;
+      // Pairs standing further apart than the cells reach that the approach brings into
+      // contact join (the pair's lever times the rigid approach exceeds its separation).
+      const double approach = std::abs(r.eL - r.e0); // the pinion's rotation [rad]
+      bool         joined   = false;
+      for (const PairContact &c : position.pairs)
+        if (c.found && c.separation > std::max(o.cells.pair_gap, o.cells.gap_band) &&
+            approach * std::abs(Vec3::UnitZ().cross(c.position).dot(c.normal_pinion)) >
+                c.separation)
+          o.cells.pair_gap = std::max(o.cells.pair_gap, c.separation * (1 + 1e-9)), joined = true;
+      if (joined)
+        continue;
+      if (torque == 0 || (!o.adapt_band && !r.zone_edge_reached))
+        return r;
+      const double edge_gap = contact_edge_gap(position, r, o.cells, Estar);
+      if (r.zone_edge_reached && !o.adapt_band)
+        {
+          o.cells.gap_band *= 2; // the zone's width grows with sqrt of the band: cells of one size
+          o.cells.cells_across = int(std::ceil(o.cells.cells_across * std::sqrt(2.0))) | 1;
+        }
+      else if (r.zone_edge_reached)
+        o.cells.gap_band = std::max(4 * o.cells.gap_band, 4 * edge_gap), widened = true;
+      else if (!widened && o.cells.gap_band > 9 * edge_gap)
+        o.cells.gap_band = 4 * edge_gap; // the contact fills less than a third of the zone
+      else
+        return r;
     }
 }
 
@@ -182,6 +256,13 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
         (out.zone_edge_cell < 0 || s.force[i] > s.force[out.zone_edge_cell]))
       out.zone_edge_cell = int(i);
   out.zone_edge_reached = out.zone_edge_cell >= 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (s.force[i] > 0 && out.cells[i].flank_edge)
+      {
+        out.edge_force += s.force[i];
+        if (out.edge_cell < 0 || s.force[i] > s.force[out.edge_cell])
+          out.edge_cell = int(i);
+      }
   const double sign     = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
   out.force             = s.force;
   out.active_cells      = s.active;
@@ -222,7 +303,8 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   // process's jobs on a few threads; what the tables need of each sent to every process.
   struct Solved
   {
-    double                             eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
+    double eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
+    double interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0;
     std::vector<double>                pair_force;
     std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
   };
@@ -245,11 +327,19 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
       s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
       s.normal_force = r.normal_force, s.lever = r.lever;
       s.pair_force = r.pair_force;
+      s.edge_force = r.edge_force;
+      if (r.edge_cell >= 0)
+        {
+          const Vec3 &x = r.cells[std::size_t(r.edge_cell)].position;
+          s.edge_radius = x.head<2>().norm(), s.edge_z = x.z();
+        }
       for (std::size_t j = 0; j < r.cells.size(); ++j)
         {
-          const ContactCell &cell = r.cells[j];
-          s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1,
-                              r.force[Eigen::Index(j)] / (cell.ds * cell.dt)}});
+          const ContactCell &cell     = r.cells[j];
+          const double       pressure = r.force[Eigen::Index(j)] / (cell.ds * cell.dt);
+          s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1, pressure}});
+          if (!cell.flank_edge)
+            s.interior_peak = std::max(s.interior_peak, pressure);
         }
       if (step)
         {
@@ -266,6 +356,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
           const Solved &s = solved[job];
           payload.insert(payload.end(),
                          {double(job), s.eL, s.mesh_stiffness, s.normal_force, s.lever,
+                          s.interior_peak, s.edge_force, s.edge_radius, s.edge_z,
                           double(s.pair_force.size()), double(s.cells.size())});
           payload.insert(payload.end(), s.pair_force.begin(), s.pair_force.end());
           for (const auto &cell : s.cells)
@@ -277,8 +368,10 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
             Solved &s = solved[std::size_t(from[at])];
             s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
             s.normal_force = from[at + 3], s.lever = from[at + 4];
-            const auto slots = std::size_t(from[at + 5]), cells = std::size_t(from[at + 6]);
-            at += 7;
+            s.interior_peak = from[at + 5], s.edge_force = from[at + 6];
+            s.edge_radius = from[at + 7], s.edge_z = from[at + 8];
+            const auto slots = std::size_t(from[at + 9]), cells = std::size_t(from[at + 10]);
+            at += 11;
             s.pair_force.assign(from.begin() + long(at), from.begin() + long(at + slots));
             at += slots;
             s.cells.resize(cells);
@@ -307,6 +400,9 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
           c.cell_pressure.insert(c.cell_pressure.end(), cell.begin(), cell.end());
         }
       c.peak_pressure.push_back(p_max);
+      c.interior_peak_pressure.push_back(r.interior_peak);
+      c.edge_load_share.push_back(r.normal_force > 0 ? r.edge_force / r.normal_force : 0.0);
+      c.edge_position.insert(c.edge_position.end(), {r.edge_radius, r.edge_z});
     }
   c.mean_pairs_in_contact = touching / n;
   return c;

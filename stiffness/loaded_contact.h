@@ -61,7 +61,14 @@ table_compliance(const FlankCompliance &table, bool pinion);
 
 struct LoadedContactOptions
 {
+  /// The cells; cells.gap_band is where the zone starts (0: from the load, by Hertz's line
+  /// contact on the leading pair) when adapt_band is set.
   ContactCellOptions cells;
+  /// Fit the zone to the load: the band is set to four times the gap at the contact's edge
+  /// (the contact about half the zone across, whatever the load), narrowed while the contact
+  /// fills less than a third of the zone, widened while it reaches the zone's edge. Without
+  /// it the band is cells.gap_band, only widened.
+  bool adapt_band = true;
   Material           pinion_material, gear_material;
   bool               half_space = true; ///< add the half-space part between cells of a pair
   /// Sets a cell's table_* parameters when the flanks are not those of the compliance tables
@@ -97,12 +104,17 @@ struct LoadedPosition
   /// too narrow for the load (loaded_contact widens it and solves again).
   bool zone_edge_reached = false;
   int  zone_edge_cell    = -1; ///< the most loaded such cell (index into cells)
+  /// Edge contact: the force on cells at an edge of either flank (tip, face end, start of the
+  /// working flank) [N] and the most loaded of them (-1: none loaded).
+  double edge_force = 0;
+  int    edge_cell  = -1;
+  int    zones      = 0; ///< cell zones solved (the band fitted to the load)
 };
 
 /// Solves the loaded contact at one position of the unloaded TCA under a pinion torque >= 0.
-/// When the contact reaches the edge of the cell zone, the gap band is doubled (and the cells
-/// across by sqrt 2, so their size stays) and the position solved again, up to four times.
-/// Throws InputError when no cell lies within the gap band and when the zone stays too narrow.
+/// The zone is fitted to the load (LoadedContactOptions::adapt_band); pairs standing apart that
+/// the approach would bring into contact join, and the position is solved again. Throws
+/// InputError when no cell lies within the gap band and when the zone does not settle.
 LoadedPosition
 loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
                const LoadedContactOptions &options, const StructuralCompliance &pinion,
@@ -136,6 +148,11 @@ struct MeshCycleContact
   std::vector<double> lever;          ///< lambda [M][N] [m]
   std::vector<double> pair_force;     ///< per slot [M][N][S] [N]
   std::vector<double> peak_pressure;  ///< largest cell pressure [M][N] [Pa]
+  /// largest pressure off the flanks' edges [M][N] [Pa] (Hertz's where the flanks are smooth)
+  std::vector<double> interior_peak_pressure;
+  std::vector<double> edge_load_share; ///< force on cells at a flank edge / F [M][N]
+  /// the most loaded edge cell's pinion point: radius, axial position [M][N][2] [m] (0: none)
+  std::vector<double> edge_position;
   std::vector<double> cell_pressure;  ///< pinion tooth (-1 unused), u1, v1, p [M][N][C][4]
   double              mean_pairs_in_contact = 0; ///< of the unloaded TCA (eps_gamma, conjugate)
 };

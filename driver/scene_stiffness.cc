@@ -205,9 +205,14 @@ LoadedScene::declare(ParameterHandler &prm)
                     "Contact cells across each contact line (odd: a row on the line).");
   prm.declare_entry("cells along", "24", Patterns::Integer(1, 1000),
                     "Contact cells along each contact line.");
-  prm.declare_entry("gap band", "10", Patterns::Double(0.01),
-                    "[um] The contact zone reaches where the unloaded gap opens to this; above "
-                    "the largest elastic approach.");
+  prm.declare_entry("gap band", "0", Patterns::Double(0),
+                    "[um] Where the contact zone starts: it reaches where the unloaded gap opens "
+                    "to this. 0: from the load (four times the gap at the edge of Hertz's line "
+                    "contact on the leading pair). Either way the zone is then fitted to the "
+                    "solved contact at every torque and position (four times the gap at the "
+                    "contact's edge: narrowed while the contact fills less than a third of it, "
+                    "widened while it reaches its edge), so that light and heavy loads, small and "
+                    "large gears are resolved alike; results: stiffness/<pair>/gap_band.");
   prm.declare_entry("reference positions", "", Patterns::List(Patterns::Integer(0), 0, 1000),
                     "Positions of the mesh cycle (0 = the first) solved again in reference mode "
                     "(both members meshed for the position and refined about its contact "

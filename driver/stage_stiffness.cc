@@ -19,9 +19,11 @@ namespace gearkit
 {
 namespace
 {
-/// Pairs within this gap somewhere in the mesh cycle get their teeth into the segments (the
-/// loaded contact's gap band is 10 um by default; tip reliefs of that size engage under load).
-constexpr double segment_gap_band = 20e-6;
+/// Pairs within this gap somewhere in the mesh cycle get their teeth into the segments: 20 um
+/// at a module of 4.5 mm, in proportion to the module (geometrically similar pairs at the same
+/// nominal tooth load deflect in proportion to their size; tip reliefs of that size engage
+/// under load). A pair the load brings into contact outside the segments is refused.
+constexpr double segment_gap_per_module = 20e-6 / 4.5e-3;
 
 /// The module the scene's element sizes are relative to: the normal module (involute), the mean
 /// normal module (spiral bevel).
@@ -130,7 +132,8 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       for (int i = 0; i < tca.options.positions_per_mesh; ++i)
         positions.push_back(
             t.at(tca.options.start_angle + 2 * pi / z1 * i / tca.options.positions_per_mesh));
-      const auto segments = loaded_segments(positions, z1, members.gear->teeth(), segment_gap_band);
+      const auto segments = loaded_segments(positions, z1, members.gear->teeth(),
+                                            segment_gap_per_module * member_module(pair));
       const H5Group g     = out.group(pair.name);
       // The tables on the scene's mesh, and for the error estimate on one of twice its element
       // sizes at the flanks (FeScene::error_estimate).
@@ -327,6 +330,17 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         g.write("pinion_tooth", c.slot_tooth, {N, S}, "1",
                 "pinion tooth of each pair slot (-1: empty)");
         g.write("peak_pressure", c.peak_pressure, {M, N}, "Pa", "largest cell pressure");
+        g.write("interior_peak_pressure", c.interior_peak_pressure, {M, N}, "Pa",
+                "largest pressure on cells off the flanks' edges (Hertz's where the flanks are "
+                "smooth)");
+        g.write("edge_load_share", c.edge_load_share, {M, N}, "1",
+                "edge contact: force on cells at an edge of either flank (tip, face end, start "
+                "of the working flank) / F");
+        g.write("edge_position", c.edge_position, {M, N, 2}, "m",
+                "the most loaded edge cell's pinion point: radius, axial position (0: none)");
+        g.write("gap_band", c.gap_band, {M, N}, "m",
+                "the contact zone's band fitted to the load (the zone reaches where the "
+                "unloaded gap opens to this)");
         g.write("contact_cells", c.cell_pressure, {M, N, C, 4}, "mixed",
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
         g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
@@ -409,6 +423,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           ReferenceContactOptions     ro;
           ro.cells             = lo;
           ro.cells.covered     = nullptr;
+          // the reference zone: the fast mode's band at the position, for its largest torque
           ro.degree            = fe.degree;
           ro.hold_cuts         = fe.hold_cuts;
           ro.elements_per_cell = lc.reference_elements_per_cell;
@@ -436,6 +451,10 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
               const int i = lc.reference_positions[k];
               progress.note("position " + std::to_string(i) + " meshing and solving");
               ro.vtu_prefix = (vtu / (pair.name + "_position" + std::to_string(i))).string();
+              ro.cells.cells.gap_band = 0;
+              for (std::size_t m = 0; m < M; ++m)
+                ro.cells.cells.gap_band =
+                    std::max(ro.cells.cells.gap_band, fine.gap_band[m * fine.positions + i]);
               ReferenceContactInfo              info;
               const std::vector<LoadedPosition> r = reference_contact(
                   ref_pinion, ref_gear, theory,

@@ -60,12 +60,16 @@ loaded_cells(const UnloadedTca &tca, const TcaPosition &position, const LoadedCo
   if (o.covered)
     {
       for (const PairContact &c : position.pairs)
-        if (c.found && c.separation <= tca.options_data().contact_tolerance &&
+        if (c.found &&
+            c.separation <= std::max(tca.options_data().contact_tolerance, o.cells.pair_gap) &&
             !o.covered(c.pinion_tooth, c.gear_tooth))
           throw InputError("loaded contact: pinion tooth " + std::to_string(c.pinion_tooth) +
                            " and gear tooth " + std::to_string(c.gear_tooth) +
-                           " touch but the finite-element segments do not cover them; use more "
-                           "segment teeth");
+                           (c.separation <= tca.options_data().contact_tolerance
+                                ? " touch"
+                                : " come into contact under the load") +
+                           " but the finite-element segments do not cover them; use more "
+                           "segment teeth (Finite elements/<pair>/segment teeth)");
       cells.erase(std::remove_if(cells.begin(), cells.end(),
                                  [&](const ContactCell &c) {
                                    return !o.covered(c.pinion_tooth, c.gear_tooth);
@@ -304,7 +308,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   struct Solved
   {
     double eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
-    double interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0;
+    double interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0, gap_band = 0;
     std::vector<double>                pair_force;
     std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
   };
@@ -327,7 +331,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
       s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
       s.normal_force = r.normal_force, s.lever = r.lever;
       s.pair_force = r.pair_force;
-      s.edge_force = r.edge_force;
+      s.edge_force = r.edge_force, s.gap_band = r.gap_band;
       if (r.edge_cell >= 0)
         {
           const Vec3 &x = r.cells[std::size_t(r.edge_cell)].position;
@@ -356,7 +360,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
           const Solved &s = solved[job];
           payload.insert(payload.end(),
                          {double(job), s.eL, s.mesh_stiffness, s.normal_force, s.lever,
-                          s.interior_peak, s.edge_force, s.edge_radius, s.edge_z,
+                          s.interior_peak, s.edge_force, s.edge_radius, s.edge_z, s.gap_band,
                           double(s.pair_force.size()), double(s.cells.size())});
           payload.insert(payload.end(), s.pair_force.begin(), s.pair_force.end());
           for (const auto &cell : s.cells)
@@ -369,9 +373,9 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
             s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
             s.normal_force = from[at + 3], s.lever = from[at + 4];
             s.interior_peak = from[at + 5], s.edge_force = from[at + 6];
-            s.edge_radius = from[at + 7], s.edge_z = from[at + 8];
-            const auto slots = std::size_t(from[at + 9]), cells = std::size_t(from[at + 10]);
-            at += 11;
+            s.edge_radius = from[at + 7], s.edge_z = from[at + 8], s.gap_band = from[at + 9];
+            const auto slots = std::size_t(from[at + 10]), cells = std::size_t(from[at + 11]);
+            at += 12;
             s.pair_force.assign(from.begin() + long(at), from.begin() + long(at + slots));
             at += slots;
             s.cells.resize(cells);
@@ -403,6 +407,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
       c.interior_peak_pressure.push_back(r.interior_peak);
       c.edge_load_share.push_back(r.normal_force > 0 ? r.edge_force / r.normal_force : 0.0);
       c.edge_position.insert(c.edge_position.end(), {r.edge_radius, r.edge_z});
+      c.gap_band.push_back(r.gap_band);
     }
   c.mean_pairs_in_contact = touching / n;
   return c;

@@ -153,6 +153,7 @@ struct MeshCycleContact
   std::vector<double> edge_load_share; ///< force on cells at a flank edge / F [M][N]
   /// the most loaded edge cell's pinion point: radius, axial position [M][N][2] [m] (0: none)
   std::vector<double> edge_position;
+  std::vector<double> gap_band; ///< of the cell zone fitted to the load [M][N] [m]
   std::vector<double> cell_pressure;  ///< pinion tooth (-1 unused), u1, v1, p [M][N][C][4]
   double              mean_pairs_in_contact = 0; ///< of the unloaded TCA (eps_gamma, conjugate)
 };

@@ -132,9 +132,9 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       for (int i = 0; i < tca.options.positions_per_mesh; ++i)
         positions.push_back(
             t.at(tca.options.start_angle + 2 * pi / z1 * i / tca.options.positions_per_mesh));
-      const auto segments = loaded_segments(positions, z1, members.gear->teeth(),
-                                            segment_gap_per_module * member_module(pair));
-      const H5Group g     = out.group(pair.name);
+      const auto    segments = loaded_segments(positions, z1, members.gear->teeth(),
+                                               segment_gap_per_module * member_module(pair));
+      const H5Group g        = out.group(pair.name);
       // The tables on the scene's mesh, and for the error estimate on one of twice its element
       // sizes at the flanks (FeScene::error_estimate).
       // Both tables are computed before either is written: a failure leaves no half group.
@@ -296,11 +296,33 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       const FlankCompliance      cgr = table(*members.gear, cg, "gear");
       const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cgr, false);
 
+      std::string pair_warnings; // of the loaded contact: refused torques, a lost estimate
       auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
                          const char *label) {
         Progress               progress("stiffness", lc.positions * lc.torques.size());
-        const MeshCycleContact c = loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg,
-                                                        [&] { progress.advance(); });
+        const MeshCycleContact all = loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg,
+                                                          [&] { progress.advance(); });
+        // A torque that fails at some position is refused alone, with a warning; the others
+        // are kept.
+        std::vector<std::size_t> keep;
+        std::vector<double>      torques, refused;
+        for (std::size_t k = 0; k < all.torques; ++k)
+          if (all.torque_failure[k].empty())
+            keep.push_back(k), torques.push_back(lc.torques[k]);
+          else
+            {
+              std::ostringstream w;
+              w << "Loaded contact/" << pair.name << "/torques" << label << ": " << lc.torques[k]
+                << " N m refused: " << all.torque_failure[k];
+              log << "  warning: " << w.str() << "\n";
+              pair_warnings += w.str() + "\n";
+              refused.push_back(lc.torques[k]);
+            }
+        if (keep.empty())
+          throw InputError("loaded contact of " + pair.name + label +
+                           ": no torque could be solved; at the first, " +
+                           all.torque_failure.front());
+        const MeshCycleContact c = select_torques(all, keep);
         const std::size_t      n = c.positions;
         for (std::size_t k = 0; k < c.torques; ++k)
           {
@@ -311,12 +333,17 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                 k_mean += c.mesh_stiffness[k * n + i] / n;
                 de_min = std::min(de_min, de), de_max = std::max(de_max, de);
               }
-            log << "  " << pair.name << label << ", " << lc.torques[k] << " N m: K_m mean "
-                << k_mean << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6
-                << " urad\n";
+            log << "  " << pair.name << label << ", " << torques[k] << " N m: K_m mean " << k_mean
+                << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6 << " urad\n";
           }
         const hsize_t N = n, M = c.torques, S = c.slots, C = c.cells;
-        g.write("torque", lc.torques, {M}, "N m", "pinion torques");
+        g.write("torque", torques, {M}, "N m", "pinion torques (those solved)");
+        if (!refused.empty())
+          {
+            g.write("refused_torque", refused, {refused.size()}, "N m",
+                    "torques of the scene the loaded contact could not solve (attribute "
+                    "stiffness/<pair>/warnings: why)");
+          }
         g.write("pinion_angle", c.pinion_angle, {N}, "rad", "pinion rotation phi");
         g.write("transmission_error_unloaded", c.unloaded_te, {N}, "rad", "e_0 (pinion radians)");
         g.write("transmission_error_loaded", c.loaded_te, {M, N}, "rad",
@@ -345,7 +372,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
                 "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
         g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
                 "unloaded contact ratio (eps_gamma for conjugate flanks)");
-        return c;
+        return std::make_pair(c, torques);
       };
 
       LoadedContactOptions lo;
@@ -356,8 +383,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.communicator = MPI_COMM_WORLD; // the positions shared among the processes
       const H5Group g = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
-      const UnloadedTca      theory(members.pinion, members.gear, members.assembly, tca.options);
-      const MeshCycleContact fine = analyse(theory, lo, g, "");
+      const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
+      const auto [fine, torques] = analyse(theory, lo, g, "");
 
       if (cg.has("coarse"))
         {
@@ -368,39 +395,58 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           const FlankCompliance cgr2 = table(*members.gear, cg.group("coarse"), "gear");
           LoadedContactOptions  half = lo;
           half.cells                 = halved_cells(lo.cells);
-          Progress   progress("stiffness error estimate", 2 * lc.positions * lc.torques.size());
-          const auto step          = [&] { progress.advance(); };
-          const MeshCycleError err = mesh_cycle_error(
-              fine,
-              loaded_contact_cycle(theory, lc.positions, lc.torques, lo,
-                                   table_compliance(cp2, true), table_compliance(cgr2, false),
-                                   step),
-              c, loaded_contact_cycle(theory, lc.positions, lc.torques, half, sp, sg, step));
-          const std::size_t n = fine.positions, M = fine.torques;
-          const H5Group     e = g.group("error_estimate");
-          e.attribute("method", "|K(h) - K(c h)| / (c - 1) of the finite elements (the "
-                                "compliance tables on a mesh of c times the element sizes at "
-                                "the flanks, c = compliance/<pair>/coarse/coarsening, 2 unless "
-                                "that mesh failed) plus |K(cells) - K(cells / 2)| of the contact "
-                                "cells (half across and along); an upper estimate wherever the "
-                                "error falls at least linearly with the size");
-          e.write("mesh_stiffness", err.mesh_stiffness, {M, n}, "N/m", "estimated error of K_m");
-          e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n}, "N/m",
-                  "|K(h) - K(c h)| / (c - 1)");
-          e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n}, "N/m",
-                  "|K(cells) - K(cells / 2)|");
-          e.write("transmission_error_loaded", err.loaded_te, {M, n}, "rad",
-                  "estimated error of e_L (the same two changes)");
-          for (std::size_t k = 0; k < M; ++k)
+          Progress   progress("stiffness error estimate", 2 * lc.positions * torques.size());
+          const auto step = [&] { progress.advance(); };
+          const MeshCycleContact coarse =
+              loaded_contact_cycle(theory, lc.positions, torques, lo, table_compliance(cp2, true),
+                                   table_compliance(cgr2, false), step);
+          const MeshCycleContact halved =
+              loaded_contact_cycle(theory, lc.positions, torques, half, sp, sg, step);
+          std::string lost;
+          for (std::size_t k = 0; k < torques.size() && lost.empty(); ++k)
+            for (const MeshCycleContact *other : {&coarse, &halved})
+              if (lost.empty() && !other->torque_failure[k].empty())
+                lost = "Loaded contact/" + pair.name + ": no error estimate (at " +
+                       std::to_string(torques[k]) + " N m on " +
+                       (other == &coarse ? "the coarse elements" : "half the cells") +
+                       " the contact failed: " + other->torque_failure[k] + ")";
+          if (!lost.empty())
             {
-              double largest = 0, mean = 0;
-              for (std::size_t i = 0; i < n; ++i)
+              log << "  warning: " << lost << "\n";
+              pair_warnings += lost + "\n";
+            }
+          else
+            {
+              const MeshCycleError err = mesh_cycle_error(fine, coarse, c, halved);
+              const std::size_t    n = fine.positions, M = fine.torques;
+              const H5Group        e = g.group("error_estimate");
+              e.attribute("method",
+                          "|K(h) - K(c h)| / (c - 1) of the finite elements (the "
+                          "compliance tables on a mesh of c times the element sizes at "
+                          "the flanks, c = compliance/<pair>/coarse/coarsening, 2 unless "
+                          "that mesh failed) plus |K(cells) - K(cells / 2)| of the contact "
+                          "cells (half across and along); an upper estimate wherever the "
+                          "error falls at least linearly with the size");
+              e.write("mesh_stiffness", err.mesh_stiffness, {M, n}, "N/m",
+                      "estimated error of K_m");
+              e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n}, "N/m",
+                      "|K(h) - K(c h)| / (c - 1)");
+              e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n}, "N/m",
+                      "|K(cells) - K(cells / 2)|");
+              e.write("transmission_error_loaded", err.loaded_te, {M, n}, "rad",
+                      "estimated error of e_L (the same two changes)");
+              for (std::size_t k = 0; k < M; ++k)
                 {
-                  const double r = err.mesh_stiffness[k * n + i] / fine.mesh_stiffness[k * n + i];
-                  largest        = std::max(largest, r), mean += r / n;
+                  double largest = 0, mean = 0;
+                  for (std::size_t i = 0; i < n; ++i)
+                    {
+                      const double r =
+                          err.mesh_stiffness[k * n + i] / fine.mesh_stiffness[k * n + i];
+                      largest = std::max(largest, r), mean += r / n;
+                    }
+                  log << "  " << pair.name << ", " << torques[k] << " N m: K_m error estimate mean "
+                      << mean * 100 << " %, largest " << largest * 100 << " %\n";
                 }
-              log << "  " << pair.name << ", " << lc.torques[k] << " N m: K_m error estimate mean "
-                  << mean * 100 << " %, largest " << largest * 100 << " %\n";
             }
         }
 
@@ -421,8 +467,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           // files next to the stage's cache file (the driver copies them to <output>/vtu/).
           const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
           ReferenceContactOptions     ro;
-          ro.cells             = lo;
-          ro.cells.covered     = nullptr;
+          ro.cells         = lo;
+          ro.cells.covered = nullptr;
           // the reference zone: the fast mode's band at the position, for its largest torque
           ro.degree            = fe.degree;
           ro.hold_cuts         = fe.hold_cuts;
@@ -443,7 +489,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
           ro.pinion_whole_rim = fe.whole_rim(true), ro.gear_whole_rim = fe.whole_rim(false);
           ro.flank_size         = fe.flank_size * member_module(pair);
           ro.far_size           = fe.far_size * member_module(pair);
-          const std::size_t   P = lc.reference_positions.size(), M = lc.torques.size();
+          const std::size_t   P = lc.reference_positions.size(), M = torques.size();
           std::vector<double> phi, eL, K, F, dofs, seconds;
           Progress            progress("reference mode " + pair.name + ": position", P);
           for (std::size_t k = 0; k < P; ++k)
@@ -458,8 +504,8 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
               ReferenceContactInfo              info;
               const std::vector<LoadedPosition> r = reference_contact(
                   ref_pinion, ref_gear, theory,
-                  theory.at(tca.options.start_angle + 2 * pi / z1 * i / lc.positions), lc.torques,
-                  ro, &info);
+                  theory.at(tca.options.start_angle + 2 * pi / z1 * i / lc.positions), torques, ro,
+                  &info);
               phi.push_back(r.front().pinion_angle);
               for (const LoadedPosition &p : r)
                 eL.push_back(p.eL), K.push_back(p.mesh_stiffness), F.push_back(p.normal_force);
@@ -512,26 +558,31 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       g.write("iso_c_th", s.c_th * 1e9 * b, "N/m",
               "ISO 6336-1 theoretical single stiffness c'_th times the face width");
 
-      if (!lc.measured)
-        continue;
-      // (a measurement source is there: LoadedScene::check)
-      const H5Group mg = upstream.at("measured")->group(pair.name);
-      const auto    mp =
-          std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
-      const auto mgr =
-          std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
-      // Compliances reused: each cell looks up the theoretical flank at its own position
-      // (MemberFlanks::rotational_parameters).
-      lo.table_parameters = [&](ContactCell &c) {
-        std::tie(c.table_u1, c.table_v1) = members.pinion->rotational_parameters(
-            mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position);
-        std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
-            mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
-      };
-      lo.cells.zone_from_gaps = true; // the measured flanks' local curvature carries their noise
-      const H5Group gm        = g.group("measured");
-      gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");
-      analyse(UnloadedTca(mp, mgr, members.assembly, tca.options), lo, gm, " measured");
+      if (lc.measured)
+        {
+          // (a measurement source is there: LoadedScene::check)
+          const H5Group mg = upstream.at("measured")->group(pair.name);
+          const auto    mp =
+              std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
+          const auto mgr =
+              std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
+          // Compliances reused: each cell looks up the theoretical flank at its own position
+          // (MemberFlanks::rotational_parameters).
+          lo.table_parameters = [&](ContactCell &c) {
+            std::tie(c.table_u1, c.table_v1) = members.pinion->rotational_parameters(
+                mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position);
+            std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
+                mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
+          };
+          lo.cells.zone_from_gaps =
+              true; // the measured flanks' local curvature carries their noise
+          const H5Group gm = g.group("measured");
+          gm.attribute("method",
+                       "fast mode on the measured flanks, theoretical compliances reused");
+          analyse(UnloadedTca(mp, mgr, members.assembly, tca.options), lo, gm, " measured");
+        }
+      if (!pair_warnings.empty())
+        g.attribute("warnings", pair_warnings);
     }
 }
 } // namespace gearkit

@@ -165,7 +165,7 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
           double in = 0, out = end;
           for (int it = 0; it < 40 && std::abs(out - in) > 1e-9 * (t1 - t0); ++it)
             {
-              const double mid         = (in + out) / 2;
+              const double mid              = (in + out) / 2;
               (within_band(mid) ? in : out) = mid;
             }
           end = out, band_end[e] = true;
@@ -250,9 +250,9 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
               cell.dt = dt, cell.ds = size;
               cell.zone_edge = (w == w_band && (a <= -w + tol || b >= w - tol)) ||
                                (i == 0 && band_end[0]) || (i == o.cells_along - 1 && band_end[1]);
-              cell.flank_edge = (i == 0 && !band_end[0]) ||
-                                (i == o.cells_along - 1 && !band_end[1]) ||
-                                (cut && ((s_lo > -w && a <= s_lo + tol) || (s_hi < w && b >= s_hi - tol)));
+              cell.flank_edge =
+                  (i == 0 && !band_end[0]) || (i == o.cells_along - 1 && !band_end[1]) ||
+                  (cut && ((s_lo > -w && a <= s_lo + tol) || (s_hi < w && b >= s_hi - tol)));
               if (!gap_at(c.position + s_cell * e_s + t_cell * e_t, s_cell, t_cell, cell))
                 continue;
               cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;

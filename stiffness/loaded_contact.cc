@@ -6,6 +6,10 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
 #include <array>
 #include <map>
@@ -125,7 +129,7 @@ contact_edge_gap(const TcaPosition &position, const LoadedPosition &r,
 {
   struct Column
   {
-    double q = 0;
+    double q      = 0;
     int    loaded = 0;
   };
   double                                 g = 0;
@@ -267,11 +271,11 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
         if (out.edge_cell < 0 || s.force[i] > s.force[out.edge_cell])
           out.edge_cell = int(i);
       }
-  const double sign     = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
-  out.force             = s.force;
-  out.active_cells      = s.active;
-  out.iterations        = s.iterations;
-  out.eL                = out.e0 + sign * s.approach;
+  const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
+  out.force         = s.force;
+  out.active_cells  = s.active;
+  out.iterations    = s.iterations;
+  out.eL            = out.e0 + sign * s.approach;
   out.pair_force.assign(position.pairs.size(), 0.0);
   for (Eigen::Index i = 0; i < n; ++i)
     out.pair_force[out.cells[i].pair] += s.force[i];
@@ -287,7 +291,11 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
                      const LoadedContactOptions &lo, const StructuralCompliance &sp,
                      const StructuralCompliance &sg, const std::function<void()> &step)
 {
-  const int                m          = int(torques.size());
+  const int m = int(torques.size());
+  for (const double T : torques) // bad input: refused whole (a failing solve: per torque)
+    if (!(T >= 0) || !std::isfinite(T))
+      throw InputError("loaded contact: the pinion torques must be finite and >= 0 (got " +
+                       std::to_string(T) + " N m)");
   const double             mesh_angle = 2 * pi / t.pinion_flanks().teeth();
   std::vector<TcaPosition> positions;
   double                   touching = 0;
@@ -311,6 +319,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
     double interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0, gap_band = 0;
     std::vector<double>                pair_force;
     std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
+    std::string                        failure;
   };
   const MPI_Comm           comm = lo.communicator;
   const unsigned           size = dealii::Utilities::MPI::n_mpi_processes(comm);
@@ -324,10 +333,22 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   // a failure on any process is thrown on all (the first failed process's)
   collectively(comm, [&] {
     parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
-      const std::size_t    job = mine[k];
-      const LoadedPosition r   = loaded_contact(t, positions[job % std::size_t(n)],
-                                                torques[job / std::size_t(n)], lo, sp, sg);
-      Solved              &s   = solved[job];
+      const std::size_t job = mine[k];
+      Solved           &s   = solved[job];
+      LoadedPosition    r;
+      try
+        {
+          r = loaded_contact(t, positions[job % std::size_t(n)], torques[job / std::size_t(n)], lo,
+                             sp, sg);
+        }
+      catch (const InputError &e)
+        {
+          std::ostringstream msg;
+          msg << "position " << job % std::size_t(n) << " (pinion angle "
+              << positions[job % std::size_t(n)].pinion_angle << " rad): " << e.what();
+          s.failure = msg.str();
+          return;
+        }
       s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
       s.normal_force = r.normal_force, s.lever = r.lever;
       s.pair_force = r.pair_force;
@@ -354,6 +375,13 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
   });
   if (size > 1)
     {
+      std::vector<std::pair<std::size_t, std::string>> failed;
+      for (const std::size_t job : mine)
+        if (!solved[job].failure.empty())
+          failed.emplace_back(job, solved[job].failure);
+      for (const auto &from : dealii::Utilities::MPI::all_gather(comm, failed))
+        for (const auto &[job, why] : from)
+          solved[job].failure = why;
       std::vector<double> payload;
       for (const std::size_t job : mine)
         {
@@ -367,7 +395,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
             payload.insert(payload.end(), cell.begin(), cell.end());
         }
       for (const std::vector<double> &from : dealii::Utilities::MPI::all_gather(comm, payload))
-        for (std::size_t at = 0; at < from.size();)
+        for (std::size_t at = 0; at < from.size();) // (a failed job sends zeros)
           {
             Solved &s = solved[std::size_t(from[at])];
             s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
@@ -384,6 +412,10 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
                 x = from[at++];
           }
     }
+  c.torque_failure.assign(std::size_t(m), "");
+  for (std::size_t job = 0; job < jobs; ++job)
+    if (!solved[job].failure.empty() && c.torque_failure[job / std::size_t(n)].empty())
+      c.torque_failure[job / std::size_t(n)] = solved[job].failure;
   for (const Solved &s : solved)
     c.cells = std::max(c.cells, s.cells.size());
   for (int i = 0; i < n; ++i)
@@ -411,6 +443,35 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
     }
   c.mean_pairs_in_contact = touching / n;
   return c;
+}
+
+MeshCycleContact
+select_torques(const MeshCycleContact &c, const std::vector<std::size_t> &keep)
+{
+  MeshCycleContact  out = c;
+  const std::size_t N = c.positions, S = c.slots, C = c.cells;
+  auto pick = [&](std::vector<double> &to, const std::vector<double> &from, std::size_t per) {
+    to.clear();
+    for (const std::size_t k : keep)
+      {
+        if (k >= c.torques)
+          throw InputError("select_torques: torque index " + std::to_string(k) + " of " +
+                           std::to_string(c.torques));
+        to.insert(to.end(), from.begin() + long(k * per), from.begin() + long((k + 1) * per));
+      }
+  };
+  pick(out.loaded_te, c.loaded_te, N), pick(out.mesh_stiffness, c.mesh_stiffness, N);
+  pick(out.normal_force, c.normal_force, N), pick(out.lever, c.lever, N);
+  pick(out.pair_force, c.pair_force, N * S), pick(out.peak_pressure, c.peak_pressure, N);
+  pick(out.cell_pressure, c.cell_pressure, N * C * 4);
+  pick(out.interior_peak_pressure, c.interior_peak_pressure, N);
+  pick(out.edge_load_share, c.edge_load_share, N), pick(out.edge_position, c.edge_position, 2 * N);
+  pick(out.gap_band, c.gap_band, N);
+  out.torque_failure.clear();
+  for (const std::size_t k : keep)
+    out.torque_failure.push_back(c.torque_failure[k]);
+  out.torques = keep.size();
+  return out;
 }
 
 MeshCycleError

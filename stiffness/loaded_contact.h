@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <mpi.h>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -68,9 +69,9 @@ struct LoadedContactOptions
   /// (the contact about half the zone across, whatever the load), narrowed while the contact
   /// fills less than a third of the zone, widened while it reaches the zone's edge. Without
   /// it the band is cells.gap_band, only widened.
-  bool adapt_band = true;
-  Material           pinion_material, gear_material;
-  bool               half_space = true; ///< add the half-space part between cells of a pair
+  bool     adapt_band = true;
+  Material pinion_material, gear_material;
+  bool     half_space = true; ///< add the half-space part between cells of a pair
   /// Sets a cell's table_* parameters when the flanks are not those of the compliance tables
   /// (measured flanks: the theoretical flank's parameters at the cell's position).
   std::function<void(ContactCell &)> table_parameters;
@@ -153,16 +154,25 @@ struct MeshCycleContact
   std::vector<double> edge_load_share; ///< force on cells at a flank edge / F [M][N]
   /// the most loaded edge cell's pinion point: radius, axial position [M][N][2] [m] (0: none)
   std::vector<double> edge_position;
-  std::vector<double> gap_band; ///< of the cell zone fitted to the load [M][N] [m]
-  std::vector<double> cell_pressure;  ///< pinion tooth (-1 unused), u1, v1, p [M][N][C][4]
+  std::vector<double> gap_band;      ///< of the cell zone fitted to the load [M][N] [m]
+  std::vector<double> cell_pressure; ///< pinion tooth (-1 unused), u1, v1, p [M][N][C][4]
   double              mean_pairs_in_contact = 0; ///< of the unloaded TCA (eps_gamma, conjugate)
+  /// Per torque [M]: empty when every position was solved, else why the first position that
+  /// failed did (its rows of the tables hold zeros; the other torques are unaffected).
+  std::vector<std::string> torque_failure;
 };
 
 /// Solves loaded_contact at every position and torque; `step` (optional) is called after each.
+/// A torque some position of which fails (InputError: an active set that does not settle, a pair
+/// the segments do not cover) is marked in torque_failure; the others are kept.
 MeshCycleContact
 loaded_contact_cycle(const UnloadedTca &tca, int positions, const std::vector<double> &torques,
                      const LoadedContactOptions &options, const StructuralCompliance &pinion,
                      const StructuralCompliance &gear, const std::function<void()> &step = {});
+
+/// The mesh cycle at the torques `keep` (indices, in the order given) alone.
+MeshCycleContact
+select_torques(const MeshCycleContact &cycle, const std::vector<std::size_t> &keep);
 
 /// The discretisation error estimate of a mesh cycle's K_m and e_L [M][N], from the same cycle
 /// on compliance tables of elements `coarsening` (c > 1) times larger and on half the contact

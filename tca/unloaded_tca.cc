@@ -49,6 +49,25 @@ UnloadedTca::UnloadedTca(std::shared_ptr<const MemberFlanks> p,
       options.face_samples < 2)
     throw InputError("unloaded TCA: positions per mesh, mesh cycles (>= 1) and search samples "
                      "(>= 2) must be positive");
+  if (!(options.contact_tolerance >= 0))
+    throw InputError("unloaded TCA: the contact tolerance must be >= 0 [m]");
+  if (options.contact_tolerance == 0)
+    {
+      // the transverse module 2 r / z from the radius of the middle of a pinion flank
+      const Flank      &f = pinion->flank(0, options.side);
+      const FlankDomain d = f.domain();
+      double            r = 0;
+      try
+        {
+          r = f.evaluate((d.u_min + d.u_max) / 2, (d.v_min + d.v_max) / 2)
+                  .position.head<2>()
+                  .norm();
+        }
+      catch (const InputError &)
+        {
+        }
+      options.contact_tolerance = r > 0 ? 3e-7 * 2 * r / pinion->teeth() : 1e-9;
+    }
 }
 
 namespace
@@ -96,15 +115,16 @@ UnloadedTca::solve_touch(int j, const Vec3 &X, double expected, double &psi, dou
   std::tie(u2, v2)        = gear->guess(j, options.side, Q.head<2>().norm(), Q.z());
   const Vec3 r0           = flank.evaluate(u2, v2).position;
   psi = expected + wrap(std::atan2(r0.y(), r0.x()) - std::atan2(Q.y(), Q.x()) - expected);
-  // Converged when the points coincide to 0.1 pm (rounding of metre-size coordinates is
-  // ~1e-17 m); a start that Newton cannot bring there is no touch.
+  // Converged when the points coincide to 1e-12 of the point's radius (0.05 pm at 50 mm, well
+  // above the coordinates' rounding; relative, so that a gear and its scaled copy converge
+  // alike); a start that Newton cannot bring there is no touch.
   bool converged = false;
   for (int it = 0; it < 40 && !converged; ++it)
     {
       const FlankPoint f  = flank.evaluate(u2, v2);
       const Vec3       RQ = rot_z(psi) * Q;
       const Vec3       F  = f.position - RQ;
-      if (F.norm() < 1e-13)
+      if (F.norm() < 1e-12 * Q.norm())
         {
           converged = true;
           break;
@@ -168,7 +188,7 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
             assembly.global_to_gear_unrotated(assembly.pinion_to_global(p.position, phi));
         const Vec3 RQ = rot_z(psi) * Q;
         const Vec3 F  = q.position - RQ;
-        if (F.norm() < 1e-13)
+        if (F.norm() < 1e-12 * Q.norm())
           {
             psi                = expected + wrap(psi - expected);
             const double tol_u = 1e-12 * (dg.u_max - dg.u_min) + 1e-12 / q.d_du.norm();
@@ -283,7 +303,11 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
     Sample at;
     double hu, hv;
   };
+  // A move must gain more than the touch angle's rounding (1e-15 rad relative): along a
+  // contact line the angle is flat to rounding, and steps of 1e-11 of the flank walking a
+  // ridge of rounding noise would take ~1e11 moves. At most 64 moves per step size.
   auto refine = [&](Search &x, double until) {
+    int moves = 0;
     while ((x.hu > 1e-11 * (d.u_max - d.u_min) || x.hv > 1e-11 * (d.v_max - d.v_min)) &&
            x.hu > until * hu0)
       {
@@ -296,8 +320,15 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
                 if (better(t, next))
                   next = t;
               }
-        if (next.u1 == x.at.u1 && next.v1 == x.at.v1)
-          x.hu /= 2, x.hv /= 2;
+        const bool gain = next.value > x.at.value + 1e-15 * (1 + std::abs(x.at.value)) ||
+                          (x.at.value == -HUGE_VAL && next.value > -HUGE_VAL) ||
+                          next.face_end != x.at.face_end;
+        if ((next.u1 == x.at.u1 && next.v1 == x.at.v1) || !gain || ++moves > 64)
+          {
+            x.hu /= 2, x.hv /= 2, moves = 0;
+            if (!gain)
+              continue;
+          }
         x.at = next;
       }
   };

@@ -24,9 +24,11 @@ struct TcaOptions
   int       positions_per_mesh = 50;               ///< pinion positions per mesh cycle
   int       mesh_cycles        = 1;                ///< mesh cycles to analyse
   double    start_angle        = 0;                ///< first pinion angle [rad]
-  int       profile_samples    = 17;   ///< initial search grid over each pinion flank ...
-  int       face_samples       = 9;    ///< ... refined by successive zooms around the maximum
-  double    contact_tolerance  = 1e-9; ///< pairs closer than this [m] count as touching
+  int       profile_samples    = 17; ///< initial search grid over each pinion flank ...
+  int       face_samples       = 9;  ///< ... refined by successive zooms around the maximum
+  /// Pairs closer than this [m] count as touching; 0: 3e-7 of the pinion's transverse module
+  /// (about 1 nm at 3 mm: relative, so that a pair and its scaled copy count alike).
+  double contact_tolerance = 0;
   /// A more thorough search for edge contacts (the tooth pair curves, tca/tooth_pairs.h): the
   /// pattern search also starts from the grid's other local maxima (the best four) and from the
   /// neighbouring position's contact (pair(k, phi, near)), not only the best sample; and a

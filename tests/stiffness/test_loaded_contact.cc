@@ -273,6 +273,25 @@ TEST(LoadedContact, MeshCycleSharedAmongProcessesEqualsOneProcessAlone)
   EXPECT_EQ(a.mesh_stiffness.size(), 14u);
   for (std::size_t i = 0; i < 7; ++i)
     EXPECT_GT(a.mesh_stiffness[i], 0); // no empty entry
-  // a negative torque is refused, on every process (with two, only the first solves it: job 2)
+  // a negative torque is refused, on every process
   EXPECT_THROW(loaded_contact_cycle(*s.tca, 1, {150, 300, -1}, shared, spring, rigid), InputError);
+  // A torque that fails at some position is marked alone, on every process: segments covering
+  // pinion teeth 15, 0 and 1 only, and a load so large (springs of 1e-9 m/N, an approach of mm)
+  // that pairs beyond them come into contact.
+  LoadedContactOptions few = shared;
+  few.covered              = [](int p, int) { return (p + 1) % 16 <= 2; };
+  const StructuralCompliance soft = [](const ContactCell &a, const ContactCell &b) {
+    return a.pair == b.pair ? 1e-9 : 0.0;
+  };
+  const MeshCycleContact f = loaded_contact_cycle(*s.tca, 7, {150, 3e5}, few, soft, rigid);
+  ASSERT_EQ(f.torque_failure.size(), 2u);
+  EXPECT_EQ(f.torque_failure[0], "");
+  EXPECT_NE(f.torque_failure[1].find("do not cover them"), std::string::npos)
+      << f.torque_failure[1];
+  const MeshCycleContact kept = select_torques(f, {0});
+  EXPECT_EQ(kept.torques, 1u);
+  const MeshCycleContact g = loaded_contact_cycle(*s.tca, 7, {150}, few, soft, rigid);
+  EXPECT_EQ(kept.mesh_stiffness, g.mesh_stiffness);
+  EXPECT_EQ(kept.loaded_te, g.loaded_te);
+  EXPECT_EQ(kept.peak_pressure, g.peak_pressure); // (the cell tables pad to the most cells)
 }

@@ -32,9 +32,9 @@ record_cache_digest(const std::string &path);
 
 /// What keeps the cache file at `path` from being reused for `stage` with `key`: empty when its
 /// bytes are those recorded beside it, it names this stage and key, holds exactly what its manifest
-/// lists with the same digests, and its floating-point datasets are finite wherever the stage
-/// promised finite values (NaN only in datasets written with gaps). Else one line saying what is
-/// wrong (for the log).
+/// lists with the same digests, and its floating-point datasets are finite (results never hold
+/// NaN or infinities: H5Group::write refuses them). Else one line saying what is wrong (for the
+/// log).
 std::string
 cache_file_problem(const std::string &path, const std::string &stage, const std::string &key);
 } // namespace gearkit

@@ -219,18 +219,6 @@ H5Group::write(const std::string &name, const std::vector<double> &values,
 }
 
 void
-H5Group::write_with_gaps(const std::string &name, const std::vector<double> &values,
-                         const std::vector<hsize_t> &shape, const std::string &units,
-                         const std::string &description, const std::string &gaps) const
-{
-  for (double v : values)
-    if (std::isinf(v))
-      throw std::runtime_error("refusing to write an infinite value to " + group_path + name);
-  write_dataset(handle.id(), group_path, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values, shape,
-                units, description + " (NaN: " + gaps + ")");
-}
-
-void
 H5Group::write(const std::string &name, double value, const std::string &units,
                const std::string &description) const
 {

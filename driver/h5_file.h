@@ -77,12 +77,6 @@ public:
   write(const std::string &name, const std::vector<double> &values,
         const std::vector<hsize_t> &shape, const std::string &units,
         const std::string &description) const;
-  /// The same, but NaN marks samples without a value (never infinities); `gaps` says when,
-  /// and is appended to the description ("NaN: <gaps>").
-  void
-  write_with_gaps(const std::string &name, const std::vector<double> &values,
-                  const std::vector<hsize_t> &shape, const std::string &units,
-                  const std::string &description, const std::string &gaps) const;
   void
   write(const std::string &name, double value, const std::string &units,
         const std::string &description) const;

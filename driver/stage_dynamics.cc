@@ -33,7 +33,8 @@ void
 pack(const SweepPoint &p, std::vector<double> &out)
 {
   out.insert(out.end(), {p.speed, p.dte_pp, p.dte_rms, p.relative_pp, p.relative_rms, p.max_force,
-                         p.load_factor, p.contact_loss, double(p.events), double(p.settled_cycles),
+                         p.load_factor, p.contact_loss, p.error_estimate, p.diverged_time,
+                         double(p.events), double(p.settled_cycles), double(p.steps_per_cycle),
                          double(p.period), double(p.record_cycles), double(p.diverged)});
   for (const auto *v :
        {&p.spectrum, &p.series_time, &p.series_dte, &p.series_transmission_error, &p.series_force})
@@ -48,13 +49,14 @@ unpack(const std::vector<double> &in, std::size_t &at)
 {
   SweepPoint p;
   for (double *x : {&p.speed, &p.dte_pp, &p.dte_rms, &p.relative_pp, &p.relative_rms, &p.max_force,
-                    &p.load_factor, &p.contact_loss})
+                    &p.load_factor, &p.contact_loss, &p.error_estimate, &p.diverged_time})
     *x = in[at++];
-  p.events         = std::size_t(in[at++]);
-  p.settled_cycles = int(in[at++]);
-  p.period         = int(in[at++]);
-  p.record_cycles  = int(in[at++]);
-  p.diverged       = in[at++] != 0;
+  p.events          = std::size_t(in[at++]);
+  p.settled_cycles  = int(in[at++]);
+  p.steps_per_cycle = int(in[at++]);
+  p.period          = int(in[at++]);
+  p.record_cycles   = int(in[at++]);
+  p.diverged        = in[at++] != 0;
   for (auto *v :
        {&p.spectrum, &p.series_time, &p.series_dte, &p.series_transmission_error, &p.series_force})
     {
@@ -119,38 +121,51 @@ void
 write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
 {
   const hsize_t       n = p.size();
-  std::vector<double> rpm;
-  std::vector<int>    period, settled, diverged, steps;
+  std::vector<double> rpm, diverged_time;
+  std::vector<int>    period, settled, diverged, steps, status;
   for (const SweepPoint &x : p)
     rpm.push_back(x.speed * 60 / (2 * pi)), period.push_back(x.period),
         settled.push_back(x.settled_cycles), diverged.push_back(x.diverged),
-        steps.push_back(x.steps_per_cycle);
-  const std::string diverged_gap = "where the response diverged";
+        steps.push_back(x.steps_per_cycle), diverged_time.push_back(x.diverged_time),
+        status.push_back(x.diverged     ? 2
+                         : x.period > 0 ? 0
+                                        : 1);
+  // a diverged speed has no results: zeros there, which `status` (or `diverged`) masks
+  const std::string none = " (0 where status is 2: diverged, no result)";
   g.write("speed", rpm, {n}, "rpm", "pinion speed, in the order swept");
-  g.write_with_gaps("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m",
-                    "DTE delta_D peak-to-peak", diverged_gap);
-  g.write_with_gaps("dte_rms", column(p, &SweepPoint::dte_rms), {n}, "m",
-                    "RMS of delta_D about its mean", diverged_gap);
-  g.write_with_gaps("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n}, "m",
-                    "delta_D - E_t peak-to-peak (the mesh deflection)", diverged_gap);
-  g.write_with_gaps("max_mesh_force", column(p, &SweepPoint::max_force), {n}, "N", "largest F_m",
-                    diverged_gap);
-  g.write_with_gaps("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n}, "1",
-                    "largest F_m over the static mesh force", diverged_gap);
-  g.write_with_gaps("contact_loss", column(p, &SweepPoint::contact_loss), {n}, "1",
-                    "share of the recorded time out of contact", diverged_gap);
-  g.write("period", period, {n}, "mesh cycles", "the motion repeats after (0: not steady)");
-  g.write("settled_cycles", settled, {n}, "mesh cycles", "spent settling");
-  g.write("diverged", diverged, {n}, "1",
-          "1: the response grew past 1000 times the static deflection and clearance (its results "
-          "NaN; the next speed started from the static equilibrium)");
+  g.write("status", status, {n}, "1",
+          "per speed: 0 steady (the motion repeats: period), 1 not steady within the settle "
+          "cycles (or not checked), 2 diverged (|delta_D - E_t| past " +
+              std::to_string(int(SweepOptions().divergence_factor)) +
+              " times the static deflection, half backlash and E_t peak-to-peak together, or not "
+              "finite: the results "
+              "at that speed are 0 and no maximum or mean may take them; the next speed started "
+              "from the static equilibrium)");
+  g.write("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m",
+          "DTE delta_D peak-to-peak" + none);
+  g.write("dte_rms", column(p, &SweepPoint::dte_rms), {n}, "m",
+          "RMS of delta_D about its mean" + none);
+  g.write("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n}, "m",
+          "delta_D - E_t peak-to-peak (the mesh deflection)" + none);
+  g.write("max_mesh_force", column(p, &SweepPoint::max_force), {n}, "N", "largest F_m" + none);
+  g.write("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n}, "1",
+          "largest F_m over the static mesh force" + none);
+  g.write("contact_loss", column(p, &SweepPoint::contact_loss), {n}, "1",
+          "share of the recorded time out of contact" + none);
+  g.write("period", period, {n}, "mesh cycles",
+          "the motion repeats after (0: not steady, or diverged)");
+  g.write("settled_cycles", settled, {n}, "mesh cycles", "spent settling (diverged: until then)");
+  g.write("diverged", diverged, {n}, "1", "1: the response diverged (status 2)");
+  g.write("diverged_time", diverged_time, {n}, "s",
+          "time run at that speed (settling, records) when the response passed the divergence "
+          "bound (0: not diverged)");
   if (p.front().steps_per_cycle > 0) // Newmark
     {
       g.write("steps_per_cycle", steps, {n}, "1", "Newmark steps per mesh cycle");
-      g.write_with_gaps("error_estimate", column(p, &SweepPoint::error_estimate), {n}, "1",
-                        "estimated RMS error of delta_D over its RMS (dynamics/newmark_error.h: "
-                        "the larger of the tables' forcing's and the recorded harmonics')",
-                        diverged_gap);
+      g.write("error_estimate", column(p, &SweepPoint::error_estimate), {n}, "1",
+              "estimated RMS error of delta_D over its RMS (dynamics/newmark_error.h: the larger "
+              "of the tables' forcing's and the recorded harmonics')" +
+                  none);
     }
 
   // the DTE spectrum: every speed recorded the same whole periods
@@ -163,9 +178,8 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
     order.push_back(double(k) / R);
   g.write("spectrum_order", order, {bins}, "1",
           "mesh orders of dte_spectrum (resolution 1 / recorded mesh cycles)");
-  g.write_with_gaps("dte_spectrum", spectrum, {n, bins}, "m",
-                    "amplitude of delta_D at each speed and mesh order (order 0: the mean)",
-                    diverged_gap);
+  g.write("dte_spectrum", spectrum, {n, bins}, "m",
+          "amplitude of delta_D at each speed and mesh order (order 0: the mean)" + none);
 
   int k = 0;
   for (const SweepPoint &x : p)
@@ -306,6 +320,7 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
                 double TL, std::ostream &log, const std::string &what)
 {
   std::vector<double>         rpm, radius;
+  std::vector<int>            grows;
   std::string                 unstable;
   std::optional<NewmarkError> newmark; // the sweep's steps
   if (d.integrator == Integrator::newmark && d.accuracy > 0)
@@ -321,7 +336,8 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
         r.steps_per_cycle = newmark->steps(w, d.accuracy, d.steps_per_cycle, r.samples_per_cycle);
       rpm.push_back(w * 60 / (2 * pi));
       radius.push_back(std::abs(floquet_multipliers(model, r).front()));
-      if (radius.back() > 1)
+      grows.push_back(parametrically_unstable(radius.back()));
+      if (grows.back())
         unstable += " " + std::to_string(int(std::lround(rpm.back())));
     }
   const hsize_t n = rpm.size();
@@ -329,6 +345,10 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
   g.write("spectral_radius", radius, {n}, "1",
           "largest Floquet multiplier modulus of the mesh in contact over one period of the "
           "tables (> 1: parametric resonance, vibrations grow until contact is lost)");
+  g.write("unstable", grows, {n}, "1",
+          "1: spectral radius above 1 by more than 1e-6 (undamped, the stable multipliers lie "
+          "on the unit circle, and a torque-driven train's rigid rotation gives 1: 1 to "
+          "rounding; dynamics/modes.h)");
   if (!unstable.empty())
     log << "  " << what << ": parametrically unstable in contact (Floquet) at [rpm]:" << unstable
         << "\n";
@@ -523,7 +543,11 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                       " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
                       (dir == 0 ? " up" : " down");
                   if (pt.diverged)
-                    diverged += at;
+                    {
+                      std::ostringstream when;
+                      when << at << " (after " << pt.diverged_time * 1e3 << " ms)";
+                      diverged += when.str();
+                    }
                   else
                     dlf = std::max(dlf, pt.load_factor);
                   if (!pt.diverged && pt.period == 0 && d.steady_tolerance > 0)
@@ -532,14 +556,15 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             }
           log << "  " << pair.name << " " << excitations[x].label << ": " << d.speeds
               << " speeds up and down in " << tasks.size() << " tasks, largest dynamic load factor "
-              << dlf << "\n";
+              << dlf << (diverged.empty() ? "" : " (of the speeds that did not diverge)") << "\n";
           if (!unsteady.empty())
             log << "  " << pair.name << " " << excitations[x].label << ": not steady within "
                 << d.settle_cycles << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady
                 << "\n";
           if (!diverged.empty())
             log << "  " << pair.name << " " << excitations[x].label
-                << ": DIVERGED (the response grew without bound, results NaN) at [rpm]:" << diverged
+                << ": DIVERGED (the response grew past " << int(SweepOptions().divergence_factor)
+                << " times its length scale: no results there, status 2) at [rpm]:" << diverged
                 << "\n";
         }
     }

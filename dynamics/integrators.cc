@@ -10,19 +10,51 @@ namespace gearkit
 {
 namespace
 {
-void
-record(const PairModel &model, const RunOptions &o, double t, const PairVector &q,
-       const PairVector &v, Trajectory &out)
+/// The sample at time t: the state, delta_D, delta_D - E_t and F_m.
+struct Sample
+{
+  double delta = 0, relative = 0, force = 0;
+  /// finite and |delta_D - E_t| within the divergence bound
+  bool within = true;
+};
+
+Sample
+sample(const PairModel &model, const RunOptions &o, double t, const PairVector &q,
+       const PairVector &v)
 {
   const MeshState  m       = model.mesh().at(model.phase(t, o.omega));
   const PairVector g       = PairModel::mesh_gradient(m);
   const double     et_rate = m.det * model.parameters().pinion_teeth * o.omega / (2 * pi);
+  Sample           s;
+  s.delta    = g.dot(q);
+  s.relative = s.delta - m.et;
+  s.force    = model.mesh_force(m, s.delta, g.dot(v), et_rate);
+  s.within   = q.allFinite() && v.allFinite() && std::isfinite(s.force) &&
+             std::abs(s.relative) <= o.divergence_bound;
+  return s;
+}
+
+/// Appends the sample at time t; where it is not within the divergence bound (or not finite),
+/// marks the run diverged at t instead (the initial sample is kept all the same) and returns
+/// false.
+bool
+record(const PairModel &model, const RunOptions &o, double t, const PairVector &q,
+       const PairVector &v, Trajectory &out)
+{
+  const Sample s = sample(model, o, t, q, v);
+  if (!s.within)
+    {
+      out.diverged = true, out.diverged_at = t;
+      if (!out.t.empty())
+        return false;
+    }
   out.t.push_back(t);
   out.q.push_back(q);
   out.v.push_back(v);
-  out.dte.push_back(g.dot(q));
-  out.relative.push_back(g.dot(q) - m.et);
-  out.force.push_back(model.mesh_force(m, g.dot(q), g.dot(v), et_rate));
+  out.dte.push_back(s.delta);
+  out.relative.push_back(s.relative);
+  out.force.push_back(s.force);
+  return s.within;
 }
 
 Trajectory
@@ -67,19 +99,31 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
   Eigen::Map<PairVector>(y.data())             = q0;
   Eigen::Map<PairVector>(y.data() + pair_dofs) = v0;
   CvodeSolver solver(p, 0.0, y);
-  record(model, o, 0, q0, v0, out);
-  const int n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
-  double    tau   = 0;
-  for (int k = 1; k <= n_out; ++k)
+  const int   n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
+  double      tau   = 0;
+  // past the bound at an event: the run stops there (its state is not a sample)
+  auto beyond = [&] {
+    if (sample(model, o, tau * period, Eigen::Map<const PairVector>(y.data()),
+               Eigen::Map<const PairVector>(y.data() + pair_dofs))
+            .within)
+      return false;
+    out.diverged = true, out.diverged_at = tau * period;
+    return true;
+  };
+  bool going = record(model, o, 0, q0, v0, out);
+  for (int k = 1; k <= n_out && going; ++k)
     {
       const double tout = double(k) / o.samples_per_cycle;
-      while (solver.advance(tout, tau, y))
+      while (going && solver.advance(tout, tau, y))
         {
           ++out.events; // the mesh force changes its law here: restart the method
-          solver.reinit(tau, y);
+          going = !beyond();
+          if (going)
+            solver.reinit(tau, y);
         }
-      record(model, o, tout * period, Eigen::Map<const PairVector>(y.data()),
-             Eigen::Map<const PairVector>(y.data() + pair_dofs), out);
+      if (going)
+        going = record(model, o, tout * period, Eigen::Map<const PairVector>(y.data()),
+                       Eigen::Map<const PairVector>(y.data() + pair_dofs), out);
     }
   out.steps = std::size_t(solver.steps());
   return out;
@@ -139,7 +183,8 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
     const double      Fm = model.mesh_force(m, g.dot(q), g.dot(v), m.det * z * o.omega / (2 * pi));
     a                    = M.ldlt().solve(F_ext - K * q - C * v - g * Fm).cwiseProduct(free);
   }
-  record(model, o, 0, q, v, out);
+  if (!record(model, o, 0, q, v, out))
+    return out;
   const int steps_total = int(std::lround(o.mesh_cycles * o.steps_per_cycle));
   const int every       = o.steps_per_cycle / o.samples_per_cycle;
   for (int n = 1; n <= steps_total; ++n)
@@ -176,15 +221,21 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
           const double x = dstar - m.et > 0 ? b : -b;
           delta = m.et + x, Fm = (dstar - delta) / gLg;
         }
+      // diverged (or not finite: the comparison fails for NaN): stop before the step
+      if (!(std::abs(delta - m.et) <= o.divergence_bound) || !std::isfinite(Fm))
+        {
+          out.diverged = true, out.diverged_at = t;
+          break;
+        }
       const PairVector dq = dqs - Lg * Fm; // the increment: no cancellation against q
       const PairVector an = 4 / (h * h) * (dq - h * v) - a;
       v += h / 2 * (a + an);
       q += dq;
       a = an;
-      if (n % every == 0)
-        record(model, o, t, q, v, out);
+      ++out.steps;
+      if (n % every == 0 && !record(model, o, t, q, v, out))
+        break;
     }
-  out.steps = std::size_t(steps_total);
   return out;
 }
 } // namespace

@@ -7,10 +7,15 @@
 //    for a linear undamped model it conserves the energy exactly - the fast path for sweeps.
 // Time and displacements are scaled inside (time in mesh cycles; tolerances relative to the
 // static mesh deflection).
+//
+// Divergence: a run stops where the state stops being finite or |delta_D - E_t| passes
+// RunOptions::divergence_bound (Newmark: checked at every step; CVODE: at every output sample
+// and located event); the trajectory then ends at the last sample before it, and says when.
 #pragma once
 
 #include "dynamics/pair_model.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -36,6 +41,9 @@ struct RunOptions
   /// per DOF through the mesh's moment arms) and its rate
   double absolute_tolerance = 1e-8;
   int    steps_per_cycle    = 64; ///< Newmark
+  /// |delta_D - E_t| [m] past which the run stops as diverged (dynamics/sweep.h derives it from
+  /// the static deflection and the backlash); infinite: only a state that is not finite stops it
+  double divergence_bound = std::numeric_limits<double>::infinity();
 };
 
 struct Trajectory
@@ -47,10 +55,15 @@ struct Trajectory
   std::vector<double>     force;      ///< F_m [N]
   std::size_t             events = 0; ///< backlash boundaries crossed (CVODE)
   std::size_t             steps  = 0; ///< integrator steps taken
+  /// The run stopped early: the state was not finite or |delta_D - E_t| passed the divergence
+  /// bound at time `diverged_at` [s]; the samples (all finite, within the bound) end before it.
+  bool   diverged    = false;
+  double diverged_at = 0;
 };
 
-/// Integrates from (q0, v0) at t = 0. Throws InputError for bad options and for integrator
-/// failures (step size collapse, event failures), naming the time and the CVODE flag.
+/// Integrates from (q0, v0) at t = 0, or until the response diverges (Trajectory::diverged).
+/// Throws InputError for bad options and for integrator failures (step size collapse, event
+/// failures), naming the time and the CVODE flag.
 Trajectory
 simulate(const PairModel &model, const PairVector &q0, const PairVector &v0,
          const RunOptions &options);

@@ -35,6 +35,18 @@ linear_modes(const PairModel &model);
 std::vector<std::complex<double>>
 floquet_multipliers(const PairModel &model, const RunOptions &run);
 
+/// Whether the largest Floquet multiplier's modulus means growth: above 1 by more than 1e-6.
+/// Undamped, the stable multipliers lie on the unit circle, which their computation reproduces
+/// to about 1e-13; a torque-driven train's rigid rotation gives a double multiplier 1 (a Jordan
+/// block: angle and speed) even with damping, whose computed pair splits by about the square
+/// root of the rounding (1.4e-8 measured). A growth of 1e-6 a period would take 7e6 periods to
+/// reach a thousandfold amplitude - thousands of times a sweep's settling.
+inline bool
+parametrically_unstable(double spectral_radius)
+{
+  return spectral_radius > 1 + 1e-6;
+}
+
 /// Pinion speeds [rpm] at which mesh order `order` excites a mode of the given frequency.
 inline double
 resonance_speed_rpm(double frequency_hz, int pinion_teeth, int order)

@@ -122,18 +122,18 @@ whole_periods(int cycles, int period)
 }
 /// Settles (q, v) at r.omega in chunks of whole periods of the excitation (each run starts
 /// at phase 0), watching the Poincare points (states at whole periods), until they repeat, the
-/// response diverges, or `most` mesh cycles - extended up to five times that while the
-/// mismatch of period 1 still falls geometrically fast enough to reach the tolerance within
-/// the extension (a slowly decaying transient near a parametric resonance, not a motion that
-/// never repeats).
-template <typename Beyond>
+/// response diverges (r.divergence_bound; `diverged_at` [s] then says when, from the start of
+/// this call), or `most` mesh cycles - extended up to five times that while the mismatch of
+/// period 1 still falls geometrically fast enough to reach the tolerance within the extension
+/// (a slowly decaying transient near a parametric resonance, not a motion that never repeats).
 void
 settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r,
-       const SweepOptions &o, int most, const PairVector &scale, const Beyond &beyond, int &settled,
-       int &period, bool &diverged)
+       const SweepOptions &o, int most, const PairVector &scale, int &settled, int &period,
+       bool &diverged, double &diverged_at)
 {
   const int    K         = model.mesh().cycles();
-  const double rate      = model.parameters().pinion_teeth * r.omega / K; // [rad/s]
+  const double rate      = model.parameters().pinion_teeth * r.omega / K;        // [rad/s]
+  const double cycle     = 2 * pi / (model.parameters().pinion_teeth * r.omega); // [s]
   const double tolerance = steady_tolerance(o, r);
   const int    chunk_len = whole_periods(10, K);
   const int    hardest   = 5 * most;
@@ -148,11 +148,17 @@ settle(const PairModel &model, PairVector &q, PairVector &v, const RunOptions &r
       chunk.samples_per_cycle = 1;
       chunk.steps_per_cycle   = std::max(r.steps_per_cycle, 1);
       const Trajectory t      = simulate(model, q, v, chunk);
+      q = t.q.back(), v = t.v.back();
+      if (t.diverged)
+        {
+          diverged    = true;
+          diverged_at = settled * cycle + t.diverged_at;
+          settled += int(t.t.size()) - 1; // the whole mesh cycles run before
+          break;
+        }
       for (std::size_t k = std::size_t(K); k < t.q.size(); k += std::size_t(K))
         pq.push_back(t.q[k]), pv.push_back(t.v[k]);
-      q = t.q.back(), v = t.v.back();
       settled += int(chunk.mesh_cycles);
-      diverged = beyond(t);
       if (o.steady_tolerance > 0 && settled >= o.min_settle_cycles)
         {
           const Mismatches now = mismatches(pq, pv, scale, rate);
@@ -180,22 +186,21 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       o.warmup_speeds < 0 || o.warmup_speeds >= int(o.speeds.size()))
     throw InputError("pair dynamics: a sweep needs speeds (more than its warm-up speeds), settle "
                      "cycles >= 0, record cycles >= 1 and spectrum orders >= 0");
+  require_value(o.divergence_factor > 0, "pair dynamics", "divergence factor", o.divergence_factor,
+                "> 0 (infinite: only a state that is not finite diverges)");
   const int               K  = model.mesh().cycles(); // mesh cycles per period of the excitation
   const StaticEquilibrium s0 = model.static_equilibrium(o.load_torque);
   // Poincare points compare against the static deflection's scale
   const PairVector scale       = model.dof_scale(std::max(std::abs(s0.deflection), 1e-9));
   const int        record      = whole_periods(o.record_cycles, K);
   const int        settle_most = whole_periods(o.settle_cycles, K);
-  // a response beyond any physical meaning (or not finite): the mesh deflection far past the
-  // static one and the clearance
-  const double bound =
-      o.divergence_factor * (std::abs(s0.deflection) + model.parameters().half_backlash);
-  auto beyond = [&](const Trajectory &t) {
-    for (double x : t.relative)
-      if (!std::isfinite(x) || std::abs(x) > bound)
-        return true;
-    return false;
-  };
+  // a response beyond any physical meaning (or not finite): the mesh deflection far past its
+  // length scale, the static deflection, the clearance and E_t's peak-to-peak
+  // (SweepOptions::divergence_factor)
+  const auto &et            = model.tables().transmission_error;
+  const auto [et_lo, et_hi] = std::minmax_element(et.begin(), et.end());
+  const double bound        = o.divergence_factor * (std::abs(s0.deflection) +
+                                              model.parameters().half_backlash + *et_hi - *et_lo);
   // the swept speeds whose time series are kept
   std::vector<bool> keep(o.speeds.size(), false);
   for (double w : o.series_speeds)
@@ -214,29 +219,41 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
   for (std::size_t i = 0; i < o.speeds.size(); ++i)
     {
       const double omega = o.speeds[i];
+      const double cycle = 2 * pi / (model.parameters().pinion_teeth * omega); // [s]
       RunOptions   r     = o.run;
       r.omega            = omega;
+      r.divergence_bound = bound;
       if (newmark && o.accuracy > 0)
         r.steps_per_cycle = newmark->steps(omega, o.accuracy, o.run.steps_per_cycle,
                                            r.samples_per_cycle, most_steps);
       r.motor_torque = o.motor_torque, r.load_torque = o.load_torque;
       int        settled = 0, period = 0;
-      bool       diverged = false;
-      double     error    = std::numeric_limits<double>::quiet_NaN();
+      bool       diverged    = false;
+      double     diverged_at = 0, run = 0; // [s]; the time run at this speed so far
+      double     error = std::numeric_limits<double>::quiet_NaN();
       Trajectory t;
       for (int refinements = 0;; ++refinements)
         {
           period   = 0;
           int more = 0;
-          settle(model, q, v, r, o, settle_most, scale, beyond, more, period, diverged);
+          settle(model, q, v, r, o, settle_most, scale, more, period, diverged, diverged_at);
           settled += more;
           if (diverged)
-            break;
+            {
+              diverged_at += run;
+              break;
+            }
+          run += more * cycle;
           r.mesh_cycles = record;
           t             = simulate(model, q, v, r);
           q = t.q.back(), v = t.v.back();
-          diverged = beyond(t);
-          if (diverged || !newmark)
+          if (t.diverged)
+            {
+              diverged = true, diverged_at = run + t.diverged_at;
+              break;
+            }
+          run += record * cycle;
+          if (!newmark)
             break;
           const std::vector<double> dte(t.dte.begin(), t.dte.end() - 1);
           const double posterior = newmark->recorded(omega, r.steps_per_cycle, dte, record);
@@ -259,14 +276,15 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
       p.record_cycles   = record;
       p.steps_per_cycle = newmark ? r.steps_per_cycle : 0;
       p.error_estimate  = error;
-      if (diverged)
+      if (diverged) // no results: zeros, flagged (never an input to maxima or means)
         {
-          const double nan = std::numeric_limits<double>::quiet_NaN();
-          p.dte_pp = p.dte_rms = p.relative_pp = p.relative_rms = p.max_force = p.load_factor =
-              p.contact_loss                                                  = nan;
-          p.spectrum.assign(std::size_t(o.spectrum_orders * record) + 1, nan);
-          p.diverged = true;
+          p.diverged       = true;
+          p.diverged_time  = diverged_at;
+          p.error_estimate = newmark ? 0 : error;
+          p.spectrum.assign(std::size_t(o.spectrum_orders * record) + 1, 0.0);
           out.push_back(std::move(p));
+          if (o.progress)
+            o.progress->advance();
           continue;
         }
       peak_and_rms(t.dte, p.dte_pp, p.dte_rms);

@@ -3,7 +3,8 @@
 // the motion repeats (Poincare section at whole periods of the excitation - one mesh cycle, or
 // the several a measured pair's tables span: the state - its elastic part, the train's rigid
 // rotation may drift - returns after 1 to 4 periods within the tolerance), or at most for the
-// given number of mesh cycles, then record; dynamic transmission error delta_D peak-to-peak and
+// given number of mesh cycles, or until the response diverges (SweepOptions::divergence_factor:
+// flagged, zero results), then record; dynamic transmission error delta_D peak-to-peak and
 // RMS (about its mean), its amplitude spectrum, the largest mesh force, the dynamic load factor
 // (largest over the static mesh force) and the share of the time out of contact; the time
 // series at chosen speeds.
@@ -39,9 +40,17 @@ struct SweepOptions
   /// 0: always settle for settle_cycles.
   double steady_tolerance  = 1e-6;
   int    min_settle_cycles = 20;
-  /// Diverged when |delta_D - E_t| exceeds this times (static deflection + half backlash) or is
-  /// not finite (e.g. parametric resonance pumping without bound): the point's results are NaN,
-  /// flagged, and the next speed starts from the static equilibrium.
+  /// Diverged when |delta_D - E_t| passes this times the response's own length scale - the
+  /// static deflection plus the half backlash plus E_t's peak-to-peak - or the state is not
+  /// finite (parametric resonance pumping without bound, an undamped forced resonance), checked
+  /// at every Newmark step and every CVODE sample (RunOptions::divergence_bound): that speed
+  /// stops there, its point is flagged (SweepPoint::diverged, with the time) and its results
+  /// are zero, and the next speed starts from the static equilibrium. Why 1000: no gear pair
+  /// survives a mesh force of even ten times its static one (dynamic load factors through
+  /// resonances stay below about 3), and a damped linear resonance stays within 1 / (2 zeta)
+  /// times its excitation's amplitude, so every bounded response with zeta above 5e-4 stays
+  /// below the bound, while a motion growing by the Floquet multiplier |mu| > 1 a period
+  /// crosses it within log(1000) / log|mu| periods.
   double divergence_factor = 1e3;
   /// Swept first to regain the continuation, not returned (the first speeds of a block).
   int warmup_speeds = 0;
@@ -72,12 +81,15 @@ struct SweepPoint
   int         settled_cycles  = 0;               ///< mesh cycles spent settling
   int         steps_per_cycle = 0;               ///< Newmark's at this speed (0: CVODE)
   /// Newmark: the larger of NewmarkError's estimates (forced, recorded) of delta_D's relative
-  /// RMS error; NaN for CVODE (its tolerances) and diverged points.
+  /// RMS error; NaN for CVODE (its tolerances), 0 for diverged points.
   double error_estimate = 0;
   /// Mesh cycles after which the motion repeats (a multiple of the excitation's period; 1:
-  /// periodic with the mesh); 0: not steady within settle_cycles (or not checked).
-  int  period   = 0;
-  bool diverged = false; ///< see SweepOptions::divergence_factor (the results are NaN)
+  /// periodic with the mesh); 0: not steady within settle_cycles (or not checked, or diverged).
+  int period = 0;
+  /// The response diverged (SweepOptions::divergence_factor): every result above and the
+  /// spectrum are 0 - no values, never to enter maxima or means - and there is no time series.
+  bool   diverged      = false;
+  double diverged_time = 0; ///< when: time run at this speed until then [s] (0: not diverged)
   /// Amplitudes of delta_D at mesh orders k / record cycles, k = 0 .. spectrum_orders * record
   /// cycles [m] (k = 0: the mean).
   std::vector<double> spectrum;

@@ -497,6 +497,21 @@ def pressure_map(ax, flanks, name, cells, nx=500, ny=300):
 EXCITATION_COLOURS = {"theoretical": "tab:blue", "measured": "tab:orange"}
 
 
+def diverged(sweep):
+    """Per speed of a sweep group: True where the response diverged (`status` 2: no results,
+    its datasets hold 0 there)."""
+    if "status" in sweep:
+        return sweep["status"][:] == 2
+    return np.zeros(len(sweep["speed"]), dtype=bool)
+
+
+def valid(sweep, name):
+    """A sweep dataset with its diverged speeds blanked (NaN: matplotlib leaves a gap)."""
+    a = sweep[name][:].astype(float)
+    a[diverged(sweep)] = np.nan
+    return a
+
+
 def plot_dynamics(dyn, flanks, out_dir):
     """Per pair: DTE peak-to-peak, DTE RMS and the dynamic load factor against the pinion speed,
     swept up and down (jumps show as the two curves part) for each excitation (theoretical and
@@ -513,9 +528,16 @@ def plot_dynamics(dyn, flanks, out_dir):
                 d = g[label][direction]
                 rpm = d["speed"][:]
                 kw = dict(lw=1.2, color=EXCITATION_COLOURS[label], label=f"{label}, {direction}")
-                row[0].plot(rpm, d["dte_peak_to_peak"][:] * 1e6, style, **kw)
-                row[1].plot(rpm, d["dte_rms"][:] * 1e6, style, **kw)
-                row[2].plot(rpm, d["dynamic_load_factor"][:], style, **kw)
+                row[0].plot(rpm, valid(d, "dte_peak_to_peak") * 1e6, style, **kw)
+                row[1].plot(rpm, valid(d, "dte_rms") * 1e6, style, **kw)
+                row[2].plot(rpm, valid(d, "dynamic_load_factor"), style, **kw)
+                # diverged speeds (no results): crosses on the speed axis
+                bad = diverged(d)
+                for ax in row[:3]:
+                    if bad.any():
+                        ax.plot(rpm[bad], np.zeros(bad.sum()), "x", color="tab:red", ms=8,
+                                mew=2, clip_on=False,
+                                label=f"{label}, {direction}: diverged (no result)")
         # speeds where the mesh in contact is parametrically unstable (Floquet): shaded
         for label in labels:
             if "stability" not in g[label]:
@@ -523,7 +545,8 @@ def plot_dynamics(dyn, flanks, out_dir):
             st = g[label]["stability"]
             rpm, radius = st["speed"][:], st["spectral_radius"][:]
             step = rpm[1] - rpm[0] if len(rpm) > 1 else 1
-            for i in np.nonzero(radius > 1)[0]:
+            grows = st["unstable"][:] != 0 if "unstable" in st else radius > 1
+            for i in np.nonzero(grows)[0]:
                 for ax in row[:3]:
                     ax.axvspan(rpm[i] - step / 2, rpm[i] + step / 2, color=EXCITATION_COLOURS[label],
                                alpha=0.15, lw=0)
@@ -568,7 +591,7 @@ def plot_dynamics(dyn, flanks, out_dir):
                 if "error_estimate" not in d:
                     continue
                 kw = dict(lw=1.2, color=EXCITATION_COLOURS[label], label=f"{label}, {direction}")
-                ax.plot(d["speed"][:], d["error_estimate"][:] * 100, style, **kw)
+                ax.plot(d["speed"][:], valid(d, "error_estimate") * 100, style, **kw)
                 steps_ax = steps_ax or ax.twinx()
                 steps_ax.plot(d["speed"][:], d["steps_per_cycle"][:], ":", lw=1,
                               color=EXCITATION_COLOURS[label])
@@ -601,7 +624,8 @@ def plot_dynamics_spectra(dyn, out_dir):
         d = dyn[name][label]["up"]
         rpm, order = d["speed"][:], d["spectrum_order"][:]
         a = d["dte_spectrum"][:, 1:] * 1e6  # without the mean
-        top = np.nanmax(a)
+        a[diverged(d)] = np.nan  # no results there: blank columns
+        top = np.nanmax(a) if np.isfinite(a).any() else 1.0
         image = ax.pcolormesh(rpm, order[1:], np.log10(np.maximum(a.T, top * 1e-4)),
                               shading="nearest", cmap="viridis")
         fig.colorbar(image, ax=ax, label="log10 DTE amplitude [um]")

@@ -144,6 +144,24 @@ def stiffness_rows(name, g):
     return rows
 
 
+def sweep_valid(s):
+    """Per speed of a sweep group: True where it has results (not diverged: `status` 2, or the
+    older `diverged` flag)."""
+    if "status" in s:
+        return s["status"][()] != 2
+    if "diverged" in s:
+        return s["diverged"][()] == 0
+    return np.ones(len(s["speed"]), dtype=bool)
+
+
+def diverged_speeds(s):
+    """The diverged speeds of a sweep group, with the time each ran until it diverged."""
+    bad = ~sweep_valid(s)
+    speed = s["speed"][()][bad]
+    when = s["diverged_time"][()][bad] if "diverged_time" in s else np.zeros(len(speed))
+    return ", ".join(f"{v:.0f} rpm (after {t * 1e3:.3g} ms)" for v, t in zip(speed, when))
+
+
 def dynamics_rows(name, g):
     rows = []
     for ex in g:
@@ -156,19 +174,25 @@ def dynamics_rows(name, g):
             if sweep not in e:
                 continue
             s = e[sweep]
-            speed = s["speed"][()] if "speed" in s else None
+            speed = s["speed"][()]
             dlf = s["dynamic_load_factor"][()]
-            k = int(np.nanargmax(dlf))
-            at = f" at {speed[k]:.0f} rpm" if speed is not None else ""
-            rows.append([label, f"largest dynamic load factor ({sweep} sweep)", f"{dlf[k]:.3f}{at}"])
-            rows.append([label, f"DTE peak-to-peak ({sweep} sweep), mean (min .. max)",
-                         stats(s["dte_peak_to_peak"][()], "m")])
+            # a diverged speed has no results (zeros): it enters no maximum, mean or count
+            ok = sweep_valid(s)
+            if ok.any():
+                k = int(np.argmax(np.where(ok, dlf, -np.inf)))
+                rows.append([label, f"largest dynamic load factor ({sweep} sweep)",
+                             f"{dlf[k]:.3f} at {speed[k]:.0f} rpm"])
+                rows.append([label, f"DTE peak-to-peak ({sweep} sweep), mean (min .. max)",
+                             stats(s["dte_peak_to_peak"][()][ok], "m")])
+            if not ok.all():
+                rows.append([label, f"DIVERGED speeds ({sweep} sweep): no results there",
+                             diverged_speeds(s)])
             if "contact_loss" in s:
-                lost = int(np.count_nonzero(s["contact_loss"][()]))
+                lost = int(np.count_nonzero(s["contact_loss"][()][ok]))
                 rows.append([label, f"speeds with contact loss ({sweep} sweep)",
-                             f"{lost} of {len(dlf)}"])
-            if "error_estimate" in s:
-                worst = np.nanmax(s["error_estimate"][()])
+                             f"{lost} of {int(ok.sum())}"])
+            if "error_estimate" in s and ok.any():
+                worst = s["error_estimate"][()][ok].max()
                 rows.append([label, f"estimated integration error of the DTE ({sweep} sweep), "
                              "largest over the speeds", f"{worst * 100:.2g} % of its RMS"])
     return rows
@@ -187,15 +211,15 @@ def scalar_rows(f):
 
 
 def checks(f):
-    """Checks any reader can repeat: no NaN outside datasets whose description allows gaps
-    ("(NaN: where ...)", as the driver writes them)."""
+    """Checks any reader can repeat: every floating-point dataset finite (no NaN, no infinity:
+    results have none; a speed whose dynamics diverged says so in its sweep's `status`)."""
     bad, total = [], 0
 
     def visit(path, obj):
         nonlocal total
         if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f":
             total += 1
-            if not np.all(np.isfinite(obj[()])) and "(NaN:" not in attr(obj, "description"):
+            if not np.all(np.isfinite(obj[()])):
                 bad.append(path)
     f.visititems(visit)
     return total, bad

@@ -28,6 +28,9 @@ with h5py.File(one, "r") as a, h5py.File(many, "r") as b:
                 continue
             for d in ("up", "down"):
                 ga, gb = a["dynamics"][pair][exc][d], b["dynamics"][pair][exc][d]
+                # every field of a sweep point crosses the gather (Newmark's steps and error
+                # estimate, the status and divergence time)
+                assert set(ga.keys()) == set(gb.keys()), (pair, d, set(ga) ^ set(gb))
                 for p in ("speed", "dte_peak_to_peak", "dynamic_load_factor", "dte_spectrum",
                           "time_series/0/dte"):
                     x, y = ga[p][()], gb[p][()]

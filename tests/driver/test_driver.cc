@@ -10,10 +10,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <iterator>
 #include <numeric>
 #include <regex>
 #include <sstream>
@@ -745,8 +747,9 @@ end
 TEST_F(DriverTest, DynamicsFlagsSpeedsWhereTheResponseDiverges)
 {
   // no backlash, no damping, K_m varying by 60 %: the principal parametric resonance grows
-  // without bound. The run still succeeds; those speeds are flagged, their results NaN, the
-  // Floquet multipliers there > 1, the log names them
+  // without bound. The run still succeeds (pictures and report too); those speeds are flagged
+  // (status 2, the time), their results 0, every dataset finite, the Floquet multipliers there
+  // > 1 and on the unit circle elsewhere, the log names them, and the cache verifies
   const std::string dyn = std::regex_replace(small_scene, std::regex("set outputs = flanks"),
                                              "set outputs = dynamics") +
                           R"(
@@ -772,27 +775,78 @@ subsection Dynamics
   end
 end
 )";
-  ASSERT_EQ(run({scene(dyn)}), 0) << err.str();
-  EXPECT_NE(out.str().find("DIVERGED"), std::string::npos) << out.str();
+  const std::string file = scene(dyn);
+  ASSERT_EQ(run({"--plot", file}), 0) << err.str();
+  const std::string log = out.str();
+  EXPECT_NE(log.find("DIVERGED"), std::string::npos) << log;
   const H5File  f      = H5File::open((dir / "out/small/results.h5").string());
   const H5Group g      = f.root().group("dynamics/p1/theoretical");
   const auto    radius = g.group("stability").read_doubles("spectral_radius");
-  const H5Group up     = g.group("up");
-  const auto    flag   = up.read_ints("diverged");
-  const auto    pp     = up.read_doubles("dte_peak_to_peak");
+  const auto    grows  = g.group("stability").read_ints("unstable");
   int           n      = 0;
-  for (std::size_t i = 0; i < flag.size(); ++i)
-    if (flag[i])
-      {
-        ++n;
-        EXPECT_TRUE(std::isnan(pp[i]));
-        EXPECT_GT(radius[i], 1) << i; // only an unstable mesh grows without bound
-      }
-    else
-      {
-        EXPECT_TRUE(std::isfinite(pp[i])) << i;
-      }
+  for (const char *direction : {"up", "down"})
+    {
+      const H5Group s      = g.group(direction);
+      const auto    flag   = s.read_ints("diverged");
+      const auto    status = s.read_ints("status");
+      const auto    when   = s.read_doubles("diverged_time");
+      const auto    rpm    = s.read_doubles("speed");
+      const bool    up     = std::string(direction) == "up";
+      for (const char *name :
+           {"dte_peak_to_peak", "dte_rms", "relative_peak_to_peak", "max_mesh_force",
+            "dynamic_load_factor", "contact_loss", "error_estimate", "dte_spectrum"})
+        {
+          std::vector<hsize_t> shape;
+          const auto           x   = s.read_doubles(name, &shape);
+          const std::size_t    per = x.size() / flag.size();
+          for (std::size_t i = 0; i < flag.size(); ++i)
+            for (std::size_t k = 0; k < per; ++k)
+              {
+                const double value = x[i * per + k];
+                ASSERT_TRUE(std::isfinite(value)) << name << " " << i;
+                if (flag[i])
+                  {
+                    ASSERT_EQ(value, 0) << name << " at a diverged speed";
+                  }
+              }
+        }
+      const auto pp = s.read_doubles("dte_peak_to_peak");
+      for (std::size_t i = 0; i < flag.size(); ++i)
+        {
+          const std::size_t j = up ? i : flag.size() - 1 - i; // the stability's index
+          EXPECT_EQ(status[i] == 2, flag[i] != 0) << i;
+          if (flag[i])
+            {
+              ++n;
+              EXPECT_GT(radius[j], 1) << i; // only an unstable mesh grows without bound
+              EXPECT_EQ(grows[j], 1) << i;
+              EXPECT_GT(when[i], 0) << i;
+              const std::string named =
+                  std::to_string(int(std::lround(rpm[i]))) + (up ? " up (after " : " down (after ");
+              EXPECT_NE(log.find(named), std::string::npos) << named << "\n" << log;
+            }
+          else
+            {
+              EXPECT_GT(pp[i], 0) << i;
+              EXPECT_EQ(when[i], 0) << i;
+            }
+          if (!grows[j]) // undamped and stable: on the unit circle, to rounding
+            {
+              EXPECT_NEAR(radius[j], 1, 1e-9) << i;
+            }
+        }
+    }
   EXPECT_GT(n, 0);
+  // the log's parametrically unstable speeds are those flagged in the stability group
+  const std::size_t at = log.find("parametrically unstable in contact (Floquet) at [rpm]:");
+  ASSERT_NE(at, std::string::npos) << log;
+  std::istringstream listed(log.substr(at, log.find('\n', at) - at).substr(54));
+  EXPECT_EQ(std::distance(std::istream_iterator<int>(listed), std::istream_iterator<int>()),
+            std::count(grows.begin(), grows.end(), 1))
+      << log;
+  // the cache file verifies (every floating-point value finite) and is reused
+  ASSERT_EQ(run({file}), 0) << err.str();
+  EXPECT_NE(out.str().find("stage dynamics: reused"), std::string::npos) << out.str();
 }
 
 namespace

@@ -2,6 +2,7 @@
 
 #include "driver/scene_parameters.h"
 #include "driver/scene_text.h"
+#include "driver/stages.h"
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -284,18 +285,25 @@ read_scene(const std::string &file)
       //    alone can tell is refused here, before any stage runs.
       //    Implausible values a real design can have go to scene.warnings; the dynamics' and
       //    the trains' plausibility (masses, speeds, cost) only where they run.
+      //    A section is judged against its pair only where its stage runs (the stage graph,
+      //    driver/stages.cc): its defaults suit no particular pair (the finite elements' 7
+      //    segment teeth refused the unloaded TCA of a 6-tooth pinion).
       auto wanted = [&](const char *output) {
         return std::find(scene.outputs.begin(), scene.outputs.end(), output) != scene.outputs.end();
+      };
+      const std::vector<std::string> stages = required_stages(scene);
+      auto                           runs   = [&](const char *stage) {
+        return std::find(stages.begin(), stages.end(), stage) != stages.end();
       };
       for (const PairScene &pair : scene.pairs)
         {
           const std::string &p = pair.name;
           pair.check(scene.warnings);
           scene.measured.at(p).check(pair);
-          scene.tca.at(p).complete_and_check(pair, scene.measured.at(p));
-          scene.fe.at(p).check(pair);
-          scene.loaded.at(p).check(pair, scene.measured.at(p), wanted("stiffness"), scene.warnings);
-          scene.dynamics.at(p).check(pair, scene.tca.at(p), wanted("dynamics"), scene.warnings);
+          scene.tca.at(p).complete_and_check(pair, scene.measured.at(p), scene.warnings);
+          scene.fe.at(p).check(pair, runs("compliance"));
+          scene.loaded.at(p).check(pair, scene.measured.at(p), runs("stiffness"), scene.warnings);
+          scene.dynamics.at(p).check(pair, scene.tca.at(p), runs("dynamics"), scene.warnings);
         }
       const bool train_wanted = wanted("train");
       if (train_wanted && scene.trains.empty())

@@ -155,9 +155,11 @@ struct TcaScene
   parse(ParameterHandler &prm);
   /// Completes the options that follow from the pair (the hunting cycle's mesh cycles, the
   /// paper mode's copy of the positions) and checks the assembly: a centre distance at which the
-  /// teeth would overlap, or not reach each other, is refused.
+  /// teeth would overlap, or not reach each other, is refused; a total contact ratio eps_gamma
+  /// below 1 there (a gap in the contact every mesh cycle) is added to `warnings`.
   void
-  complete_and_check(const PairScene &pair, const MeasuredScene &measured_flanks);
+  complete_and_check(const PairScene &pair, const MeasuredScene &measured_flanks,
+                     std::vector<std::string> &warnings);
 };
 
 /// Finite-element compliance of a pair's members (stage "compliance").
@@ -190,8 +192,11 @@ struct FeScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
+  /// Its own consistency (odd segment teeth, face grid points, Young's modulus); with `run` (the
+  /// finite elements run: stage compliance) also against the pair: segment teeth within the
+  /// smaller member's teeth, whole gears and rims for spur and helical pairs only.
   void
-  check(const PairScene &pair) const;
+  check(const PairScene &pair, bool run) const;
   /// The same with the element sizes at the flanks, fillets and other flanks times `factor`
   /// (the far size at least the new flank size): what the error estimate changes. With local
   /// refinements and factor 2: one refinement less of the same segment mesh.
@@ -227,7 +232,7 @@ struct LoadedScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
-  /// With `run` (the stiffness stage is an output) also the torques' plausibility.
+  /// With `run` (the stiffness stage runs) also the torques' plausibility.
   void
   check(const PairScene &pair, const MeasuredScene &measured, bool run,
         std::vector<std::string> &warnings) const;

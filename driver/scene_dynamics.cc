@@ -84,7 +84,10 @@ DynamicsScene::declare(ParameterHandler &prm)
                     "and for the recorded motion's harmonics), written per speed beside the "
                     "results (0.005: the seed spiral bevel case within 0.32 % of CVODE BDF at "
                     "1e-8 at every settled speed, the Kahraman-Singh sweep within 0.31 %); 0: "
-                    "steps per mesh cycle at every speed (the estimate still written).");
+                    "steps per mesh cycle at every speed (the estimate still written). At most "
+                    "65536 steps per mesh cycle are taken: an accuracy whose estimate asks for "
+                    "more at some speed is refused, with the accuracy reachable within them; "
+                    "where the recorded motion asks for more, the log names the speeds.");
   prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000),
                     "Newmark: the least steps per mesh cycle (with accuracy 0: the steps); "
                     "from 32 on a multiple of 32 (the samples recorded per mesh cycle).");

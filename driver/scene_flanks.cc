@@ -187,7 +187,10 @@ declare_bevel(ParameterHandler &prm)
   prm.declare_entry("pinion hand", "left", Patterns::Selection("right|left"),
                     "Hand of spiral of the pinion; the gear has the other.");
   prm.declare_entry("cutter radius", "76.2", Patterns::Double(0, 10000),
-                    "[mm] Mean radius r_c of the head cutter.");
+                    "[mm] Mean radius r_c of the head cutter (usually 0.3 to 3 mean cone "
+                    "distances). Its tooth traces must reach the toe and the heel at the top of "
+                    "the tooth (with the pinion cutter radius change): a smaller radius is "
+                    "refused with the least that does (about 0.24 A_m at 35 deg spiral).");
   prm.declare_entry("pinion addendum factor", "1", Patterns::Double(0, 2),
                     "Pinion addendum / m_mn (uniform depth: working depth 2 m_mn).");
   prm.declare_entry("clearance factor", "0.25", Patterns::Double(0, 1), "Clearance / m_mn.");
@@ -412,6 +415,86 @@ check_member_plausibility(const InvoluteGearData &d, const std::string &where,
 }
 } // namespace
 
+// A spiral bevel pair's head cutter must generate both members over the whole face: the
+// cutter's tooth traces must reach the toe and the heel at the top of the tooth (cutter_reach:
+// else the equation of meshing has no solution there), refused by the setting that is at
+// fault with the bound that would reach; then both members are generated as the flanks stage
+// cuts them (before the modified roll is synthesised), and what still fails (a blade that
+// generates only the top of the tooth, an edge radius beyond the dedendum) is refused naming
+// the settings.
+namespace
+{
+void
+check_generated(const PairScene &pair, const std::string &where, const BevelPairGeometry &g)
+{
+  const BevelPairDesign &bevel    = pair.bevel;
+  const PinionMismatch  &mismatch = pair.mismatch;
+  const double           Am       = g.mean_cone_distance;
+  const CutterReach      reach    = cutter_reach(bevel, mismatch);
+  if (!reach.generated())
+    {
+      const std::string why =
+          " is not allowed: the head cutter does not generate the " + reach.member + "'s " +
+          reach.flank + " flank at the " + (reach.heel ? "heel" : "toe") +
+          ": the tooth trace of its blade (radius " + plausible_number(reach.blade_radius / mm) +
+          " mm at the top of the tooth) turns back before reaching the cone distance of " +
+          plausible_number(reach.cone_distance / mm) +
+          " mm there (the sine of the spiral angle would be " + plausible_number(reach.sin_spiral) +
+          ", and the equation of meshing has no solution)";
+      const double least = least_cutter_radius(bevel, mismatch);
+      std::string  radius =
+          std::isfinite(least)
+               ? "a cutter radius of at least " + plausible_number(least / mm) + " mm (" +
+                    plausible_number(least / Am) + " of the mean cone distance " +
+                    plausible_number(Am / mm) + " mm, for the mean spiral angle of " +
+                    plausible_number(bevel.mean_spiral_angle / deg) + " deg, the face width of " +
+                    plausible_number(bevel.face_width / mm) +
+                    " mm and the pinion cutter radius change of " +
+                    plausible_number(mismatch.cutter_radius / mm) + " mm)"
+               : "a smaller face width or mean spiral angle (no cutter radius up to 1000 mean "
+                 "cone distances reaches the whole face)";
+      PinionMismatch unchanged = mismatch;
+      unchanged.cutter_radius  = 0;
+      if (mismatch.cutter_radius == 0 || !cutter_reach(bevel, unchanged).generated())
+        throw InputError(where + "/cutter radius = " + plausible_number(bevel.cutter_radius / mm) +
+                         " mm" + why + "; expected " + radius);
+      // The radius alone reaches: the pinion's blade radius change takes it too far. Both
+      // settings are named, each with its bound given the other: the largest part of the
+      // change that still reaches.
+      double lo = 0, hi = 1;
+      while (hi - lo > 1e-6)
+        {
+          PinionMismatch t                               = mismatch;
+          t.cutter_radius                                = mismatch.cutter_radius * (lo + hi) / 2;
+          (cutter_reach(bevel, t).generated() ? lo : hi) = (lo + hi) / 2;
+        }
+      throw InputError(where + "/cutter radius = " + plausible_number(bevel.cutter_radius / mm) +
+                       " mm with pinion cutter radius change = " +
+                       plausible_number(mismatch.cutter_radius / mm) + " mm" + why + "; expected " +
+                       radius + " with that change, or a pinion cutter radius change of at most " +
+                       plausible_number(std::abs(mismatch.cutter_radius) * lo / mm) +
+                       " mm either way with that radius");
+    }
+  try
+    {
+      const auto [pinion, gear] = mismatched_cuts(bevel, mismatch);
+      BevelMemberFlanks{pinion};
+      BevelMemberFlanks{gear};
+    }
+  catch (const InputError &e)
+    {
+      throw InputError(
+          where + ": the members are not generated with the cutter radius of " +
+          plausible_number(bevel.cutter_radius / mm) + " mm, the mean spiral angle of " +
+          plausible_number(bevel.mean_spiral_angle / deg) + " deg, the pressure angle of " +
+          plausible_number(bevel.pressure_angle / deg) + " deg, the blade edge radius factor " +
+          plausible_number(bevel.edge_radius) + ", the pinion addendum factor " +
+          plausible_number(bevel.pinion_addendum) + " and the pinion cutter radius change of " +
+          plausible_number(mismatch.cutter_radius / mm) + " mm: " + e.what());
+    }
+}
+} // namespace
+
 // Both members must build (InvoluteGear checks every parameter, modifications included) and
 // mesh with each other; first the values a unit slip gives, each by its name.
 void
@@ -468,6 +551,7 @@ PairScene::check(std::vector<std::string> &warnings) const
                        {25.4, "inches typed in a mm field (" + plausible_number(rc) +
                                   " in = " + plausible_number(rc * 25.4) + " mm)"}},
                       warnings);
+      check_generated(*this, where, g);
       return;
     }
   check_member_plausibility(pinion, "Flanks/" + name + "/Pinion", warnings);

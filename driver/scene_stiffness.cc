@@ -151,7 +151,7 @@ FeScene::coarsened(double factor) const
 }
 
 void
-FeScene::check(const PairScene &pair) const
+FeScene::check(const PairScene &pair, bool run) const
 {
   const std::string where = "Finite elements/" + pair.name + "/segment teeth = ";
   if (segment_teeth % 2 == 0)
@@ -161,14 +161,6 @@ FeScene::check(const PairScene &pair) const
     throw InputError("Finite elements/" + pair.name +
                      "/face grid points = 1 is not allowed; expected 0 (from the face width) or "
                      "at least 2");
-  if ((whole_pinion || whole_gear) && pair.type != PairType::involute)
-    throw InputError("Finite elements/" + pair.name +
-                     "/whole gears = true is not allowed for this pair; whole gears are meshed "
-                     "for spur and helical pairs (spiral bevel pairs: segments)");
-  if ((whole_rim_pinion || whole_rim_gear) && pair.type != PairType::involute)
-    throw InputError("Finite elements/" + pair.name +
-                     "/whole rims is not allowed for this pair; expected false (whole rims are "
-                     "meshed for spur and helical pairs; spiral bevel pairs: segments)");
   if ((whole_pinion && whole_rim_pinion) || (whole_gear && whole_rim_gear))
     throw InputError("Finite elements/" + pair.name +
                      "/whole rims and whole gears both name a member; expected one of them "
@@ -186,6 +178,18 @@ FeScene::check(const PairScene &pair) const
                                   " MPa = " + plausible_number(e / 1000) + " GPa)"
                             : std::string("; expected a value in that range")));
     }
+  // Against the pair only where the finite elements run: the defaults (7 segment teeth) suit
+  // no particular pair.
+  if (!run)
+    return;
+  if ((whole_pinion || whole_gear) && pair.type != PairType::involute)
+    throw InputError("Finite elements/" + pair.name +
+                     "/whole gears = true is not allowed for this pair; whole gears are meshed "
+                     "for spur and helical pairs (spiral bevel pairs: segments)");
+  if ((whole_rim_pinion || whole_rim_gear) && pair.type != PairType::involute)
+    throw InputError("Finite elements/" + pair.name +
+                     "/whole rims is not allowed for this pair; expected false (whole rims are "
+                     "meshed for spur and helical pairs; spiral bevel pairs: segments)");
   const int z = std::min(pair_teeth(pair).first, pair_teeth(pair).second);
   if (segment_teeth > z)
     throw InputError(where + std::to_string(segment_teeth) +

@@ -87,8 +87,38 @@ TcaScene::parse(ParameterHandler &prm)
   paper.tolerance                    = prm.get_double("paper tolerance") * um;
 }
 
+namespace
+{
+// A pair whose total contact ratio eps_gamma = eps_alpha + eps_beta is below 1 has no tooth pair
+// in conjugate contact over 1 - eps_gamma of every mesh cycle. Warned, not refused: the
+// unloaded TCA computes what rigid teeth do there - the outgoing pair touches at a tip edge
+// (the tip corner on the mate's flank beyond the path of contact: edge contact), and e_0 rises
+// steeply until the next pair takes over, a spike every mesh cycle; under load the teeth part
+// there and strike the next pair. A helical pair with eps_alpha < 1 whose overlap ratio makes
+// eps_gamma >= 1 meshes without a gap (ISO 6336 rates such designs) and is not warned.
 void
-TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measured_flanks)
+warn_contact_gap(const std::string &pair, double eps_alpha, double eps_beta,
+                 const std::string &where, std::vector<std::string> &warnings)
+{
+  const double eps_gamma = eps_alpha + eps_beta;
+  if (eps_gamma >= 1)
+    return;
+  warnings.push_back(
+      "Flanks/" + pair + ": the total contact ratio eps_gamma = " + plausible_number(eps_gamma) +
+      " (eps_alpha " + plausible_number(eps_alpha) + where + ", eps_beta " +
+      plausible_number(eps_beta) + ") is unusual: below 1, no tooth pair meets on its flanks " +
+      "over " + plausible_number(std::round(1000 * (1 - eps_gamma)) / 10) +
+      " % of every mesh cycle; there the unloaded TCA finds the teeth touching at a tip edge "
+      "(ste edge_contact) and e_0 rises steeply until the next pair takes over, a spike each "
+      "mesh cycle (under load the teeth part and strike the next pair); real designs have "
+      "eps_gamma of at least 1.1 (more addendum, less centre distance, or a helix); the run goes "
+      "on with the pair as given");
+}
+} // namespace
+
+void
+TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measured_flanks,
+                             std::vector<std::string> &warnings)
 {
   const std::string where = "TCA/" + pair.name + "/";
   if (hunting)
@@ -121,6 +151,9 @@ TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measure
         throw InputError(where + "centre distance: a spiral bevel pair has intersecting axes; "
                                  "leave it 0 and move the members with offset and the axial "
                                  "shifts");
+      const VirtualCylindricalGears v = virtual_cylindrical_gears(pair.bevel);
+      warn_contact_gap(pair.name, v.transverse_contact_ratio, v.overlap_ratio,
+                       " of the virtual cylindrical gears, ISO 10300", warnings);
       return;
     }
   // Parallel axes: the teeth must neither overlap (below the zero-backlash working centre
@@ -137,9 +170,14 @@ TcaScene::complete_and_check(const PairScene &pair, const MeasuredScene &measure
                      "below the zero-backlash working centre distance " +
                      mm_text(a_w) + " (allowed: at least that)");
   // a >= a_w > r_b1 + r_b2 here, so the contact ratio exists; <= 0: an empty path of contact
-  if (contact_ratios(*pinion, *gear, a).transverse <= 0)
+  const ContactRatios eps = contact_ratios(*pinion, *gear, a);
+  if (eps.transverse <= 0)
     throw InputError(where + "centre distance: " + mm_text(a) +
                      " is not allowed; the teeth do not reach each other there (the path of "
                      "contact would be empty)");
+  warn_contact_gap(pair.name, eps.active_transverse, eps.overlap,
+                   " over the active profiles at the centre distance of " +
+                       plausible_number(a / mm) + " mm (TCA/" + pair.name + ")",
+                   warnings);
 }
 } // namespace gearkit

@@ -314,6 +314,53 @@ write_modes(const H5Group &g, const PairModel &model, const std::string &label, 
   log << "\n";
 }
 
+/// Newmark with an accuracy: the steps per mesh cycle it asks for at every swept speed (the
+/// estimate for the tables' forcing, as the sweep takes them: NewmarkError::steps from the
+/// scene's least steps, to the sweep's most) must reach it; else the accuracy is refused by its
+/// own name - not by the steps it implies, which the user did not set - with those steps, the
+/// limit, and the accuracy reachable within it: the largest error at the most steps over the
+/// speeds (with it, every speed reaches).
+void
+check_accuracy(const PairModel &model, double load_torque, const DynamicsScene &d,
+               const std::string &pair)
+{
+  if (!(d.integrator == Integrator::newmark && d.accuracy > 0))
+    return;
+  const int          most     = std::max(SweepOptions().most_steps, d.steps_per_cycle);
+  const int          multiple = std::min(32, d.steps_per_cycle);
+  const NewmarkError newmark(model, load_torque);
+  double             reachable = 0, worst_speed = 0, worst_error = 0;
+  for (double w : sweep_speeds(d))
+    {
+      const double error = newmark.forced(w, most);
+      reachable          = std::max(reachable, error);
+      const int steps    = newmark.steps(w, d.accuracy, d.steps_per_cycle, multiple, most);
+      if (newmark.forced(w, steps) > d.accuracy && error > worst_error)
+        worst_speed = w, worst_error = error;
+    }
+  if (!(worst_error > 0))
+    return;
+  constexpr int beyond = 1 << 30;
+  const int     asked  = newmark.steps(worst_speed, d.accuracy, most, multiple, beyond);
+  // the reachable accuracy to three digits, rounded up (so that the value as printed passes)
+  const double       scale = std::pow(10.0, std::floor(std::log10(reachable)) - 2);
+  const double       least = std::ceil(reachable / scale) * scale;
+  std::ostringstream m;
+  m << "Dynamics/" << pair << "/accuracy = " << plausible_number(d.accuracy)
+    << " is not allowed with integrator = newmark: at "
+    << plausible_number(std::round(worst_speed * 60 / (2 * pi))) << " rpm it asks for "
+    << (asked >= beyond ? "more than " : "") << asked
+    << " Newmark steps per mesh cycle (the rule's error estimated for the tables' forcing, "
+       "dynamics/newmark_error.h), beyond the "
+    << most << " a speed of the sweep may take; within them the DTE's relative RMS error comes "
+    << "down to " << plausible_number(worst_error) << " there"
+    << (worst_error < reachable ? " and to " + plausible_number(reachable) + " at every swept speed"
+                                : ", the most at any swept speed")
+    << "; expected an accuracy of at least " << plausible_number(least)
+    << " (or integrator = cvode bdf)";
+  throw InputError(m.str());
+}
+
 /// Parametric stability of the mesh in contact at every swept speed (Floquet), in `g`.
 void
 write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d, double TE,
@@ -333,7 +380,8 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
       r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
       r.samples_per_cycle = std::min(32, d.steps_per_cycle);
       if (newmark)
-        r.steps_per_cycle = newmark->steps(w, d.accuracy, d.steps_per_cycle, r.samples_per_cycle);
+        r.steps_per_cycle = newmark->steps(w, d.accuracy, d.steps_per_cycle, r.samples_per_cycle,
+                                           std::max(SweepOptions().most_steps, d.steps_per_cycle));
       rpm.push_back(w * 60 / (2 * pi));
       radius.push_back(std::abs(floquet_multipliers(model, r).front()));
       grows.push_back(parametrically_unstable(radius.back()));
@@ -494,6 +542,8 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       log << "  " << pair.name << ": static mesh force " << excitations.front().s.mesh_force
           << " N\n";
       write_modes(g, *excitations.front().model, excitations.front().label, z1, log, pair.name);
+      for (const Excitation &e : excitations)
+        check_accuracy(*e.model, e.TL, d, pair.name);
 
       // the sweeps: per excitation up and down (each from the static equilibrium at its first
       // speed), in blocks
@@ -528,8 +578,8 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       for (std::size_t x = 0; x < excitations.size(); ++x)
         {
           const H5Group eg  = g.group(excitations[x].label);
-          double        dlf = 0;
-          std::string   unsteady, diverged;
+          double        dlf = 0, unreached_error = 0;
+          std::string   unsteady, diverged, unreached;
           for (int dir = 0; dir < 2; ++dir)
             {
               const std::size_t       j = 2 * x + std::size_t(dir);
@@ -552,6 +602,10 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
                     dlf = std::max(dlf, pt.load_factor);
                   if (!pt.diverged && pt.period == 0 && d.steady_tolerance > 0)
                     unsteady += at;
+                  // Newmark at the sweep's most steps, its error estimate still above the
+                  // accuracy (the recorded motion's harmonics ask for more)
+                  if (!pt.diverged && d.accuracy > 0 && pt.error_estimate > d.accuracy)
+                    unreached += at, unreached_error = std::max(unreached_error, pt.error_estimate);
                 }
             }
           log << "  " << pair.name << " " << excitations[x].label << ": " << d.speeds
@@ -561,6 +615,13 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             log << "  " << pair.name << " " << excitations[x].label << ": not steady within "
                 << d.settle_cycles << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady
                 << "\n";
+          if (!unreached.empty())
+            log << "  " << pair.name << " " << excitations[x].label << ": accuracy " << d.accuracy
+                << " not reached within the sweep's most Newmark steps ("
+                << std::max(SweepOptions().most_steps, d.steps_per_cycle)
+                << " per mesh cycle; the recorded motion's harmonics asked for more), error "
+                   "estimates up to "
+                << unreached_error << " (error_estimate) at [rpm]:" << unreached << "\n";
           if (!diverged.empty())
             log << "  " << pair.name << " " << excitations[x].label
                 << ": DIVERGED (the response grew past " << int(SweepOptions().divergence_factor)

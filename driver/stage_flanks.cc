@@ -235,7 +235,14 @@ run_flanks_stage(const Scene &scene, const Upstream &, const H5Group &out, std::
       const H5Group pg = out.group(pair.name);
       if (pair.type == PairType::spiral_bevel)
         {
-          write_bevel_pair(pair, pg, log, progress);
+          try // (the modified roll's synthesis runs the TCA; its errors name the pair)
+            {
+              write_bevel_pair(pair, pg, log, progress);
+            }
+          catch (const InputError &e)
+            {
+              throw InputError("Flanks/" + pair.name + "/Spiral bevel: " + e.what());
+            }
           continue;
         }
       pg.attribute("type", "involute");

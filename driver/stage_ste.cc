@@ -25,8 +25,21 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
           theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
       const H5Group g = out.group(pair.name);
       g.attribute("method", "classical TCA on the theoretical flanks");
-      const auto [pp, pairs] = write_tca_tables(
-          pair_tca(members.pinion, members.gear, members.assembly, t, false, step), t, members, g);
+      // errors of the contact search (e.g. its bound on the work) name the pair's section
+      const auto tca = [&](const MemberPointer &pinion, const MemberPointer &gear, bool measured,
+                           PaperModeResult *paper) {
+        try
+          {
+            return pair_tca(pinion, gear, members.assembly, t, measured, step, paper);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError("TCA/" + pair.name + (measured ? " (measured flanks)" : "") + ": " +
+                             e.what());
+          }
+      };
+      const auto [pp, pairs] =
+          write_tca_tables(tca(members.pinion, members.gear, false, nullptr), t, members, g);
       log << "  " << pair.name << ": e_0 peak-to-peak " << pp * 1e6
           << " urad, mean pairs in contact " << pairs << "\n";
       if (!t.measured)
@@ -36,7 +49,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       const auto [mp, mg] = measured_members(upstream.at("measured")->group(pair.name));
       const H5Group   gm  = g.group("measured");
       PaperModeResult paper;
-      const TcaResult r = pair_tca(mp, mg, members.assembly, t, true, step, &paper);
+      const TcaResult r = tca(mp, mg, true, &paper);
       if (t.paper_mode)
         {
           gm.attribute("method", "paper mode (the seed's point-cloud method) on the measured "

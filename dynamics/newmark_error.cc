@@ -219,8 +219,11 @@ int
 NewmarkError::steps(double omega, double accuracy, int least, int multiple, int most) const
 {
   require_value(accuracy > 0 && accuracy < 1, "pair dynamics", "accuracy", accuracy, "in (0, 1)");
-  require_value(multiple >= 1 && least >= 1 && most >= least, "pair dynamics",
-                "steps per mesh cycle", least, ">= 1, a multiple >= 1 and at most the most");
+  require_value(least >= 1, "Newmark steps", "least steps per mesh cycle", least, ">= 1");
+  require_value(multiple >= 1, "Newmark steps", "multiple of the steps per mesh cycle", multiple,
+                ">= 1");
+  require_value(most >= least, "Newmark steps", "least steps per mesh cycle", least,
+                "at most the most steps per mesh cycle, " + std::to_string(most));
   const auto up = [&](double s) { // to a multiple, within [least, most]
     const int n = multiple * int(std::ceil(std::min(s, double(most)) / multiple));
     return std::clamp(n, multiple * ((least + multiple - 1) / multiple), std::max(most, least));

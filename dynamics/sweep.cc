@@ -214,7 +214,7 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
   std::optional<NewmarkError> newmark;
   if (o.run.method == Integrator::newmark)
     newmark.emplace(model, o.load_torque);
-  constexpr int           most_steps = 1 << 16;
+  const int               most_steps = std::max(o.most_steps, o.run.steps_per_cycle);
   std::vector<SweepPoint> out;
   for (std::size_t i = 0; i < o.speeds.size(); ++i)
     {
@@ -263,7 +263,8 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
             break;
           const double more_steps = std::max(1.5, 1.05 * std::sqrt(2 * posterior / o.accuracy));
           r.steps_per_cycle =
-              newmark->steps(omega, o.accuracy, int(std::ceil(r.steps_per_cycle * more_steps)),
+              newmark->steps(omega, o.accuracy,
+                             std::min(most_steps, int(std::ceil(r.steps_per_cycle * more_steps))),
                              r.samples_per_cycle, most_steps);
         }
       if (diverged) // the next speed starts afresh

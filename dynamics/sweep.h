@@ -66,6 +66,11 @@ struct SweepOptions
   /// times), while the recorded motion's harmonics (NewmarkError::recorded: what contact loss
   /// and K_m's variation add) say more than half of it; 0: run's steps at every speed.
   double accuracy = 0;
+  /// The most Newmark steps per mesh cycle the accuracy may ask for (a bound on the sweep's
+  /// cost; at least run.steps_per_cycle): where it asks more, the speed runs with these and its
+  /// error estimate above the accuracy (a caller refuses an accuracy the forced estimate puts
+  /// beyond them first: the driver's Dynamics/<pair>/accuracy).
+  int most_steps = 1 << 16;
 };
 
 struct SweepPoint

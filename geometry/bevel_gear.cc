@@ -206,6 +206,80 @@ mismatched_cuts(const BevelPairDesign &d, const PinionMismatch &m)
   return {pinion, gear};
 }
 
+CutterReach
+cutter_reach(const BevelPairDesign &d, const PinionMismatch &mismatch)
+{
+  const auto [pinion, gear] = conjugate_cuts(d);
+  const double Am = pinion.blank.mean_cone_distance, F = pinion.blank.face_width;
+  const double h_mid = 0.5 * (pinion.blank.addendum - gear.blank.addendum); // as mismatched_cuts
+  CutterReach  worst;
+  worst.sin_spiral = -1;
+  for (const BevelMemberCut *cut : {&pinion, &gear})
+    for (const auto &[blade, machine] : {std::pair{&cut->outside_blade, &cut->outside_machine},
+                                         {&cut->inside_blade, &cut->inside_machine}})
+      {
+        const double tan_a = std::tan(blade->angle);
+        Vec2         centre(machine->radial_setting * std::cos(machine->cradle_angle),
+                            machine->radial_setting * std::sin(machine->cradle_angle));
+        double       radius = blade->pitch_radius;
+        if (cut == &pinion && mismatch.cutter_radius != 0)
+          {
+            // the trace at the mean height meets A_m at X (the crossing nearer the mean point
+            // (A_m, 0)); the changed blade keeps X: its centre moves by -change along X - C
+            const double change = blade->slope * mismatch.cutter_radius;
+            const double rho    = radius + blade->slope * tan_a * h_mid;
+            const double S      = centre.norm();
+            const double a      = (Am * Am - rho * rho + S * S) / (2 * S);
+            const double q      = std::sqrt(std::max(0.0, Am * Am - a * a));
+            const Vec2   e      = centre / S, n(-e.y(), e.x());
+            const Vec2   x1 = a * e + q * n, x2 = a * e - q * n;
+            const Vec2   X = (x1 - Vec2(Am, 0)).norm() <= (x2 - Vec2(Am, 0)).norm() ? x1 : x2;
+            centre -= change * (X - centre).normalized();
+            radius += change;
+          }
+        const double S   = centre.norm();
+        const double rho = radius + blade->slope * tan_a * cut->blank.addendum;
+        for (const bool heel : {false, true})
+          {
+            const double A = Am + (heel ? F / 2 : -F / 2);
+            const double sin_beta =
+                rho > 0 ? (A * A + rho * rho - S * S) / (2 * A * rho) : HUGE_VAL;
+            if (std::abs(sin_beta) > worst.sin_spiral)
+              worst = {std::abs(sin_beta),
+                       cut == &pinion ? "pinion" : "gear",
+                       blade->slope > 0 ? "concave" : "convex",
+                       heel,
+                       A,
+                       rho};
+          }
+      }
+  return worst;
+}
+
+double
+least_cutter_radius(const BevelPairDesign &design, const PinionMismatch &mismatch)
+{
+  BevelPairDesign d       = design;
+  const double    Am      = bevel_geometry(d).mean_cone_distance;
+  auto            reaches = [&](double r) {
+    d.cutter_radius = r;
+    return cutter_reach(d, mismatch).generated();
+  };
+  double lo = 0, hi = Am / 64;
+  while (!reaches(hi))
+    {
+      lo = hi, hi *= 2;
+      if (hi > 1000 * Am)
+        return HUGE_VAL;
+    }
+  while (hi - lo > 1e-9 * Am)
+    {
+      const double r         = 0.5 * (lo + hi);
+      (reaches(r) ? hi : lo) = r;
+    }
+  return hi;
+}
+
 BevelMemberFlanks::BevelMemberFlanks(const BevelMemberCut &cut)
     : z(cut.blank.teeth)
 {

@@ -604,6 +604,14 @@ contact_ratios(const InvoluteGear &p, const InvoluteGear &g, double a)
       p.transverse_base_pitch;
   c.overlap = std::min(p.data().face_width, g.data().face_width) * std::sin(p.data().helix_angle) /
               (pi * p.data().normal_module);
+  // roll lengths along the line of action from the pinion's base tangent point: the pinion's
+  // involute spans [g_f1, g_a1], the gear's [L - g_a2, L - g_f2]
+  const double L = a * sin_alpha;
+  const double lower =
+      std::max(p.base_radius * p.roll_angle_form, L - path(g.tip_radius, g.base_radius));
+  const double upper =
+      std::min(path(p.tip_radius, p.base_radius), L - g.base_radius * g.roll_angle_form);
+  c.active_transverse = std::max(0.0, upper - lower) / p.transverse_base_pitch;
   return c;
 }
 

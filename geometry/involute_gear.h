@@ -239,9 +239,20 @@ create_pair(const InvoluteGearData &pinion, const InvoluteGearData &gear,
 /// (sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin(alpha_wt)) / p_bt with
 /// cos(alpha_wt) = (r_b1 + r_b2) / a, and overlap eps_beta = b sin(beta) / (pi m_n) over the
 /// common face width b. Throws InputError when the pair cannot mesh at a (a < r_b1 + r_b2).
+/// active_transverse: eps_alpha over the path of contact the involutes span - between the tip
+/// circles, and from a member's form circle where the mate's tip reaches below it (an undercut
+/// or short involute: there the mate's tip meets the fillet, not a conjugate flank); at most
+/// eps_alpha.
 struct ContactRatios
 {
-  double transverse = 0, overlap = 0;
+  double transverse = 0, overlap = 0, active_transverse = 0;
+  /// eps_gamma over the active profiles: active_transverse + overlap. Below 1 no tooth pair is
+  /// in conjugate contact over 1 - eps_gamma of every mesh cycle.
+  double
+  total() const
+  {
+    return active_transverse + overlap;
+  }
 };
 ContactRatios
 contact_ratios(const InvoluteGear &pinion, const InvoluteGear &gear, double centre_distance);

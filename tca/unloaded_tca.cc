@@ -117,13 +117,23 @@ UnloadedTca::solve_touch(int j, const Vec3 &X, double expected, double &psi, dou
   psi = expected + wrap(std::atan2(r0.y(), r0.x()) - std::atan2(Q.y(), Q.x()) - expected);
   // Converged when the points coincide to 1e-12 of the point's radius (0.05 pm at 50 mm, well
   // above the coordinates' rounding; relative, so that a gear and its scaled copy converge
-  // alike); a start that Newton cannot bring there is no touch.
+  // alike); a start that Newton cannot bring there is no touch, nor one whose steps leave
+  // the surface the flank continues to (a generated flank exists only where its cutter reaches:
+  // evaluate throws beyond).
   bool converged = false;
   for (int it = 0; it < 40 && !converged; ++it)
     {
-      const FlankPoint f  = flank.evaluate(u2, v2);
-      const Vec3       RQ = rot_z(psi) * Q;
-      const Vec3       F  = f.position - RQ;
+      FlankPoint f;
+      try
+        {
+          f = flank.evaluate(u2, v2);
+        }
+      catch (const InputError &)
+        {
+          return Touch::none;
+        }
+      const Vec3 RQ = rot_z(psi) * Q;
+      const Vec3 F  = f.position - RQ;
       if (F.norm() < 1e-12 * Q.norm())
         {
           converged = true;
@@ -182,9 +192,17 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
     v2 = v2 > dg.v_max ? dg.v_max : dg.v_min;
     for (int it = 0; it < 40; ++it)
       {
-        const FlankPoint p = flank.evaluate(u1, v1);
-        const FlankPoint q = gear_flank.evaluate(u2, v2);
-        const Vec3       Q =
+        FlankPoint p, q;
+        try // (a generated flank exists only where its cutter reaches, as in solve_touch)
+          {
+            p = flank.evaluate(u1, v1);
+            q = gear_flank.evaluate(u2, v2);
+          }
+        catch (const InputError &)
+          {
+            return false;
+          }
+        const Vec3 Q =
             assembly.global_to_gear_unrotated(assembly.pinion_to_global(p.position, phi));
         const Vec3 RQ = rot_z(psi) * Q;
         const Vec3 F  = q.position - RQ;
@@ -221,7 +239,19 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
     double value = -HUGE_VAL, u1 = 0, v1 = 0, psi = 0, u2 = 0, v2 = 0;
     bool   face_end = false; ///< moved to the gear's face end (face_end above)
   };
-  auto sample = [&](double u1, double v1) {
+  int  samples = 0;
+  auto sample  = [&](double u1, double v1) {
+    if (++samples > options.most_samples)
+      {
+        std::ostringstream m;
+        m << "unloaded TCA: the contact search of pinion tooth " << c.pinion_tooth
+          << " with gear tooth " << c.gear_tooth << " at pinion angle " << phi
+          << " rad took more than " << options.most_samples
+          << " flank samples without converging; expected a touch angle with one maximum "
+              "over the flank (flanks that are smooth, and mismatched for a localised bearing or "
+              "conjugate)";
+        throw InputError(m.str());
+      }
     Sample out;
     out.u1 = std::clamp(u1, d.u_min, d.u_max);
     out.v1 = std::clamp(v1, d.v_min, d.v_max);
@@ -297,17 +327,91 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
       else if (better(closest, starts[0]))
         starts[0] = closest;
     }
-  // Each start coarsely (to 1e-4 of the grid step), then the best of them to the end.
+  // The gradient of s psi in the free flank parameters follows from the implicit function
+  // theorem on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ; the Newton
+  // step on its stationarity from differences of it (a pseudo-inverse handles line contact: a
+  // singular Hessian along the contact line).
+  auto at_edge = [](double x, double lo, double hi) {
+    return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
+  };
+  auto gear_edge = [&](const Sample &t) {
+    return at_edge(t.u2, dg.u_min, dg.u_max) || at_edge(t.v2, dg.v_min, dg.v_max);
+  };
+  auto gradient = [&](const Sample &t, bool free_u, bool free_v) {
+    const FlankPoint      p = flank.evaluate(t.u1, t.v1);
+    const FlankPoint      q = gear_flank.evaluate(t.u2, t.v2);
+    const Vec3            X = assembly.pinion_to_global(p.position, phi);
+    const Vec3            Q = assembly.global_to_gear_unrotated(X);
+    const Eigen::Matrix3d R = rot_z(t.psi);
+    Eigen::Matrix3d       J;
+    J.col(0)         = q.d_du;
+    J.col(1)         = q.d_dv;
+    J.col(2)         = -Vec3::UnitZ().cross(R * Q);
+    const auto lu    = J.partialPivLu();
+    auto       d_psi = [&](const Vec3 &dr) {
+      const Vec3 dQ =
+          assembly.global_to_gear_unrotated_vector(assembly.pinion_vector_to_global(dr, phi));
+      return s * lu.solve(R * dQ).z();
+    };
+    return Eigen::Vector2d(free_u ? d_psi(p.d_du) : 0.0, free_v ? d_psi(p.d_dv) : 0.0);
+  };
+  // (`found`: whether the difference samples touch at all)
+  auto newton_step = [&](const Sample &t, bool free_u, bool free_v, bool *found = nullptr) {
+    const Eigen::Vector2d g0 = gradient(t, free_u, free_v);
+    const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
+    Eigen::Matrix2d       H = Eigen::Matrix2d::Zero();
+    for (int k = 0; k < 2; ++k)
+      if (k == 0 ? free_u : free_v)
+        {
+          const Sample near = k == 0 ? sample(t.u1 + eu, t.v1) : sample(t.u1, t.v1 + ev);
+          if (found && near.value == -HUGE_VAL)
+            *found = false;
+          H.col(k) = (gradient(near, free_u, free_v) - g0) / (k == 0 ? eu : ev);
+        }
+    return Eigen::Vector2d(-H.completeOrthogonalDecomposition().solve(g0));
+  };
+
+  // Each start coarsely (to 1e-4 of the grid step), then the best of them to the end. A search
+  // that keeps moving at one step size crawls along a ridge oblique to the flank parameters
+  // (near line contact): every 64 moves (8 once one has gained) it tries the Newton step of the
+  // touch angle's quadratic model, halved until it gains, which goes along the ridge at once
+  // (see pair()).
   struct Search
   {
     Sample at;
     double hu, hv;
   };
-  // A move must gain more than the touch angle's rounding (1e-15 rad relative): along a
-  // contact line the angle is flat to rounding, and steps of 1e-11 of the flank walking a
-  // ridge of rounding noise would take ~1e11 moves. At most 64 moves per step size.
+  int  crawl = 64; // moves at one step size before a Newton step; 8 once one has helped
+  auto jump  = [&](Search &x) {
+    const bool free_u = !at_edge(x.at.u1, d.u_min, d.u_max);
+    const bool free_v = !at_edge(x.at.v1, d.v_min, d.v_max);
+    if (!(free_u || free_v) || gear_edge(x.at) || x.at.face_end)
+      return;
+    bool            found = true;
+    Eigen::Vector2d step;
+    try // (a difference sample beyond where a generated gear flank exists: no step)
+      {
+        step = newton_step(x.at, free_u, free_v, &found);
+      }
+    catch (const InputError &)
+      {
+        return;
+      }
+    if (!found)
+      return;
+    for (int halvings = 0; halvings < 30 && step.allFinite(); ++halvings, step /= 2)
+      {
+        const Sample t = sample(x.at.u1 + step.x(), x.at.v1 + step.y());
+        if (better(t, x.at))
+          {
+            x.at  = t;
+            crawl = 8;
+            return;
+          }
+      }
+  };
   auto refine = [&](Search &x, double until) {
-    int moves = 0;
+    int moves = 0; // at this step size
     while ((x.hu > 1e-11 * (d.u_max - d.u_min) || x.hv > 1e-11 * (d.v_max - d.v_min)) &&
            x.hu > until * hu0)
       {
@@ -320,16 +424,23 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
                 if (better(t, next))
                   next = t;
               }
-        const bool gain = next.value > x.at.value + 1e-15 * (1 + std::abs(x.at.value)) ||
-                          (x.at.value == -HUGE_VAL && next.value > -HUGE_VAL) ||
-                          next.face_end != x.at.face_end;
-        if ((next.u1 == x.at.u1 && next.v1 == x.at.v1) || !gain || ++moves > 64)
+        // A move must gain more than the touch angle's rounding (1e-15 relative): along a
+        // contact line the angle is flat to rounding, and a walk along a ridge of rounding
+        // noise at steps of 1e-11 of the flank would take ~1e11 samples.
+        const bool moved = !(next.u1 == x.at.u1 && next.v1 == x.at.v1);
+        const bool gain  = moved && (next.value > x.at.value + 1e-15 * (1 + std::abs(x.at.value)) ||
+                                    (x.at.value == -HUGE_VAL && next.value > -HUGE_VAL) ||
+                                    next.face_end != x.at.face_end);
+        if (!gain)
           {
             x.hu /= 2, x.hv /= 2, moves = 0;
-            if (!gain)
-              continue;
+            continue;
           }
         x.at = next;
+        if (++moves % crawl == 0)
+          jump(x);
+        if (moves == 128) // a ridge too slanted for the jumps: on at a finer step (bounded work)
+          x.hu /= 2, x.hv /= 2, moves = 0;
       }
   };
   Search found{Sample(), hu0, hv0};
@@ -343,61 +454,27 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
           found = x;
       }
   refine(found, 0);
-  best = found.at;
-  if (best.value == -HUGE_VAL)
-    return c;
 
   // Newton on the stationarity of the touch angle (the classical tangency condition) in the
   // free parameters: the pattern search locates the maximum to ~1e-8 (the touch angle is flat
-  // there), Newton pins it to rounding. The gradient follows from the implicit function theorem
-  // on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ. A pseudo-inverse
-  // handles line contact (a singular Hessian along the contact line).
-  auto at_edge = [](double x, double lo, double hi) {
-    return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
-  };
+  // there), Newton pins it to rounding.
+  best = found.at;
+  if (best.value == -HUGE_VAL)
+    return c;
   const bool free_u = !at_edge(best.u1, d.u_min, d.u_max);
   const bool free_v = !at_edge(best.v1, d.v_min, d.v_max);
-  const bool gear_edge =
-      at_edge(best.u2, dg.u_min, dg.u_max) || at_edge(best.v2, dg.v_min, dg.v_max);
-  if ((free_u || free_v) && !gear_edge)
-    {
-      auto gradient = [&](const Sample &t) {
-        const FlankPoint      p = flank.evaluate(t.u1, t.v1);
-        const FlankPoint      q = gear_flank.evaluate(t.u2, t.v2);
-        const Vec3            X = assembly.pinion_to_global(p.position, phi);
-        const Vec3            Q = assembly.global_to_gear_unrotated(X);
-        const Eigen::Matrix3d R = rot_z(t.psi);
-        Eigen::Matrix3d       J;
-        J.col(0)         = q.d_du;
-        J.col(1)         = q.d_dv;
-        J.col(2)         = -Vec3::UnitZ().cross(R * Q);
-        const auto lu    = J.partialPivLu();
-        auto       d_psi = [&](const Vec3 &dr) {
-          const Vec3 dQ =
-              assembly.global_to_gear_unrotated_vector(assembly.pinion_vector_to_global(dr, phi));
-          return s * lu.solve(R * dQ).z();
-        };
-        return Eigen::Vector2d(free_u ? d_psi(p.d_du) : 0.0, free_v ? d_psi(p.d_dv) : 0.0);
-      };
-      for (int it = 0; it < 8; ++it)
-        {
-          const Eigen::Vector2d g0 = gradient(best);
-          const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
-          Eigen::Matrix2d       H = Eigen::Matrix2d::Zero();
-          if (free_u)
-            H.col(0) = (gradient(sample(best.u1 + eu, best.v1)) - g0) / eu;
-          if (free_v)
-            H.col(1) = (gradient(sample(best.u1, best.v1 + ev)) - g0) / ev;
-          const Eigen::Vector2d step = -H.completeOrthogonalDecomposition().solve(g0);
-          const Sample          next = sample(best.u1 + step.x(), best.v1 + step.y());
-          if (!(next.value >= best.value - 1e-14))
-            break;
-          const bool done = step.norm() < 1e-13;
-          best            = next;
-          if (done)
-            break;
-        }
-    }
+  if ((free_u || free_v) && !gear_edge(best))
+    for (int it = 0; it < 8; ++it)
+      {
+        const Eigen::Vector2d step = newton_step(best, free_u, free_v);
+        const Sample          next = sample(best.u1 + step.x(), best.v1 + step.y());
+        if (!(next.value >= best.value - 1e-14))
+          break;
+        const bool done = step.norm() < 1e-13;
+        best            = next;
+        if (done)
+          break;
+      }
 
   c.found       = true;
   c.touch_angle = best.psi;

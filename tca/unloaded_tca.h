@@ -41,6 +41,12 @@ struct TcaOptions
   /// normal is found only to ~1e-7, so that where it ties with another pair's conjugate contact
   /// within rounding the leading pair may change.
   bool robust_search = false;
+  /// The most flank samples (touch-angle solves) one tooth pair's contact search at one
+  /// position may take; beyond, the search throws InputError naming the pair and the position
+  /// rather than running on. A search takes a few hundred (a grid of profile x face samples,
+  /// then about 8 per step of the pattern search), a few thousand where it follows a ridge (near
+  /// line contact, see UnloadedTca::pair).
+  int most_samples = 100000;
 };
 
 /// One tooth pair at one position.
@@ -134,6 +140,16 @@ public:
   /// `near`: this pairing's contact at a nearby pinion angle, if known; the search then also
   /// looks around its flank point (it follows an edge contact whose touching region is a sliver
   /// the search grid misses, as at a helical gear's tip corner entering mesh).
+  /// The search: a grid over the pinion flank, then a pattern search (eight neighbours, the step
+  /// halved where none is better) to the touch angle's maximum, then Newton on its
+  /// stationarity. Near line contact the maximum lies on a ridge along the contact line, whose
+  /// cross curvature exceeds its length curvature by orders of magnitude (a 5 m head cutter
+  /// mismatched by 2 mm: about 1e4): a ridge oblique to the flank parameters that the pattern
+  /// search would crawl along in steps of its current size, about that ratio of steps. After 64
+  /// moves at one step size the search therefore takes a Newton step on the touch angle's
+  /// quadratic model (backtracked until it gains), which goes along the ridge at once; once one
+  /// has gained, after every 8 moves. (The shipped cases' searches move at most 48 times at one
+  /// step size: their results are those of the plain pattern search.)
   PairContact
   pair(int k, double pinion_angle, const PairContact *near = nullptr) const;
 

@@ -268,17 +268,23 @@ TEST_F(PlausibilityTest, FlankValuesARealDesignCanHaveAreWarned)
   EXPECT_NE(scene.warnings[1].find("Flanks/p1/Gear/helix angle = 3 deg is unusual"),
             std::string::npos)
       << scene.warnings[1];
-  // a 10 deg pressure angle (both members): unusual, not impossible
+  // a 10 deg pressure angle (both members): unusual, not impossible; both members are undercut
+  // so deeply (involutes from d = 37.74 and 72.97 mm) that the active profiles give eps_gamma
+  // 0.881 (between the tip circles eps_alpha would be 2.22): a gap in the contact, warned too
+  // (tests/driver/test_settings_checks.cc: the TCA shows it)
   const Scene low = read_scene(
       file("scene.prm", std::regex_replace(pair_scene, std::regex("set normal module   = 2\n"),
                                            "set normal module   = 2\n      set normal pressure "
                                            "angle = 10\n")));
-  ASSERT_EQ(low.warnings.size(), 2u);
+  ASSERT_EQ(low.warnings.size(), 3u);
   EXPECT_NE(low.warnings[0].find("Flanks/p1/Pinion/normal pressure angle = 10 deg is unusual: "
                                  "the pressure angle [deg] is 10, where real designs have 12 "
                                  "to 35; the run goes on"),
             std::string::npos)
       << low.warnings[0];
+  EXPECT_NE(low.warnings[2].find("Flanks/p1: the total contact ratio eps_gamma = 0.8813"),
+            std::string::npos)
+      << low.warnings[2];
 }
 
 TEST_F(PlausibilityTest, StiffnessSlipsAreRefusedByTheirParameter)

@@ -286,3 +286,75 @@ TEST(BevelMismatch, CutterRadiusChangeKeepsTheMeanPoint)
           }
       }
 }
+
+TEST(BevelCutterReach, TheLeastCutterRadiusIsWhereTheGenerationFails)
+{
+  // A head cutter too small for the spiral angle and face width: its tooth trace turns back
+  // before the heel (or toe), and the equation of meshing has no solution at the top of the
+  // tooth there ("no solution at h = 2.24 mm, A - A_m = 9.5 mm" for the seed pair with a 25 mm
+  // cutter and its 2 mm pinion mismatch: h_a1 at the heel). cutter_reach finds that corner from
+  // the traces alone; the least radius it gives must be where generating both members starts
+  // to succeed: 1e-5 below it the generation fails, 1e-5 above it succeeds, for spiral angles
+  // from 0.5 to 50 deg, pinions of 10 to 55 teeth and mismatches of 0 to 4 mm.
+  struct Case
+  {
+    int    z1, z2;
+    double module, face_width, spiral_deg, change;
+  };
+  for (const Case c : {Case{55, 47, 3e-3, 19e-3, 35, 0}, Case{55, 47, 3e-3, 19e-3, 35, 2e-3},
+                       Case{12, 36, 6e-3, 25.4e-3, 50, 0}, Case{12, 36, 6e-3, 25.4e-3, 35, 4e-3},
+                       Case{10, 41, 5e-3, 30e-3, 0.5, 0}})
+    {
+      BevelPairDesign d   = test_data::seed_bevel_design();
+      d.pinion_teeth      = c.z1;
+      d.gear_teeth        = c.z2;
+      d.module            = c.module;
+      d.face_width        = c.face_width;
+      d.mean_spiral_angle = c.spiral_deg * deg;
+      PinionMismatch m;
+      m.cutter_radius    = c.change;
+      const double least = least_cutter_radius(d, m);
+      const double Am    = bevel_geometry(d).mean_cone_distance;
+      ASSERT_GT(least, 0.1 * Am) << c.z1 << " " << c.spiral_deg;
+      ASSERT_LT(least, 0.6 * Am) << c.z1 << " " << c.spiral_deg;
+      auto generates = [&](double r) {
+        d.cutter_radius = r;
+        try
+          {
+            const auto [pinion, gear] = mismatched_cuts(d, m);
+            BevelMemberFlanks{pinion};
+            BevelMemberFlanks{gear};
+            return true;
+          }
+        catch (const InputError &e)
+          {
+            EXPECT_NE(std::string(e.what()).find("equation of meshing has no solution"),
+                      std::string::npos)
+                << e.what();
+            return false;
+          }
+      };
+      EXPECT_FALSE(generates(least * (1 - 1e-5))) << c.z1 << " " << c.spiral_deg << " " << least;
+      EXPECT_TRUE(generates(least * (1 + 1e-5))) << c.z1 << " " << c.spiral_deg << " " << least;
+      d.cutter_radius = least * (1 - 1e-5);
+      EXPECT_FALSE(cutter_reach(d, m).generated());
+      d.cutter_radius = least * (1 + 1e-5);
+      EXPECT_TRUE(cutter_reach(d, m).generated());
+    }
+  // the seed pair's 25 mm cutter with its 2 mm mismatch: the pinion's convex flank (inside
+  // blade, smallest at the top of the tooth) misses the heel
+  BevelPairDesign d = test_data::seed_bevel_design();
+  d.cutter_radius   = 25e-3;
+  PinionMismatch m;
+  m.cutter_radius     = 2e-3;
+  const CutterReach r = cutter_reach(d, m);
+  EXPECT_FALSE(r.generated());
+  EXPECT_EQ(r.member, "pinion");
+  EXPECT_EQ(r.flank, "convex");
+  EXPECT_TRUE(r.heel);
+  EXPECT_NEAR(r.cone_distance, bevel_geometry(d).outer_cone_distance, 1e-12);
+  EXPECT_GT(r.sin_spiral, 1);
+  EXPECT_LT(r.sin_spiral, 1.01);
+  // the nominal pair reaches with margin (sin beta 0.76 at the heel for 76.2 mm)
+  EXPECT_LT(cutter_reach(test_data::seed_bevel_design()).sin_spiral, 0.8);
+}

@@ -117,6 +117,85 @@ TEST(BevelTca, CutterRadiusMismatchCentresTheBearingOnTheMeanPoint)
     }
 }
 
+TEST(BevelTca, NearlyStraightCutterFindsTheMeanPointContactInBoundedWork)
+{
+  // A 5 m head cutter on the seed pair at m_et 6 mm (A_m 207.5 mm: r_c / A_m = 24, within what
+  // a scene allows), its pinion blades 2 mm larger: the bearing is localised by a difference of
+  // lengthwise curvatures of 1/4998 - 1/5002 per mm, about 1e-4 of the profile's, so the touch
+  // angle's maximum lies on a ridge along the contact line. The pattern search crawled along it
+  // (about 21000 flank samples per tooth pair and 3 s per position, an unloaded TCA of 150
+  // positions for minutes; the issue's 5000 mm cutter ran for more than 300 s); with the Newton
+  // step on the ridge it takes a few thousand. The contact is the conjugate mean point where that
+  // lies on the pitch element (as in CutterRadiusMismatchCentresTheBearingOnTheMeanPoint, to
+  // the flat maximum's resolution), and the TE is constant over the cycle.
+  BevelPairDesign d = seed_design();
+  d.module          = 6e-3;
+  d.cutter_radius   = 5;
+  ASSERT_NEAR(d.cutter_radius / bevel_geometry(d).mean_cone_distance, 24.1, 0.1);
+  PinionMismatch m;
+  m.cutter_radius = 2e-3;
+  const auto f    = bevel_pair_flanks(d, m);
+  TcaOptions o;
+  o.most_samples       = 6000; // the seed pair's own searches take up to 2000
+  o.positions_per_mesh = 4;
+  const UnloadedTca  tca(f.pinion, f.gear, f.assembly, o);
+  const Vec3         mean = f.pinion->tooth_flank(FlankSide::drive).evaluate(0, 0).position;
+  const double       phi  = -std::atan2(mean.y(), mean.x());
+  const TcaPosition  p    = tca.at(phi);
+  const PairContact &c    = p.pairs[p.leading];
+  const double       arm  = std::abs(c.lambda_gear.dot(f.assembly.gear_axis()));
+  const double       tol  = std::sqrt(2e-14 * arm / c.curvature_min);
+  ASSERT_EQ(c.pinion_tooth, 0);
+  EXPECT_FALSE(c.edge);
+  EXPECT_LT(c.curvature_min, 1e-3 * c.curvature_max); // nearly line contact
+  EXPECT_LT(tol, 1e-5);
+  EXPECT_NEAR(c.u1, 0, tol);
+  EXPECT_NEAR(c.v1, 0, tol);
+  EXPECT_NEAR(p.transmission_error, 0, 2 * 1e-13 / arm);
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const TcaPosition &q : tca.run().positions)
+    {
+      EXPECT_FALSE(q.pairs[q.leading].edge) << q.pinion_angle;
+      lo = std::min(lo, q.transmission_error), hi = std::max(hi, q.transmission_error);
+    }
+  EXPECT_LT(hi - lo, 1e-10);
+  // the bound on the search's work: a clear refusal, not a search without end
+  o.most_samples = 100;
+  try
+    {
+      UnloadedTca(f.pinion, f.gear, f.assembly, o).at(phi);
+      ADD_FAILURE() << "no error beyond the most samples";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("took more than 100 flank samples without converging"),
+                std::string::npos)
+          << e.what();
+    }
+}
+
+TEST(BevelTca, ACutterJustLargeEnoughStillGivesTheConjugatePair)
+{
+  // A cutter 0.1 % above the least radius that reaches the whole face (cutter_reach): both
+  // members are generated, and the crown-gear test holds (line contact, zero TE). Beyond the
+  // flanks, near the heel's top corner, the generated surface ends (the trace turns back), and
+  // the touch-angle Newton, whose steps leave the domain, met it as "the equation of meshing
+  // has no solution" thrown through the whole TCA (the seed pair with a 25 mm cutter failed so
+  // at its first position); such a start is no touch.
+  BevelPairDesign d = seed_design();
+  d.cutter_radius   = 1.001 * least_cutter_radius(d);
+  ASSERT_NEAR(d.cutter_radius, 23.39e-3, 0.01e-3);
+  const BevelPairFlanks f = make(d);
+  TcaOptions            o;
+  o.positions_per_mesh = 6;
+  const TcaResult r    = UnloadedTca(f.pinion, f.gear, f.assembly, o).run();
+  double          lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const TcaPosition &p : r.positions)
+    lo = std::min(lo, p.transmission_error), hi = std::max(hi, p.transmission_error);
+  EXPECT_LT(hi - lo, 1e-11);
+  EXPECT_GT(r.mean_pairs_in_contact, 2.5);
+}
+
 TEST(BevelTca, ModifiedRollGivesTheRequestedParabolicTransmissionError)
 {
   // Local synthesis: the seed's classical TE amplitude 3.72e-5 rad (reference-data.md section 1)

@@ -122,6 +122,17 @@ def stiffness_rows(name, g):
         rows.append([label, "mesh stiffness K_m, mean (min .. max)", stats(km[t], "N/m")])
         rows.append([label, "e_L − e_0, mean (min .. max)", stats(de[t], "rad")])
         rows.append([label, "largest contact pressure", stats(g["peak_pressure"][t], "Pa")])
+        if "edge_load_share" in g:
+            share = g["edge_load_share"][t]
+            k = int(np.argmax(share))
+            rows.append([label, "largest pressure off the flanks' edges (Hertz's)",
+                         stats(g["interior_peak_pressure"][t], "Pa")])
+            if share[k] > 0:
+                r_mm, z_mm = g["edge_position"][t, k] * 1e3
+                rows.append([label, "edge contact: largest share of the load on cells at a "
+                                    "flank edge (tip, face end, start of the working flank)",
+                             f"{share[k] * 100:.1f} % at position {k} (pinion point r "
+                             f"{r_mm:.3f} mm, z {z_mm:.3f} mm)"])
         if est is not None:
             rel = np.abs(est[t]) / km[t] * 100
             rows.append([label, "K_m estimated discretisation error (mean, largest)",
@@ -242,6 +253,12 @@ def main():
 
         # 0. Warnings of the scene's plausibility checks, before anything else
         warnings = [w for w in attr(f, "warnings").splitlines() if w.strip()]
+        # and the stages' own (a torque the loaded contact refused, a lost error estimate)
+        for stage in ("stiffness",):
+            for pair in (f[stage] if stage in f else []):
+                if isinstance(f[stage][pair], h5py.Group):
+                    warnings += [w for w in attr(f[stage][pair], "warnings").splitlines()
+                                 if w.strip()]
         if warnings:
             page.h(2, f"Warnings ({len(warnings)})", "warnings")
             page.raw('<div class="warnings"><ul>' + "".join(f"<li>{esc(w)}</li>" for w in warnings)

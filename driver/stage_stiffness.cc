@@ -259,6 +259,101 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
     }
 }
 
+/// Reference mode at the scene's chosen positions (both members meshed per position and
+/// refined about its cells, finite elements alone; VTU files) on the fast mode's fitted zone,
+/// at the torques the fast mode solved: <pair>/reference.
+static void
+run_reference_mode(const PairScene &pair, const FeScene &fe, const LoadedScene &lc,
+                   const TcaScene &tca, const PairMembers &members, const UnloadedTca &theory,
+                   const H5Group &cg, const LoadedContactOptions &lo, const MeshCycleContact &fine,
+                   const std::vector<double> &torques, const H5Group &out, const H5Group &g,
+                   std::ostream &log)
+{
+  const bool            bevel = pair.type == PairType::spiral_bevel;
+  const int             z1 = members.pinion->teeth(), z2 = members.gear->teeth();
+  const ReferenceMember ref_pinion =
+      bevel
+          ? bevel_reference_member(dynamic_cast<const BevelMemberFlanks &>(theory.pinion_flanks()),
+                                   member_module(pair))
+          : involute_reference_member(involute(*members.pinion), theory.pinion_flanks());
+  const ReferenceMember ref_gear =
+      bevel ? bevel_reference_member(dynamic_cast<const BevelMemberFlanks &>(theory.gear_flanks()),
+                                     member_module(pair))
+            : involute_reference_member(involute(*members.gear), theory.gear_flanks());
+  // Reference mode at the chosen positions on the compliance stage's segments; VTU
+  // files next to the stage's cache file (the driver copies them to <output>/vtu/).
+  const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
+  ReferenceContactOptions     ro;
+  ro.cells         = lo;
+  ro.cells.covered = nullptr;
+  // the reference zone: the fast mode's band at the position, for its largest torque
+  ro.degree            = fe.degree;
+  ro.hold_cuts         = fe.hold_cuts;
+  ro.elements_per_cell = lc.reference_elements_per_cell;
+  ro.work_directory    = vtu.string();
+  // the segments of the fast mode (member_options): the teeth with grids, at least
+  // the scene's segment teeth, or the whole gear
+  auto segment = [&](const char *member, int z) {
+    const H5Group m = cg.group(member);
+    SegmentChoice s;
+    s.central = int(m.read_doubles("central_tooth").front());
+    s.teeth   = fe.whole(std::string(member) == "pinion")
+                    ? z
+                    : std::max(fe.segment_teeth, int(m.read_ints("grid_teeth").size()));
+    return s;
+  };
+  ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
+  ro.pinion_whole_rim = fe.whole_rim(true), ro.gear_whole_rim = fe.whole_rim(false);
+  ro.flank_size         = fe.flank_size * member_module(pair);
+  ro.far_size           = fe.far_size * member_module(pair);
+  const std::size_t   P = lc.reference_positions.size(), M = torques.size();
+  std::vector<double> phi, eL, K, F, dofs, seconds;
+  Progress            progress("reference mode " + pair.name + ": position", P);
+  for (std::size_t k = 0; k < P; ++k)
+    {
+      const int i = lc.reference_positions[k];
+      progress.note("position " + std::to_string(i) + " meshing and solving");
+      ro.vtu_prefix           = (vtu / (pair.name + "_position" + std::to_string(i))).string();
+      ro.cells.cells.gap_band = 0;
+      for (std::size_t m = 0; m < M; ++m)
+        ro.cells.cells.gap_band =
+            std::max(ro.cells.cells.gap_band, fine.gap_band[m * fine.positions + i]);
+      ReferenceContactInfo              info;
+      const std::vector<LoadedPosition> r = reference_contact(
+          ref_pinion, ref_gear, theory,
+          theory.at(tca.options.start_angle + 2 * pi / z1 * i / lc.positions), torques, ro, &info);
+      phi.push_back(r.front().pinion_angle);
+      for (const LoadedPosition &p : r)
+        eL.push_back(p.eL), K.push_back(p.mesh_stiffness), F.push_back(p.normal_force);
+      dofs.push_back(double(info.dofs));
+      seconds.push_back(info.mesh_seconds + info.solve_seconds + info.contact_seconds);
+      log << "  " << pair.name << " reference mode, position " << i << ": K_m";
+      for (const LoadedPosition &p : r)
+        log << " " << p.mesh_stiffness << " N/m";
+      log << " (" << info.dofs << " dofs, " << seconds.back() << " s)\n";
+      progress.advance();
+    }
+  // stored position-major: [position][torque]; transposed to the fast mode's layout
+  auto by_torque = [&](const std::vector<double> &v) {
+    std::vector<double> t(v.size());
+    for (std::size_t k = 0; k < P; ++k)
+      for (std::size_t m = 0; m < M; ++m)
+        t[m * P + k] = v[k * M + m];
+    return t;
+  };
+  const H5Group rg = g.group("reference");
+  rg.attribute("method", "reference mode: both members meshed per position, refined "
+                         "about its contact cells, finite elements alone");
+  rg.write("position", lc.reference_positions, {P}, "1", "index of the position in the mesh cycle");
+  rg.write("pinion_angle", phi, {P}, "rad", "pinion rotation phi");
+  rg.write("transmission_error_loaded", by_torque(eL), {M, P}, "rad",
+           "e_L per torque and position (pinion radians, gear held)");
+  rg.write("mesh_stiffness", by_torque(K), {M, P}, "N/m", "K_m = F / (lambda (e_L - e_0))");
+  rg.write("normal_force", by_torque(F), {M, P}, "N", "total normal force F");
+  rg.write("dofs", dofs, {P}, "1", "degrees of freedom of both members");
+  rg.write("seconds", seconds, {P}, "s", "mesh, assembly, factorisation, solves");
+}
+
 void
 run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group &out,
                     std::ostream &log)
@@ -451,93 +546,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
         }
 
       if (!lc.reference_positions.empty())
-        {
-          const int             z1 = members.pinion->teeth(), z2 = members.gear->teeth();
-          const ReferenceMember ref_pinion =
-              bevel ? bevel_reference_member(
-                          dynamic_cast<const BevelMemberFlanks &>(theory.pinion_flanks()),
-                          member_module(pair))
-                    : involute_reference_member(involute(*members.pinion), theory.pinion_flanks());
-          const ReferenceMember ref_gear =
-              bevel ? bevel_reference_member(
-                          dynamic_cast<const BevelMemberFlanks &>(theory.gear_flanks()),
-                          member_module(pair))
-                    : involute_reference_member(involute(*members.gear), theory.gear_flanks());
-          // Reference mode at the chosen positions on the compliance stage's segments; VTU
-          // files next to the stage's cache file (the driver copies them to <output>/vtu/).
-          const std::filesystem::path vtu = stage_side_directory(out, "-vtu");
-          ReferenceContactOptions     ro;
-          ro.cells         = lo;
-          ro.cells.covered = nullptr;
-          // the reference zone: the fast mode's band at the position, for its largest torque
-          ro.degree            = fe.degree;
-          ro.hold_cuts         = fe.hold_cuts;
-          ro.elements_per_cell = lc.reference_elements_per_cell;
-          ro.work_directory    = vtu.string();
-          // the segments of the fast mode (member_options): the teeth with grids, at least
-          // the scene's segment teeth, or the whole gear
-          auto segment = [&](const char *member, int z) {
-            const H5Group m = cg.group(member);
-            SegmentChoice s;
-            s.central = int(m.read_doubles("central_tooth").front());
-            s.teeth   = fe.whole(std::string(member) == "pinion")
-                            ? z
-                            : std::max(fe.segment_teeth, int(m.read_ints("grid_teeth").size()));
-            return s;
-          };
-          ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
-          ro.pinion_whole_rim = fe.whole_rim(true), ro.gear_whole_rim = fe.whole_rim(false);
-          ro.flank_size         = fe.flank_size * member_module(pair);
-          ro.far_size           = fe.far_size * member_module(pair);
-          const std::size_t   P = lc.reference_positions.size(), M = torques.size();
-          std::vector<double> phi, eL, K, F, dofs, seconds;
-          Progress            progress("reference mode " + pair.name + ": position", P);
-          for (std::size_t k = 0; k < P; ++k)
-            {
-              const int i = lc.reference_positions[k];
-              progress.note("position " + std::to_string(i) + " meshing and solving");
-              ro.vtu_prefix = (vtu / (pair.name + "_position" + std::to_string(i))).string();
-              ro.cells.cells.gap_band = 0;
-              for (std::size_t m = 0; m < M; ++m)
-                ro.cells.cells.gap_band =
-                    std::max(ro.cells.cells.gap_band, fine.gap_band[m * fine.positions + i]);
-              ReferenceContactInfo              info;
-              const std::vector<LoadedPosition> r = reference_contact(
-                  ref_pinion, ref_gear, theory,
-                  theory.at(tca.options.start_angle + 2 * pi / z1 * i / lc.positions), torques, ro,
-                  &info);
-              phi.push_back(r.front().pinion_angle);
-              for (const LoadedPosition &p : r)
-                eL.push_back(p.eL), K.push_back(p.mesh_stiffness), F.push_back(p.normal_force);
-              dofs.push_back(double(info.dofs));
-              seconds.push_back(info.mesh_seconds + info.solve_seconds + info.contact_seconds);
-              log << "  " << pair.name << " reference mode, position " << i << ": K_m";
-              for (const LoadedPosition &p : r)
-                log << " " << p.mesh_stiffness << " N/m";
-              log << " (" << info.dofs << " dofs, " << seconds.back() << " s)\n";
-              progress.advance();
-            }
-          // stored position-major: [position][torque]; transposed to the fast mode's layout
-          auto by_torque = [&](const std::vector<double> &v) {
-            std::vector<double> t(v.size());
-            for (std::size_t k = 0; k < P; ++k)
-              for (std::size_t m = 0; m < M; ++m)
-                t[m * P + k] = v[k * M + m];
-            return t;
-          };
-          const H5Group rg = g.group("reference");
-          rg.attribute("method", "reference mode: both members meshed per position, refined "
-                                 "about its contact cells, finite elements alone");
-          rg.write("position", lc.reference_positions, {P}, "1",
-                   "index of the position in the mesh cycle");
-          rg.write("pinion_angle", phi, {P}, "rad", "pinion rotation phi");
-          rg.write("transmission_error_loaded", by_torque(eL), {M, P}, "rad",
-                   "e_L per torque and position (pinion radians, gear held)");
-          rg.write("mesh_stiffness", by_torque(K), {M, P}, "N/m", "K_m = F / (lambda (e_L - e_0))");
-          rg.write("normal_force", by_torque(F), {M, P}, "N", "total normal force F");
-          rg.write("dofs", dofs, {P}, "1", "degrees of freedom of both members");
-          rg.write("seconds", seconds, {P}, "s", "mesh, assembly, factorisation, solves");
-        }
+        run_reference_mode(pair, fe, lc, tca, members, theory, cg, lo, fine, torques, out, g, log);
 
       // ISO 6336-1 method B beside it (the standard's yardstick); for spiral bevel pairs on the
       // virtual cylindrical gears of the mean point (ISO 10300-1).

@@ -2,6 +2,7 @@
 
 #include "driver/scene_parameters.h"
 #include "driver/scene_text.h"
+#include "driver/stages.h"
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -287,13 +288,15 @@ read_scene(const std::string &file)
       auto wanted = [&](const char *output) {
         return std::find(scene.outputs.begin(), scene.outputs.end(), output) != scene.outputs.end();
       };
+      const std::vector<std::string> stages = required_stages(scene);
+      const bool fe_runs = std::find(stages.begin(), stages.end(), "compliance") != stages.end();
       for (const PairScene &pair : scene.pairs)
         {
           const std::string &p = pair.name;
           pair.check(scene.warnings);
           scene.measured.at(p).check(pair);
           scene.tca.at(p).complete_and_check(pair, scene.measured.at(p));
-          scene.fe.at(p).check(pair);
+          scene.fe.at(p).check(pair, fe_runs, scene.warnings);
           scene.loaded.at(p).check(pair, scene.measured.at(p), wanted("stiffness"), scene.warnings);
           scene.dynamics.at(p).check(pair, scene.tca.at(p), wanted("dynamics"), scene.warnings);
         }

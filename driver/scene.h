@@ -190,8 +190,10 @@ struct FeScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
+  /// Checks against the pair; where the finite elements run (`run`), also the element degree
+  /// against the Poisson's ratio (volumetric locking: refused or a warning).
   void
-  check(const PairScene &pair) const;
+  check(const PairScene &pair, bool run, std::vector<std::string> &warnings) const;
   /// The same with the element sizes at the flanks, fillets and other flanks times `factor`
   /// (the far size at least the new flank size): what the error estimate changes. With local
   /// refinements and factor 2: one refinement less of the same segment mesh.

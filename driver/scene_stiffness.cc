@@ -51,7 +51,11 @@ FeScene::declare(ParameterHandler &prm)
   prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
                     "Element size toward the bore / m_n; at most a third of the rim's thickness "
                     "(root circle to bore) of each member (involute members).");
-  prm.declare_entry("degree", "2", Patterns::Integer(1, 2), "Finite-element degree (FE_Q).");
+  prm.declare_entry("degree", "2", Patterns::Integer(1, 2),
+                    "Finite-element degree (FE_Q). 1: linear elements, stiffer (K_m +2 % at "
+                    "Poisson's ratio 0.3 on a 20/31 spur pair) and locking as the material "
+                    "nears incompressibility: a warning above Poisson's ratio 0.35, refused "
+                    "above 0.45 (bench/README.md).");
   prm.declare_entry("other element size", "0", Patterns::Double(0, 2),
                     "[m_n] Element size at the fillets and the flanks of the unloaded side; 0 = "
                     "the flank element size. Only the loaded flanks need fine elements: with the "
@@ -150,9 +154,33 @@ FeScene::coarsened(double factor) const
   return c;
 }
 
+// Linear elements (FE_Q 1, full integration) lock volumetrically as Poisson's ratio nears 1/2:
+// on the 20/31 spur pair of issue 36 (m 3 mm, b 15 mm, 100 N m, flank elements 0.25 m_n) K_m
+// is 2.1 % above degree 2's at 0.3 (their ordinary discretisation error), 4.1 % at 0.45,
+// 9.7 % at 0.49 and 28 % at 0.499 (bench/README.md, "Element refinement study"). Above
+// 0.45 the locking outgrows the elements' own error: refused; from 0.35 on a warning.
+constexpr double linear_elements_warned_above  = 0.35;
+constexpr double linear_elements_refused_above = 0.45;
+
 void
-FeScene::check(const PairScene &pair) const
+FeScene::check(const PairScene &pair, bool run, std::vector<std::string> &warnings) const
 {
+  const double nu = material.poisson_ratio;
+  if (run && degree == 1 && nu > linear_elements_refused_above)
+    throw InputError("Finite elements/" + pair.name +
+                     "/degree = 1 is not allowed with Poisson's "
+                     "ratio = " +
+                     plausible_number(nu) +
+                     ": linear elements lock near incompressibility (K_m of a 20/31 spur pair "
+                     "9.7 % above degree 2's at 0.49, 28 % at 0.499); expected degree = 2 (the "
+                     "default), or degree 1 only up to Poisson's ratio " +
+                     plausible_number(linear_elements_refused_above));
+  if (run && degree == 1 && nu > linear_elements_warned_above)
+    warnings.push_back("Finite elements/" + pair.name +
+                       "/degree = 1 with Poisson's ratio = " + plausible_number(nu) +
+                       ": linear elements lock as the material nears incompressibility (K_m "
+                       "of a 20/31 spur pair 4.1 % above degree 2's at 0.45, 2.1 % at 0.3); "
+                       "degree = 2 (the default) locks far less");
   const std::string where = "Finite elements/" + pair.name + "/segment teeth = ";
   if (segment_teeth % 2 == 0)
     throw InputError(where + std::to_string(segment_teeth) +

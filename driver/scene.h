@@ -171,6 +171,7 @@ struct FeScene
   double   flank_size          = 0.25; ///< element size at the flanks / m_n
   double   far_size            = 1.0;  ///< element size toward the bore / m_n
   double   other_size          = 0;    ///< at fillets and unloaded flanks / m_n; 0 = flank size
+  double   fillet_size         = 0;    ///< at the root fillets / m_n; 0 = flank or other size
   unsigned degree              = 2;
   double   depth               = 3;    ///< response depth in flank element sizes
   bool     analytic_near_field = true; ///< near field = analytic (else: response depth)

@@ -180,9 +180,7 @@ FeScene::check(const PairScene &pair, bool run, std::vector<std::string> &warnin
   const double nu = material.poisson_ratio;
   if (run && degree == 1 && nu > linear_elements_refused_above)
     throw InputError("Finite elements/" + pair.name +
-                     "/degree = 1 is not allowed with Poisson's "
-                     "ratio = " +
-                     plausible_number(nu) +
+                     "/degree = 1 is not allowed with Poisson's ratio = " + plausible_number(nu) +
                      ": linear elements lock near incompressibility (K_m of a 20/31 spur pair "
                      "9.7 % above degree 2's at 0.49, 28 % at 0.499); expected degree = 2 (the "
                      "default), or degree 1 only up to Poisson's ratio " +

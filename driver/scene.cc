@@ -301,7 +301,7 @@ read_scene(const std::string &file)
           pair.check(scene.warnings);
           scene.measured.at(p).check(pair);
           scene.tca.at(p).complete_and_check(pair, scene.measured.at(p), scene.warnings);
-          scene.fe.at(p).check(pair, runs("compliance"));
+          scene.fe.at(p).check(pair, runs("compliance"), scene.warnings);
           scene.loaded.at(p).check(pair, scene.measured.at(p), runs("stiffness"), scene.warnings);
           scene.dynamics.at(p).check(pair, scene.tca.at(p), runs("dynamics"), scene.warnings);
         }

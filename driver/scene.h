@@ -173,6 +173,7 @@ struct FeScene
   double   flank_size          = 0.25; ///< element size at the flanks / m_n
   double   far_size            = 1.0;  ///< element size toward the bore / m_n
   double   other_size          = 0;    ///< at fillets and unloaded flanks / m_n; 0 = flank size
+  double   fillet_size         = 0;    ///< at the root fillets / m_n; 0 = flank or other size
   unsigned degree              = 2;
   double   depth               = 3;    ///< response depth in flank element sizes
   bool     analytic_near_field = true; ///< near field = analytic (else: response depth)
@@ -194,9 +195,10 @@ struct FeScene
   parse(ParameterHandler &prm);
   /// Its own consistency (odd segment teeth, face grid points, Young's modulus); with `run` (the
   /// finite elements run: stage compliance) also against the pair: segment teeth within the
-  /// smaller member's teeth, whole gears and rims for spur and helical pairs only.
+  /// smaller member's teeth, whole gears and rims for spur and helical pairs only, and the
+  /// element degree against the Poisson's ratio (volumetric locking: refused or a warning).
   void
-  check(const PairScene &pair, bool run) const;
+  check(const PairScene &pair, bool run, std::vector<std::string> &warnings) const;
   /// The same with the element sizes at the flanks, fillets and other flanks times `factor`
   /// (the far size at least the new flank size): what the error estimate changes. With local
   /// refinements and factor 2: one refinement less of the same segment mesh.

@@ -51,12 +51,27 @@ FeScene::declare(ParameterHandler &prm)
   prm.declare_entry("far element size", "1", Patterns::Double(0.05, 10),
                     "Element size toward the bore / m_n; at most a third of the rim's thickness "
                     "(root circle to bore) of each member (involute members).");
-  prm.declare_entry("degree", "2", Patterns::Integer(1, 2), "Finite-element degree (FE_Q).");
+  prm.declare_entry("degree", "2", Patterns::Integer(1, 2),
+                    "Finite-element degree (FE_Q). 1: linear elements, stiffer (K_m +2 % at "
+                    "Poisson's ratio 0.3 on a 20/31 spur pair) and locking as the material "
+                    "nears incompressibility: a warning above Poisson's ratio 0.35, refused "
+                    "above 0.45 (bench/README.md).");
   prm.declare_entry("other element size", "0", Patterns::Double(0, 2),
                     "[m_n] Element size at the fillets and the flanks of the unloaded side; 0 = "
                     "the flank element size. Only the loaded flanks need fine elements: with the "
                     "analytic near field, flank 0.25 keeps every FZG C position within 1.1 % "
                     "of the reference mode (bench/README.md).");
+  prm.declare_entry("fillet element size", "0", Patterns::Double(0, 2),
+                    "[m_n] Element size at the root fillets of the teeth with fine elements "
+                    "(spur and helical segments); 0 = the flank element size (the other "
+                    "element size where set). The fillets are concave arcs of about the "
+                    "cutter's tip radius (0.38 m_n): gmsh puts at least four elements on one, so "
+                    "the flank element size refines them only below about 0.2 m_n, and their "
+                    "chords add material at the tooth roots (K_m 0.5 % stiff at flank elements "
+                    "of 0.25 m_n on a 20/31 spur pair, unseen by the error estimate). 0.1 (a "
+                    "quarter of the fillet radius) removes that and lets K_m converge "
+                    "monotonically with the flank element size, at about twice the elements "
+                    "(bench/README.md, element refinement study).");
   prm.declare_entry("near field", "analytic", Patterns::Selection("analytic|response depth"),
                     "How the unit loads' 1/r near field is treated. analytic: Boussinesq's "
                     "field carried exactly (cut off within the near field radius), the finite "
@@ -125,6 +140,7 @@ FeScene::parse(ParameterHandler &prm)
   flank_size              = prm.get_double("flank element size");
   far_size                = prm.get_double("far element size");
   other_size              = prm.get_double("other element size");
+  fillet_size             = prm.get_double("fillet element size");
   degree                  = unsigned(prm.get_integer("degree"));
   depth                   = prm.get_double("response depth");
   analytic_near_field     = prm.get("near field") == "analytic";
@@ -142,7 +158,7 @@ FeScene
 FeScene::coarsened(double factor) const
 {
   FeScene c = *this;
-  c.flank_size *= factor, c.other_size *= factor;
+  c.flank_size *= factor, c.other_size *= factor, c.fillet_size *= factor;
   c.far_size = std::max(far_size, c.flank_size);
   // twice the sizes with local refinements: the same segment mesh refined once less
   if (factor == 2 && local_refinements > 0)
@@ -150,9 +166,31 @@ FeScene::coarsened(double factor) const
   return c;
 }
 
+// Linear elements (FE_Q 1, full integration) lock volumetrically as Poisson's ratio nears 1/2:
+// on the 20/31 spur pair of issue 36 (m 3 mm, b 15 mm, 100 N m, flank elements 0.25 m_n) K_m
+// is 2.1 % above degree 2's at 0.3 (their ordinary discretisation error), 4.1 % at 0.45,
+// 9.7 % at 0.49 and 28 % at 0.499 (bench/README.md, "Element refinement study"). Above
+// 0.45 the locking outgrows the elements' own error: refused; from 0.35 on a warning.
+constexpr double linear_elements_warned_above  = 0.35;
+constexpr double linear_elements_refused_above = 0.45;
+
 void
-FeScene::check(const PairScene &pair, bool run) const
+FeScene::check(const PairScene &pair, bool run, std::vector<std::string> &warnings) const
 {
+  const double nu = material.poisson_ratio;
+  if (run && degree == 1 && nu > linear_elements_refused_above)
+    throw InputError("Finite elements/" + pair.name +
+                     "/degree = 1 is not allowed with Poisson's ratio = " + plausible_number(nu) +
+                     ": linear elements lock near incompressibility (K_m of a 20/31 spur pair "
+                     "9.7 % above degree 2's at 0.49, 28 % at 0.499); expected degree = 2 (the "
+                     "default), or degree 1 only up to Poisson's ratio " +
+                     plausible_number(linear_elements_refused_above));
+  if (run && degree == 1 && nu > linear_elements_warned_above)
+    warnings.push_back("Finite elements/" + pair.name +
+                       "/degree = 1 with Poisson's ratio = " + plausible_number(nu) +
+                       ": linear elements lock as the material nears incompressibility (K_m "
+                       "of a 20/31 spur pair 4.1 % above degree 2's at 0.45, 2.1 % at 0.3); "
+                       "degree = 2 (the default) locks far less");
   const std::string where = "Finite elements/" + pair.name + "/segment teeth = ";
   if (segment_teeth % 2 == 0)
     throw InputError(where + std::to_string(segment_teeth) +
@@ -190,6 +228,11 @@ FeScene::check(const PairScene &pair, bool run) const
     throw InputError("Finite elements/" + pair.name +
                      "/whole rims is not allowed for this pair; expected false (whole rims are "
                      "meshed for spur and helical pairs; spiral bevel pairs: segments)");
+  if (fillet_size > 0 && pair.type != PairType::involute)
+    throw InputError("Finite elements/" + pair.name +
+                     "/fillet element size = " + plausible_number(fillet_size) +
+                     " is not allowed for this pair; expected 0 (spiral bevel segments size "
+                     "their fillets with the flanks)");
   const int z = std::min(pair_teeth(pair).first, pair_teeth(pair).second);
   if (segment_teeth > z)
     throw InputError(where + std::to_string(segment_teeth) +

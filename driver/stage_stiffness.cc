@@ -81,6 +81,7 @@ member_options(double module, int z, bool pinion, const FeScene &fe, FlankSide s
   o.mesh.flank_size    = fe.flank_size * module;
   o.mesh.far_size      = fe.far_size * module;
   o.mesh.other_size    = fe.other_size * module;
+  o.mesh.fillet_size   = fe.fillet_size * module;
   o.degree             = fe.degree;
   o.material           = fe.material;
   o.side               = side;

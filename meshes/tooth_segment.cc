@@ -142,7 +142,8 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   const double ri = info.rim_inner_radius, rf = gear.root_radius;
   info.whole = round;
 
-  SectionBuilder s(-b / 2);
+  SectionBuilder                   s(-b / 2);
+  std::vector<std::pair<int, int>> fillets; // (curve, segment tooth)
   // Counter-clockwise: cut at the start, root arcs and teeth, cut at the end, bore back. The
   // whole gear: the teeth all round, then the bore as a hole; the whole rim: the segment's
   // teeth, the root circle round to the first, then the bore as a hole.
@@ -169,10 +170,12 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       const int  pd2 = s.point(d2), pd1 = s.point(d1), pd0 = s.point(d0);
       s.arc(previous, previous_xy, pc0, c0, boundary::free);
       s.spline(pc0, inner(coast_fillet, a, false), pc1, boundary::free);
+      fillets.emplace_back(s.curves.back(), i);
       s.spline(pc1, inner(coast_involute, a, false), pc2, boundary::flank(i, FlankSide::coast));
       s.arc(pc2, c2, pd2, d2, boundary::free);
       s.spline(pd2, inner(involute, a, true), pd1, boundary::flank(i, FlankSide::drive));
       s.spline(pd1, inner(fillet, a, true), pd0, boundary::free);
+      fillets.emplace_back(s.curves.back(), i);
       previous = pd0, previous_xy = d0;
     }
   s.tooth = -1;
@@ -236,6 +239,14 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     fields.push_back(threshold);
   };
   threshold_about(loaded, flank_size);
+  if (o.fillet_size > 0)
+    {
+      std::vector<double> fine_fillets; // of the teeth with fine elements
+      for (const auto &[curve, tooth] : fillets)
+        if (std::abs(tooth - half_n) <= fine_half)
+          fine_fillets.push_back(curve);
+      threshold_about(fine_fillets, o.fillet_size);
+    }
   if (!others.empty())
     threshold_about(others, other_size);
   // a tooth needs a few elements across (coarser ones fold at the fillets)
@@ -431,6 +442,8 @@ write_tooth_segment_mesh(const InvoluteGear &gear, const SegmentMeshOptions &o,
         std::min({o.flank_size, o.far_size, double(o.face_layers)}), "values >= 0 (0 = default)");
   check(o.curve_points >= 4, "curve points", o.curve_points, ">= 4");
   check(o.other_size >= 0, "other element size", o.other_size, ">= 0 (0 = the flank size)");
+  check(o.fillet_size >= 0, "fillet element size", o.fillet_size,
+        ">= 0 (0 = the flank or other size)");
   if (!o.refine_points.empty())
     {
       check(d.helix_angle == 0, "refinement points (helix angle)", d.helix_angle,

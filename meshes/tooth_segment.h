@@ -55,6 +55,12 @@ struct SegmentMeshOptions
   /// flank size. Only the loaded flanks need the fine elements for the compliance.
   double    other_size = 0;
   FlankSide fine_side  = FlankSide::drive;
+  /// Element size at the root fillets of the teeth with fine elements [m]; 0 = the size of
+  /// their side (flank or other size). The fillets are concave arcs of about the cutter's tip
+  /// radius (0.38 m_n): gmsh puts at least four elements on one whatever the sizes, and their
+  /// chords add material at the tooth roots (K_m 0.5 % stiff with elements of m_n / 4 on a 20/31
+  /// spur pair; bench/README.md, element refinement study).
+  double fillet_size = 0;
   /// Teeth about the central one whose flanks and fillets get the sizes above (odd); the others
   /// get the far size. 0: all teeth of the segment.
   int fine_teeth = 0;

@@ -160,7 +160,10 @@ public:
   /// adds analytically where it needs it. The finite elements solve only the smooth remainder w:
   /// a(w, v) = -(boundary integral of sigma(chi u) n . v) + (integral of div sigma(chi u) . v),
   /// so that no element has to resolve the 1/r field of the force; the total displacement is
-  /// chi u + w.
+  /// chi u + w. Each load is balanced to its unit force exactly, as the continuous remainder's
+  /// is (the elements carry all of it to the held faces): assembled on the faceted elements
+  /// against the exact surface it is out of balance by up to a few per cent, which is spread
+  /// back over the cut-off's shell like |grad chi|.
   Eigen::MatrixXd
   remainder_response(const std::vector<NearFieldLoad> &loads,
                      const std::vector<Probe>         &probes) const;

@@ -88,6 +88,7 @@ base_mesh(const MemberComplianceOptions &o, double module)
   const double scale = std::ldexp(1.0, int(o.local_refinements));
   mesh.flank_size    = (o.mesh.flank_size > 0 ? o.mesh.flank_size : module / 5) * scale;
   mesh.other_size *= scale;
+  mesh.fillet_size *= scale;
   mesh.far_size = std::max(o.mesh.far_size > 0 ? o.mesh.far_size : module, mesh.flank_size);
   return mesh;
 }

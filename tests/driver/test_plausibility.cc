@@ -326,6 +326,50 @@ TEST_F(PlausibilityTest, StiffnessSlipsAreRefusedByTheirParameter)
       << bore.warnings[0];
 }
 
+// Linear elements lock volumetrically as Poisson's ratio nears 1/2 (issue 36; bench/README.md,
+// "Element refinement study"): degree 1 is refused above 0.45 naming the degree, the ratio and
+// the alternative, warned about above 0.35; degree 2 (the default) runs at 0.45 without a word;
+// a scene whose finite elements do not run is not judged by them.
+TEST_F(PlausibilityTest, LinearElementsNearIncompressibilityAreRefused)
+{
+  const std::string stiffness =
+      std::regex_replace(pair_scene, std::regex("set outputs = flanks"),
+                         "set outputs = stiffness") +
+      "subsection Finite elements\n  subsection p1\n    set degree = 2\n    set Poisson's "
+      "ratio = 0.3\n  end\nend\n";
+  ASSERT_TRUE(read_scene(file("scene.prm", stiffness)).warnings.empty());
+  expect_refused(stiffness, {{"linear elements at Poisson's ratio 0.49",
+                              "set degree = 2\n    set Poisson's ratio = 0.3",
+                              "set degree = 1\n    set Poisson's ratio = 0.49",
+                              {"Finite elements/p1/degree = 1 is not allowed with Poisson's "
+                               "ratio = 0.49",
+                               "lock near incompressibility", "expected degree = 2 (the default)",
+                               "degree 1 only up to Poisson's ratio 0.45"}}});
+  expect_warned(stiffness, {{"linear elements at Poisson's ratio 0.4",
+                             "set degree = 2\n    set Poisson's ratio = 0.3",
+                             "set degree = 1\n    set Poisson's ratio = 0.4",
+                             {"Finite elements/p1/degree = 1 with Poisson's ratio = 0.4",
+                              "degree = 2 (the default)"}}});
+  for (const char *fine : {"set degree = 1\n    set Poisson's ratio = 0.35",
+                           "set degree = 2\n    set Poisson's ratio = 0.45"})
+    EXPECT_TRUE(
+        read_scene(file("scene.prm", edited(stiffness, {"",
+                                                        "set degree = 2\n    set Poisson's ratio "
+                                                        "= 0.3",
+                                                        fine,
+                                                        {}})))
+            .warnings.empty())
+        << fine;
+  // no finite elements run for the flanks alone
+  const std::string flanks_only =
+      edited(edited(stiffness, {"", "set outputs = stiffness", "set outputs = flanks", {}}),
+             {"",
+              "set degree = 2\n    set Poisson's ratio = 0.3",
+              "set degree = 1\n    set Poisson's ratio = 0.49",
+              {}});
+  EXPECT_TRUE(read_scene(file("scene.prm", flanks_only)).warnings.empty());
+}
+
 TEST_F(PlausibilityTest, SpiralBevelAnglesInRadiansAreRefusedByName)
 {
   const std::string bevel =

@@ -4,11 +4,10 @@
 #include "stiffness/collective.h"
 #include "stiffness/contact_solver.h"
 
-#include <deal.II/base/mpi.h>
-
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
+#include <deal.II/base/mpi.h>
 
 #include <algorithm>
 #include <array>

@@ -278,8 +278,8 @@ TEST(LoadedContact, MeshCycleSharedAmongProcessesEqualsOneProcessAlone)
   // A torque that fails at some position is marked alone, on every process: segments covering
   // pinion teeth 15, 0 and 1 only, and a load so large (springs of 1e-9 m/N, an approach of mm)
   // that pairs beyond them come into contact.
-  LoadedContactOptions few = shared;
-  few.covered              = [](int p, int) { return (p + 1) % 16 <= 2; };
+  LoadedContactOptions few        = shared;
+  few.covered                     = [](int p, int) { return (p + 1) % 16 <= 2; };
   const StructuralCompliance soft = [](const ContactCell &a, const ContactCell &b) {
     return a.pair == b.pair ? 1e-9 : 0.0;
   };

@@ -257,7 +257,7 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
                 continue;
               cell.table_u1 = cell.u1, cell.table_v1 = cell.v1;
               cell.table_u2 = cell.u2, cell.table_v2 = cell.v2;
-              cell.lever = std::abs(Vec3::UnitZ().cross(cell.position).dot(cell.normal));
+              cell.lever = pinion_lever(cell.position, cell.normal);
               cells.push_back(cell);
             }
         }

@@ -7,6 +7,7 @@
 
 #include "tca/unloaded_tca.h"
 
+#include <cmath>
 #include <vector>
 
 namespace gearkit
@@ -52,6 +53,14 @@ struct ContactCell
   /// on the edge; contact here is edge contact, whose pressure the half-space does not bound.
   bool flank_edge = false;
 };
+
+/// Normal motion of a pinion flank point per unit pinion rotation, |(e_z x r) . n| [m]: the
+/// moment arm of a normal force there about the pinion axis (global point and normal).
+inline double
+pinion_lever(const Vec3 &position, const Vec3 &normal)
+{
+  return std::abs(Vec3::UnitZ().cross(position).dot(normal));
+}
 
 /// Cells of every pair of `position` that touches or stands within the gap band. Where an edge
 /// of either flank (or where the gear flank cannot reach the pinion point) crosses the band,

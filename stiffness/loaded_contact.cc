@@ -112,7 +112,7 @@ starting_band(const UnloadedTca &tca, const TcaPosition &position, double torque
   const double       u     = (d.u_min + d.u_max) / 2;
   const double       face =
       (flank.evaluate(u, d.v_max).position - flank.evaluate(u, d.v_min).position).norm();
-  const double lever = std::abs(Vec3::UnitZ().cross(c.position).dot(c.normal_pinion));
+  const double lever = pinion_lever(c.position, c.normal_pinion);
   if (!(torque > 0) || !(lever > 0))
     return 1e-3 * face;
   return 4 * 2 * (torque / lever / face) / (pi * Estar);
@@ -179,8 +179,7 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
       bool         joined   = false;
       for (const PairContact &c : position.pairs)
         if (c.found && c.separation > std::max(o.cells.pair_gap, o.cells.gap_band) &&
-            approach * std::abs(Vec3::UnitZ().cross(c.position).dot(c.normal_pinion)) >
-                c.separation)
+            approach * pinion_lever(c.position, c.normal_pinion) > c.separation)
           o.cells.pair_gap = std::max(o.cells.pair_gap, c.separation * (1 + 1e-9)), joined = true;
       if (joined)
         continue;

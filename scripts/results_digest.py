@@ -24,6 +24,12 @@ A digest may widen the tolerance of datasets whose regime amplifies rounding bey
 state at some speeds): its entry "__tolerance__" maps name prefixes to tolerances, with the
 measured spread that justifies each in "__why__"; such datasets are compared by their mean and
 RMS only (their extremes belong to single speeds). `write` keeps both when it records anew.
+The work a sweep spent at a speed (settled_cycles: mesh cycles until the motion repeated, or the
+budget spent on a motion that never does) is not compared under such a prefix: at a speed that
+does not settle, the budget's extensions and the integrator's refinements follow the chaotic
+motion itself (seed_spiral_bevel's run-down: OpenBLAS's Haswell kernels instead of this
+machine's moved four unsettled speeds by up to 1740 cycles, the RMS over 120 speeds from 1715
+to 1628, another machine to 2413; the same speeds' DTE and forces held within 1e-3).
 """
 import hashlib
 import json
@@ -35,6 +41,7 @@ import numpy as np
 TOLERANCE = {"flanks": 1e-12, "measured": 1e-12, "ste": 1e-12, "compliance": 1e-8,
              "stiffness": 1e-8, "dynamics": 1e-6, "train": 1e-6}
 SKIPPED = {"seconds"}
+CHAOTIC_WORK = {"settled_cycles"}  # not compared under a widened prefix (docstring)
 
 
 def datasets(path):
@@ -96,6 +103,8 @@ def check(path, reference):
                             f"{w['shape']}/{w['nan']}")
             continue
         tol, keys = tolerance(name, widened)
+        if keys == ("mean", "rms") and name.split("/")[-1] in CHAOTIC_WORK:
+            continue
         scale = max(abs(w["min"]), abs(w["max"]), 1e-300)
         for key in keys:
             if abs(g[key] - w[key]) > tol * scale:

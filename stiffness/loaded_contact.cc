@@ -99,6 +99,26 @@ loaded_contact_in_zone(const UnloadedTca &, const TcaPosition &, double,
 
 namespace
 {
+/// The most loaded of the cells that have `flag` set (-1: none loaded). Forces within 1e-8 of
+/// the largest count as equal and the first such cell wins: a pair's mirror-symmetric cells
+/// (the two face ends of a spur pair) carry equal loads up to rounding, and the answer must not
+/// depend on the rounding of the machine's BLAS.
+int
+most_loaded(const Eigen::VectorXd &force, const std::vector<ContactCell> &cells,
+            bool ContactCell::*flag)
+{
+  double largest = 0;
+  for (Eigen::Index i = 0; i < force.size(); ++i)
+    if (cells[std::size_t(i)].*flag)
+      largest = std::max(largest, force[i]);
+  if (!(largest > 0))
+    return -1;
+  for (Eigen::Index i = 0; i < force.size(); ++i)
+    if (cells[std::size_t(i)].*flag && force[i] >= largest * (1 - 1e-8))
+      return int(i);
+  return -1;
+}
+
 /// The gap band to start from when the scene leaves it to the load: four times the gap at the
 /// edge of Hertz's line contact, 2 q / (pi E*), for the torque on the leading pair alone along
 /// the pinion flank's face (a thousandth of the face with no load: only the cells' positions
@@ -257,18 +277,12 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
       return out;
     }
   const ContactSolution s = solve_contact(p);
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (s.force[i] > 0 && out.cells[i].zone_edge &&
-        (out.zone_edge_cell < 0 || s.force[i] > s.force[out.zone_edge_cell]))
-      out.zone_edge_cell = int(i);
-  out.zone_edge_reached = out.zone_edge_cell >= 0;
+  out.zone_edge_cell      = most_loaded(s.force, out.cells, &ContactCell::zone_edge);
+  out.zone_edge_reached   = out.zone_edge_cell >= 0;
+  out.edge_cell           = most_loaded(s.force, out.cells, &ContactCell::flank_edge);
   for (Eigen::Index i = 0; i < n; ++i)
     if (s.force[i] > 0 && out.cells[i].flank_edge)
-      {
-        out.edge_force += s.force[i];
-        if (out.edge_cell < 0 || s.force[i] > s.force[out.edge_cell])
-          out.edge_cell = int(i);
-      }
+      out.edge_force += s.force[i];
   const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
   out.force         = s.force;
   out.active_cells  = s.active;

@@ -114,7 +114,9 @@ TEST(DesignSpace, GeometricSimilarityFromModule0p1To30mm)
               EXPECT_NEAR(r.mesh_stiffness / (s * r0.mesh_stiffness), 1, edge ? 2e-3 : 1e-5);
               EXPECT_NEAR((r.eL - r.e0) / (r0.eL - r0.e0), 1, edge ? 2e-3 : 1e-5);
               if (!edge)
-                EXPECT_NEAR(peak_pressure(r, false) / peak_pressure(r0, false), 1, 1e-5);
+                {
+                  EXPECT_NEAR(peak_pressure(r, false) / peak_pressure(r0, false), 1, 1e-5);
+                }
             }
         }
     }
@@ -154,8 +156,10 @@ TEST(DesignSpace, LightLoadLineContactFollowsTheHertzStripsLogarithm)
           const LoadedPosition r =
               loaded_contact(*pair.tca, p, T1 * std::pow(10.0, decade), options(), rigid, rigid);
           if (decade > 0)
-            EXPECT_NEAR((last - 1 / r.mesh_stiffness) / law, 1, 0.01)
-                << "m " << module * 1e3 << " mm, decade " << decade;
+            {
+              EXPECT_NEAR((last - 1 / r.mesh_stiffness) / law, 1, 0.01)
+                  << "m " << module * 1e3 << " mm, decade " << decade;
+            }
           last = 1 / r.mesh_stiffness;
           EXPECT_LT(r.edge_force, 0.2 * r.normal_force);
         }
@@ -176,9 +180,11 @@ TEST(DesignSpace, LightLoadPointContactApproachGrowsAsTheLoadToTwoThirds)
           loaded_contact(*pair.tca, p, 1e-3 * std::pow(10.0, decade), options(), rigid, rigid);
       const double approach = std::abs(r.eL - r.e0);
       if (decade > 0)
-        EXPECT_NEAR(approach / last_approach, std::pow(10.0, 2.0 / 3),
-                    0.03 * std::pow(10.0, 2.0 / 3))
-            << "decade " << decade;
+        {
+          EXPECT_NEAR(approach / last_approach, std::pow(10.0, 2.0 / 3),
+                      0.03 * std::pow(10.0, 2.0 / 3))
+              << "decade " << decade;
+        }
       last_approach = approach;
       EXPECT_EQ(r.edge_force, 0);
       EXPECT_FALSE(r.zone_edge_reached);
@@ -228,6 +234,18 @@ TEST(DesignSpace, InteriorPressureIsHertzsAndEdgeContactIsReported)
   const LoadedPosition r = loaded_contact(*pair.tca, tip, 15 * T0, options(), rigid, rigid);
   EXPECT_GT(r.edge_force, 0.02 * r.normal_force);
   ASSERT_GE(r.edge_cell, 0);
+  // the most loaded edge cell, the first of those equal to rounding (the face ends of a spur
+  // pair mirror each other: which one wins must not depend on the machine's BLAS)
+  double edge_peak = 0;
+  for (std::size_t i = 0; i < r.cells.size(); ++i)
+    if (r.cells[i].flank_edge)
+      edge_peak = std::max(edge_peak, r.force[Eigen::Index(i)]);
+  EXPECT_GE(r.force[r.edge_cell], edge_peak * (1 - 1e-8));
+  for (int i = 0; i < r.edge_cell; ++i)
+    if (r.cells[std::size_t(i)].flank_edge)
+      {
+        EXPECT_LT(r.force[i], edge_peak * (1 - 1e-8)) << "cell " << i;
+      }
   EXPECT_GT(peak_pressure(r, false), peak_pressure(r, true));
   EXPECT_NEAR(r.normal_force * r.lever, 15 * T0, 1e-9 * 15 * T0);
 }

@@ -158,6 +158,28 @@ write_lines(const H5Group &g, const LineTable &t)
   g.write("sideband", t.sideband, {n}, "1", "sideband order (signed), or the shaft order");
   g.write("shaft", t.shaft, {n}, "1", "body index of the shaft frequency (-1: none)");
 }
+
+/// Every contact of a mesh's flank sides, located by the integrator (the same at any output
+/// rate).
+void
+write_contacts(const H5Group &g, const std::vector<TrainImpact> &contacts)
+{
+  const hsize_t       n = contacts.size();
+  std::vector<double> side, touch, separation, peak, peak_time, impulse;
+  for (const TrainImpact &c : contacts)
+    {
+      side.push_back(c.side == drive_side ? 1.0 : -1.0);
+      touch.push_back(c.touch), separation.push_back(c.separation);
+      peak.push_back(c.peak), peak_time.push_back(c.peak_time), impulse.push_back(c.impulse);
+    }
+  g.write("side", side, {n}, "1", "+1 drive flanks, -1 coast flanks");
+  g.write("touch", touch, {n}, "s", "located first touch");
+  g.write("separation", separation, {n}, "s", "located separation (-1: touching at the end)");
+  g.write("peak", peak, {n}, "N", "the side's largest force in the contact (located)");
+  g.write("peak_time", peak_time, {n}, "s", "its time");
+  g.write("impulse", impulse, {n}, "N s",
+          "integral of the side's force over the contact (Gauss-Legendre on every step)");
+}
 } // namespace
 
 void
@@ -281,7 +303,10 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
           mg.write("coast_impacts", double(ms.coast_impacts), "1", "of them on the coast flanks");
           mg.write("first_contact", ms.first_contact, "s", "time of the first touch (-1: none)");
           mg.write("max_force", ms.max_force, "N",
-                   "largest force at the samples and located events (its peaks among them)");
+                   "largest force of a flank side over the continuous solution (at every "
+                   "integrator step's end and every located root of its rate dF/dt)");
+          mg.write("max_force_time", ms.max_force_time, "s", "its time");
+          write_contacts(mg.group("contacts"), ms.contacts);
           mg.write("max_penetration", ms.max_penetration, "m",
                    "deepest penetration of a tooth pair (the curves reach tooth pair recess "
                    "beyond the conjugate touch)");

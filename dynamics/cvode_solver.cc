@@ -161,6 +161,48 @@ CvodeSolver::advance(double t_out, double &t, std::vector<double> &y, std::vecto
   return true;
 }
 
+bool
+CvodeSolver::step(double t_end, double &t, std::vector<double> &y, std::vector<int> *fired)
+{
+  check(CVodeSetStopTime(memory, t_end), "CVodeSetStopTime", t);
+  N_Vector    v       = static_cast<N_Vector>(state);
+  sunrealtype reached = 0;
+  const int   flag    = CVode(memory, t_end, v, &reached, CV_ONE_STEP);
+  check(flag, "CVode", reached);
+  t = reached;
+  y.assign(N_VGetArrayPointer(v), N_VGetArrayPointer(v) + p.size);
+  if (flag != CV_ROOT_RETURN)
+    return false;
+  if (fired)
+    {
+      fired->assign(p.roots, 0);
+      check(CVodeGetRootInfo(memory, fired->data()), "CVodeGetRootInfo", t);
+    }
+  return true;
+}
+
+void
+CvodeSolver::interpolate(double t, std::vector<double> &y, std::vector<double> *q) const
+{
+  N_Vector v = N_VClone(static_cast<N_Vector>(state));
+  if (!v)
+    throw InputError(p.what + ": cannot allocate an interpolated state");
+  const int flag = CVodeGetDky(memory, t, 0, v);
+  y.assign(N_VGetArrayPointer(v), N_VGetArrayPointer(v) + p.size);
+  N_VDestroy(v);
+  check(flag, "CVodeGetDky", t);
+  if (q && quadrature)
+    {
+      N_Vector w = N_VClone(static_cast<N_Vector>(quadrature));
+      if (!w)
+        throw InputError(p.what + ": cannot allocate interpolated quadratures");
+      const int f = CVodeGetQuadDky(memory, t, 0, w);
+      q->assign(N_VGetArrayPointer(w), N_VGetArrayPointer(w) + p.quadratures);
+      N_VDestroy(w);
+      check(f, "CVodeGetQuadDky", t);
+    }
+}
+
 void
 CvodeSolver::reinit(double t, const std::vector<double> &y)
 {

@@ -49,6 +49,16 @@ public:
   /// t and y hold the time and state reached.
   bool
   advance(double t_out, double &t, std::vector<double> &y, std::vector<int> *fired = nullptr);
+  /// One internal step towards t_end, never past it (CVODE's one-step mode with t_end as its
+  /// stop time): returns true at a root inside the step (t is the root, `fired` as for
+  /// advance), false at the step's end. The steps do not depend on when the caller wants
+  /// output (interpolate): every event, peak and count is the same at any output rate.
+  bool
+  step(double t_end, double &t, std::vector<double> &y, std::vector<int> *fired = nullptr);
+  /// The state (and, if asked, the quadratures) at time t inside the last step, from the
+  /// method's interpolating polynomial (CVodeGetDky).
+  void
+  interpolate(double t, std::vector<double> &y, std::vector<double> *quadratures = nullptr) const;
   /// Restarts the method at (t, y) (after a change of the force law at an event).
   void
   reinit(double t, const std::vector<double> &y);

@@ -19,9 +19,13 @@
 // with J_i' of a crank-slider's configuration-dependent inertia. A body at constant speed is
 // driven by whatever torque holds it (its work is counted).
 //
-// Time integration: CVODE (dynamics/cvode_solver.h; Adams or BDF) with event location where a
-// mesh's flank side starts or stops touching, the energy balance integrated alongside:
+// Time integration: CVODE (dynamics/cvode_solver.h; Adams or BDF) step by step, with event
+// location where a mesh's flank side starts or stops touching and where its force peaks (the
+// root of dF/dt, from the accelerations), the energy balance integrated alongside:
 //   work of the torques = kinetic energy change + potential energy + dissipated energy.
+// The steps never depend on the output rate: the samples are interpolated at the output times
+// from the method's polynomial, and the extremes, counts and impulses come from the steps and
+// roots themselves, so they are the same at any output rate.
 #pragma once
 
 #include "base/tooth_pairs.h"
@@ -182,7 +186,18 @@ struct TrainRunOptions
   int pairings_each_side = 3;
 };
 
-/// One mesh's outputs at the sample times.
+/// One contact of a mesh's flank side, from the located touch to the located separation.
+struct TrainImpact
+{
+  int    side       = 0;          ///< drive_side or coast_side
+  double touch      = 0;          ///< [s]
+  double separation = -1;         ///< [s] (-1: still touching at the end of the run)
+  double peak = 0, peak_time = 0; ///< the side's largest force in the contact [N], its time [s]
+  double impulse = 0;             ///< integral of the side's force over the contact [N s]
+};
+
+/// One mesh's outputs: its series at the sample times; its extremes, counts and contacts from
+/// the continuous solution, the same at any output rate.
 struct MeshSeries
 {
   std::vector<double> relative;          ///< S [m]
@@ -190,9 +205,12 @@ struct MeshSeries
   std::vector<int>    pairs;             ///< tooth pairs touching
   std::size_t         impacts       = 0; ///< first touches of a side after separation
   std::size_t         drive_impacts = 0, coast_impacts = 0;
-  double              max_force = 0; ///< largest |force| over every CVODE step [N]
-  /// Deepest penetration of a tooth pair at the samples and located events (the elastic force
-  /// peaks among them) [m]: the tooth pair curves must
+  /// Largest force of a side [N] and its time [s]: at every step's end and at every located
+  /// root of the side's force rate dF/dt (the peaks inside the steps), touch and separation
+  double                   max_force = 0, max_force_time = 0;
+  std::vector<TrainImpact> contacts; ///< every contact, in the order of their touches
+  /// Deepest penetration of a tooth pair at every step's end and located event [m]: the tooth
+  /// pair curves must
   /// reach this far beyond the conjugate touch (tca/tooth_pairs.h: their recess), or pairs leave
   /// their curves while still touching (their force and stored energy lost at once).
   double max_penetration = 0;

@@ -166,6 +166,96 @@ TEST(Train, RestitutionOfOneImpactMatchesTheLawIntegratedAlone)
   EXPECT_LT(restitution, 0.999);
   EXPECT_NEAR(-v_after / v_before, restitution, 1e-4 * restitution);
   EXPECT_LT(r.energy_error, 1e-6);
+  // the contact's impulse: the pinion's loss of angular momentum over its base radius
+  ASSERT_EQ(r.meshes[0].contacts.size(), 1u);
+  const double momentum = J_p * (w0 - r.speed[0][last]) / r_bp;
+  EXPECT_NEAR(r.meshes[0].contacts[0].impulse, momentum, 1e-6 * momentum);
+  EXPECT_NEAR(r.meshes[0].contacts[0].impulse, m_e * (v_before - v_after),
+              1e-4 * m_e * (v_before - v_after));
+}
+
+TEST(Train, LocatedPeakOfOneLinearImpactIsTheOscillatorsAmplitude)
+{
+  // e = 1, no damping, a wide backlash: one contact, half a period of m_e x'' + k x = 0 from
+  // closing speed v: the force peaks at v sqrt(k m_e) a quarter period after touch, the contact
+  // lasts half a period and its impulse is 2 m_e v. Output at 1 kHz: the contact (~50 us)
+  // falls between two samples; the peak, the contact and its impulse come from the integrator.
+  const double J_p = 1.06e-3, J_g = 0.05, r_bp = 0.032, k = 2e8;
+  const int    z1 = 17, z2 = 60;
+  const double r_bg         = r_bp * z2 / z1;
+  TrainModel   m            = two_body_model(J_p, J_g, z1, z2, r_bp, 2e-3 / r_bg, {k, 1.0, 0, 0});
+  const double w0           = 5;
+  m.bodies[0].initial_speed = w0;
+  const double    m_e       = 1 / (r_bp * r_bp / J_p + r_bg * r_bg / J_g);
+  const double    w_n = std::sqrt(k / m_e), v = r_bp * w0;
+  TrainRunOptions o;
+  o.duration           = 1e-3 / v + 2e-3; // reach the flank (1 mm away), bounce once
+  o.sample_rate        = 1e3;
+  o.absolute_tolerance = 1e-15, o.relative_tolerance = 1e-12;
+  const TrainResult r  = simulate_train(m, o);
+  const MeshSeries &ms = r.meshes[0];
+  ASSERT_EQ(ms.contacts.size(), 1u);
+  const TrainImpact &c = ms.contacts[0];
+  EXPECT_EQ(c.side, drive_side);
+  EXPECT_NEAR(c.peak, v * std::sqrt(k * m_e), 1e-7 * v * std::sqrt(k * m_e));
+  EXPECT_EQ(ms.max_force, c.peak);
+  EXPECT_NEAR(c.peak_time - c.touch, pi / 2 / w_n, 1e-6 * pi / 2 / w_n);
+  EXPECT_NEAR(c.separation - c.touch, pi / w_n, 1e-6 * pi / w_n);
+  EXPECT_NEAR(c.touch, 1e-3 / v, 1e-9 * 1e-3 / v);
+  EXPECT_NEAR(c.impulse, 2 * m_e * v, 1e-6 * 2 * m_e * v);
+  double sampled = 0;
+  for (double F : ms.force)
+    sampled = std::max(sampled, std::abs(F));
+  EXPECT_LT(sampled, 0.5 * c.peak) << "the samples were to miss the contact";
+}
+
+TEST(Train, ExtremesCountsAndContactsDoNotDependOnTheOutputRate)
+{
+  // double-sided impacts with IMPACT's damping (c_max d' over the first 0.1 um of each
+  // contact): the same steps, counts, peaks and impulses at 5 kHz, 50 kHz and 2 MHz
+  const double J_p = 1.06e-3, J_g = 0.05, r_bp = 0.032;
+  const int    z1 = 17, z2 = 60;
+  ImpactLaw    law{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2, 2e2, 1e-7};
+  TrainModel   m            = two_body_model(J_p, J_g, z1, z2, r_bp, 2e-3, law, 1.6);
+  m.bodies[0].initial_speed = 167.5;
+  m.bodies[1].initial_speed = 167.5 * z1 / z2 * 0.99;
+  TrainRunOptions o;
+  o.duration = 0.05;
+  std::vector<TrainResult> runs;
+  for (const double rate : {5e3, 50e3, 2e6})
+    {
+      o.sample_rate = rate;
+      runs.push_back(simulate_train(m, o));
+    }
+  const MeshSeries &a = runs[0].meshes[0];
+  ASSERT_GT(a.drive_impacts, 2u);
+  ASSERT_GT(a.coast_impacts, 2u);
+  ASSERT_EQ(a.contacts.size(), a.impacts);
+  for (const TrainResult &r : runs)
+    {
+      const MeshSeries &b = r.meshes[0];
+      EXPECT_EQ(r.steps, runs[0].steps);
+      EXPECT_EQ(b.impacts, a.impacts);
+      EXPECT_EQ(b.drive_impacts, a.drive_impacts);
+      EXPECT_EQ(b.max_force, a.max_force);
+      EXPECT_EQ(b.max_force_time, a.max_force_time);
+      EXPECT_EQ(b.max_penetration, a.max_penetration);
+      ASSERT_EQ(b.contacts.size(), a.contacts.size());
+      for (std::size_t i = 0; i < a.contacts.size(); ++i)
+        {
+          EXPECT_EQ(b.contacts[i].touch, a.contacts[i].touch);
+          EXPECT_EQ(b.contacts[i].peak, a.contacts[i].peak);
+          EXPECT_EQ(b.contacts[i].impulse, a.contacts[i].impulse);
+        }
+    }
+  // the samples of the fastest output reach the located peak, the slowest' do not
+  double slow = 0, fast = 0;
+  for (double F : runs[0].meshes[0].force)
+    slow = std::max(slow, std::abs(F));
+  for (double F : runs[2].meshes[0].force)
+    fast = std::max(fast, std::abs(F));
+  EXPECT_LE(fast, a.max_force * (1 + 1e-12));
+  EXPECT_LT(slow, fast);
 }
 
 TEST(Train, KinematicsThroughTwoStagesAndAClosureError)

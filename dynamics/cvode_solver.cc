@@ -58,13 +58,14 @@ CvodeSolver::CvodeSolver(const CvodeProblem &problem, double t0, const std::vect
   context       = ctx;
   N_Vector y    = N_VNew_Serial(p.size, ctx);
   N_Vector atol = N_VNew_Serial(p.size, ctx);
-  state = y, tolerance = atol;
+  N_Vector dky  = N_VNew_Serial(p.size, ctx);
+  state = y, tolerance = atol, interpolated = dky;
   SUNMatrix A        = SUNDenseMatrix(p.size, p.size, ctx);
   matrix             = A;
   SUNLinearSolver LS = SUNLinSol_Dense(y, A, ctx);
   solver             = LS;
   memory             = CVodeCreate(p.bdf ? CV_BDF : CV_ADAMS, ctx);
-  if (!y || !atol || !A || !LS || !memory)
+  if (!y || !atol || !dky || !A || !LS || !memory)
     {
       release();
       throw InputError(p.what + ": cannot allocate the CVODE integrator");
@@ -83,9 +84,10 @@ CvodeSolver::CvodeSolver(const CvodeProblem &problem, double t0, const std::vect
       check(CVodeSetMaxNumSteps(memory, p.max_steps_per_call), "CVodeSetMaxNumSteps", t0);
       if (p.quadratures > 0)
         {
-          N_Vector q = N_VNew_Serial(p.quadratures, ctx);
-          quadrature = q;
-          if (!q)
+          N_Vector q               = N_VNew_Serial(p.quadratures, ctx);
+          quadrature               = q;
+          interpolated_quadratures = N_VNew_Serial(p.quadratures, ctx);
+          if (!q || !interpolated_quadratures)
             throw InputError(p.what + ": cannot allocate the CVODE quadratures");
           N_VConst(0.0, q);
           check(CVodeQuadInit(memory, quadrature_callback, q), "CVodeQuadInit", t0);
@@ -128,18 +130,16 @@ CvodeSolver::release()
     SUNLinSolFree(static_cast<SUNLinearSolver>(solver));
   if (matrix)
     SUNMatDestroy(static_cast<SUNMatrix>(matrix));
-  if (quadrature)
-    N_VDestroy(static_cast<N_Vector>(quadrature));
-  if (tolerance)
-    N_VDestroy(static_cast<N_Vector>(tolerance));
-  if (state)
-    N_VDestroy(static_cast<N_Vector>(state));
+  for (void *v : {quadrature, interpolated, interpolated_quadratures, tolerance, state})
+    if (v)
+      N_VDestroy(static_cast<N_Vector>(v));
   if (context)
     {
       SUNContext ctx = static_cast<SUNContext>(context);
       SUNContext_Free(&ctx);
     }
   memory = solver = matrix = tolerance = state = context = quadrature = nullptr;
+  interpolated = interpolated_quadratures = nullptr;
 }
 
 bool
@@ -184,22 +184,14 @@ CvodeSolver::step(double t_end, double &t, std::vector<double> &y, std::vector<i
 void
 CvodeSolver::interpolate(double t, std::vector<double> &y, std::vector<double> *q) const
 {
-  N_Vector v = N_VClone(static_cast<N_Vector>(state));
-  if (!v)
-    throw InputError(p.what + ": cannot allocate an interpolated state");
-  const int flag = CVodeGetDky(memory, t, 0, v);
+  N_Vector v = static_cast<N_Vector>(interpolated);
+  check(CVodeGetDky(memory, t, 0, v), "CVodeGetDky", t);
   y.assign(N_VGetArrayPointer(v), N_VGetArrayPointer(v) + p.size);
-  N_VDestroy(v);
-  check(flag, "CVodeGetDky", t);
   if (q && quadrature)
     {
-      N_Vector w = N_VClone(static_cast<N_Vector>(quadrature));
-      if (!w)
-        throw InputError(p.what + ": cannot allocate interpolated quadratures");
-      const int f = CVodeGetQuadDky(memory, t, 0, w);
+      N_Vector w = static_cast<N_Vector>(interpolated_quadratures);
+      check(CVodeGetQuadDky(memory, t, 0, w), "CVodeGetQuadDky", t);
       q->assign(N_VGetArrayPointer(w), N_VGetArrayPointer(w) + p.quadratures);
-      N_VDestroy(w);
-      check(f, "CVodeGetQuadDky", t);
     }
 }
 
@@ -207,7 +199,9 @@ void
 CvodeSolver::reinit(double t, const std::vector<double> &y)
 {
   steps_before += steps_since_start(); // CVodeReInit zeroes CVODE's count
-  quadratures();                       // their values at t, where the method restarts
+  if (quadrature) // their values at t, where the method restarts (t may lie inside the step)
+    check(CVodeGetQuadDky(memory, t, 0, static_cast<N_Vector>(quadrature)), "CVodeGetQuadDky",
+          t);
   N_Vector v = static_cast<N_Vector>(state);
   for (int i = 0; i < p.size; ++i)
     N_VGetArrayPointer(v)[i] = y[i];

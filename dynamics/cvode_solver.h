@@ -59,7 +59,8 @@ public:
   /// method's interpolating polynomial (CVodeGetDky).
   void
   interpolate(double t, std::vector<double> &y, std::vector<double> *quadratures = nullptr) const;
-  /// Restarts the method at (t, y) (after a change of the force law at an event).
+  /// Restarts the method at (t, y), t inside the last step (an event, or a change the caller
+  /// found inside the step), the quadratures interpolated there.
   void
   reinit(double t, const std::vector<double> &y);
   /// The quadratures at the time last reached.
@@ -80,5 +81,7 @@ private:
   CvodeProblem p;
   void        *context = nullptr, *memory = nullptr, *state = nullptr, *tolerance = nullptr,
        *matrix = nullptr, *solver = nullptr, *quadrature = nullptr;
+  /// interpolate's results (allocated once)
+  void *interpolated = nullptr, *interpolated_quadratures = nullptr;
 };
 } // namespace gearkit

@@ -422,18 +422,18 @@ public:
             if (!hermite_at(c, phi_k, h))
               continue;
             double       o_slope, arm_slope, o_curvature, arm_curvature;
-            const double o          = hermite(h, c.offset, c.step, o_slope, &o_curvature);
-            const double arm        = hermite(h, c.arm, c.step, arm_slope, &arm_curvature);
-            const double gap        = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
-            const double s          = side == drive_side ? 1.0 : -1.0;
-            const double d          = s * arm * gap;
+            const double o   = hermite(h, c.offset, c.step, o_slope, &o_curvature);
+            const double arm = hermite(h, c.arm, c.step, arm_slope, &arm_curvature);
+            const double gap = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
+            const double s   = side == drive_side ? 1.0 : -1.0;
+            const double d   = s * arm * gap;
+            // d = s arm(phi_k) (psi_touch(phi_k) - psi)
+            const double dd_dphi    = s * (arm_slope * gap + arm * (ratio + o_slope));
+            const double dd_dpsi    = -s * arm;
+            const double d_rate     = dd_dphi * w_p + dd_dpsi * w_g;
             e.max_penetration[side] = std::max(e.max_penetration[side], d);
             if (!(d > 0))
               continue;
-            // d = s arm(phi_k) (psi_touch(phi_k) - psi)
-            const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
-            const double dd_dpsi = -s * arm;
-            const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
             // d'' = d_phi phi'' + d_psi psi'' + d_phiphi phi'^2 + 2 d_phipsi phi' psi'
             double d_acceleration = 0;
             if (alpha)
@@ -597,13 +597,43 @@ namespace
 /// is no root), the weighted penetration rate (the deepest penetration's peaks).
 constexpr int roots_per_mesh = 5;
 
+/// The touch function of one side: the deepest penetration (at least -1 m: no pairing within
+/// reach) shifted by a hysteresis towards the side's present state.
+double
+touch_value(const MeshEval &e, int side, bool touching, double hysteresis)
+{
+  return std::max(e.max_penetration[side], -1.0) + (touching ? hysteresis : -hysteresis);
+}
+
+/// The touch functions' hysteresis [m]: a thousandth of the absolute tolerance, so that a root
+/// never stays exactly zero on rounding-quantised penetrations (which CVODE refuses as a root
+/// "at and very near" the last).
+double
+touch_hysteresis(const TrainRunOptions &o)
+{
+  return 1e-3 * o.absolute_tolerance;
+}
+
+/// The meshes as the root functions last evaluated them (CVODE evaluates them at every step's
+/// end: the recorder's extremes there reuse them).
+struct LastEvaluation
+{
+  std::vector<double>   state;
+  std::vector<MeshEval> meshes;
+  /// The meshes at `y`, if they were the last evaluated; else null.
+  const std::vector<MeshEval> *
+  at(const std::vector<double> &y) const
+  {
+    return y == state ? &meshes : nullptr;
+  }
+};
+
 /// The train's CVODE problem: y = [theta; omega], quadratures [work; dissipated]; the root
-/// functions above. The touch functions carry a hysteresis of a thousandth of the absolute
-/// tolerance: a root never stays exactly zero on rounding-quantised penetrations (which CVODE
-/// refuses as a root "at and very near" the last). `touching` holds the sides in contact.
+/// functions above. `touching` holds the sides in contact; `last` receives the root functions'
+/// evaluations.
 CvodeProblem
 train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vector<double> &y0,
-              const std::vector<char> &touching)
+              const std::vector<char> &touching, LastEvaluation &last)
 {
   const int    n      = sys.n;
   const int    meshes = int(sys.model.meshes.size());
@@ -632,22 +662,22 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
     sys.evaluate(t, y, y + n, alpha.data(), q[0], q[1]);
     return 0;
   };
-  const double hysteresis = 1e-3 * o.absolute_tolerance;
+  const double hysteresis = touch_hysteresis(o);
   p.roots                 = roots_per_mesh * meshes;
-  p.root_functions        = [&sys, &touching, n, meshes, hysteresis](double t, const double *y,
-                                                              double *g) {
+  p.root_functions = [&sys, &touching, &last, n, meshes, hysteresis](double t, const double *y,
+                                                                     double *g) {
     std::vector<double> alpha(static_cast<std::size_t>(n));
     double              power, dissipation;
     sys.evaluate(t, y, y + n, alpha.data(), power, dissipation);
+    last.state.assign(y, y + 2 * n);
+    last.meshes.resize(std::size_t(meshes));
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval e     = sys.mesh(i, y, y + n, alpha.data());
-        const double   floor = -1.0; // no pairing within reach
-        double *const  gi    = g + roots_per_mesh * i;
+        const MeshEval &e = last.meshes[std::size_t(i)] = sys.mesh(i, y, y + n, alpha.data());
+        double *const   gi                              = g + roots_per_mesh * i;
         for (int side = 0; side < 2; ++side)
           {
-            gi[side] = std::max(e.max_penetration[side], floor) +
-                       (touching[std::size_t(2 * i + side)] ? hysteresis : -hysteresis);
+            gi[side]     = touch_value(e, side, touching[std::size_t(2 * i + side)], hysteresis);
             gi[2 + side] = e.force[side] > 0 ? e.force_rate[side] : 1.0;
           }
         gi[4] = e.pairs ? e.penetration_rate / e.penetration_weight : 1.0;
@@ -676,32 +706,36 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
 /// The first change of contact inside the piece (a, b) of the last step that the root test at
 /// the step's ends cannot see: a side separating and touching again within one step (free
 /// flight is a polynomial the method integrates exactly, so its steps grow across a brief
-/// separation). The touch functions are checked at seven interior points of the interpolant
-/// and a change is located by bisection; returns its time (just past it: the new sign holds
-/// there) with `fired` set as CVODE sets it, or b when there is none.
+/// separation). The touch functions are checked at the piece's midpoint on the
+/// interpolant (their signs at a are the sides' states `touching`) and a change is located by
+/// bisection; returns its time (just past it: the new sign holds there) with `fired` set as
+/// CVODE sets it, or b when there is none.
 double
-hidden_contact_change(const CvodeSolver &solver, const CvodeProblem &p, double a, double b,
+hidden_contact_change(const CvodeSolver &solver, const TrainSystem &sys,
+                      const std::vector<char> &touching, double hysteresis, double a, double b,
                       std::vector<int> &fired)
 {
-  const int           meshes = p.roots / roots_per_mesh;
-  std::vector<double> y, g0(std::size_t(p.roots)), g(std::size_t(p.roots));
-  solver.interpolate(a, y);
-  p.root_functions(a, y.data(), g0.data());
-  fired.assign(std::size_t(p.roots), 0);
+  const int           meshes = int(sys.model.meshes.size());
+  std::vector<double> y;
+  fired.assign(std::size_t(roots_per_mesh * meshes), 0);
   auto changed = [&](double t) {
     solver.interpolate(t, y);
-    p.root_functions(t, y.data(), g.data());
     bool any = false;
     for (int i = 0; i < meshes; ++i)
-      for (int side = 0; side < 2; ++side)
-        {
-          const std::size_t k = std::size_t(roots_per_mesh * i + side);
-          fired[k]            = (g[k] > 0) == (g0[k] > 0) ? 0 : (g[k] > 0 ? 1 : -1);
-          any                 = any || fired[k] != 0;
-        }
+      {
+        const MeshEval e = sys.mesh(i, y.data(), y.data() + sys.n);
+        for (int side = 0; side < 2; ++side)
+          {
+            const bool now =
+                touch_value(e, side, touching[std::size_t(2 * i + side)], hysteresis) > 0;
+            const bool was = touching[std::size_t(2 * i + side)]; // the sign at a
+            fired[std::size_t(roots_per_mesh * i + side)] = now == was ? 0 : (now ? 1 : -1);
+            any                                           = any || now != was;
+          }
+      }
     return any;
   };
-  const int points = 8;
+  const int points = 2;
   double    lo     = a;
   for (int j = 1; j < points; ++j)
     {
@@ -722,7 +756,7 @@ hidden_contact_change(const CvodeSolver &solver, const CvodeProblem &p, double a
       changed(hi);
       return hi;
     }
-  fired.assign(std::size_t(p.roots), 0);
+  fired.assign(fired.size(), 0);
   return b;
 }
 
@@ -776,14 +810,17 @@ public:
         std::max(out.energy_error, std::abs(q[0] - (K - kinetic0) - (V - potential0) - q[1]));
   }
 
-  /// The forces and penetrations at a point of the solution (a step's end, a root).
+  /// The forces and penetrations at a point of the solution (a step's end, a root), from the
+  /// meshes evaluated there if given.
   void
-  extremes(double t, const std::vector<double> &state)
+  extremes(double t, const std::vector<double> &state,
+           const std::vector<MeshEval> *evaluated = nullptr)
   {
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval e  = sys.mesh(i, state.data(), state.data() + n);
-        MeshSeries    &ms = out.meshes[i];
+        const MeshEval e =
+            evaluated ? (*evaluated)[std::size_t(i)] : sys.mesh(i, state.data(), state.data() + n);
+        MeshSeries &ms = out.meshes[i];
         for (int side = 0; side < 2; ++side)
           {
             const double F = e.force[side];
@@ -797,29 +834,29 @@ public:
       }
   }
 
-  /// The forces' integrals over [a, b], a piece of the last step (three-point Gauss-Legendre on
+  /// The forces' integrals over [a, b], a piece of the last step (two-point Gauss-Legendre on
   /// the method's interpolant: its kinks - touch, separation - are roots, and end the pieces).
   void
   integrate(const CvodeSolver &solver, double a, double b)
   {
     if (!(b > a))
       return;
-    static const double x[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
-    static const double w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+    const double        x = 1 / std::sqrt(3.0);
     std::vector<double> y;
-    for (int k = 0; k < 3; ++k)
+    for (const double u : {-x, x})
       {
-        solver.interpolate((a + b) / 2 + (b - a) / 2 * x[k], y);
+        solver.interpolate((a + b) / 2 + (b - a) / 2 * u, y);
         for (int i = 0; i < meshes; ++i)
           {
             const MeshEval e = sys.mesh(i, y.data(), y.data() + n);
             for (int side = 0; side < 2; ++side)
-              impulse[std::size_t(2 * i + side)] += (b - a) / 2 * w[k] * e.force[side];
+              impulse[std::size_t(2 * i + side)] += (b - a) / 2 * e.force[side];
           }
       }
   }
 
-  /// A side of mesh i starts (touch) or stops touching at t.
+  /// A side of mesh i starts (touch) or stops touching at t; a contact at the start (t = 0)
+  /// is recorded, but is no impact.
   void
   contact(int i, int side, bool touch, double t)
   {
@@ -827,8 +864,11 @@ public:
     std::optional<TrainImpact> &c  = open[std::size_t(2 * i + side)];
     if (touch)
       {
-        ++ms.impacts;
-        ++(side == drive_side ? ms.drive_impacts : ms.coast_impacts);
+        if (t > 0)
+          {
+            ++ms.impacts;
+            ++(side == drive_side ? ms.drive_impacts : ms.coast_impacts);
+          }
         if (ms.first_contact < 0)
           ms.first_contact = t;
         c.emplace();
@@ -902,12 +942,20 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   for (int i = 0; i < n; ++i)
     y[i] = model.bodies[i].initial_angle, y[n + i] = model.bodies[i].initial_speed;
   std::vector<char>  touching(2 * std::size_t(meshes), 0);
-  const CvodeProblem p = train_problem(sys, o, y, touching);
+  LastEvaluation     last_evaluation;
+  const CvodeProblem p = train_problem(sys, o, y, touching, last_evaluation);
 
   // 3. integrate step by step (the steps do not depend on the output rate), the samples
   // interpolated at the output times, the extremes and impacts from the steps and roots
   TrainRecorder rec(sys, y);
-  CvodeSolver   solver(p, 0.0, y);
+  for (int i = 0; i < meshes; ++i) // the sides touching at the start
+    {
+      const MeshEval e = sys.mesh(i, y.data(), y.data() + n);
+      for (int side = 0; side < 2; ++side)
+        if (e.max_penetration[side] > 0)
+          touching[std::size_t(2 * i + side)] = 1, rec.contact(i, side, true, 0);
+    }
+  CvodeSolver solver(p, 0.0, y);
   rec.sample(0, y, {0.0, 0.0});
   rec.extremes(0, y);
   const long samples     = std::max(1L, long(std::ceil(o.duration * o.sample_rate - 1e-9)));
@@ -920,16 +968,18 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   long                next = 1;
   for (double t = 0, last = 0; t < o.duration; last = t)
     {
-      bool         root    = solver.step(o.duration, t, y, &fired);
-      const double hidden  = hidden_contact_change(solver, p, last, t, hidden_fired);
-      const bool   restart = hidden < t; // the run goes on from there
+      bool         root = solver.step(o.duration, t, y, &fired);
+      const double hidden =
+          hidden_contact_change(solver, sys, touching, touch_hysteresis(o), last, t, hidden_fired);
+      const bool restart = hidden < t; // the run goes on from there
       if (restart)
         {
           t = hidden, root = true;
           solver.interpolate(t, y);
           fired.swap(hidden_fired);
         }
-      rec.integrate(solver, last, t);
+      if (std::find(touching.begin(), touching.end(), 1) != touching.end())
+        rec.integrate(solver, last, t); // no force without contact
       for (; next <= samples && sample_time(next) <= t; ++next)
         {
           solver.interpolate(sample_time(next), ys, &qs);
@@ -941,7 +991,7 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
         if (!std::isfinite(v))
           throw InputError("gear train: the state is not finite at t = " + std::to_string(t) +
                            " s; check the inertias and the contact law");
-      rec.extremes(t, y);
+      rec.extremes(t, y, last_evaluation.at(y));
       if (root)
         {
           ++rec.out.events;

@@ -143,11 +143,12 @@ CvodeSolver::release()
 }
 
 bool
-CvodeSolver::advance(double t_out, double &t, std::vector<double> &y, std::vector<int> *fired)
+CvodeSolver::call(double t_out, int task, double &t, std::vector<double> &y,
+                  std::vector<int> *fired)
 {
   N_Vector    v       = static_cast<N_Vector>(state);
   sunrealtype reached = 0;
-  const int   flag    = CVode(memory, t_out, v, &reached, CV_NORMAL);
+  const int   flag    = CVode(memory, t_out, v, &reached, task);
   check(flag, "CVode", reached);
   t = reached;
   y.assign(N_VGetArrayPointer(v), N_VGetArrayPointer(v) + p.size);
@@ -162,23 +163,16 @@ CvodeSolver::advance(double t_out, double &t, std::vector<double> &y, std::vecto
 }
 
 bool
+CvodeSolver::advance(double t_out, double &t, std::vector<double> &y, std::vector<int> *fired)
+{
+  return call(t_out, CV_NORMAL, t, y, fired);
+}
+
+bool
 CvodeSolver::step(double t_end, double &t, std::vector<double> &y, std::vector<int> *fired)
 {
   check(CVodeSetStopTime(memory, t_end), "CVodeSetStopTime", t);
-  N_Vector    v       = static_cast<N_Vector>(state);
-  sunrealtype reached = 0;
-  const int   flag    = CVode(memory, t_end, v, &reached, CV_ONE_STEP);
-  check(flag, "CVode", reached);
-  t = reached;
-  y.assign(N_VGetArrayPointer(v), N_VGetArrayPointer(v) + p.size);
-  if (flag != CV_ROOT_RETURN)
-    return false;
-  if (fired)
-    {
-      fired->assign(p.roots, 0);
-      check(CVodeGetRootInfo(memory, fired->data()), "CVodeGetRootInfo", t);
-    }
-  return true;
+  return call(t_end, CV_ONE_STEP, t, y, fired);
 }
 
 void
@@ -200,8 +194,7 @@ CvodeSolver::reinit(double t, const std::vector<double> &y)
 {
   steps_before += steps_since_start(); // CVodeReInit zeroes CVODE's count
   if (quadrature) // their values at t, where the method restarts (t may lie inside the step)
-    check(CVodeGetQuadDky(memory, t, 0, static_cast<N_Vector>(quadrature)), "CVodeGetQuadDky",
-          t);
+    check(CVodeGetQuadDky(memory, t, 0, static_cast<N_Vector>(quadrature)), "CVodeGetQuadDky", t);
   N_Vector v = static_cast<N_Vector>(state);
   for (int i = 0; i < p.size; ++i)
     N_VGetArrayPointer(v)[i] = y[i];

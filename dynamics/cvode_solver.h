@@ -71,6 +71,9 @@ public:
   steps() const;
 
 private:
+  /// CVode towards t_out in the given task (CV_NORMAL, CV_ONE_STEP), as advance returns.
+  bool
+  call(double t_out, int task, double &t, std::vector<double> &y, std::vector<int> *fired);
   long
        steps_since_start() const;
   long steps_before = 0;

@@ -355,8 +355,16 @@ struct MeshEval
   double force[2] = {0, 0};                    ///< normal force per side [N]
   double energy = 0, dissipation_rate = 0;
   double max_penetration[2] = {-HUGE_VAL, -HUGE_VAL};
-  /// dF/dt per side [N/s] (with the accelerations given): zero where a side's force peaks
-  double force_rate[2] = {0, 0};
+  /// dF/dt per side, linear in the two bodies' accelerations: its part without them and their
+  /// coefficients (force_rate)
+  double rate_fixed[2] = {0, 0}, rate_driver[2] = {0, 0}, rate_driven[2] = {0, 0};
+  /// dF/dt of a side [N/s] at the driver's and driven body's accelerations: zero where the
+  /// side's force peaks
+  double
+  force_rate(int side, double alpha_driver, double alpha_driven) const
+  {
+    return rate_fixed[side] + rate_driver[side] * alpha_driver + rate_driven[side] * alpha_driven;
+  }
   /// The penetration rates of the touching pairs, weighted by their elastic force over d: zero
   /// where the deepest penetration peaks (a finite number at first touch)
   double penetration_rate = 0, penetration_weight = 0;
@@ -392,9 +400,9 @@ public:
       centre.push_back(band_centre(mesh.teeth));
   }
 
-  /// One mesh at (theta, omega); with the accelerations alpha also the forces' rates.
+  /// One mesh at (theta, omega).
   MeshEval
-  mesh(int index, const double *theta, const double *omega, const double *alpha = nullptr) const
+  mesh(int index, const double *theta, const double *omega) const
   {
     const TrainMesh       &m   = model.meshes[index];
     const ToothPairTables &t   = m.teeth;
@@ -408,7 +416,7 @@ public:
     /// the deepest touching pair of each side (finite-element K_m)
     struct Deepest
     {
-      double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, acceleration = 0;
+      double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, curvature = 0;
     } deepest[2];
     for (int k = k0 - options.pairings_each_side; k <= k0 + options.pairings_each_side; ++k)
       {
@@ -434,20 +442,17 @@ public:
             e.max_penetration[side] = std::max(e.max_penetration[side], d);
             if (!(d > 0))
               continue;
-            // d'' = d_phi phi'' + d_psi psi'' + d_phiphi phi'^2 + 2 d_phipsi phi' psi'
-            double d_acceleration = 0;
-            if (alpha)
-              d_acceleration = dd_dphi * alpha[m.driver] + dd_dpsi * alpha[m.driven] +
-                               s *
-                                   (arm_curvature * gap + 2 * arm_slope * (ratio + o_slope) +
-                                    arm * o_curvature) *
-                                   w_p * w_p -
-                               2 * s * arm_slope * w_p * w_g;
+            // d'' = d_phi phi'' + d_psi psi'' + curvature, curvature = d_phiphi phi'^2 +
+            // 2 d_phipsi phi' psi'
+            const double curvature =
+                s * (arm_curvature * gap + 2 * arm_slope * (ratio + o_slope) + arm * o_curvature) *
+                    w_p * w_p -
+                2 * s * arm_slope * w_p * w_g;
             ++e.pairs;
             if (fe)
               {
                 if (d > deepest[side].d)
-                  deepest[side] = {d, dd_dphi, dd_dpsi, d_rate, d_acceleration};
+                  deepest[side] = {d, dd_dphi, dd_dpsi, d_rate, curvature};
                 continue;
               }
             const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
@@ -462,8 +467,10 @@ public:
             if (F > 0)
               {
                 const auto [c, dc_dd] = impact_damping(m.law, d);
-                e.force_rate[side] += m.law.exponent * elastic / d * d_rate +
-                                      dc_dd * d_rate * d_rate + c * d_acceleration;
+                e.rate_fixed[side] +=
+                    m.law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c * curvature;
+                e.rate_driver[side] += c * dd_dphi;
+                e.rate_driven[side] += c * dd_dpsi;
               }
           }
       }
@@ -488,8 +495,10 @@ public:
             if (F > 0)
               {
                 const auto [c, dc_dd] = impact_damping(linear, p.d);
-                e.force_rate[side] +=
-                    dK_dphi * w_p * p.d + K * p.rate + dc_dd * p.rate * p.rate + c * p.acceleration;
+                e.rate_fixed[side] +=
+                    dK_dphi * w_p * p.d + K * p.rate + dc_dd * p.rate * p.rate + c * p.curvature;
+                e.rate_driver[side] += c * p.dd_dphi;
+                e.rate_driven[side] += c * p.dd_dpsi;
               }
           }
       }
@@ -507,23 +516,25 @@ public:
   }
 
   /// Accelerations, the power of the torques (and of a finite-element K_m's variation) and the
-  /// dissipation rate at (t, theta, omega).
+  /// dissipation rate at (t, theta, omega); the meshes as evaluated, if asked.
   void
   evaluate(double t, const double *theta, const double *omega, double *alpha, double &power,
-           double &dissipation, double *side_forces = nullptr) const
+           double &dissipation, std::vector<MeshEval> *evaluated = nullptr) const
   {
     std::vector<double> Q(n, 0.0);
     dissipation       = 0;
     double parametric = 0;
+    if (evaluated)
+      evaluated->resize(model.meshes.size());
     for (int i = 0; i < int(model.meshes.size()); ++i)
       {
         const MeshEval e = mesh(i, theta, omega);
+        if (evaluated)
+          (*evaluated)[std::size_t(i)] = e;
         Q[model.meshes[i].driver] += e.torque_driver;
         Q[model.meshes[i].driven] += e.torque_driven;
         dissipation += e.dissipation_rate;
         parametric += e.parametric_power;
-        if (side_forces)
-          side_forces[2 * i] = e.force[drive_side], side_forces[2 * i + 1] = e.force[coast_side];
       }
     for (const TrainShaft &s : model.shafts)
       {
@@ -668,17 +679,18 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
                                                                      double *g) {
     std::vector<double> alpha(static_cast<std::size_t>(n));
     double              power, dissipation;
-    sys.evaluate(t, y, y + n, alpha.data(), power, dissipation);
+    sys.evaluate(t, y, y + n, alpha.data(), power, dissipation, &last.meshes);
     last.state.assign(y, y + 2 * n);
-    last.meshes.resize(std::size_t(meshes));
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval &e = last.meshes[std::size_t(i)] = sys.mesh(i, y, y + n, alpha.data());
-        double *const   gi                              = g + roots_per_mesh * i;
+        const MeshEval  &e  = last.meshes[std::size_t(i)];
+        const TrainMesh &m  = sys.model.meshes[std::size_t(i)];
+        double *const    gi = g + roots_per_mesh * i;
         for (int side = 0; side < 2; ++side)
           {
-            gi[side]     = touch_value(e, side, touching[std::size_t(2 * i + side)], hysteresis);
-            gi[2 + side] = e.force[side] > 0 ? e.force_rate[side] : 1.0;
+            gi[side] = touch_value(e, side, touching[std::size_t(2 * i + side)], hysteresis);
+            gi[2 + side] =
+                e.force[side] > 0 ? e.force_rate(side, alpha[m.driver], alpha[m.driven]) : 1.0;
           }
         gi[4] = e.pairs ? e.penetration_rate / e.penetration_weight : 1.0;
       }
@@ -706,58 +718,60 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
 /// The first change of contact inside the piece (a, b) of the last step that the root test at
 /// the step's ends cannot see: a side separating and touching again within one step (free
 /// flight is a polynomial the method integrates exactly, so its steps grow across a brief
-/// separation). The touch functions are checked at the piece's midpoint on the
-/// interpolant (their signs at a are the sides' states `touching`) and a change is located by
-/// bisection; returns its time (just past it: the new sign holds there) with `fired` set as
-/// CVODE sets it, or b when there is none.
+/// separation). The touch functions are checked at the piece's midpoint on the interpolant
+/// (their signs at a are the sides' states `touching`) and a change is located by bisection;
+/// returns its time (just past it: the new sign holds there) with `fired` set as CVODE sets
+/// it, or b when there is none - `middle` then holds the meshes at the midpoint.
 double
 hidden_contact_change(const CvodeSolver &solver, const TrainSystem &sys,
                       const std::vector<char> &touching, double hysteresis, double a, double b,
-                      std::vector<int> &fired)
+                      std::vector<int> &fired, std::vector<MeshEval> &middle)
 {
   const int           meshes = int(sys.model.meshes.size());
   std::vector<double> y;
   fired.assign(std::size_t(roots_per_mesh * meshes), 0);
+  middle.resize(std::size_t(meshes));
   auto changed = [&](double t) {
     solver.interpolate(t, y);
     bool any = false;
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval e = sys.mesh(i, y.data(), y.data() + sys.n);
+        const MeshEval &e = middle[std::size_t(i)] = sys.mesh(i, y.data(), y.data() + sys.n);
         for (int side = 0; side < 2; ++side)
           {
-            const bool now =
-                touch_value(e, side, touching[std::size_t(2 * i + side)], hysteresis) > 0;
             const bool was = touching[std::size_t(2 * i + side)]; // the sign at a
+            const bool now = touch_value(e, side, was, hysteresis) > 0;
             fired[std::size_t(roots_per_mesh * i + side)] = now == was ? 0 : (now ? 1 : -1);
             any                                           = any || now != was;
           }
       }
     return any;
   };
-  const int points = 2;
-  double    lo     = a;
-  for (int j = 1; j < points; ++j)
+  double lo = a, hi = (a + b) / 2;
+  if (!changed(hi))
     {
-      const double x = a + (b - a) * j / points;
-      if (!changed(x))
-        {
-          lo = x;
-          continue;
-        }
-      double hi = x;
-      while (hi - lo > 8 * std::numeric_limits<double>::epsilon() * std::abs(hi))
-        {
-          const double mid = (lo + hi) / 2;
-          if (mid <= lo || mid >= hi)
-            break;
-          (changed(mid) ? hi : lo) = mid;
-        }
-      changed(hi);
-      return hi;
+      fired.assign(fired.size(), 0);
+      return b;
     }
-  fired.assign(fired.size(), 0);
-  return b;
+  while (hi - lo > 8 * std::numeric_limits<double>::epsilon() * std::abs(hi))
+    {
+      const double mid = (lo + hi) / 2;
+      if (mid <= lo || mid >= hi)
+        break;
+      (changed(mid) ? hi : lo) = mid;
+    }
+  changed(hi);
+  return hi;
+}
+
+/// The meshes at the state y.
+std::vector<MeshEval>
+meshes_at(const TrainSystem &sys, const std::vector<double> &y)
+{
+  std::vector<MeshEval> e;
+  for (int i = 0; i < int(sys.model.meshes.size()); ++i)
+    e.push_back(sys.mesh(i, y.data(), y.data() + sys.n));
+  return e;
 }
 
 /// What the run records: the samples (from the integrator's interpolant, at the output times),
@@ -810,17 +824,15 @@ public:
         std::max(out.energy_error, std::abs(q[0] - (K - kinetic0) - (V - potential0) - q[1]));
   }
 
-  /// The forces and penetrations at a point of the solution (a step's end, a root), from the
-  /// meshes evaluated there if given.
+  /// The forces and penetrations at a point of the solution (a step's end, a root): the
+  /// meshes evaluated there.
   void
-  extremes(double t, const std::vector<double> &state,
-           const std::vector<MeshEval> *evaluated = nullptr)
+  extremes(double t, const std::vector<MeshEval> &evaluated)
   {
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval e =
-            evaluated ? (*evaluated)[std::size_t(i)] : sys.mesh(i, state.data(), state.data() + n);
-        MeshSeries &ms = out.meshes[i];
+        const MeshEval &e  = evaluated[std::size_t(i)];
+        MeshSeries     &ms = out.meshes[i];
         for (int side = 0; side < 2; ++side)
           {
             const double F = e.force[side];
@@ -834,25 +846,19 @@ public:
       }
   }
 
-  /// The forces' integrals over [a, b], a piece of the last step (two-point Gauss-Legendre on
-  /// the method's interpolant: its kinks - touch, separation - are roots, and end the pieces).
+  /// The forces' integrals over [a, b], a piece of the last step, from the meshes at a, at the
+  /// midpoint and at b (Simpson's rule on the method's interpolant: its kinks - touch,
+  /// separation - are roots, and end the pieces).
   void
-  integrate(const CvodeSolver &solver, double a, double b)
+  integrate(double a, double b, const std::vector<MeshEval> &at_a,
+            const std::vector<MeshEval> &middle, const std::vector<MeshEval> &at_b)
   {
-    if (!(b > a))
-      return;
-    const double        x = 1 / std::sqrt(3.0);
-    std::vector<double> y;
-    for (const double u : {-x, x})
-      {
-        solver.interpolate((a + b) / 2 + (b - a) / 2 * u, y);
-        for (int i = 0; i < meshes; ++i)
-          {
-            const MeshEval e = sys.mesh(i, y.data(), y.data() + n);
-            for (int side = 0; side < 2; ++side)
-              impulse[std::size_t(2 * i + side)] += (b - a) / 2 * e.force[side];
-          }
-      }
+    for (int i = 0; i < meshes; ++i)
+      for (int side = 0; side < 2; ++side)
+        impulse[std::size_t(2 * i + side)] +=
+            (b - a) / 6 *
+            (at_a[std::size_t(i)].force[side] + 4 * middle[std::size_t(i)].force[side] +
+             at_b[std::size_t(i)].force[side]);
   }
 
   /// A side of mesh i starts (touch) or stops touching at t; a contact at the start (t = 0)
@@ -957,29 +963,34 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
     }
   CvodeSolver solver(p, 0.0, y);
   rec.sample(0, y, {0.0, 0.0});
-  rec.extremes(0, y);
+  rec.extremes(0, meshes_at(sys, y));
   const long samples     = std::max(1L, long(std::ceil(o.duration * o.sample_rate - 1e-9)));
   auto       sample_time = [&](long k) { return std::min(o.duration, double(k) / o.sample_rate); };
   std::optional<Progress> line;
   if (!o.progress.empty())
     line.emplace(o.progress, std::size_t(samples));
-  std::vector<int>    fired, hidden_fired;
-  std::vector<double> ys, qs, g(std::size_t(p.roots));
-  long                next = 1;
+  std::vector<int>      fired, hidden_fired;
+  std::vector<MeshEval> at_last = meshes_at(sys, y), middle, fresh;
+  std::vector<double>   ys, qs, g(std::size_t(p.roots));
+  long                  next = 1;
   for (double t = 0, last = 0; t < o.duration; last = t)
     {
-      bool         root = solver.step(o.duration, t, y, &fired);
-      const double hidden =
-          hidden_contact_change(solver, sys, touching, touch_hysteresis(o), last, t, hidden_fired);
-      const bool restart = hidden < t; // the run goes on from there
+      bool         root    = solver.step(o.duration, t, y, &fired);
+      const double hidden  = hidden_contact_change(solver, sys, touching, touch_hysteresis(o), last,
+                                                   t, hidden_fired, middle);
+      const bool   restart = hidden < t; // the run goes on from there
       if (restart)
         {
           t = hidden, root = true;
           solver.interpolate(t, y);
           fired.swap(hidden_fired);
+          solver.interpolate((last + t) / 2, ys);
+          middle = meshes_at(sys, ys);
         }
-      if (std::find(touching.begin(), touching.end(), 1) != touching.end())
-        rec.integrate(solver, last, t); // no force without contact
+      const std::vector<MeshEval> *at_t = last_evaluation.at(y);
+      if (!at_t)
+        at_t = &(fresh = meshes_at(sys, y));
+      rec.integrate(last, t, at_last, middle, *at_t);
       for (; next <= samples && sample_time(next) <= t; ++next)
         {
           solver.interpolate(sample_time(next), ys, &qs);
@@ -991,7 +1002,8 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
         if (!std::isfinite(v))
           throw InputError("gear train: the state is not finite at t = " + std::to_string(t) +
                            " s; check the inertias and the contact law");
-      rec.extremes(t, y, last_evaluation.at(y));
+      rec.extremes(t, *at_t);
+      at_last = *at_t;
       if (root)
         {
           ++rec.out.events;

@@ -176,6 +176,12 @@ CvodeSolver::step(double t_end, double &t, std::vector<double> &y, std::vector<i
 }
 
 void
+CvodeSolver::set_max_step(double h)
+{
+  check(CVodeSetMaxStep(memory, h), "CVodeSetMaxStep", 0);
+}
+
+void
 CvodeSolver::interpolate(double t, std::vector<double> &y, std::vector<double> *q) const
 {
   N_Vector v = static_cast<N_Vector>(interpolated);

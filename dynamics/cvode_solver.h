@@ -55,6 +55,9 @@ public:
   /// output (interpolate): every event, peak and count is the same at any output rate.
   bool
   step(double t_end, double &t, std::vector<double> &y, std::vector<int> *fired = nullptr);
+  /// Bounds the steps from here on (0: no bound).
+  void
+  set_max_step(double h);
   /// The state (and, if asked, the quadratures) at time t inside the last step, from the
   /// method's interpolating polynomial (CVodeGetDky).
   void

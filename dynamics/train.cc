@@ -355,6 +355,15 @@ struct MeshEval
   double force[2] = {0, 0};                    ///< normal force per side [N]
   double energy = 0, dissipation_rate = 0;
   double max_penetration[2] = {-HUGE_VAL, -HUGE_VAL};
+  /// The second and third deepest penetrations per side [m] (pairs entering and leaving while
+  /// another touches)
+  double next_penetration[2][2] = {{-HUGE_VAL, -HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL}};
+  /// The k-th deepest penetration of a side (k = 0, 1, 2)
+  double
+  penetration(int side, int k) const
+  {
+    return k == 0 ? max_penetration[side] : next_penetration[side][k - 1];
+  }
   /// dF/dt per side, linear in the two bodies' accelerations: its part without them and their
   /// coefficients (force_rate)
   double rate_fixed[2] = {0, 0}, rate_driver[2] = {0, 0}, rate_driven[2] = {0, 0};
@@ -436,10 +445,17 @@ public:
             const double s   = side == drive_side ? 1.0 : -1.0;
             const double d   = s * arm * gap;
             // d = s arm(phi_k) (psi_touch(phi_k) - psi)
-            const double dd_dphi    = s * (arm_slope * gap + arm * (ratio + o_slope));
-            const double dd_dpsi    = -s * arm;
-            const double d_rate     = dd_dphi * w_p + dd_dpsi * w_g;
-            e.max_penetration[side] = std::max(e.max_penetration[side], d);
+            const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
+            const double dd_dpsi = -s * arm;
+            const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
+            double      &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
+                   &p3 = e.next_penetration[side][1];
+            if (d > p1)
+              p3 = p2, p2 = p1, p1 = d;
+            else if (d > p2)
+              p3 = p2, p2 = d;
+            else
+              p3 = std::max(p3, d);
             if (!(d > 0))
               continue;
             // d'' = d_phi phi'' + d_psi psi'' + curvature, curvature = d_phiphi phi'^2 +
@@ -605,15 +621,36 @@ namespace
 {
 /// Root functions per mesh: either side's deepest penetration (touch and separation), either
 /// side's force rate dF/dt while it carries load (its peaks; +1 without load, so that touching
-/// is no root), the weighted penetration rate (the deepest penetration's peaks).
-constexpr int roots_per_mesh = 5;
+/// is no root), the weighted penetration rate (the deepest penetration's peaks), and either
+/// side's second and third deepest penetrations (a pair entering or leaving while another
+/// touches: the force law's kink there, and the damping spike of a pair entering at its tip
+/// edge, which the steps would otherwise stride over).
+constexpr int roots_per_mesh  = 9;
+constexpr int ranked_contacts = 3; ///< pairs per side followed (contact ratios below 3)
 
-/// The touch function of one side: the deepest penetration (at least -1 m: no pairing within
-/// reach) shifted by a hysteresis towards the side's present state.
-double
-touch_value(const MeshEval &e, int side, bool touching, double hysteresis)
+/// The root function's index (within its mesh) of the k-th deepest penetration of a side.
+int
+rank_root(int side, int k)
 {
-  return std::max(e.max_penetration[side], -1.0) + (touching ? hysteresis : -hysteresis);
+  return k == 0 ? side : 5 + 2 * (k - 1) + side;
+}
+
+/// The touch function of the k-th deepest penetration of a side (at least -1 m: no pairing
+/// within reach), shifted by a hysteresis towards the side's present count of touching pairs.
+double
+touch_value(const MeshEval &e, int side, int k, int touching_pairs, double hysteresis)
+{
+  return std::max(e.penetration(side, k), -1.0) + (touching_pairs > k ? hysteresis : -hysteresis);
+}
+
+/// Pairs touching per side (0 ... ranked_contacts) in a mesh eval.
+int
+touching_pairs(const MeshEval &e, int side)
+{
+  int count = 0;
+  for (int k = 0; k < ranked_contacts; ++k)
+    count += e.penetration(side, k) > 0;
+  return count;
 }
 
 /// The touch functions' hysteresis [m]: a thousandth of the absolute tolerance, so that a root
@@ -640,8 +677,8 @@ struct LastEvaluation
 };
 
 /// The train's CVODE problem: y = [theta; omega], quadratures [work; dissipated]; the root
-/// functions above. `touching` holds the sides in contact; `last` receives the root functions'
-/// evaluations.
+/// functions above. `touching` holds the count of touching pairs per mesh and side; `last`
+/// receives the root functions' evaluations.
 CvodeProblem
 train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vector<double> &y0,
               const std::vector<char> &touching, LastEvaluation &last)
@@ -688,7 +725,9 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
         double *const    gi = g + roots_per_mesh * i;
         for (int side = 0; side < 2; ++side)
           {
-            gi[side] = touch_value(e, side, touching[std::size_t(2 * i + side)], hysteresis);
+            for (int k = 0; k < ranked_contacts; ++k)
+              gi[rank_root(side, k)] =
+                  touch_value(e, side, k, touching[std::size_t(2 * i + side)], hysteresis);
             gi[2 + side] =
                 e.force[side] > 0 ? e.force_rate(side, alpha[m.driver], alpha[m.driven]) : 1.0;
           }
@@ -739,8 +778,9 @@ hidden_contact_change(const CvodeSolver &solver, const TrainSystem &sys,
         const MeshEval &e = middle[std::size_t(i)] = sys.mesh(i, y.data(), y.data() + sys.n);
         for (int side = 0; side < 2; ++side)
           {
-            const bool was = touching[std::size_t(2 * i + side)]; // the sign at a
-            const bool now = touch_value(e, side, was, hysteresis) > 0;
+            const int  count = touching[std::size_t(2 * i + side)];
+            const bool was   = count > 0; // the sign at a
+            const bool now   = touch_value(e, side, 0, count, hysteresis) > 0;
             fired[std::size_t(roots_per_mesh * i + side)] = now == was ? 0 : (now ? 1 : -1);
             any                                           = any || now != was;
           }
@@ -762,6 +802,33 @@ hidden_contact_change(const CvodeSolver &solver, const TrainSystem &sys,
     }
   changed(hi);
   return hi;
+}
+
+/// A side's force that peaks inside the piece (a, b) of the last step without a root of its
+/// rate there (a sharp peak the step strides over: two sign changes within it): when the force
+/// at the midpoint exceeds both ends', the peak located by golden-section search on the
+/// interpolant; its time, or -1 when there is none.
+double
+interior_peak(const CvodeSolver &solver, const TrainSystem &sys, int mesh, int side, double a,
+              double b, double f_a, double f_mid, double f_b)
+{
+  if (!(f_mid > f_a && f_mid > f_b))
+    return -1;
+  std::vector<double> y;
+  auto                force = [&](double t) {
+    solver.interpolate(t, y);
+    return sys.mesh(mesh, y.data(), y.data() + sys.n).force[side];
+  };
+  const double r  = (std::sqrt(5.0) - 1) / 2;
+  double       lo = a, hi = b;
+  double       x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+  double       f1 = force(x1), f2 = force(x2);
+  while (hi - lo > 1e-9 * (b - a) + 4 * std::numeric_limits<double>::epsilon() * std::abs(hi))
+    if (f1 < f2)
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + r * (hi - lo), f2 = force(x2);
+    else
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - r * (hi - lo), f1 = force(x1);
+  return f1 > f2 ? x1 : x2;
 }
 
 /// The meshes at the state y.
@@ -958,8 +1025,8 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
     {
       const MeshEval e = sys.mesh(i, y.data(), y.data() + n);
       for (int side = 0; side < 2; ++side)
-        if (e.max_penetration[side] > 0)
-          touching[std::size_t(2 * i + side)] = 1, rec.contact(i, side, true, 0);
+        if ((touching[std::size_t(2 * i + side)] = char(touching_pairs(e, side))) > 0)
+          rec.contact(i, side, true, 0);
     }
   CvodeSolver solver(p, 0.0, y);
   rec.sample(0, y, {0.0, 0.0});
@@ -973,8 +1040,19 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   std::vector<MeshEval> at_last = meshes_at(sys, y), middle, fresh;
   std::vector<double>   ys, qs, g(std::size_t(p.roots));
   long                  next = 1;
+  // steps of at most 1/16 of the shortest tooth mesh period at the present speeds: a contact
+  // that opens and closes within a step is looked for at its midpoint only (changes shorter
+  // than 1/32 of a mesh period may pass unseen), and free flight would let the steps grow
+  // across whole mesh periods
+  auto max_step = [&](const std::vector<double> &state) {
+    double fastest = 0; // tooth passes per second
+    for (const TrainMesh &m : model.meshes)
+      fastest = std::max(fastest, m.teeth.pinion_teeth * std::abs(state[n + m.driver]) / (2 * pi));
+    return fastest > 0 ? 1 / (16 * fastest) : 0.0;
+  };
   for (double t = 0, last = 0; t < o.duration; last = t)
     {
+      solver.set_max_step(max_step(y));
       bool         root    = solver.step(o.duration, t, y, &fired);
       const double hidden  = hidden_contact_change(solver, sys, touching, touch_hysteresis(o), last,
                                                    t, hidden_fired, middle);
@@ -1003,6 +1081,18 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
           throw InputError("gear train: the state is not finite at t = " + std::to_string(t) +
                            " s; check the inertias and the contact law");
       rec.extremes(t, *at_t);
+      for (int i = 0; i < meshes; ++i)
+        for (int side = 0; side < 2; ++side)
+          {
+            const std::size_t k = std::size_t(i);
+            const double x = interior_peak(solver, sys, i, side, last, t, at_last[k].force[side],
+                                           middle[k].force[side], (*at_t)[k].force[side]);
+            if (x > 0)
+              {
+                solver.interpolate(x, ys);
+                rec.extremes(x, meshes_at(sys, ys));
+              }
+          }
       at_last = *at_t;
       if (root)
         {
@@ -1010,18 +1100,21 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
           bool contact_change = false;
           for (int i = 0; i < meshes; ++i)
             for (int side = 0; side < 2; ++side)
-              if (const int f = fired[std::size_t(roots_per_mesh * i + side)])
-                {
-                  touching[std::size_t(2 * i + side)] = f > 0;
-                  rec.contact(i, side, f > 0, t);
-                  contact_change = true;
-                }
-          // restart the method at every touch and separation (the force law's derivatives
-          // jump there: BDF's history across the kink costs accuracy, the energy balance of a
-          // damped driven run 1.6e-6 without the restarts against 1e-6 with them), after a
-          // change found inside a step, and where a root function is exactly zero at the root
-          // (rounding-quantised rates): CVODE would take it for a root "at and very near" the
-          // last one, a restart sets it aside
+              for (int k = 0; k < ranked_contacts; ++k)
+                if (const int f = fired[std::size_t(roots_per_mesh * i + rank_root(side, k))])
+                  {
+                    char &count = touching[std::size_t(2 * i + side)];
+                    count       = f > 0 ? std::max(count, char(k + 1)) : std::min(count, char(k));
+                    if (k == 0)
+                      rec.contact(i, side, f > 0, t);
+                    contact_change = true;
+                  }
+          // restart the method at every touch and separation, of a side and of a pair (the
+          // force law's derivatives jump there: BDF's history across the kink costs accuracy, the
+          // energy balance of a damped driven run 1.6e-6 without the restarts against 1e-6 with
+          // them), after a change found inside a step, and where a root function is exactly zero at
+          // the root (rounding-quantised rates): CVODE would take it for a root "at and very near"
+          // the last one, a restart sets it aside
           p.root_functions(t, y.data(), g.data());
           if (contact_change || restart || std::find(g.begin(), g.end(), 0.0) != g.end())
             solver.reinit(t, y);

@@ -720,7 +720,19 @@ def plot_train(name, g, out_dir):
         row[0].set_ylabel("S [um]")
         row[0].set_title(f"{name} {mesh}: S along the line of action (band +-{half * 1e6:.1f} "
                          "um)", fontsize=10)
-        row[1].plot(t, m["force"][:], lw=0.7, color="tab:red")
+        force = m["force"][:]
+        row[1].plot(t, force, lw=0.7, color="tab:red", label="samples")
+        if "contacts" in m and m["contacts"]["peak"].size:
+            # the located peak of every contact (the integrator's, not the samples')
+            c = m["contacts"]
+            scale = t[-1] / g["time"][-1] if g["time"][-1] > 0 else 1.0
+            peaks = c["side"][:] * c["peak"][:]
+            row[1].plot(c["peak_time"][:] * scale, peaks, "x", color="k", ms=4,
+                        label="located contact peaks")
+            largest = max(np.abs(force).max(), 1e-300)
+            if np.abs(peaks).max() > 20 * largest:  # spikes far above the samples: both visible
+                row[1].set_yscale("symlog", linthresh=largest)
+            row[1].legend(fontsize=7, loc="lower right")
         first = m["first_contact"][()]
         row[1].set_xlabel(t_label)
         row[1].set_ylabel("normal force [N]")

@@ -178,7 +178,7 @@ write_contacts(const H5Group &g, const std::vector<TrainImpact> &contacts)
   g.write("peak", peak, {n}, "N", "the side's largest force in the contact (located)");
   g.write("peak_time", peak_time, {n}, "s", "its time");
   g.write("impulse", impulse, {n}, "N s",
-          "integral of the side's force over the contact (Gauss-Legendre on every step)");
+          "integral of the side's force over the contact (Simpson's rule on every step piece)");
 }
 } // namespace
 

@@ -339,8 +339,11 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
               << ms.drive_impacts << " drive, " << ms.coast_impacts << " coast), first contact "
               << ms.first_contact * 1e3 << " ms, max force " << ms.max_force << " N, GMF "
               << f.mesh[i] << " Hz";
-          if (!lines.expected.empty())
+          if (!lines.expected.empty() && lines.found[0])
             log << " found at " << lines.frequency[0] << " Hz";
+          else if (!lines.expected.empty())
+            log << " not found";
+          log << " (spectrum bins " << spectrum.resolution << " Hz apart)";
           log << "\n";
         }
 

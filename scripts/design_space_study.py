@@ -15,43 +15,12 @@ import sys
 import h5py
 import numpy as np
 
-TEMPLATE = """subsection Scene
-  set outputs = stiffness
-  set pairs   = p
-end
-subsection Flanks
-  subsection p
-    subsection Pinion
-      set number of teeth = 20
-      set normal module   = {m}
-      set face width      = {b}
-      set bore diameter   = {d1}
-    end
-    subsection Gear
-      set number of teeth = 31
-      set normal module   = {m}
-      set face width      = {b}
-      set bore diameter   = {d2}
-    end
-  end
-end
-subsection Finite elements
-  subsection p
-    set error estimate = false
-  end
-end
-subsection Loaded contact
-  subsection p
-    set torques = {torques}
-    set positions per mesh cycle = 4
-  end
-end
-"""
+from spur_study_scene import spur_study_scene
+
 
 
 def run(gearkit, out, name, s, torques):
-    text = TEMPLATE.format(m=3 * s, b=15 * s, d1=30 * s, d2=45 * s,
-                           torques=", ".join(f"{t:.9g}" for t in torques))
+    text = spur_study_scene(scale=s, torques=torques, positions=4)
     scene = os.path.join(out, name + ".prm")
     with open(scene, "w") as f:
         f.write(text)

@@ -32,41 +32,8 @@ import h5py
 import meshio
 import numpy as np
 
-SCENE = """subsection Scene
-  set outputs = stiffness
-  set pairs   = p
-end
-subsection Flanks
-  subsection p
-    subsection Pinion
-      set number of teeth = 20
-      set normal module   = 3
-      set face width      = 15
-      set bore diameter   = 30
-    end
-    subsection Gear
-      set number of teeth = 31
-      set normal module   = 3
-      set face width      = 15
-      set bore diameter   = 45
-    end
-  end
-end
-subsection Finite elements
-  subsection p
-    set error estimate     = false
-    set flank element size = {size}
-    set degree             = {degree}
-    set Poisson's ratio    = {poisson}
-{extra}  end
-end
-subsection Loaded contact
-  subsection p
-    set torques                  = 100
-    set positions per mesh cycle = 20
-  end
-end
-"""
+from spur_study_scene import spur_study_scene
+
 
 
 def run(args, name, size, degree, poisson, extra=""):
@@ -74,7 +41,10 @@ def run(args, name, size, degree, poisson, extra=""):
     os.makedirs(args.work, exist_ok=True)
     scene = os.path.join(args.work, name + ".prm")
     with open(scene, "w") as f:
-        f.write(SCENE.format(size=size, degree=degree, poisson=poisson, extra=extra))
+        f.write(spur_study_scene(finite_elements=f"    set flank element size = {size}\n"
+                                                 f"    set degree             = {degree}\n"
+                                                 f"    set Poisson's ratio    = {poisson}\n"
+                                                 + extra))
     seconds = []
     for _ in range(args.runs):
         shutil.rmtree(os.path.join(args.work, "out", name, "cache"), ignore_errors=True)

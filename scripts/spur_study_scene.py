@@ -1,0 +1,41 @@
+"""The spur pair of issue 36's studies as a gearkit scene: z 20/31, m 3 mm, b 15 mm, bores 30 and
+45 mm, every length times `scale`; the stiffness stage only (finite elements without the error
+estimate, loaded contact at `torques` [N m] and `positions` per mesh cycle). `finite_elements`
+adds lines to the pair's `Finite elements` section (each "    set name = value\n").
+Used by scripts/design_space_study.py and scripts/element_study.py."""
+
+
+def spur_study_scene(scale=1.0, torques=(100,), positions=20, finite_elements=""):
+    s = scale
+    return f"""subsection Scene
+  set outputs = stiffness
+  set pairs   = p
+end
+subsection Flanks
+  subsection p
+    subsection Pinion
+      set number of teeth = 20
+      set normal module   = {3 * s:.9g}
+      set face width      = {15 * s:.9g}
+      set bore diameter   = {30 * s:.9g}
+    end
+    subsection Gear
+      set number of teeth = 31
+      set normal module   = {3 * s:.9g}
+      set face width      = {15 * s:.9g}
+      set bore diameter   = {45 * s:.9g}
+    end
+  end
+end
+subsection Finite elements
+  subsection p
+    set error estimate = false
+{finite_elements}  end
+end
+subsection Loaded contact
+  subsection p
+    set torques = {", ".join(f"{t:.9g}" for t in torques)}
+    set positions per mesh cycle = {positions}
+  end
+end
+"""

@@ -701,7 +701,8 @@ def plot_trains(trains, out_dir):
 
 def plot_train(name, g, out_dir):
     """One gear train: per mesh S(t) with the backlash band (the seeds' Figures 3, 6, 7), the
-    normal force (drive +, coast -), the spectrum of the force magnitude over the analysis
+    normal force (drive +, coast -; crosses: every contact's peak as the integrator located it,
+    on a symmetric log scale where they stand far above the samples), the spectrum of the force magnitude over the analysis
     interval with the GMF harmonics (red: a line found there, grey: none) and the sidebands found
     (triangles); the body speeds and the energy balance."""
     meshes = names_of(g, "meshes")

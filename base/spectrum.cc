@@ -121,8 +121,9 @@ spectral_peak(const FrequencySpectrum &s, double low, double high)
       k = i;
   const double a = s.amplitude[k - 1], b = s.amplitude[k], c = s.amplitude[k + 1];
   double       delta = 0;
-  if (s.window == Window::hann)
-    // a lone sinusoid's Hann main lobe: the neighbours' ratio gives the offset exactly
+  if (s.window == Window::hann && b > 0)
+    // a lone sinusoid's Hann main lobe: the neighbours' ratio gives the offset exactly (a band
+    // of zeros, a silent signal, has no line: the bin itself)
     delta = c > a ? (2 * c - b) / (b + c) : -(2 * a - b) / (a + b);
   else if (a > 0 && b > 0 && c > 0)
     {

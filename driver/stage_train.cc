@@ -79,16 +79,6 @@ train_model(const Scene &scene, const TrainScene &train, const Upstream &upstrea
   return model;
 }
 
-/// |x| of the samples from index `from` on.
-std::vector<double>
-magnitude(const std::vector<double> &x, std::size_t from)
-{
-  std::vector<double> m;
-  for (std::size_t i = from; i < x.size(); ++i)
-    m.push_back(std::abs(x[i]));
-  return m;
-}
-
 /// The lines of a mesh's force spectrum at its GMF harmonics and their sidebands (every
 /// shaft frequency of the train that the spectrum resolves).
 struct LineTable
@@ -233,6 +223,10 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
       g.write("steps", double(r.steps), "1", "CVODE steps");
       g.write("events", double(r.events), "1", "contact events located (touch, separation, peaks)");
       g.write("seconds", seconds, "s", "wall time of the run");
+      g.write("anti_alias", double(train.run.anti_alias), "1",
+              "1: angles, speeds, S and forces recorded without aliasing (B-spline averages "
+              "decimated through a 70 dB low-pass: flat to 0.4 x the sample rate, nothing folds "
+              "back from above half of it); 0: the solution's values at the sample times");
 
       // 2. kinematic frequencies at the reference body's mean speed over the spectrum interval
       const double t0 = train.spectrum_start > 0 ? train.spectrum_start : train.run.duration / 2;
@@ -297,6 +291,8 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
                    "S = r_b2 ((z1/z2) phi + c - psi) along the line of action (> 0: pinion "
                    "ahead; drive contact at +band_half_width, coast at -band_half_width)");
           mg.write("force", ms.force, {n}, "N", "normal force, drive flanks + and coast -");
+          mg.write("force_magnitude", ms.magnitude, {n}, "N",
+                   "drive + coast flanks' force (the spectra's signal)");
           mg.write("pairs", ms.pairs, {n}, "1", "tooth pairs touching");
           mg.write("impacts", double(ms.impacts), "1", "first touches of a side after separation");
           mg.write("drive_impacts", double(ms.drive_impacts), "1", "of them on the drive flanks");
@@ -318,8 +314,27 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
                 << "/Contact/tooth pair recess)\n";
           mg.write("gmf", f.mesh[i], "Hz", "tooth mesh frequency (kinematics)");
 
-          const FrequencySpectrum spectrum =
-              frequency_spectrum(magnitude(ms.force, from), train.run.sample_rate, Window::hann);
+          // the spectrum only where the train runs steadily: the highest harmonic looked for
+          // may sweep at most two bins over the window (a run-up, a coast-down or a transient
+          // smears every line: the spectrogram shows those)
+          const FrequencySpectrum spectrum = frequency_spectrum(
+              std::vector<double>(ms.magnitude.begin() + long(from), ms.magnitude.end()),
+              train.run.sample_rate, Window::hann);
+          const auto [slowest, fastest] = std::minmax_element(w.begin() + long(from), w.end());
+          const double sweep            = train.harmonics * f.mesh[i] * (*fastest - *slowest) /
+                               std::max(std::abs(mean_speed), 1e-300);
+          const bool steady = sweep <= 2 * spectrum.resolution;
+          log << "  " << train.name << " " << m.name << ": " << ms.impacts << " impacts ("
+              << ms.drive_impacts << " drive, " << ms.coast_impacts << " coast), first contact "
+              << ms.first_contact * 1e3 << " ms, max force " << ms.max_force << " N, GMF "
+              << f.mesh[i] << " Hz";
+          if (!steady)
+            {
+              log << "; no spectrum: GMF x " << train.harmonics << " sweeps " << sweep
+                  << " Hz over the spectrum interval (bins " << spectrum.resolution
+                  << " Hz apart; a spectrum means something where the speed holds to 2 bins)\n";
+              continue;
+            }
           std::size_t bins = spectrum.amplitude.size();
           if (train.spectrum_max_frequency > 0)
             bins =
@@ -327,18 +342,18 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
           const H5Group sg = mg.group("spectrum");
           sg.write("start", r.t[from], "s", "the spectrum's record starts here (to the end)");
           sg.write("resolution", spectrum.resolution, "Hz", "bin spacing");
+          sg.write("gmf_sweep", sweep, "Hz",
+                   "how far the highest harmonic looked for moves over the record (at most 2 "
+                   "bins: a spectrum is written only then)");
           sg.write("amplitude",
                    std::vector<double>(spectrum.amplitude.begin(),
                                        spectrum.amplitude.begin() + long(bins)),
                    {hsize_t(bins)}, "N",
-                   "single-sided amplitude of the force magnitude |force| (Hann window, mean "
-                   "removed), bins 0, resolution, 2 resolution, ...");
+                   "single-sided amplitude of the force magnitude (drive + coast flanks, recorded "
+                   "as its own channel: without aliasing when anti-alias = true; Hann window, "
+                   "mean removed), bins 0, resolution, 2 resolution, ...");
           const LineTable lines = find_lines(spectrum, f.mesh[i], f.shaft, train);
           write_lines(sg.group("lines"), lines);
-          log << "  " << train.name << " " << m.name << ": " << ms.impacts << " impacts ("
-              << ms.drive_impacts << " drive, " << ms.coast_impacts << " coast), first contact "
-              << ms.first_contact * 1e3 << " ms, max force " << ms.max_force << " N, GMF "
-              << f.mesh[i] << " Hz";
           if (!lines.expected.empty() && lines.found[0])
             log << " found at " << lines.frequency[0] << " Hz";
           else if (!lines.expected.empty())
@@ -350,7 +365,7 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
       // 4. a spectrogram of the first mesh's force magnitude over the whole run
       if (train.spectrogram_window > 0)
         {
-          const Spectrogram sp = spectrogram(magnitude(r.meshes[0].force, 0), train.run.sample_rate,
+          const Spectrogram sp = spectrogram(r.meshes[0].magnitude, train.run.sample_rate,
                                              train.spectrogram_window, train.spectrogram_overlap,
                                              Window::hamming, train.spectrogram_max_frequency);
           const H5Group     sg = g.group("spectrogram");

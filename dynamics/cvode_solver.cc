@@ -2,7 +2,10 @@
 
 #include "base/types.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cvodes/cvodes.h>
+#include <limits>
 #include <nvector/nvector_serial.h>
 #include <sstream>
 #include <sundials/sundials_context.h>
@@ -23,8 +26,10 @@ rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 int
 quadrature_callback(sunrealtype t, N_Vector y, N_Vector qdot, void *user)
 {
-  const auto *p = static_cast<const CvodeProblem *>(user);
-  return p->quadrature_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(qdot));
+  const auto   *p = static_cast<const CvodeProblem *>(user);
+  double *const q = N_VGetArrayPointer(qdot);
+  std::fill(q + p->quadratures, q + N_VGetLength(qdot), 0.0); // the padding (see the constructor)
+  return p->quadrature_rhs(t, N_VGetArrayPointer(y), q);
 }
 
 int
@@ -84,26 +89,42 @@ CvodeSolver::CvodeSolver(const CvodeProblem &problem, double t0, const std::vect
       check(CVodeSetMaxNumSteps(memory, p.max_steps_per_call), "CVodeSetMaxNumSteps", t0);
       if (p.quadratures > 0)
         {
-          N_Vector q               = N_VNew_Serial(p.quadratures, ctx);
+          // quadratures with an infinite tolerance are outside the error test (weight 0). CVODE's
+          // norm is the root mean square over all quadratures, so the vector is padded with
+          // zeros to 4^k times the tested ones and their tolerances halved k times: every
+          // weight, square and mean then changes by a power of two only, and the error test is
+          // bit for bit the one without the untested quadratures (the bound on a restart's
+          // first step, from the absolute tolerances alone, is halved k times).
+          const bool tested = !p.quadrature_tolerance.empty();
+          if (tested)
+            require_value(int(p.quadrature_tolerance.size()) == p.quadratures, p.what,
+                          "quadrature tolerances", double(p.quadrature_tolerance.size()),
+                          "one per quadrature");
+          const int controlled =
+              int(std::count_if(p.quadrature_tolerance.begin(), p.quadrature_tolerance.end(),
+                                [](double a) { return std::isfinite(a); }));
+          int    length = p.quadratures;
+          double shrink = 1;
+          if (controlled > 0 && controlled < p.quadratures)
+            for (length = controlled; length < p.quadratures; length *= 4)
+              shrink /= 2;
+          N_Vector q               = N_VNew_Serial(length, ctx);
           quadrature               = q;
-          interpolated_quadratures = N_VNew_Serial(p.quadratures, ctx);
+          interpolated_quadratures = N_VNew_Serial(length, ctx);
           if (!q || !interpolated_quadratures)
             throw InputError(p.what + ": cannot allocate the CVODE quadratures");
           N_VConst(0.0, q);
           check(CVodeQuadInit(memory, quadrature_callback, q), "CVodeQuadInit", t0);
-          if (!p.quadrature_tolerance.empty())
+          if (tested && controlled > 0)
             {
-              require_value(int(p.quadrature_tolerance.size()) == p.quadratures, p.what,
-                            "quadrature tolerances", double(p.quadrature_tolerance.size()),
-                            "one per quadrature");
               N_Vector a = N_VClone(q);
+              N_VConst(std::numeric_limits<double>::infinity(), a);
               for (int i = 0; i < p.quadratures; ++i)
-                N_VGetArrayPointer(a)[i] = p.quadrature_tolerance[i];
-              const int flag = CVodeQuadSVtolerances(memory,
-                                                     p.quadrature_relative_tolerance < 0
-                                                         ? p.relative_tolerance
-                                                         : p.quadrature_relative_tolerance,
-                                                     a);
+                N_VGetArrayPointer(a)[i] = p.quadrature_tolerance[i] * shrink;
+              const double relative = p.quadrature_relative_tolerance < 0
+                                          ? p.relative_tolerance
+                                          : p.quadrature_relative_tolerance;
+              const int    flag     = CVodeQuadSVtolerances(memory, relative * shrink, a);
               N_VDestroy(a);
               check(flag, "CVodeQuadSVtolerances", t0);
               check(CVodeSetQuadErrCon(memory, SUNTRUE), "CVodeSetQuadErrCon", t0);
@@ -193,6 +214,14 @@ CvodeSolver::interpolate(double t, std::vector<double> &y, std::vector<double> *
       check(CVodeGetQuadDky(memory, t, 0, w), "CVodeGetQuadDky", t);
       q->assign(N_VGetArrayPointer(w), N_VGetArrayPointer(w) + p.quadratures);
     }
+}
+
+void
+CvodeSolver::interpolate_quadrature_rates(double t, std::vector<double> &rates) const
+{
+  N_Vector w = static_cast<N_Vector>(interpolated_quadratures);
+  check(CVodeGetQuadDky(memory, t, 1, w), "CVodeGetQuadDky", t);
+  rates.assign(N_VGetArrayPointer(w), N_VGetArrayPointer(w) + p.quadratures);
 }
 
 void

@@ -20,7 +20,9 @@ struct CvodeProblem
   int roots = 0; ///< root functions g(t, y) located by CVODE
   std::function<void(double t, const double *y, double *g)> root_functions;
   /// Quadratures q' = h(t, y) integrated alongside (e.g. the work and the dissipated energy of
-  /// an energy balance), in the error test with these absolute tolerances (none: outside it)
+  /// an energy balance), in the error test with these absolute tolerances (none: all outside
+  /// it; an infinite one: that quadrature outside it, the others' error test exactly as
+  /// without it, e.g. running integrals kept only to be read back)
   int                 quadratures = 0;
   std::vector<double> quadrature_tolerance;
   /// Relative tolerance of the quadratures' error test (< 0: relative_tolerance). A quadrature
@@ -62,6 +64,10 @@ public:
   /// method's interpolating polynomial (CVodeGetDky).
   void
   interpolate(double t, std::vector<double> &y, std::vector<double> *quadratures = nullptr) const;
+  /// The quadratures' rates (their integrands, as the method's polynomial has them) at time t
+  /// inside the last step.
+  void
+  interpolate_quadrature_rates(double t, std::vector<double> &rates) const;
   /// Restarts the method at (t, y), t inside the last step (an event, or a change the caller
   /// found inside the step), the quadratures interpolated there.
   void

@@ -34,6 +34,17 @@ sample(const PairModel &model, const RunOptions &o, double t, const PairVector &
   return s;
 }
 
+/// A point of the solution (a sample, a located stationary point) in the trajectory's extremes.
+void
+extend(Trajectory &out, const Sample &s)
+{
+  out.dte_min      = std::min(out.dte_min, s.delta);
+  out.dte_max      = std::max(out.dte_max, s.delta);
+  out.relative_min = std::min(out.relative_min, s.relative);
+  out.relative_max = std::max(out.relative_max, s.relative);
+  out.force_max    = std::max(out.force_max, s.force);
+}
+
 /// Appends the sample at time t; where it is not within the divergence bound (or not finite),
 /// marks the run diverged at t instead (the initial sample is kept all the same) and returns
 /// false.
@@ -54,6 +65,8 @@ record(const PairModel &model, const RunOptions &o, double t, const PairVector &
   out.dte.push_back(s.delta);
   out.relative.push_back(s.relative);
   out.force.push_back(s.force);
+  if (s.within)
+    extend(out, s);
   return s.within;
 }
 
@@ -75,17 +88,25 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
     dv = period * model.acceleration(tau * period, q, v, o.omega, o.motor_torque, o.load_torque);
     return 0;
   };
-  if (model.parameters().half_backlash > 0)
-    {
-      p.roots          = 2;
-      p.root_functions = [&](double tau, const double *y, double *g) {
-        const MeshState m = model.mesh().at(tau);
-        const double    x = PairModel::mesh_gradient(m).dot(Eigen::Map<const PairVector>(y)) - m.et,
-                     b    = model.parameters().half_backlash;
-        g[0]              = x - b;
-        g[1]              = x + b;
-      };
-    }
+  // roots: the stationary points of delta_D and delta_D - E_t (extremes), then the backlash
+  // boundaries delta_D - E_t = +-b, where the mesh force changes its law
+  const bool   backlash          = model.parameters().half_backlash > 0;
+  const double cycles_per_second = 1 / period;
+  p.roots                        = backlash ? 4 : 2;
+  p.root_functions               = [&, cycles_per_second](double tau, const double *y, double *g) {
+    const MeshState  m    = model.mesh().at(tau);
+    const PairVector grad = PairModel::mesh_gradient(m);
+    const double     rate = grad.dot(Eigen::Map<const PairVector>(y + pair_dofs));
+    g[0]                  = rate;
+    g[1]                  = rate - m.det * cycles_per_second;
+    if (backlash)
+      {
+        const double x = grad.dot(Eigen::Map<const PairVector>(y)) - m.et,
+                     b = model.parameters().half_backlash;
+        g[2]           = x - b;
+        g[3]           = x + b;
+      }
+  };
   // scales: the static mesh deflection's, the half backlash, at least a micrometre
   const PairVector s   = model.dof_scale(std::max(model.parameters().half_backlash, 1e-6));
   p.relative_tolerance = o.relative_tolerance;
@@ -110,12 +131,19 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
     out.diverged = true, out.diverged_at = tau * period;
     return true;
   };
-  bool going = record(model, o, 0, q0, v0, out);
+  bool             going = record(model, o, 0, q0, v0, out);
+  std::vector<int> fired;
   for (int k = 1; k <= n_out && going; ++k)
     {
       const double tout = double(k) / o.samples_per_cycle;
-      while (going && solver.advance(tout, tau, y))
+      while (going && solver.advance(tout, tau, y, &fired))
         {
+          const Sample at = sample(model, o, tau * period, Eigen::Map<const PairVector>(y.data()),
+                                   Eigen::Map<const PairVector>(y.data() + pair_dofs));
+          if (at.within)
+            extend(out, at);
+          if (!backlash || (fired[2] == 0 && fired[3] == 0))
+            continue;   // an extreme only
           ++out.events; // the mesh force changes its law here: restart the method
           going = !beyond();
           if (going)
@@ -127,6 +155,30 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
     }
   out.steps = std::size_t(solver.steps());
   return out;
+}
+
+/// The stationary points of delta_D and delta_D - E_t inside Newmark's step n (from t - h to
+/// t = n h), on the average acceleration's quadratic q(t - h + s) = q + s v + s^2 a_mean / 2
+/// with the mesh state m (gradient g) of the step's end and E_t linear over the step.
+void
+stationary_points(const PairModel &model, const RunOptions &o, const MeshState &m,
+                  const PairVector &g, const PairVector &q, const PairVector &v,
+                  const PairVector &a_mean, int n, double h, Trajectory &out)
+{
+  const double x0 = g.dot(q), x1 = g.dot(v), x2 = g.dot(a_mean);
+  if (x2 == 0)
+    return;
+  const double et_rate = m.det * model.parameters().pinion_teeth * o.omega / (2 * pi);
+  for (const double rate : {0.0, et_rate}) // delta_D' = 0, (delta_D - E_t)' = 0
+    {
+      const double s = (rate - x1) / x2;
+      if (!(s > 0 && s < h))
+        continue;
+      const PairVector qs = q + s * v + s * s / 2 * a_mean, vs = v + s * a_mean;
+      const Sample     at = sample(model, o, (n - 1) * h + s, qs, vs);
+      if (at.within)
+        extend(out, at);
+    }
 }
 
 Trajectory
@@ -229,6 +281,7 @@ run_newmark(const PairModel &model, const PairVector &q0, const PairVector &v0, 
         }
       const PairVector dq = dqs - Lg * Fm; // the increment: no cancellation against q
       const PairVector an = 4 / (h * h) * (dq - h * v) - a;
+      stationary_points(model, o, m, g, q, v, (a + an) / 2, n, h, out);
       v += h / 2 * (a + an);
       q += dq;
       a = an;

@@ -15,6 +15,7 @@
 
 #include "dynamics/pair_model.h"
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -59,6 +60,16 @@ struct Trajectory
   /// bound at time `diverged_at` [s]; the samples (all finite, within the bound) end before it.
   bool   diverged    = false;
   double diverged_at = 0;
+  /// Extremes of the continuous solution, not of the samples: delta_D and delta_D - E_t at the
+  /// samples and at their stationary points inside the steps (Newmark: the average
+  /// acceleration's quadratic q(t_n + s) = q_n + s v_n + s^2 (a_n + a_n+1) / 4, with the mesh
+  /// state of the step's end; CVODE: roots of g . v and g . v - E_t' on the method's
+  /// polynomial - g's own change over the mesh cycle left out, an error of second order in the
+  /// extreme's value); the largest mesh force at the same points. The same at any output rate
+  /// (Newmark: at any multiple of it in the steps).
+  double dte_min = HUGE_VAL, dte_max = -HUGE_VAL;
+  double relative_min = HUGE_VAL, relative_max = -HUGE_VAL;
+  double force_max = -HUGE_VAL;
 };
 
 /// Integrates from (q0, v0) at t = 0, or until the response diverges (Trajectory::diverged).

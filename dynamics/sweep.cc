@@ -17,12 +17,10 @@ namespace gearkit
 namespace
 {
 void
-peak_and_rms(const std::vector<double> &x, double &pp, double &rms)
+rms(const std::vector<double> &x, double &rms)
 {
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  pp                  = *hi - *lo;
-  const double mean   = std::accumulate(x.begin(), x.end(), 0.0) / double(x.size());
-  double       s      = 0;
+  const double mean = std::accumulate(x.begin(), x.end(), 0.0) / double(x.size());
+  double       s    = 0;
   for (double xi : x)
     s += (xi - mean) * (xi - mean);
   rms = std::sqrt(s / double(x.size()));
@@ -288,9 +286,12 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
             o.progress->advance();
           continue;
         }
-      peak_and_rms(t.dte, p.dte_pp, p.dte_rms);
-      peak_and_rms(t.relative, p.relative_pp, p.relative_rms);
-      p.max_force    = *std::max_element(t.force.begin(), t.force.end());
+      rms(t.dte, p.dte_rms);
+      rms(t.relative, p.relative_rms);
+      // the extremes of the continuous solution (located inside the steps), not the samples'
+      p.dte_pp       = t.dte_max - t.dte_min;
+      p.relative_pp  = t.relative_max - t.relative_min;
+      p.max_force    = t.force_max;
       p.load_factor  = p.max_force / s0.mesh_force;
       const double b = model.parameters().half_backlash;
       p.contact_loss = double(std::count_if(t.relative.begin(), t.relative.end(),

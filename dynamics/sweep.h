@@ -75,11 +75,13 @@ struct SweepOptions
 
 struct SweepPoint
 {
-  double      speed       = 0;                   ///< [rad/s]
-  double      dte_pp      = 0;                   ///< delta_D peak-to-peak [m]
+  double speed = 0; ///< [rad/s]
+  /// delta_D peak-to-peak [m], from the continuous solution's extremes (Trajectory: located
+  /// inside the steps), not the samples'; the RMS from the samples
+  double      dte_pp      = 0;
   double      dte_rms     = 0;                   ///< RMS of delta_D about its mean [m]
   double      relative_pp = 0, relative_rms = 0; ///< the same for delta_D - E_t [m]
-  double      max_force       = 0;               ///< largest F_m [N]
+  double      max_force       = 0;               ///< largest F_m [N] (Trajectory::force_max)
   double      load_factor     = 0;               ///< max F_m / static F_m
   double      contact_loss    = 0;               ///< share of the recorded samples without contact
   std::size_t events          = 0;               ///< backlash boundaries crossed while recording

@@ -1,5 +1,6 @@
 #include "dynamics/train.h"
 
+#include "base/decimator.h"
 #include "base/progress.h"
 #include "base/types.h"
 #include "dynamics/cvode_solver.h"
@@ -696,18 +697,30 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
     sys.evaluate(t, y, y + n, ydot + n, power, dissipation);
     return 0;
   };
-  p.quadratures = 2;
+  // the work and the dissipated energy, then every mesh's force integrals (drive - coast,
+  // drive + coast: the anti-alias recorder's forces from their derivatives, outside the error
+  // test)
+  p.quadratures = 2 + 2 * meshes;
   // the energies to the energy tolerance's share of the initial kinetic energy (at least a
   // microjoule), in every step: a relative test would let the local error grow with the work
   // done, which accumulates over a long run (a constant-speed drive against resistive torques)
   const double energy_tolerance =
       o.energy_tolerance > 0 ? o.energy_tolerance : o.relative_tolerance;
-  p.quadrature_tolerance.assign(2, energy_tolerance *
-                                       std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
+  p.quadrature_tolerance.assign(std::size_t(p.quadratures),
+                                std::numeric_limits<double>::infinity());
+  std::fill_n(p.quadrature_tolerance.begin(), 2,
+              energy_tolerance * std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
   p.quadrature_relative_tolerance = energy_tolerance;
-  p.quadrature_rhs                = [&sys, n](double t, const double *y, double *q) {
-    std::vector<double> alpha(static_cast<std::size_t>(n));
-    sys.evaluate(t, y, y + n, alpha.data(), q[0], q[1]);
+  p.quadrature_rhs                = [&sys, n, meshes, evaluated = std::vector<MeshEval>(),
+                      alpha = std::vector<double>(std::size_t(n))](double t, const double *y,
+                                                                   double *q) mutable {
+    sys.evaluate(t, y, y + n, alpha.data(), q[0], q[1], &evaluated);
+    for (int i = 0; i < meshes; ++i)
+      {
+        const MeshEval &e = evaluated[std::size_t(i)];
+        q[2 + i]          = e.force[drive_side] - e.force[coast_side];
+        q[2 + meshes + i] = e.force[drive_side] + e.force[coast_side];
+      }
     return 0;
   };
   const double hysteresis = touch_hysteresis(o);
@@ -848,7 +861,8 @@ meshes_at(const TrainSystem &sys, const std::vector<double> &y)
 class TrainRecorder
 {
 public:
-  TrainRecorder(const TrainSystem &sys, const std::vector<double> &y0)
+  TrainRecorder(const TrainSystem &sys, const std::vector<double> &y0, const TrainRunOptions &o,
+                long samples)
       : sys(sys)
       , n(sys.n)
       , meshes(int(sys.model.meshes.size()))
@@ -861,6 +875,23 @@ public:
     out.angle.assign(std::size_t(n), {});
     out.speed.assign(std::size_t(n), {});
     out.meshes.assign(std::size_t(meshes), {});
+    if (o.anti_alias) // channels: the angles, the speeds, the meshes' forces and magnitudes
+      alias.emplace(o.sample_rate, samples, std::size_t(2 * n + 2 * meshes));
+  }
+
+  /// The solution over [a, b], a piece of the last step, for the anti-alias recorder: the
+  /// states from the method's polynomial, the forces from their integrals' (the quadratures').
+  void
+  record(const CvodeSolver &solver, double a, double b)
+  {
+    if (!alias)
+      return;
+    alias->advance(a, b, [&](double t, double *v) {
+      solver.interpolate(t, state);
+      std::copy(state.begin(), state.end(), v);
+      solver.interpolate_quadrature_rates(t, rates);
+      std::copy(rates.begin() + 2, rates.end(), v + 2 * n);
+    });
   }
 
   /// The output sample at time t.
@@ -878,6 +909,7 @@ public:
         const MeshEval e = sys.mesh(i, state.data(), state.data() + n);
         out.meshes[i].relative.push_back(sys.relative(i, state.data()));
         out.meshes[i].force.push_back(e.force[drive_side] - e.force[coast_side]);
+        out.meshes[i].magnitude.push_back(e.force[drive_side] + e.force[coast_side]);
         out.meshes[i].pairs.push_back(e.pairs);
       }
     const double K = sys.kinetic(state.data(), state.data() + n);
@@ -974,6 +1006,29 @@ public:
                 [](const TrainImpact &a, const TrainImpact &b) { return a.touch < b.touch; });
     out.steps        = std::size_t(solver.steps());
     out.energy_error = out.energy_error / scale;
+    if (alias) // the recorded series in place of the point samples
+      {
+        if (!alias->done() || alias->output(0).size() != out.t.size())
+          throw std::logic_error("gear train: the anti-alias record does not cover the samples");
+        for (int i = 0; i < n; ++i)
+          {
+            out.angle[i] = std::move(alias->output(std::size_t(i)));
+            out.speed[i] = std::move(alias->output(std::size_t(n + i)));
+          }
+        std::vector<double> theta(static_cast<std::size_t>(n));
+        for (int i = 0; i < meshes; ++i)
+          {
+            MeshSeries &ms = out.meshes[i];
+            ms.force       = std::move(alias->output(std::size_t(2 * n + i)));
+            ms.magnitude   = std::move(alias->output(std::size_t(2 * n + meshes + i)));
+            for (std::size_t k = 0; k < out.t.size(); ++k)
+              {
+                for (int j = 0; j < n; ++j)
+                  theta[j] = out.angle[j][k];
+                ms.relative[k] = sys.relative(i, theta.data());
+              }
+          }
+      }
     return std::move(out);
   }
 
@@ -985,6 +1040,8 @@ private:
   double                                  kinetic0, potential0, scale;
   std::vector<std::optional<TrainImpact>> open;    ///< per mesh and side
   std::vector<double>                     impulse; ///< force integral since the start [N s]
+  std::optional<AntiAliasRecorder>        alias;
+  std::vector<double>                     state, rates; ///< record's interpolations
 };
 } // namespace
 
@@ -1020,7 +1077,14 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
 
   // 3. integrate step by step (the steps do not depend on the output rate), the samples
   // interpolated at the output times, the extremes and impacts from the steps and roots
-  TrainRecorder rec(sys, y);
+  // the samples: at k / rate up to the duration, the last one at the duration itself; without
+  // aliasing on whole output intervals only
+  const double intervals = o.duration * o.sample_rate;
+  const long   samples   = std::max(1L, o.anti_alias ? long(std::floor(intervals + 1e-9))
+                                                     : long(std::ceil(intervals - 1e-9)));
+  require(!o.anti_alias || intervals >= 1 - 1e-9, "duration [s]", o.duration,
+          "at least one output interval (1 / sample rate) when recorded without aliasing");
+  TrainRecorder rec(sys, y, o, samples);
   for (int i = 0; i < meshes; ++i) // the sides touching at the start
     {
       const MeshEval e = sys.mesh(i, y.data(), y.data() + n);
@@ -1031,8 +1095,7 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   CvodeSolver solver(p, 0.0, y);
   rec.sample(0, y, {0.0, 0.0});
   rec.extremes(0, meshes_at(sys, y));
-  const long samples     = std::max(1L, long(std::ceil(o.duration * o.sample_rate - 1e-9)));
-  auto       sample_time = [&](long k) { return std::min(o.duration, double(k) / o.sample_rate); };
+  auto sample_time = [&](long k) { return std::min(o.duration, double(k) / o.sample_rate); };
   std::optional<Progress> line;
   if (!o.progress.empty())
     line.emplace(o.progress, std::size_t(samples));
@@ -1069,6 +1132,7 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
       if (!at_t)
         at_t = &(fresh = meshes_at(sys, y));
       rec.integrate(last, t, at_last, middle, *at_t);
+      rec.record(solver, last, t);
       for (; next <= samples && sample_time(next) <= t; ++next)
         {
           solver.interpolate(sample_time(next), ys, &qs);

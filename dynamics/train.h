@@ -184,6 +184,13 @@ struct TrainRunOptions
   long max_steps = 20000000;
   /// Pairings examined on each side of the one at the line of centres.
   int pairings_each_side = 3;
+  /// Angles, speeds and mesh forces recorded without aliasing (base/decimator.h: quadratic
+  /// B-spline averages of the integrator's solution at 8 points per output interval, decimated
+  /// through a 70 dB low-pass; flat to 0.4 times the sample rate, nothing folds back from above
+  /// half of it; the samples then lie on whole output intervals, k / sample_rate <= duration);
+  /// false: the solution's point values at the sample times (they alias). S follows the angles;
+  /// the touching pairs and the energies are point values either way.
+  bool anti_alias = true;
 };
 
 /// One contact of a mesh's flank side, from the located touch to the located separation.
@@ -200,8 +207,11 @@ struct TrainImpact
 /// the continuous solution, the same at any output rate.
 struct MeshSeries
 {
-  std::vector<double> relative;          ///< S [m]
-  std::vector<double> force;             ///< normal force, drive flanks + and coast - [N]
+  std::vector<double> relative; ///< S [m]
+  std::vector<double> force;    ///< normal force, drive flanks + and coast - [N]
+  /// Force magnitude, drive + coast flanks [N] (|force| unless both touch), the spectra's
+  /// signal: recorded as its own channel, since |.| of anti-aliased samples would fold again
+  std::vector<double> magnitude;
   std::vector<int>    pairs;             ///< tooth pairs touching
   std::size_t         impacts       = 0; ///< first touches of a side after separation
   std::size_t         drive_impacts = 0, coast_impacts = 0;

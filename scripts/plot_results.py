@@ -702,13 +702,15 @@ def plot_trains(trains, out_dir):
 def plot_train(name, g, out_dir):
     """One gear train: per mesh S(t) with the backlash band (the seeds' Figures 3, 6, 7), the
     normal force (drive +, coast -; crosses: every contact's peak as the integrator located it,
-    on a symmetric log scale where they stand far above the samples), the spectrum of the force magnitude over the analysis
-    interval with the GMF harmonics (red: a line found there, grey: none) and the sidebands found
-    (triangles); the body speeds and the energy balance."""
+    on a symmetric log scale where they stand far above the samples), the impacts counted over
+    time (rattle shows as a climbing count), the spectrum of the force magnitude over the
+    analysis interval with the GMF harmonics (red: a line found there, grey: none) and the
+    sidebands found (triangles) where the train runs steadily; the body speeds and the energy
+    balance."""
     meshes = names_of(g, "meshes")
     bodies = names_of(g, "bodies")
     t, t_label = time_axis(g["time"][:])
-    fig, axes = plt.subplots(len(meshes) + 1, 3, figsize=(20, 4.0 * (len(meshes) + 1)),
+    fig, axes = plt.subplots(len(meshes) + 1, 4, figsize=(24, 4.0 * (len(meshes) + 1)),
                              squeeze=False)
     for row, mesh in zip(axes, meshes):
         m = g["meshes"][mesh]
@@ -721,12 +723,12 @@ def plot_train(name, g, out_dir):
         row[0].set_ylabel("S [um]")
         row[0].set_title(f"{name} {mesh}: S along the line of action (band +-{half * 1e6:.1f} "
                          "um)", fontsize=10)
+        scale = t[-1] / g["time"][-1] if g["time"][-1] > 0 else 1.0  # seconds to the axis' unit
         force = m["force"][:]
         row[1].plot(t, force, lw=0.7, color="tab:red", label="samples")
         if "contacts" in m and m["contacts"]["peak"].size:
             # the located peak of every contact (the integrator's, not the samples')
             c = m["contacts"]
-            scale = t[-1] / g["time"][-1] if g["time"][-1] > 0 else 1.0
             peaks = c["side"][:] * c["peak"][:]
             row[1].plot(c["peak_time"][:] * scale, peaks, "x", color="k", ms=4,
                         label="located contact peaks")
@@ -741,6 +743,25 @@ def plot_train(name, g, out_dir):
                          f"({m['drive_impacts'][()]:.0f} drive, {m['coast_impacts'][()]:.0f} "
                          f"coast), first {first * 1e3:.3g} ms, peak {m['max_force'][()]:.4g} N",
                          fontsize=9)
+        touches = m["contacts"]["touch"][:] if "contacts" in m else np.zeros(0)
+        sides = m["contacts"]["side"][:] if "contacts" in m else np.zeros(0)
+        for sign, label, colour in ((1, "drive", "tab:red"), (-1, "coast", "tab:blue")):
+            at = np.sort(touches[(sides == sign) & (touches > 0)]) * scale
+            row[2].step(np.concatenate(([0.0], at, [t[-1]])),
+                        np.concatenate(([0], np.arange(1, at.size + 1), [at.size])),
+                        where="post", color=colour, label=f"{label} flanks: {at.size}")
+        row[2].set_xlabel(t_label)
+        row[2].set_ylabel("impacts so far")
+        row[2].set_title(f"{name} {mesh}: impacts over time (a contact at the start is none)",
+                         fontsize=9)
+        row[2].legend(fontsize=7, loc="upper left")
+        if "spectrum" not in m:
+            row[3].axis("off")
+            row[3].text(0.05, 0.5, "no force spectrum: the speed does not hold over the\n"
+                        "analysis interval (a run-up, coast-down or transient);\n"
+                        "see the spectrogram", transform=row[3].transAxes, fontsize=10)
+            continue
+        row = row[1:]  # the spectrum in the last column
         sp = m["spectrum"]
         a = sp["amplitude"][:]
         f = np.arange(a.size) * sp["resolution"][()]
@@ -765,7 +786,7 @@ def plot_train(name, g, out_dir):
         row[2].set_xlabel("frequency [Hz]")
         row[2].set_ylabel("amplitude of |force| [N]")
         row[2].set_title(f"force spectrum from {sp['start'][()]:.3g} s: GMF {gmf:.2f} Hz "
-                         f"(red: harmonics found)", fontsize=9)
+                         f"(harmonics red: found, grey: not)", fontsize=9)
         row[2].legend(fontsize=7)
     last = axes[-1]
     speed = g["speed"][:]
@@ -797,6 +818,7 @@ def plot_train(name, g, out_dir):
     last[2].axis("off")
     last[2].text(0.02, 0.98, "\n".join(text), va="top", family="monospace", fontsize=9,
                  transform=last[2].transAxes)
+    last[3].axis("off")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, f"train_{name}.png"))
 

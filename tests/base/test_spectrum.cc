@@ -130,4 +130,11 @@ TEST(FrequencySpectrum, ExpectedLinesFoundOnlyWhereThereAreLines)
   EXPECT_FALSE(spectral_line_near(s, f + 1.0, 0.4).found);
   EXPECT_THROW(spectral_line_near(s, f, 0.1), InputError);  // narrower than a bin
   EXPECT_THROW(spectral_line_near(s, 9999, 5), InputError); // beyond the spectrum
+
+  // a silent signal (a mesh apart over the whole window) has no line, and no NaN either
+  const FrequencySpectrum silent = frequency_spectrum(std::vector<double>(x.size(), 0.0), fs);
+  const ExpectedLine      none   = spectral_line_near(silent, f, fm / 2);
+  EXPECT_FALSE(none.found);
+  EXPECT_TRUE(std::isfinite(none.line.frequency));
+  EXPECT_EQ(none.line.amplitude, 0.0);
 }

@@ -7,8 +7,9 @@ rated torques resisting on the other shafts; c_max 10 N s/mm (damper_input: 4000
 * kinematic frequencies: shafts 26.658 / 7.553 / 1.993 Hz, GMF1 453.19 Hz, GMF2 143.51 Hz;
 * force spectra (4 s, 0.25 Hz bins): GMF1 and GMF2 with harmonics 2 to 4, each found within
   0.1 %; the crank-slider's second order (2 x 1.993 Hz: its inertia varies twice a turn) as
-  sidebands around GMF1 harmonics; the output speed's own +-1.993 Hz sidebands around GMF1 with
-  the output held (the seed's stage-1 sidebands); perfect teeth on gear A give no sidebands at the input speed
+  sidebands around GMF1 harmonics; with the output held stage 1 rattles and, recorded without
+  aliasing, keeps a floor below 0.01 N around the GMF1 lines (point samples folded the impacts
+  back into a 0.1 N floor); perfect teeth on gear A give no sidebands at the input speed
   (+-26.66 Hz) around GMF2, a chipped tooth on A gives them around GMF1; the eccentric tooth on
   gear C the intermediate shaft's orders 7.553 Hz x 1..4 and sidebands +-7.553 Hz around GMF2,
   and a larger GMF1 line than the perfect train's (the seed: +50.4 %);
@@ -66,10 +67,15 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
                 for s in (-2, 2))
     assert crank >= 4, crank
 
+    # with the output held stage 1 rattles (its impacts are broadband): recorded without
+    # aliasing, the floor around the GMF1 lines stays below 0.01 N. Point samples folded the
+    # impacts' content back: a floor of 0.1 N at 20 kHz (on which six of the eight +-1.993 Hz
+    # sidebands stood four times above it: folded content, not found at 200 kHz either, where
+    # the floor is 0.013 N)
     output_held = lines(trains["perfect_output"], "stage1")
-    output_sidebands = sum(found_within(output_held, h, s, 2, h * GMF1 + s * F_OUT)
-                           for h in (1, 2, 3, 4) for s in (-1, 1))
-    assert output_sidebands >= 4, output_sidebands
+    for h in (1, 2, 3, 4):
+        floor = line(output_held, h)["floor"]
+        assert floor < 0.01, ("stage 1 floor with the output held", h, floor)
 
     stage2 = lines(trains["perfect_output"], "stage2")
     for h in (1, 2, 3, 4):

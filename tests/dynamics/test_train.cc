@@ -3,6 +3,7 @@
 // IMPACT law integrated alone (Boost.Odeint, an independent integrator), the energy balance,
 // kinematics, the crank-slider's inertia, bad input; a perfect pair without backlash at constant
 // speed has lines at the mesh harmonics only.
+#include "base/decimator.h"
 #include "base/spectrum.h"
 #include "base/types.h"
 #include "dynamics/train.h"
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 
 using namespace gearkit;
 using namespace gearkit::test_data;
@@ -49,6 +51,7 @@ TEST(Train, OneToothPairOfConstantStiffnessIsALinearOscillator)
   o.duration           = 10 * 2 * pi / w_n;
   o.sample_rate        = 40 * w_n / (2 * pi);
   o.absolute_tolerance = 1e-15, o.relative_tolerance = 1e-12;
+  o.anti_alias            = false; // the point values
   const TrainResult r     = simulate_train(m, o);
   const double      v0    = r_bp * 10;
   double            worst = 0;
@@ -59,6 +62,30 @@ TEST(Train, OneToothPairOfConstantStiffnessIsALinearOscillator)
     }
   EXPECT_LT(worst, 1e-6 * v0 / w_n) << "amplitude " << v0 / w_n << " m";
   EXPECT_LT(r.energy_error, 1e-6);
+
+  // recorded without aliasing: the exact solution times the recording chain's response at
+  // 1/40 of the sample rate (x, S and the force k x alike), to the ends (the filter continues
+  // the signal by point reflection: exact for an odd signal about t = 0, not at the end)
+  o.anti_alias           = true;
+  const TrainResult a    = simulate_train(m, o);
+  const double      H    = AntiAliasFilter::design().response(1.0 / 40);
+  const long        ends = long(AntiAliasFilter::design().taps.size()) / 16 + 1;
+  ASSERT_EQ(a.t.size(), r.t.size());
+  worst        = 0;
+  double force = 0;
+  for (std::size_t i = 0; i + ends < a.t.size(); ++i)
+    {
+      const double exact = H * v0 / w_n * std::sin(w_n * a.t[i]);
+      worst              = std::max(worst, std::abs(a.meshes[0].relative[i] - exact));
+      force              = std::max(force, std::abs(a.meshes[0].force[i] - k * exact));
+    }
+  std::printf("anti-aliased record: response %.6f at f_s/40; error %.1e of the amplitude (S), "
+              "%.1e (force)\n",
+              H, worst / (v0 / w_n), force / (k * v0 / w_n));
+  EXPECT_LT(worst, 1e-6 * v0 / w_n);
+  EXPECT_LT(force, 1e-6 * k * v0 / w_n);
+  EXPECT_LT(std::abs(H - 1), 1e-3);
+  EXPECT_GT(std::abs(H - 1), 1e-7); // not the point values: the chain's response shows
 }
 
 TEST(Train, ImpactsWithoutDampingOrTorquesConserveEnergy)
@@ -220,13 +247,16 @@ TEST(Train, ExtremesCountsAndContactsDoNotDependOnTheOutputRate)
   m.bodies[0].initial_speed = 167.5;
   m.bodies[1].initial_speed = 167.5 * z1 / z2 * 0.99;
   TrainRunOptions o;
-  o.duration = 0.05;
+  o.duration   = 0.05;
+  o.anti_alias = false; // point values (the samples are compared with the peaks)
   std::vector<TrainResult> runs;
   for (const double rate : {5e3, 50e3, 2e6})
     {
       o.sample_rate = rate;
       runs.push_back(simulate_train(m, o));
     }
+  o.anti_alias = true; // the recording's force integrals are outside the error test
+  runs.push_back(simulate_train(m, o));
   const MeshSeries &a = runs[0].meshes[0];
   ASSERT_GT(a.drive_impacts, 2u);
   ASSERT_GT(a.coast_impacts, 2u);
@@ -248,7 +278,7 @@ TEST(Train, ExtremesCountsAndContactsDoNotDependOnTheOutputRate)
           EXPECT_EQ(b.contacts[i].impulse, a.contacts[i].impulse);
         }
     }
-  // no sample of the fastest output exceeds the located peak of the contact it falls in
+  // no point value of the fastest output exceeds the located peak of the contact it falls in
   const TrainResult &dense = runs[2];
   for (const TrainImpact &c : dense.meshes[0].contacts)
     for (std::size_t i = 0; i < dense.t.size(); ++i)
@@ -390,8 +420,9 @@ namespace
 {
 /// The largest amplitude off the mesh harmonics relative to the largest mesh harmonic: the mesh
 /// force of a constant-speed pinion against a loaded gear with no backlash, sampled 64 times a
-/// mesh cycle, over its last 32 mesh cycles (the start transient having decayed), at the
-/// tolerances of the cases.
+/// mesh cycle (recorded without aliasing), over 32 mesh cycles before the last one (the start
+/// transient having decayed; the anti-alias filter's reach from the end), at the tolerances of
+/// the cases.
 double
 off_harmonic_share(const TrainModel &m)
 {
@@ -402,8 +433,8 @@ off_harmonic_share(const TrainModel &m)
   o.duration           = 160 / f_mesh; // the start transient decays in ~100 mesh cycles
   o.relative_tolerance = 1e-11, o.absolute_tolerance = 1e-12;
   const TrainResult         r = simulate_train(m, o);
-  const std::vector<double> last(r.meshes[0].force.end() - 1 - per_cycle * cycles,
-                                 r.meshes[0].force.end() - 1);
+  const std::vector<double> last(r.meshes[0].force.end() - 1 - per_cycle * (cycles + 1),
+                                 r.meshes[0].force.end() - 1 - per_cycle);
   const std::vector<double> a        = amplitude_spectrum(last, per_cycle * cycles / 2 - 1);
   double                    harmonic = 0, other = 0;
   for (std::size_t k = 1; k < a.size(); ++k)
@@ -473,6 +504,7 @@ TEST(Train, FiniteElementMeshStiffnessAgainstItsMathieuEquation)
   o.duration           = 0.02; // 9 mesh cycles, 30 periods of the mesh's own vibration
   o.sample_rate        = 1e5;
   o.relative_tolerance = 1e-11, o.absolute_tolerance = 1e-13;
+  o.anti_alias        = false; // point values
   const TrainResult r = simulate_train(m, o);
 
   const double step = 2 * pi / z1 / samples;
@@ -507,4 +539,110 @@ TEST(Train, FiniteElementMeshStiffnessAgainstItsMathieuEquation)
   EXPECT_LT(r.energy_error, 1e-6);
   m.meshes[0].mesh_stiffness[3] = -1;
   EXPECT_THROW(simulate_train(m, o), InputError);
+}
+
+namespace
+{
+/// Largest amplitude in [low, high] Hz of samples at `rate` (mean and slope removed,
+/// 4-term Blackman-Harris window: sidelobes below -92 dB), by a direct transform; a sinusoid
+/// of amplitude A at a searched frequency shows A.
+double
+largest_line(const std::vector<double> &x, double rate, double low, double high)
+{
+  const std::size_t   n = x.size();
+  std::vector<double> y(x);
+  double              st = 0, sx = 0, stt = 0, stx = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    st += double(i), sx += y[i], stt += double(i) * i, stx += double(i) * y[i];
+  const double slope = (n * stx - st * sx) / (n * stt - st * st), mean = (sx - slope * st) / n;
+  double       peak = 0, gain = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    {
+      const double s = 2 * pi * double(i) / double(n - 1);
+      const double w =
+          0.35875 - 0.48829 * std::cos(s) + 0.14128 * std::cos(2 * s) - 0.01168 * std::cos(3 * s);
+      y[i] = (y[i] - mean - slope * double(i)) * w;
+      gain += w / 2; // a sinusoid of amplitude A peaks at A
+    }
+  for (double f = low; f <= high; f += rate / double(n) / 4) // a quarter bin apart
+    {
+      std::complex<double> c = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        c += y[i] * std::polar(1.0, -2 * pi * f * double(i) / rate);
+      peak = std::max(peak, std::abs(c));
+    }
+  return peak / gain;
+}
+} // namespace
+
+TEST(Train, AChirpThroughTheNyquistFrequencyFoldsNoLineBack)
+{
+  // A pinion under constant torque accelerates its gear: the mesh frequency sweeps from 100 to
+  // 900 Hz in 1 s through the output's Nyquist frequency (500 Hz at 1 kHz). K_m varies by
+  // +-30 % over the mesh cycle; the meshes start at their static deflection, damped at 5 % of
+  // critical, so the force is F_0 plus the mesh frequency's lines. Point values fold the lines
+  // above 500 Hz back into the band; the anti-aliased record must leave nothing above -60 dB
+  // of them there, and keep the lines below 0.4 times the rate (against point values at 16 times
+  // the rate).
+  const double J_p = 1e-3, J_g = 0.05, r_bp = 0.032, K = 4e8, rate = 1e3;
+  const int    z1 = 17, z2 = 60, samples = 24;
+  const double ratio = double(z1) / z2, r_bg = r_bp / ratio;
+  const double m_e = 1 / (r_bp * r_bp / J_p + r_bg * r_bg / J_g);
+  const double w0 = 2 * pi * 100 / z1, alpha = 2 * pi * 800 / z1; // f_m 100 -> 900 Hz in 1 s
+  const double T  = alpha * (J_p + J_g * ratio * ratio);
+  const double F0 = J_g * ratio * alpha / r_bg;
+  TrainModel   m  = two_body_model(J_p, J_g, z1, z2, r_bp, 0.0,
+                                   ImpactLaw{1, 1, 0.1 * std::sqrt(K * m_e), 1e-12}, 1.6);
+  for (auto &side : m.meshes[0].teeth.curves)
+    std::fill(side[0].offset.begin(), side[0].offset.end(), 0.0);
+  for (int i = 0; i < samples; ++i)
+    m.meshes[0].mesh_stiffness.push_back(K * (1 + 0.3 * std::sin(2 * pi * i / samples)));
+  m.bodies[0].initial_speed = w0, m.bodies[0].torque.constant = T;
+  m.bodies[1].initial_speed = w0 * ratio;
+  m.bodies[1].initial_angle = -F0 / K / r_bg; // S = F_0 / K_m(0): the static deflection
+  TrainRunOptions o;
+  o.duration           = 1.0;
+  o.sample_rate        = rate;
+  o.relative_tolerance = 1e-11, o.absolute_tolerance = 1e-14;
+  o.anti_alias            = false;
+  const TrainResult point = simulate_train(m, o);
+  o.anti_alias            = true;
+  const TrainResult clean = simulate_train(m, o);
+  ASSERT_EQ(point.t.size(), clean.t.size());
+  o.anti_alias = false, o.sample_rate = 16 * rate; // the lines' true amplitudes: nothing folds
+  const TrainResult dense = simulate_train(m, o);
+
+  const std::size_t window = 100; // 0.1 s: 10 Hz bins
+  int               above = 0, below = 0;
+  for (std::size_t s = 0; s + window <= point.t.size(); s += window / 2)
+    {
+      const double f_start = z1 * (w0 + alpha * point.t[s]) / (2 * pi);
+      const double f_end   = z1 * (w0 + alpha * point.t[s + window - 1]) / (2 * pi);
+      auto         part    = [&](const TrainResult &r) {
+        return std::vector<double>(r.meshes[0].force.begin() + long(s),
+                                   r.meshes[0].force.begin() + long(s + window));
+      };
+      if (f_start > 0.58 * rate && f_end < 0.92 * rate) // every line above Nyquist
+        {
+          const double folded = largest_line(part(point), rate, 50, 450);
+          const double left   = largest_line(part(clean), rate, 50, 450);
+          std::printf("f_m %3.0f-%3.0f Hz: folded line %.3e N (point values), %.3e N "
+                      "(anti-aliased, %.0f dB)\n",
+                      f_start, f_end, folded, left, 20 * std::log10(left / folded));
+          EXPECT_GT(folded, 1e-4 * F0);   // the point values do fold
+          EXPECT_LT(left, 1e-3 * folded); // below -60 dB
+          ++above;
+        }
+      if (f_start > 0.1 * rate && f_end < 0.35 * rate) // the mesh line in the passband
+        {
+          const std::vector<double> fine(dense.meshes[0].force.begin() + long(16 * s),
+                                         dense.meshes[0].force.begin() + long(16 * (s + window)));
+          const double              a = largest_line(fine, 16 * rate, f_start - 20, f_end + 20);
+          const double              b = largest_line(part(clean), rate, f_start - 20, f_end + 20);
+          EXPECT_NEAR(b / a, 1, 0.01) << "f_m " << f_start << " Hz";
+          ++below;
+        }
+    }
+  EXPECT_GE(above, 4);
+  EXPECT_GE(below, 4);
 }

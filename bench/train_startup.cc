@@ -120,9 +120,10 @@ errors(const TrainResult &r, const TrainResult &ref)
 int
 main(int argc, char **argv)
 {
-  // --quick: 0.6 s, 10 speeds; --setting METHOD RTOL ATOL: that setting alone, no sweep
+  // --quick: 0.6 s, 10 speeds; --setting METHOD RTOL ATOL [METHOD RTOL ATOL ...]: those
+  // settings alone (one run each), no sweep
   const bool quick   = argc > 1 && std::string(argv[1]) == "--quick";
-  const bool setting = argc == 5 && std::string(argv[1]) == "--setting";
+  const bool setting = argc >= 5 && (argc - 2) % 3 == 0 && std::string(argv[1]) == "--setting";
   setvbuf(stdout, nullptr, _IOLBF, 0);
   // 0. the tooth pair tables of both stages (both sides, from the involute flanks)
   TrainModel   base;
@@ -160,29 +161,35 @@ main(int argc, char **argv)
               t_second, bdf_ref.steps, s.peak_01, s.peak_05, s.peak_all, s.speed);
   std::printf("%-6s %8s %8s %9s %9s %10s %10s %10s %10s %9s\n", "method", "rtol", "atol[m]",
               "time[s]", "steps", "peak 0.1s", "peak 0.5s", "peak all", "speeds", "energy");
-  std::vector<TrainIntegrator> methods = {TrainIntegrator::bdf, TrainIntegrator::adams};
-  std::vector<double>          rtols = {1e-6, 1e-8, 1e-10}, atols = {1e-10, 1e-12};
+  struct Setting
+  {
+    TrainIntegrator method;
+    double          rtol, atol;
+  };
+  std::vector<Setting> settings;
   if (setting)
+    for (int a = 2; a + 2 < argc; a += 3)
+      settings.push_back(
+          {std::string(argv[a]) == "adams" ? TrainIntegrator::adams : TrainIntegrator::bdf,
+           std::stod(argv[a + 1]), std::stod(argv[a + 2])});
+  else
+    for (TrainIntegrator method : {TrainIntegrator::bdf, TrainIntegrator::adams})
+      for (double rtol : {1e-6, 1e-8, 1e-10})
+        for (double atol : {1e-10, 1e-12})
+          settings.push_back({method, rtol, atol});
+  for (const Setting &c : settings)
     {
-      methods = {std::string(argv[2]) == "adams" ? TrainIntegrator::adams : TrainIntegrator::bdf};
-      rtols   = {std::stod(argv[3])};
-      atols   = {std::stod(argv[4])};
+      TrainRunOptions o    = reference;
+      o.method             = c.method;
+      o.relative_tolerance = c.rtol, o.absolute_tolerance = c.atol;
+      TrainResult  r;
+      const double t =
+          bench::median_seconds([&] { r = simulate_train(startup, o); }, quick || setting ? 1 : 3);
+      const Errors e = errors(r, ref);
+      std::printf("%-6s %8.0e %8.0e %9.2f %9zu %10.1e %10.1e %10.1e %10.1e %9.1e\n",
+                  c.method == TrainIntegrator::adams ? "adams" : "bdf", c.rtol, c.atol, t, r.steps,
+                  e.peak_01, e.peak_05, e.peak_all, e.speed, r.energy_error);
     }
-  for (TrainIntegrator method : methods)
-    for (double rtol : rtols)
-      for (double atol : atols)
-        {
-          TrainRunOptions o    = reference;
-          o.method             = method;
-          o.relative_tolerance = rtol, o.absolute_tolerance = atol;
-          TrainResult  r;
-          const double t =
-              bench::median_seconds([&] { r = simulate_train(startup, o); }, quick ? 1 : 3);
-          const Errors e = errors(r, ref);
-          std::printf("%-6s %8.0e %8.0e %9.2f %9zu %10.1e %10.1e %10.1e %10.1e %9.1e\n",
-                      method == TrainIntegrator::adams ? "adams" : "bdf", rtol, atol, t, r.steps,
-                      e.peak_01, e.peak_05, e.peak_all, e.speed, r.energy_error);
-        }
 
   if (setting)
     return 0;

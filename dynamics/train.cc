@@ -663,11 +663,13 @@ touch_hysteresis(const TrainRunOptions &o)
   return 1e-3 * o.absolute_tolerance;
 }
 
-/// The meshes as the root functions last evaluated them (CVODE evaluates them at every step's
-/// end: the recorder's extremes there reuse them).
+/// The train as last evaluated at a step's end: CVODE evaluates the quadratures there, then the
+/// root functions (both reuse one evaluation), and the recorder's extremes reuse it too.
 struct LastEvaluation
 {
-  std::vector<double>   state;
+  double                t = -1;
+  std::vector<double>   state, alpha;
+  double                power = 0, dissipation = 0;
   std::vector<MeshEval> meshes;
   /// The meshes at `y`, if they were the last evaluated; else null.
   const std::vector<MeshEval> *
@@ -675,11 +677,24 @@ struct LastEvaluation
   {
     return y == state ? &meshes : nullptr;
   }
+  /// The train at (time, y), evaluated unless it was the last evaluation.
+  void
+  evaluate(const TrainSystem &sys, double time, const double *y)
+  {
+    const int n = sys.n;
+    if (time == t && std::equal(y, y + 2 * n, state.begin(), state.end()))
+      return;
+    alpha.resize(std::size_t(n));
+    sys.evaluate(time, y, y + n, alpha.data(), power, dissipation, &meshes);
+    t = time;
+    state.assign(y, y + 2 * n);
+  }
 };
 
-/// The train's CVODE problem: y = [theta; omega], quadratures [work; dissipated]; the root
+/// The train's CVODE problem: y = [theta; omega], quadratures [work; dissipated; the meshes'
+/// force integrals]; the root
 /// functions above. `touching` holds the count of touching pairs per mesh and side; `last`
-/// receives the root functions' evaluations.
+/// holds the last evaluation (the quadratures' and root functions', at the step's end).
 CvodeProblem
 train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vector<double> &y0,
               const std::vector<char> &touching, LastEvaluation &last)
@@ -711,13 +726,12 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
   std::fill_n(p.quadrature_tolerance.begin(), 2,
               energy_tolerance * std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
   p.quadrature_relative_tolerance = energy_tolerance;
-  p.quadrature_rhs                = [&sys, n, meshes, evaluated = std::vector<MeshEval>(),
-                      alpha = std::vector<double>(std::size_t(n))](double t, const double *y,
-                                                                   double *q) mutable {
-    sys.evaluate(t, y, y + n, alpha.data(), q[0], q[1], &evaluated);
+  p.quadrature_rhs                = [&sys, &last, meshes](double t, const double *y, double *q) {
+    last.evaluate(sys, t, y);
+    q[0] = last.power, q[1] = last.dissipation;
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval &e = evaluated[std::size_t(i)];
+        const MeshEval &e = last.meshes[std::size_t(i)];
         q[2 + i]          = e.force[drive_side] - e.force[coast_side];
         q[2 + meshes + i] = e.force[drive_side] + e.force[coast_side];
       }
@@ -725,12 +739,10 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
   };
   const double hysteresis = touch_hysteresis(o);
   p.roots                 = roots_per_mesh * meshes;
-  p.root_functions = [&sys, &touching, &last, n, meshes, hysteresis](double t, const double *y,
-                                                                     double *g) {
-    std::vector<double> alpha(static_cast<std::size_t>(n));
-    double              power, dissipation;
-    sys.evaluate(t, y, y + n, alpha.data(), power, dissipation, &last.meshes);
-    last.state.assign(y, y + 2 * n);
+  p.root_functions        = [&sys, &touching, &last, meshes, hysteresis](double t, const double *y,
+                                                                  double *g) {
+    last.evaluate(sys, t, y);
+    const std::vector<double> &alpha = last.alpha;
     for (int i = 0; i < meshes; ++i)
       {
         const MeshEval  &e  = last.meshes[std::size_t(i)];

@@ -6,6 +6,7 @@
 #include "dynamics/cvode_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -268,11 +269,10 @@ hermite_at(const ToothPairCurve &c, double x, Hermite &h)
   return true;
 }
 
-/// The interpolated value of samples y (of the curve h was found on), its derivative by x and,
-/// if asked, its second derivative.
-double
-hermite(const Hermite &h, const std::vector<double> &y, double step, double &slope,
-        double *curvature = nullptr)
+/// The Hermite weights of samples y at h: y_i, its slope m_i, y_i+1, m_i+1 (central
+/// differences, one-sided at the ends).
+std::array<double, 4>
+hermite_weights(const Hermite &h, const std::vector<double> &y)
 {
   const int n = h.n;
   auto      m = [&](int j) {
@@ -282,7 +282,24 @@ hermite(const Hermite &h, const std::vector<double> &y, double step, double &slo
       return y[n - 1] - y[n - 2];
     return (y[j + 1] - y[j - 1]) / 2;
   };
-  const double w[4] = {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
+  return {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
+}
+
+/// The interpolated value of samples y (of the curve h was found on).
+double
+hermite_value(const Hermite &h, const std::vector<double> &y)
+{
+  const std::array<double, 4> w = hermite_weights(h, y);
+  return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
+}
+
+/// The interpolated value of samples y (of the curve h was found on), its derivative by x and,
+/// if asked, its second derivative.
+double
+hermite(const Hermite &h, const std::vector<double> &y, double step, double &slope,
+        double *curvature = nullptr)
+{
+  const std::array<double, 4> w = hermite_weights(h, y);
   slope = (h.slope[0] * w[0] + h.slope[1] * w[1] + h.slope[2] * w[2] + h.slope[3] * w[3]) / step;
   if (curvature)
     *curvature = (h.curvature[0] * w[0] + h.curvature[1] * w[1] + h.curvature[2] * w[2] +
@@ -439,16 +456,13 @@ public:
             Hermite               h;
             if (!hermite_at(c, phi_k, h))
               continue;
+            // d = s arm(phi_k) (psi_touch(phi_k) - psi); the derivatives only where it touches
             double       o_slope, arm_slope, o_curvature, arm_curvature;
-            const double o   = hermite(h, c.offset, c.step, o_slope, &o_curvature);
-            const double arm = hermite(h, c.arm, c.step, arm_slope, &arm_curvature);
+            const double o   = hermite_value(h, c.offset);
+            const double arm = hermite_value(h, c.arm);
             const double gap = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
             const double s   = side == drive_side ? 1.0 : -1.0;
             const double d   = s * arm * gap;
-            // d = s arm(phi_k) (psi_touch(phi_k) - psi)
-            const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
-            const double dd_dpsi = -s * arm;
-            const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
             double      &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
                    &p3 = e.next_penetration[side][1];
             if (d > p1)
@@ -459,6 +473,11 @@ public:
               p3 = std::max(p3, d);
             if (!(d > 0))
               continue;
+            hermite(h, c.offset, c.step, o_slope, &o_curvature);
+            hermite(h, c.arm, c.step, arm_slope, &arm_curvature);
+            const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
+            const double dd_dpsi = -s * arm;
+            const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
             // d'' = d_phi phi'' + d_psi psi'' + curvature, curvature = d_phiphi phi'^2 +
             // 2 d_phipsi phi' psi'
             const double curvature =

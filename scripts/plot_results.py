@@ -725,7 +725,10 @@ def plot_train(name, g, out_dir):
                          "um)", fontsize=10)
         scale = t[-1] / g["time"][-1] if g["time"][-1] > 0 else 1.0  # seconds to the axis' unit
         force = m["force"][:]
-        row[1].plot(t, force, lw=0.7, color="tab:red", label="samples")
+        filtered = "anti_alias" in g and g["anti_alias"][()] > 0
+        row[1].plot(t, force, lw=0.7, color="tab:red",
+                    label="samples, low-passed without aliasing (ring about short impacts)"
+                    if filtered else "samples (point values)")
         if "contacts" in m and m["contacts"]["peak"].size:
             # the located peak of every contact (the integrator's, not the samples')
             c = m["contacts"]

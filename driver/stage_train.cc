@@ -221,7 +221,8 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
               "max |work - kinetic change - potential change - dissipated| over the run, "
               "relative to the largest of the terms");
       g.write("steps", double(r.steps), "1", "CVODE steps");
-      g.write("events", double(r.events), "1", "contact events located (touch, separation, peaks)");
+      g.write("events", double(r.events), "1",
+              "contact changes located (a side's or a tooth pair's touch and separation)");
       g.write("seconds", seconds, "s", "wall time of the run");
       g.write("anti_alias", double(train.run.anti_alias), "1",
               "1: angles, speeds, S and forces recorded without aliasing (B-spline averages "

@@ -56,182 +56,6 @@ impact_stiffness_si(double stiffness, double exponent, double length_unit)
   return stiffness / std::pow(length_unit, exponent);
 }
 
-double
-TorqueLaw::operator()(double t, double speed) const
-{
-  const double ramp = time_constant > 0 ? -std::expm1(-t / time_constant) : 1.0;
-  return constant + step * ramp - viscous * speed;
-}
-
-std::pair<double, double>
-CrankSlider::piston(double c) const
-{
-  const double s = std::sin(c), k = std::cos(c);
-  const double w = std::sqrt(rod_length * rod_length - crank_radius * crank_radius * s * s);
-  return {crank_radius * k + w, -crank_radius * s - crank_radius * crank_radius * s * k / w};
-}
-
-namespace
-{
-/// J(c) of the crank-slider's moving parts referred to the crank angle.
-double
-crank_inertia(const CrankSlider &k, double c)
-{
-  const double s = std::sin(c), co = std::cos(c), r = k.crank_radius, l = k.rod_length;
-  const double w  = std::sqrt(l * l - r * r * s * s);
-  const double xs = -r * s - r * r * s * co / w; // piston velocity per crank rate
-  const double px = -r * s, py = r * co;         // crank pin's
-  const double f  = k.rod_centre / l;
-  const double gx = px + f * (xs - px), gy = (1 - f) * py; // the rod's centre of mass
-  const double beta = r * co / w;                          // the rod's angular rate
-  return k.piston_mass * xs * xs + k.rod_mass * (gx * gx + gy * gy) + k.rod_inertia * beta * beta;
-}
-} // namespace
-
-std::pair<double, double>
-CrankSlider::inertia(double c) const
-{
-  const double h = 1e-5;
-  return {crank_inertia(*this, c),
-          (crank_inertia(*this, c + h) - crank_inertia(*this, c - h)) / (2 * h)};
-}
-
-void
-TrainModel::check() const
-{
-  const std::string section = "Train";
-  auto              fail    = [](const std::string &where, const std::string &what, double value,
-                 const std::string &allowed) { require_value(false, where, what, value, allowed); };
-  if (bodies.size() < 2)
-    fail(section, "bodies", double(bodies.size()), "at least two bodies");
-  const int n = int(bodies.size());
-  for (const TrainBody &b : bodies)
-    {
-      const std::string where = "Train body " + b.name;
-      if (!(b.inertia > 0) || !std::isfinite(b.inertia))
-        fail(where, "inertia [kg m^2]", b.inertia, "> 0");
-      if (!std::isfinite(b.initial_speed) || !std::isfinite(b.initial_angle))
-        fail(where, "initial speed", b.initial_speed, "finite");
-      if (b.torque.time_constant < 0 || b.torque.viscous < 0)
-        fail(where, "torque time constant / viscous coefficient",
-             std::min(b.torque.time_constant, b.torque.viscous), ">= 0");
-      if (b.has_crank)
-        {
-          const CrankSlider &k = b.crank;
-          if (!(k.crank_radius > 0) || !(k.rod_length > k.crank_radius))
-            fail(where, "crank radius and rod length [m]", k.rod_length,
-                 "0 < crank radius < rod length");
-          if (k.rod_centre < 0 || k.rod_centre > k.rod_length)
-            fail(where, "rod centre of mass [m]", k.rod_centre, "in [0, rod length]");
-          if (k.rod_mass < 0 || k.rod_inertia < 0 || k.piston_mass < 0)
-            fail(where, "rod and piston masses",
-                 std::min({k.rod_mass, k.rod_inertia, k.piston_mass}), ">= 0");
-        }
-    }
-  for (const TrainMesh &m : meshes)
-    {
-      const std::string where = "Train mesh " + m.name;
-      if (m.driver < 0 || m.driver >= n || m.driven < 0 || m.driven >= n)
-        fail(where, "body index", m.driver < 0 || m.driver >= n ? m.driver : m.driven,
-             "a body of the train");
-      if (m.driver == m.driven)
-        fail(where, "driven body", m.driven, "another body than the driver");
-      const ToothPairTables &t = m.teeth;
-      if (t.pinion_teeth < 1 || t.gear_teeth < 1 || int(t.pinion_class.size()) != t.pinion_teeth ||
-          int(t.gear_class.size()) != t.gear_teeth)
-        fail(where, "tooth pair tables (teeth)", t.pinion_teeth, "tables for every tooth");
-      for (const auto &side : t.curves)
-        {
-          if (int(side.size()) != t.pinion_classes * t.gear_classes)
-            fail(where, "tooth pair tables (class pairs)", double(side.size()),
-                 "one curve per class pair");
-          for (const ToothPairCurve &c : side) // empty: the pair never touches (a missing tooth)
-            if (c.offset.size() == 1 || c.arm.size() != c.offset.size() ||
-                (!c.offset.empty() && !(c.step > 0)))
-              fail(where, "tooth pair curve samples", double(c.offset.size()),
-                   "none (never touching) or >= 2 samples, positive spacing");
-        }
-      const ImpactLaw &l = m.law;
-      if (!(l.stiffness > 0) || !std::isfinite(l.stiffness))
-        fail(where, "contact stiffness", l.stiffness, "> 0");
-      if (!(l.exponent >= 1) || l.exponent > 10)
-        fail(where, "force exponent", l.exponent, "in [1, 10]");
-      if (l.damping < 0 || (l.damping > 0 && !(l.depth > 0)))
-        fail(where, "damping / penetration depth", l.damping > 0 ? l.depth : l.damping,
-             "damping >= 0, depth > 0 with damping");
-      if (!m.mesh_stiffness.empty())
-        {
-          if (m.mesh_stiffness.size() < 2)
-            fail(where, "mesh stiffness samples", double(m.mesh_stiffness.size()),
-                 ">= 2 over the mesh cycle");
-          for (double K : m.mesh_stiffness)
-            if (!(K > 0) || !std::isfinite(K))
-              fail(where, "mesh stiffness [N/m]", K, "> 0 and finite at every sample");
-        }
-      if (!(m.pinion_base_radius > 0) || !(m.gear_base_radius > 0))
-        fail(where, "base radii [m]", std::min(m.pinion_base_radius, m.gear_base_radius), "> 0");
-    }
-  for (const TrainShaft &s : shafts)
-    {
-      if (s.a < 0 || s.a >= n || s.b < 0 || s.b >= n || s.a == s.b)
-        fail("Train shaft", "bodies", s.a, "two different bodies of the train");
-      if (s.stiffness < 0 || s.damping < 0)
-        fail("Train shaft", "stiffness / damping", std::min(s.stiffness, s.damping), ">= 0");
-    }
-}
-
-std::vector<double>
-train_speeds(const TrainModel &model, int body, double speed)
-{
-  const int           n = int(model.bodies.size());
-  std::vector<double> w(n, std::nan(""));
-  require_value(body >= 0 && body < n, "Train", "body", body, "a body of the train");
-  w[body] = speed;
-  // propagate along meshes and shafts until nothing changes; a second value for a body must
-  // agree with the first
-  for (bool changed = true; changed;)
-    {
-      changed   = false;
-      auto link = [&](int a, int b, double ratio, const std::string &what) {
-        for (int pass = 0; pass < 2; ++pass)
-          {
-            const int    from = pass ? b : a, to = pass ? a : b;
-            const double r = pass ? 1 / ratio : ratio;
-            if (std::isnan(w[from]))
-              continue;
-            if (std::isnan(w[to]))
-              w[to] = w[from] * r, changed = true;
-            else if (std::abs(w[to] - w[from] * r) > 1e-12 * std::abs(w[to]) + 1e-300)
-              {
-                std::ostringstream m;
-                m << "Train: " << what << " does not close: it would turn " << model.bodies[to].name
-                  << " at " << w[from] * r << " rad/s where the rest of "
-                  << "the train turns it at " << w[to]
-                  << " rad/s; expected tooth ratios that agree around every loop";
-                throw InputError(m.str());
-              }
-          }
-      };
-      for (const TrainMesh &m : model.meshes)
-        link(m.driver, m.driven, double(m.teeth.pinion_teeth) / m.teeth.gear_teeth,
-             "mesh " + m.name);
-      for (const TrainShaft &s : model.shafts)
-        link(s.a, s.b, 1.0, "a shaft");
-    }
-  return w;
-}
-
-TrainFrequencies
-train_frequencies(const TrainModel &model, int body, double speed)
-{
-  TrainFrequencies f;
-  for (const double w : train_speeds(model, body, speed))
-    f.shaft.push_back(std::abs(w) / (2 * pi));
-  for (const TrainMesh &m : model.meshes)
-    f.mesh.push_back(m.teeth.pinion_teeth * f.shaft[std::size_t(m.driver)]);
-  return f;
-}
-
 namespace
 {
 /// Cubic Hermite interpolation of a curve's samples (slopes by central differences): where x
@@ -639,20 +463,19 @@ public:
 
 namespace
 {
-/// Root functions per mesh: either side's deepest penetration (touch and separation), either
-/// side's force rate dF/dt while it carries load (its peaks; +1 without load, so that touching
-/// is no root), the weighted penetration rate (the deepest penetration's peaks), and either
+/// Root functions per mesh: either side's deepest penetration (touch and separation), and either
 /// side's second and third deepest penetrations (a pair entering or leaving while another
 /// touches: the force law's kink there, and the damping spike of a pair entering at its tip
-/// edge, which the steps would otherwise stride over).
-constexpr int roots_per_mesh  = 9;
+/// edge, which the steps would otherwise stride over). The forces' and penetrations' peaks are
+/// located inside the steps without stopping the method (cubic_peak).
+constexpr int roots_per_mesh  = 6;
 constexpr int ranked_contacts = 3; ///< pairs per side followed (contact ratios below 3)
 
 /// The root function's index (within its mesh) of the k-th deepest penetration of a side.
 int
 rank_root(int side, int k)
 {
-  return k == 0 ? side : 5 + 2 * (k - 1) + side;
+  return 2 * k + side;
 }
 
 /// The touch function of the k-th deepest penetration of a side (at least -1 m: no pairing
@@ -761,21 +584,14 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
   p.root_functions        = [&sys, &touching, &last, meshes, hysteresis](double t, const double *y,
                                                                   double *g) {
     last.evaluate(sys, t, y);
-    const std::vector<double> &alpha = last.alpha;
     for (int i = 0; i < meshes; ++i)
       {
-        const MeshEval  &e  = last.meshes[std::size_t(i)];
-        const TrainMesh &m  = sys.model.meshes[std::size_t(i)];
-        double *const    gi = g + roots_per_mesh * i;
+        const MeshEval &e  = last.meshes[std::size_t(i)];
+        double *const   gi = g + roots_per_mesh * i;
         for (int side = 0; side < 2; ++side)
-          {
-            for (int k = 0; k < ranked_contacts; ++k)
-              gi[rank_root(side, k)] =
-                  touch_value(e, side, k, touching[std::size_t(2 * i + side)], hysteresis);
-            gi[2 + side] =
-                e.force[side] > 0 ? e.force_rate(side, alpha[m.driver], alpha[m.driven]) : 1.0;
-          }
-        gi[4] = e.pairs ? e.penetration_rate / e.penetration_weight : 1.0;
+          for (int k = 0; k < ranked_contacts; ++k)
+            gi[rank_root(side, k)] =
+                touch_value(e, side, k, touching[std::size_t(2 * i + side)], hysteresis);
       }
   };
   // tolerances along the contact normals: angles over the body's largest base radius, speeds
@@ -875,6 +691,31 @@ interior_peak(const CvodeSolver &solver, const TrainSystem &sys, int mesh, int s
   return f1 > f2 ? x1 : x2;
 }
 
+/// The time in (a, b) where a quantity with values f_a, f_b and rates r_a > 0 > r_b at the ends
+/// of a piece of a step peaks, from the cubic Hermite interpolant of those four numbers (the
+/// root of its derivative, a quadratic, where the derivative falls); the method's polynomial is
+/// that smooth inside a step, so the solution evaluated there gives the peak to second order in
+/// the cubic's error of its time.
+double
+cubic_peak(double a, double b, double f_a, double f_b, double r_a, double r_b)
+{
+  const double h = b - a;
+  // p(u) = f_a H00 + h r_a H10 + f_b H01 + h r_b H11, p'(u) = A u^2 + B u + C
+  const double m0 = h * r_a, m1 = h * r_b, d = f_b - f_a;
+  const double A = 3 * (m0 + m1) - 6 * d, B = 6 * d - 4 * m0 - 2 * m1, C = m0;
+  double       u = 0.5;
+  if (std::abs(A) <= 1e-12 * (std::abs(B) + std::abs(C)))
+    u = B != 0 ? -C / B : 0.5;
+  else
+    {
+      const double disc = std::max(0.0, B * B - 4 * A * C);
+      const double q    = -(B + std::copysign(std::sqrt(disc), B)) / 2;
+      const double u1 = q / A, u2 = q != 0 ? C / q : u1;
+      u = 2 * A * u1 + B < 0 ? u1 : u2; // p' falls through zero at the peak
+    }
+  return a + h * std::clamp(u, 0.0, 1.0);
+}
+
 /// The meshes at the state y.
 std::vector<MeshEval>
 meshes_at(const TrainSystem &sys, const std::vector<double> &y)
@@ -883,6 +724,55 @@ meshes_at(const TrainSystem &sys, const std::vector<double> &y)
   for (int i = 0; i < int(sys.model.meshes.size()); ++i)
     e.push_back(sys.mesh(i, y.data(), y.data() + sys.n));
   return e;
+}
+
+/// The meshes and the accelerations at a point of the solution.
+struct SolutionPoint
+{
+  std::vector<MeshEval> meshes;
+  std::vector<double>   alpha;
+};
+
+/// The times inside the piece (a, b) of the last step where a side's force or a mesh's deepest
+/// penetration peaks: a side loaded at both ends whose force rate falls through zero (the cubic
+/// through the ends' forces and rates: cubic_peak), the deepest penetration likewise with its
+/// weighted rate, and a sharp peak the piece strides over (two sign changes: the force at the
+/// midpoint above both ends', golden-section search: interior_peak).
+std::vector<double>
+piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double b,
+            const SolutionPoint &start, const std::vector<MeshEval> &middle,
+            const SolutionPoint &end)
+{
+  std::vector<double> peaks;
+  for (int i = 0; i < int(sys.model.meshes.size()); ++i)
+    {
+      const TrainMesh &m  = sys.model.meshes[std::size_t(i)];
+      const MeshEval  &ea = start.meshes[std::size_t(i)], &eb = end.meshes[std::size_t(i)];
+      for (int side = 0; side < 2; ++side)
+        {
+          const double fa = ea.force[side], fb = eb.force[side];
+          const double ra =
+              fa > 0 ? ea.force_rate(side, start.alpha[m.driver], start.alpha[m.driven]) : 0;
+          const double rb =
+              fb > 0 ? eb.force_rate(side, end.alpha[m.driver], end.alpha[m.driven]) : 0;
+          if (fa > 0 && fb > 0 && ra > 0 && rb < 0)
+            peaks.push_back(cubic_peak(a, b, fa, fb, ra, rb));
+          else if (const double x = interior_peak(solver, sys, i, side, a, b, fa,
+                                                  middle[std::size_t(i)].force[side], fb);
+                   x > 0)
+            peaks.push_back(x);
+        }
+      if (ea.pairs > 0 && eb.pairs > 0)
+        {
+          const double ra = ea.penetration_rate / ea.penetration_weight;
+          const double rb = eb.penetration_rate / eb.penetration_weight;
+          if (ra > 0 && rb < 0)
+            peaks.push_back(cubic_peak(a, b, std::max(ea.max_penetration[0], ea.max_penetration[1]),
+                                       std::max(eb.max_penetration[0], eb.max_penetration[1]), ra,
+                                       rb));
+        }
+    }
+  return peaks;
 }
 
 /// What the run records: the samples (from the integrator's interpolant, at the output times),
@@ -1074,19 +964,20 @@ private:
   std::optional<AntiAliasRecorder>        alias;
   std::vector<double>                     state, rates; ///< record's interpolations
 };
-} // namespace
-
-TrainResult
-simulate_train(const TrainModel &model, const TrainRunOptions &o)
+/// The run's options, each against what it allows (InputError naming it).
+void
+check_run_options(const TrainRunOptions &o)
 {
-  // 1. check
-  model.check();
   auto require = [](bool ok, const std::string &what, double value, const std::string &allowed) {
     require_value(ok, "Train run", what, value, allowed);
   };
   require(o.duration > 0 && std::isfinite(o.duration), "duration [s]", o.duration, "> 0");
   require(o.sample_rate > 0 && o.duration * o.sample_rate <= 5e7, "sample rate [1/s]",
           o.sample_rate, "> 0, at most 5e7 samples in the run");
+  // the samples: at k / rate up to the duration, the last one at the duration itself; without
+  // aliasing on whole output intervals only
+  require(!o.anti_alias || o.duration * o.sample_rate >= 1 - 1e-9, "duration [s]", o.duration,
+          "at least one output interval (1 / sample rate) when recorded without aliasing");
   require(o.relative_tolerance > 0 && o.absolute_tolerance > 0, "tolerance",
           std::min(o.relative_tolerance, o.absolute_tolerance), "> 0");
   require(o.max_steps > 0, "max steps", double(o.max_steps), "> 0");
@@ -1094,6 +985,18 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
           "in [0, 1)");
   require(o.pairings_each_side >= 1 && o.pairings_each_side <= 50, "pairings each side",
           o.pairings_each_side, "in [1, 50]");
+}
+} // namespace
+
+TrainResult
+simulate_train(const TrainModel &model, const TrainRunOptions &o)
+{
+  // 1. check
+  model.check();
+  check_run_options(o);
+  const double intervals = o.duration * o.sample_rate;
+  const long   samples   = std::max(1L, o.anti_alias ? long(std::floor(intervals + 1e-9))
+                                                     : long(std::ceil(intervals - 1e-9)));
 
   // 2. the system and its CVODE problem
   const TrainSystem   sys(model, o);
@@ -1108,13 +1011,6 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
 
   // 3. integrate step by step (the steps do not depend on the output rate), the samples
   // interpolated at the output times, the extremes and impacts from the steps and roots
-  // the samples: at k / rate up to the duration, the last one at the duration itself; without
-  // aliasing on whole output intervals only
-  const double intervals = o.duration * o.sample_rate;
-  const long   samples   = std::max(1L, o.anti_alias ? long(std::floor(intervals + 1e-9))
-                                                     : long(std::ceil(intervals - 1e-9)));
-  require(!o.anti_alias || intervals >= 1 - 1e-9, "duration [s]", o.duration,
-          "at least one output interval (1 / sample rate) when recorded without aliasing");
   TrainRecorder rec(sys, y, o, samples);
   for (int i = 0; i < meshes; ++i) // the sides touching at the start
     {
@@ -1131,9 +1027,24 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   if (!o.progress.empty())
     line.emplace(o.progress, std::size_t(samples));
   std::vector<int>      fired, hidden_fired;
-  std::vector<MeshEval> at_last = meshes_at(sys, y), middle, fresh;
+  std::vector<MeshEval> middle;
   std::vector<double>   ys, qs, g(std::size_t(p.roots));
-  long                  next = 1;
+  // the meshes and accelerations at a piece's start and end (the end's from the quadratures'
+  // and root functions' evaluation there, when it is theirs)
+  auto point_at = [&](double time, const std::vector<double> &state, SolutionPoint &point) {
+    if (last_evaluation.t == time && last_evaluation.at(state))
+      {
+        point.meshes = last_evaluation.meshes, point.alpha = last_evaluation.alpha;
+        return;
+      }
+    double power, dissipation;
+    point.alpha.resize(std::size_t(n));
+    sys.evaluate(time, state.data(), state.data() + n, point.alpha.data(), power, dissipation,
+                 &point.meshes);
+  };
+  SolutionPoint start, end;
+  point_at(0, y, start);
+  long next = 1;
   // steps of at most 1/16 of the shortest tooth mesh period at the present speeds: a contact
   // that opens and closes within a step is looked for at its midpoint only (changes shorter
   // than 1/32 of a mesh period may pass unseen), and free flight would let the steps grow
@@ -1159,10 +1070,8 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
           solver.interpolate((last + t) / 2, ys);
           middle = meshes_at(sys, ys);
         }
-      const std::vector<MeshEval> *at_t = last_evaluation.at(y);
-      if (!at_t)
-        at_t = &(fresh = meshes_at(sys, y));
-      rec.integrate(last, t, at_last, middle, *at_t);
+      point_at(t, y, end);
+      rec.integrate(last, t, start.meshes, middle, end.meshes);
       rec.record(solver, last, t);
       for (; next <= samples && sample_time(next) <= t; ++next)
         {
@@ -1175,20 +1084,13 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
         if (!std::isfinite(v))
           throw InputError("gear train: the state is not finite at t = " + std::to_string(t) +
                            " s; check the inertias and the contact law");
-      rec.extremes(t, *at_t);
-      for (int i = 0; i < meshes; ++i)
-        for (int side = 0; side < 2; ++side)
-          {
-            const std::size_t k = std::size_t(i);
-            const double x = interior_peak(solver, sys, i, side, last, t, at_last[k].force[side],
-                                           middle[k].force[side], (*at_t)[k].force[side]);
-            if (x > 0)
-              {
-                solver.interpolate(x, ys);
-                rec.extremes(x, meshes_at(sys, ys));
-              }
-          }
-      at_last = *at_t;
+      rec.extremes(t, end.meshes);
+      for (const double x : piece_peaks(solver, sys, last, t, start, middle, end))
+        {
+          solver.interpolate(x, ys);
+          rec.extremes(x, meshes_at(sys, ys));
+        }
+      std::swap(start, end);
       if (root)
         {
           ++rec.out.events;

@@ -20,8 +20,11 @@
 // driven by whatever torque holds it (its work is counted).
 //
 // Time integration: CVODE (dynamics/cvode_solver.h; Adams or BDF) step by step, with event
-// location where a mesh's flank side starts or stops touching and where its force peaks (the
-// root of dF/dt, from the accelerations), the energy balance integrated alongside:
+// location where a mesh's flank side or one of its tooth pairs starts or stops touching (the
+// method restarts there), the forces' and penetrations' peaks located inside the steps (the
+// cubic through a piece's end values and rates dF/dt, from the accelerations, where the rate
+// falls through zero; golden-section search for a sharp peak a step strides over), the energy
+// balance integrated alongside:
 //   work of the torques = kinetic energy change + potential energy + dissipated energy.
 // The steps never depend on the output rate: the samples are interpolated at the output times
 // from the method's polynomial, and the extremes, counts and impulses come from the steps and
@@ -215,8 +218,9 @@ struct MeshSeries
   std::vector<int>    pairs;             ///< tooth pairs touching
   std::size_t         impacts       = 0; ///< first touches of a side after separation
   std::size_t         drive_impacts = 0, coast_impacts = 0;
-  /// Largest force of a side [N] and its time [s]: at every step's end and at every located
-  /// root of the side's force rate dF/dt (the peaks inside the steps), touch and separation
+  /// Largest force of a side [N] and its time [s]: at every step's end, touch and separation,
+  /// and at every peak located inside a step (where the side's force rate dF/dt falls through
+  /// zero)
   double                   max_force = 0, max_force_time = 0;
   std::vector<TrainImpact> contacts; ///< every contact, in the order of their touches
   /// Deepest penetration of a tooth pair at every step's end and located event [m]: the tooth
@@ -236,7 +240,7 @@ struct TrainResult
   /// and of a finite-element K_m's variation, TrainMesh::mesh_stiffness), kinetic energy, stored
   /// elastic energy (contacts, shafts) and dissipated energy.
   std::vector<double> work, kinetic, potential, dissipated;
-  std::size_t         steps = 0, events = 0;
+  std::size_t         steps = 0, events = 0; ///< CVODE steps; located contact changes
   /// max |work - (kinetic - kinetic(0)) - (potential - potential(0)) - dissipated| over the
   /// run, relative to the largest of the terms.
   double energy_error = 0;

@@ -173,6 +173,43 @@ def diverged_speeds(s):
     return ", ".join(f"{v:.0f} rpm (after {t * 1e3:.3g} ms)" for v, t in zip(speed, when))
 
 
+def train_rows(name, g):
+    """A gear train's headline numbers per mesh: impacts (drive/coast), first contact, the
+    largest force as the integrator located it (not a sample), the deepest penetration, the GMF
+    line where a spectrum was taken; the energy balance and the located contact changes."""
+    rows = []
+    label = esc(name)
+    if "energy_error" in g:
+        rows.append([label, "energy balance error",
+                     f"{g['energy_error'][()]:.2e} of the largest term"])
+    if "events" in g:
+        rows.append([label, "contact changes located", f"{int(g['events'][()])}"])
+    for mesh in (g["meshes"] if "meshes" in g else []):
+        m = g["meshes"][mesh]
+        where = f"{label}, mesh {esc(mesh)}"
+        rows.append([where, "impacts (drive / coast flanks)",
+                     f"{int(m['impacts'][()])} ({int(m['drive_impacts'][()])} / "
+                     f"{int(m['coast_impacts'][()])})"])
+        first = m["first_contact"][()]
+        rows.append([where, "first contact", "none" if first < 0 else f"{first * 1e3:.4g} ms"])
+        rows.append([where, "largest force (located), at",
+                     f"{number(m['max_force'][()], 'N')} at {m['max_force_time'][()] * 1e3:.4g} ms"])
+        rows.append([where, "deepest penetration", number(m["max_penetration"][()], "m")])
+        if "spectrum" not in m:
+            rows.append([where, "force spectrum", "none: the speed does not hold over the "
+                         "analysis interval (see the spectrogram)"])
+            continue
+        lines = m["spectrum"]["lines"]
+        h, sb, found = lines["harmonic"][()], lines["sideband"][()], lines["found"][()]
+        k = np.nonzero((h == 1) & (sb == 0))[0]
+        if k.size:
+            i = int(k[0])
+            rows.append([where, "GMF line (1st harmonic)",
+                         f"{lines['amplitude'][()][i]:.3g} N at {lines['frequency'][()][i]:.3f} Hz"
+                         if found[i] else f"not found near {lines['expected'][()][i]:.3f} Hz"])
+    return rows
+
+
 def dynamics_rows(name, g):
     rows = []
     for ex in g:
@@ -306,13 +343,8 @@ def main():
                          for r in dynamics_rows(pair, f["dynamics"][pair])]
         if "train" in f:
             for name in f["train"]:
-                g = f["train"][name]
-                if "energy_error" in g:
-                    rows.append(["gear train", f"{esc(name)} energy balance error",
-                                 f"{g['energy_error'][()]:.2e} of the energy put in"])
-                if "events" in g:
-                    rows.append(["gear train", f"{esc(name)} contact events",
-                                 f"{int(g['events'][()])}"])
+                rows += [["gear train", r[0] + ": " + r[1], r[2]]
+                         for r in train_rows(name, f["train"][name])]
         total, bad = checks(f)
         rows.append(["checks", "finite values in every floating-point dataset",
                      f"{total - len(bad)} of {total} datasets"

@@ -59,11 +59,13 @@ impact_stiffness_si(double stiffness, double exponent, double length_unit)
 namespace
 {
 /// Cubic Hermite interpolation of a curve's samples (slopes by central differences): where x
-/// falls and the basis there, shared by the curve's offsets and arms.
+/// falls and the value basis there, shared by the curve's offsets and arms (the derivatives'
+/// bases only where asked: hermite).
 struct Hermite
 {
   int    n = 0, i = 0;
-  double value[4] = {}, slope[4] = {}, curvature[4] = {}; ///< weights of y_i, m_i, y_i+1, m_i+1
+  double u        = 0;  ///< position within the interval [i, i + 1]
+  double value[4] = {}; ///< weights of y_i, m_i, y_i+1, m_i+1
 };
 
 /// false outside the samples
@@ -77,19 +79,11 @@ hermite_at(const ToothPairCurve &c, double x, Hermite &h)
   if (!(s >= 0) || s > h.n - 1)
     return false;
   h.i            = std::min(int(s), h.n - 2);
-  const double u = s - h.i, u2 = u * u, u3 = u2 * u;
-  h.value[0]     = 2 * u3 - 3 * u2 + 1;
-  h.value[1]     = u3 - 2 * u2 + u;
-  h.value[2]     = -2 * u3 + 3 * u2;
-  h.value[3]     = u3 - u2;
-  h.slope[0]     = 6 * u2 - 6 * u;
-  h.slope[1]     = 3 * u2 - 4 * u + 1;
-  h.slope[2]     = -6 * u2 + 6 * u;
-  h.slope[3]     = 3 * u2 - 2 * u;
-  h.curvature[0] = 12 * u - 6;
-  h.curvature[1] = 6 * u - 4;
-  h.curvature[2] = -12 * u + 6;
-  h.curvature[3] = 6 * u - 2;
+  const double u = h.u = s - h.i, u2 = u * u, u3 = u2 * u;
+  h.value[0] = 2 * u3 - 3 * u2 + 1;
+  h.value[1] = u3 - 2 * u2 + u;
+  h.value[2] = -2 * u3 + 3 * u2;
+  h.value[3] = u3 - u2;
   return true;
 }
 
@@ -124,10 +118,16 @@ hermite(const Hermite &h, const std::vector<double> &y, double step, double &slo
         double *curvature = nullptr)
 {
   const std::array<double, 4> w = hermite_weights(h, y);
-  slope = (h.slope[0] * w[0] + h.slope[1] * w[1] + h.slope[2] * w[2] + h.slope[3] * w[3]) / step;
+  const double                u = h.u, u2 = u * u;
+  const double                slope_basis[4] = {6 * u2 - 6 * u, 3 * u2 - 4 * u + 1, -6 * u2 + 6 * u,
+                                                3 * u2 - 2 * u};
+  const double                curvature_basis[4] = {12 * u - 6, 6 * u - 4, -12 * u + 6, 6 * u - 2};
+  slope = (slope_basis[0] * w[0] + slope_basis[1] * w[1] + slope_basis[2] * w[2] +
+           slope_basis[3] * w[3]) /
+          step;
   if (curvature)
-    *curvature = (h.curvature[0] * w[0] + h.curvature[1] * w[1] + h.curvature[2] * w[2] +
-                  h.curvature[3] * w[3]) /
+    *curvature = (curvature_basis[0] * w[0] + curvature_basis[1] * w[1] +
+                  curvature_basis[2] * w[2] + curvature_basis[3] * w[3]) /
                  (step * step);
   return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
 }

@@ -710,7 +710,7 @@ def plot_train(name, g, out_dir):
     meshes = names_of(g, "meshes")
     bodies = names_of(g, "bodies")
     t, t_label = time_axis(g["time"][:])
-    fig, axes = plt.subplots(len(meshes) + 1, 4, figsize=(24, 4.0 * (len(meshes) + 1)),
+    fig, axes = plt.subplots(len(meshes) + 1, 4, figsize=(18, 3.6 * (len(meshes) + 1)),
                              squeeze=False)
     for row, mesh in zip(axes, meshes):
         m = g["meshes"][mesh]
@@ -721,8 +721,8 @@ def plot_train(name, g, out_dir):
             row[0].text(t[-1], s * half * 1e6, " " + label, fontsize=7, va="center")
         row[0].set_xlabel(t_label)
         row[0].set_ylabel("S [um]")
-        row[0].set_title(f"{name} {mesh}: S along the line of action (band +-{half * 1e6:.1f} "
-                         "um)", fontsize=10)
+        row[0].set_title(f"{name} {mesh}: S along the line of action\n(band +-{half * 1e6:.1f} um)",
+                         fontsize=9)
         scale = t[-1] / g["time"][-1] if g["time"][-1] > 0 else 1.0  # seconds to the axis' unit
         force = m["force"][:]
         filtered = "anti_alias" in g and g["anti_alias"][()] > 0
@@ -744,7 +744,7 @@ def plot_train(name, g, out_dir):
         row[1].set_ylabel("normal force [N]")
         row[1].set_title(f"force (drive +, coast -): {m['impacts'][()]:.0f} impacts "
                          f"({m['drive_impacts'][()]:.0f} drive, {m['coast_impacts'][()]:.0f} "
-                         f"coast), first {first * 1e3:.3g} ms, peak {m['max_force'][()]:.4g} N",
+                         f"coast)\nfirst {first * 1e3:.3g} ms, peak {m['max_force'][()]:.4g} N",
                          fontsize=9)
         touches = m["contacts"]["touch"][:] if "contacts" in m else np.zeros(0)
         sides = m["contacts"]["side"][:] if "contacts" in m else np.zeros(0)
@@ -755,14 +755,14 @@ def plot_train(name, g, out_dir):
                         where="post", color=colour, label=f"{label} flanks: {at.size}")
         row[2].set_xlabel(t_label)
         row[2].set_ylabel("impacts so far")
-        row[2].set_title(f"{name} {mesh}: impacts over time (a contact at the start is none)",
+        row[2].set_title(f"{name} {mesh}: impacts over time\n(a contact at the start is none)",
                          fontsize=9)
         row[2].legend(fontsize=7, loc="upper left")
         if "spectrum" not in m:
             row[3].axis("off")
-            row[3].text(0.05, 0.5, "no force spectrum: the speed does not hold over the\n"
-                        "analysis interval (a run-up, coast-down or transient);\n"
-                        "see the spectrogram", transform=row[3].transAxes, fontsize=10)
+            row[3].text(0.02, 0.5, "no force spectrum: the speed does\nnot hold over the analysis "
+                        "interval\n(a run-up, coast-down or transient);\nsee the spectrogram",
+                        transform=row[3].transAxes, fontsize=10, va="center")
             continue
         row = row[1:]  # the spectrum in the last column
         sp = m["spectrum"]
@@ -788,8 +788,8 @@ def plot_train(name, g, out_dir):
         row[2].set_xlim(0, top)
         row[2].set_xlabel("frequency [Hz]")
         row[2].set_ylabel("amplitude of |force| [N]")
-        row[2].set_title(f"force spectrum from {sp['start'][()]:.3g} s: GMF {gmf:.2f} Hz "
-                         f"(harmonics red: found, grey: not)", fontsize=9)
+        row[2].set_title(f"force spectrum from {sp['start'][()]:.3g} s: GMF {gmf:.2f} Hz\n"
+                         "(harmonics red: found, grey: not)", fontsize=9)
         row[2].legend(fontsize=7)
     last = axes[-1]
     speed = g["speed"][:]

@@ -16,14 +16,15 @@ namespace gearkit
 {
 namespace
 {
-void
-rms(const std::vector<double> &x, double &rms)
+/// Root mean square of x about its mean.
+double
+rms_about_mean(const std::vector<double> &x)
 {
   const double mean = std::accumulate(x.begin(), x.end(), 0.0) / double(x.size());
   double       s    = 0;
   for (double xi : x)
     s += (xi - mean) * (xi - mean);
-  rms = std::sqrt(s / double(x.size()));
+  return std::sqrt(s / double(x.size()));
 }
 /// Largest mismatch of the last `count` Poincare points against those p sections earlier
 /// (relative to the scales; displacements through their increments per section: the train's
@@ -286,8 +287,8 @@ sweep(const PairModel &model, PairVector &q, PairVector &v, const SweepOptions &
             o.progress->advance();
           continue;
         }
-      rms(t.dte, p.dte_rms);
-      rms(t.relative, p.relative_rms);
+      p.dte_rms      = rms_about_mean(t.dte);
+      p.relative_rms = rms_about_mean(t.relative);
       // the extremes of the continuous solution (located inside the steps), not the samples'
       p.dte_pp       = t.dte_max - t.dte_min;
       p.relative_pp  = t.relative_max - t.relative_min;

@@ -103,25 +103,23 @@ hermite_weights(const Hermite &h, const std::vector<double> &y)
   return {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
 }
 
-/// The interpolated value of samples y (of the curve h was found on).
+/// The interpolated value at h of the samples whose weights are w (hermite_weights).
 double
-hermite_value(const Hermite &h, const std::vector<double> &y)
+hermite_value(const Hermite &h, const std::array<double, 4> &w)
 {
-  const std::array<double, 4> w = hermite_weights(h, y);
   return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
 }
 
-/// The interpolated value of samples y (of the curve h was found on), its derivative by x and,
-/// if asked, its second derivative.
-double
-hermite(const Hermite &h, const std::vector<double> &y, double step, double &slope,
-        double *curvature = nullptr)
+/// The interpolant's derivative by x at h and, if asked, its second derivative, from the
+/// samples' weights w (hermite_weights).
+void
+hermite_derivatives(const Hermite &h, const std::array<double, 4> &w, double step, double &slope,
+                    double *curvature = nullptr)
 {
-  const std::array<double, 4> w = hermite_weights(h, y);
-  const double                u = h.u, u2 = u * u;
-  const double                slope_basis[4] = {6 * u2 - 6 * u, 3 * u2 - 4 * u + 1, -6 * u2 + 6 * u,
-                                                3 * u2 - 2 * u};
-  const double                curvature_basis[4] = {12 * u - 6, 6 * u - 4, -12 * u + 6, 6 * u - 2};
+  const double u = h.u, u2 = u * u;
+  const double slope_basis[4]     = {6 * u2 - 6 * u, 3 * u2 - 4 * u + 1, -6 * u2 + 6 * u,
+                                     3 * u2 - 2 * u};
+  const double curvature_basis[4] = {12 * u - 6, 6 * u - 4, -12 * u + 6, 6 * u - 2};
   slope = (slope_basis[0] * w[0] + slope_basis[1] * w[1] + slope_basis[2] * w[2] +
            slope_basis[3] * w[3]) /
           step;
@@ -129,7 +127,6 @@ hermite(const Hermite &h, const std::vector<double> &y, double step, double &slo
     *curvature = (curvature_basis[0] * w[0] + curvature_basis[1] * w[1] +
                   curvature_basis[2] * w[2] + curvature_basis[3] * w[3]) /
                  (step * step);
-  return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
 }
 
 /// The curve's offset at x with its slope; false outside the samples.
@@ -139,7 +136,9 @@ interpolate_offset(const ToothPairCurve &c, double x, double &value, double &slo
   Hermite h;
   if (!hermite_at(c, x, h))
     return false;
-  value = hermite(h, c.offset, c.step, slope);
+  const std::array<double, 4> w = hermite_weights(h, c.offset);
+  value                         = hermite_value(h, w);
+  hermite_derivatives(h, w, c.step, slope);
   return true;
 }
 
@@ -281,13 +280,15 @@ public:
             if (!hermite_at(c, phi_k, h))
               continue;
             // d = s arm(phi_k) (psi_touch(phi_k) - psi); the derivatives only where it touches
-            double       o_slope, arm_slope, o_curvature, arm_curvature;
-            const double o   = hermite_value(h, c.offset);
-            const double arm = hermite_value(h, c.arm);
-            const double gap = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
-            const double s   = side == drive_side ? 1.0 : -1.0;
-            const double d   = s * arm * gap;
-            double      &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
+            double                      o_slope, arm_slope, o_curvature, arm_curvature;
+            const std::array<double, 4> w_o   = hermite_weights(h, c.offset);
+            const std::array<double, 4> w_arm = hermite_weights(h, c.arm);
+            const double                o     = hermite_value(h, w_o);
+            const double                arm   = hermite_value(h, w_arm);
+            const double                gap   = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
+            const double                s     = side == drive_side ? 1.0 : -1.0;
+            const double                d     = s * arm * gap;
+            double &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
                    &p3 = e.next_penetration[side][1];
             if (d > p1)
               p3 = p2, p2 = p1, p1 = d;
@@ -297,8 +298,8 @@ public:
               p3 = std::max(p3, d);
             if (!(d > 0))
               continue;
-            hermite(h, c.offset, c.step, o_slope, &o_curvature);
-            hermite(h, c.arm, c.step, arm_slope, &arm_curvature);
+            hermite_derivatives(h, w_o, c.step, o_slope, &o_curvature);
+            hermite_derivatives(h, w_arm, c.step, arm_slope, &arm_curvature);
             const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
             const double dd_dpsi = -s * arm;
             const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
@@ -513,11 +514,11 @@ struct LastEvaluation
   std::vector<double>   state, alpha;
   double                power = 0, dissipation = 0;
   std::vector<MeshEval> meshes;
-  /// The meshes at `y`, if they were the last evaluated; else null.
-  const std::vector<MeshEval> *
-  at(const std::vector<double> &y) const
+  /// Whether (time, y) was the last evaluation.
+  bool
+  at(double time, const std::vector<double> &y) const
   {
-    return y == state ? &meshes : nullptr;
+    return time == t && y == state;
   }
   /// The train at (time, y), evaluated unless it was the last evaluation.
   void
@@ -1032,7 +1033,7 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   // the meshes and accelerations at a piece's start and end (the end's from the quadratures'
   // and root functions' evaluation there, when it is theirs)
   auto point_at = [&](double time, const std::vector<double> &state, SolutionPoint &point) {
-    if (last_evaluation.t == time && last_evaluation.at(state))
+    if (last_evaluation.at(time, state))
       {
         point.meshes = last_evaluation.meshes, point.alpha = last_evaluation.alpha;
         return;

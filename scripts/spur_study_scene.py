@@ -7,25 +7,23 @@ Used by scripts/design_space_study.py and scripts/element_study.py."""
 
 def spur_study_scene(scale=1.0, torques=(100,), positions=20, finite_elements=""):
     s = scale
+
+    def member(name, teeth, bore):
+        return f"""    subsection {name}
+      set number of teeth = {teeth}
+      set normal module   = {3 * s:.9g}
+      set face width      = {15 * s:.9g}
+      set bore diameter   = {bore * s:.9g}
+    end
+"""
+
     return f"""subsection Scene
   set outputs = stiffness
   set pairs   = p
 end
 subsection Flanks
   subsection p
-    subsection Pinion
-      set number of teeth = 20
-      set normal module   = {3 * s:.9g}
-      set face width      = {15 * s:.9g}
-      set bore diameter   = {30 * s:.9g}
-    end
-    subsection Gear
-      set number of teeth = 31
-      set normal module   = {3 * s:.9g}
-      set face width      = {15 * s:.9g}
-      set bore diameter   = {45 * s:.9g}
-    end
-  end
+{member("Pinion", 20, 30)}{member("Gear", 31, 45)}  end
 end
 subsection Finite elements
   subsection p

@@ -119,18 +119,9 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
   std::vector<double> y(p.size);
   Eigen::Map<PairVector>(y.data())             = q0;
   Eigen::Map<PairVector>(y.data() + pair_dofs) = v0;
-  CvodeSolver solver(p, 0.0, y);
-  const int   n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
-  double      tau   = 0;
-  // past the bound at an event: the run stops there (its state is not a sample)
-  auto beyond = [&] {
-    if (sample(model, o, tau * period, Eigen::Map<const PairVector>(y.data()),
-               Eigen::Map<const PairVector>(y.data() + pair_dofs))
-            .within)
-      return false;
-    out.diverged = true, out.diverged_at = tau * period;
-    return true;
-  };
+  CvodeSolver      solver(p, 0.0, y);
+  const int        n_out = int(std::lround(o.mesh_cycles * o.samples_per_cycle));
+  double           tau   = 0;
   bool             going = record(model, o, 0, q0, v0, out);
   std::vector<int> fired;
   for (int k = 1; k <= n_out && going; ++k)
@@ -145,7 +136,10 @@ run_cvode(const PairModel &model, const PairVector &q0, const PairVector &v0, co
           if (!backlash || (fired[2] == 0 && fired[3] == 0))
             continue;   // an extreme only
           ++out.events; // the mesh force changes its law here: restart the method
-          going = !beyond();
+          // past the bound at an event: the run stops there (its state is not a sample)
+          if (!at.within)
+            out.diverged = true, out.diverged_at = tau * period;
+          going = at.within;
           if (going)
             solver.reinit(tau, y);
         }
@@ -165,7 +159,7 @@ stationary_points(const PairModel &model, const RunOptions &o, const MeshState &
                   const PairVector &g, const PairVector &q, const PairVector &v,
                   const PairVector &a_mean, int n, double h, Trajectory &out)
 {
-  const double x0 = g.dot(q), x1 = g.dot(v), x2 = g.dot(a_mean);
+  const double x1 = g.dot(v), x2 = g.dot(a_mean);
   if (x2 == 0)
     return;
   const double et_rate = m.det * model.parameters().pinion_teeth * o.omega / (2 * pi);

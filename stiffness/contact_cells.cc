@@ -130,46 +130,10 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
             }
         }
 
-      // Extent along the line: where the projection leaves the flank (bisection both ways).
       const FlankDomain d = flank.domain();
       const double      span =
           (flank.evaluate(d.u_max, d.v_max).position - flank.evaluate(d.u_min, d.v_min).position)
               .norm();
-      auto reach = [&](double direction) {
-        double in = 0, out = span;
-        if (project(flank, assembly, phi, c.position + direction * out * e_t, c.u1, c.v1))
-          return out;
-        for (int it = 0; it < 40; ++it)
-          {
-            const double mid = (in + out) / 2;
-            (project(flank, assembly, phi, c.position + direction * mid * e_t, c.u1, c.v1) ? in
-                                                                                           : out) =
-                mid;
-          }
-        return in;
-      };
-      double t0 = -reach(-1), t1 = reach(+1);
-      // Along the line the zone ends at the flank's edges, or where the gap on the line opens
-      // beyond twice the band (crowning: a point contact): there its end column is a zone edge.
-      auto within_band = [&](double t_) {
-        ContactCell probe;
-        return !gap_at(c.position + t_ * e_t, 0, t_, probe) ||
-               probe.gap - c.separation <= 2 * o.gap_band;
-      };
-      bool band_end[2] = {false, false};
-      for (int e = 0; e < 2; ++e)
-        {
-          double &end = e == 0 ? t0 : t1;
-          if (within_band(end))
-            continue;
-          double in = 0, out = end;
-          for (int it = 0; it < 40 && std::abs(out - in) > 1e-9 * (t1 - t0); ++it)
-            {
-              const double mid              = (in + out) / 2;
-              (within_band(mid) ? in : out) = mid;
-            }
-          end = out, band_end[e] = true;
-        }
       // Across the line the gap opens as k_max s^2 / 2 near the contact point; where the gap
       // opens more slowly (measured flanks: the local curvature carries the measurement's noise
       // and waviness), the band is widened until the gap at its edges reaches the band.
@@ -187,7 +151,73 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
             break;
           w_band *= std::min(4.0, std::sqrt(o.gap_band / std::max(opening, 1e-6 * o.gap_band)));
         }
-      const double w  = std::min(w_band, span / 2);
+      const double w = std::min(w_band, span / 2);
+      // Extent along the line: where the projection leaves the flank (bisection both ways). For a
+      // contact point on an edge of a flank, where the columns leave it: a column is on the
+      // flank where any point of it across the band is (the straight line through a point on an
+      // edge that curves - a crowned pinion's tip - leaves the flank near the point, while the
+      // columns beside it still meet the edge), so the farthest of nine lines parallel to the
+      // contact line across the band. Each line's last point on the flank is bracketed from a
+      // scan at eighths of the flank's span (its domain is convex along a line), then bisected.
+      auto on_pinion = [&](double s_, double t_) {
+        return bool(project(flank, assembly, phi, c.position + s_ * e_s + t_ * e_t, c.u1, c.v1));
+      };
+      auto exit = [&](double s_, double direction, int scan) {
+        double in = 0, out = span;
+        for (int k = scan; k >= 0; --k)
+          if (on_pinion(s_, direction * span * k / scan))
+            {
+              if (k == scan)
+                return span;
+              in = span * k / scan, out = span * (k + 1) / scan;
+              break;
+            }
+          else if (k == 0)
+            return -1.0; // the line misses the flank
+        for (int it = 0; it < 40; ++it)
+          {
+            const double mid                            = (in + out) / 2;
+            (on_pinion(s_, direction * mid) ? in : out) = mid;
+          }
+        return in;
+      };
+      auto reach = [&](double direction) {
+        if (!c.edge)
+          return std::max(0.0, exit(0, direction, 1));
+        double farthest = 0;
+        for (const double s_ : {0.0, -w / 4, w / 4, -w / 2, w / 2, -3 * w / 4, 3 * w / 4, -w, w})
+          farthest = std::max(farthest, exit(s_, direction, 8));
+        return farthest;
+      };
+      double t0 = -reach(-1), t1 = reach(+1);
+      // Along the line the zone ends at the flank's edges, or where the gap on the line opens
+      // beyond twice the band (crowning: a point contact): there its end column is a zone edge.
+      auto across      = [&](int j) { return (j % 2 ? 1 : -1) * ((j + 1) / 2) * w / 8; };
+      auto within_band = [&](double t_) {
+        // on the line, else (a column beside an edge, the line just off the flank) from the
+        // column's points on both flanks, less the opening across, k_max s^2 / 2 (at most an
+        // underestimate: the zone grows rather than shrinks)
+        ContactCell probe;
+        double      least = HUGE_VAL;
+        for (int j = 0; j <= 16 && !(j == 1 && least < HUGE_VAL); ++j)
+          if (gap_at(c.position + across(j) * e_s + t_ * e_t, across(j), t_, probe))
+            least = std::min(least, probe.gap - k_max * across(j) * across(j) / 2);
+        return least == HUGE_VAL || least - c.separation <= 2 * o.gap_band;
+      };
+      bool band_end[2] = {false, false};
+      for (int e = 0; e < 2; ++e)
+        {
+          double &end = e == 0 ? t0 : t1;
+          if (within_band(end))
+            continue;
+          double in = 0, out = end;
+          for (int it = 0; it < 40 && std::abs(out - in) > 1e-9 * (t1 - t0); ++it)
+            {
+              const double mid              = (in + out) / 2;
+              (within_band(mid) ? in : out) = mid;
+            }
+          end = out, band_end[e] = true;
+        }
       const double dt = (t1 - t0) / o.cells_along, ds = 2 * w / o.cells_across;
       if (!(dt > 0))
         continue; // the contact sits on a corner of the flank: no extent along the line

@@ -194,12 +194,12 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
       // beyond twice the band (crowning: a point contact): there its end column is a zone edge.
       auto across      = [&](int j) { return (j % 2 ? 1 : -1) * ((j + 1) / 2) * w / 8; };
       auto within_band = [&](double t_) {
-        // on the line, else (a column beside an edge, the line just off the flank) from the
+        // on the line, else (a contact on an edge: the line just off the flank) from the
         // column's points on both flanks, less the opening across, k_max s^2 / 2 (at most an
         // underestimate: the zone grows rather than shrinks)
         ContactCell probe;
         double      least = HUGE_VAL;
-        for (int j = 0; j <= 16 && !(j == 1 && least < HUGE_VAL); ++j)
+        for (int j = 0; j <= (c.edge ? 16 : 0) && !(j == 1 && least < HUGE_VAL); ++j)
           if (gap_at(c.position + across(j) * e_s + t_ * e_t, across(j), t_, probe))
             least = std::min(least, probe.gap - k_max * across(j) * across(j) / 2);
         return least == HUGE_VAL || least - c.separation <= 2 * o.gap_band;

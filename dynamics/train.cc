@@ -4,6 +4,7 @@
 #include "base/progress.h"
 #include "base/types.h"
 #include "dynamics/cvode_solver.h"
+#include "dynamics/train_system.h"
 
 #include <algorithm>
 #include <array>
@@ -15,452 +16,8 @@
 
 namespace gearkit
 {
-namespace
-{
-/// IMPACT's damping coefficient STEP(d, 0, 0, d_max, c_max) at penetration d > 0, and its
-/// derivative by d.
-std::pair<double, double>
-impact_damping(const ImpactLaw &law, double d)
-{
-  if (!(d < law.depth))
-    return {law.damping, 0.0};
-  const double x = d / law.depth;
-  return {law.damping * x * x * (3 - 2 * x), law.damping * 6 * x * (1 - x) / law.depth};
-}
-
-/// IMPACT's force from its elastic part K d^e (given: the caller has it).
-double
-damped_impact_force(const ImpactLaw &law, double d, double d_rate, double elastic)
-{
-  if (!(d > 0))
-    return 0;
-  return std::max(0.0, elastic + impact_damping(law, d).first * d_rate);
-}
-} // namespace
-
-double
-impact_force(const ImpactLaw &law, double d, double d_rate)
-{
-  return damped_impact_force(law, d, d_rate, law.stiffness * std::pow(d, law.exponent));
-}
-
-double
-impact_energy(const ImpactLaw &law, double d)
-{
-  return d > 0 ? law.stiffness * std::pow(d, law.exponent + 1) / (law.exponent + 1) : 0.0;
-}
-
-double
-impact_stiffness_si(double stiffness, double exponent, double length_unit)
-{
-  return stiffness / std::pow(length_unit, exponent);
-}
-
-namespace
-{
-/// Cubic Hermite interpolation of a curve's samples (slopes by central differences): where x
-/// falls and the value basis there, shared by the curve's offsets and arms (the derivatives'
-/// bases only where asked: hermite).
-struct Hermite
-{
-  int    n = 0, i = 0;
-  double u        = 0;  ///< position within the interval [i, i + 1]
-  double value[4] = {}; ///< weights of y_i, m_i, y_i+1, m_i+1
-};
-
-/// false outside the samples
-bool
-hermite_at(const ToothPairCurve &c, double x, Hermite &h)
-{
-  h.n = int(c.offset.size());
-  if (h.n < 2)
-    return false;
-  const double s = (x - c.start) / c.step;
-  if (!(s >= 0) || s > h.n - 1)
-    return false;
-  h.i            = std::min(int(s), h.n - 2);
-  const double u = h.u = s - h.i, u2 = u * u, u3 = u2 * u;
-  h.value[0] = 2 * u3 - 3 * u2 + 1;
-  h.value[1] = u3 - 2 * u2 + u;
-  h.value[2] = -2 * u3 + 3 * u2;
-  h.value[3] = u3 - u2;
-  return true;
-}
-
-/// The Hermite weights of samples y at h: y_i, its slope m_i, y_i+1, m_i+1 (central
-/// differences, one-sided at the ends).
-std::array<double, 4>
-hermite_weights(const Hermite &h, const std::vector<double> &y)
-{
-  const int n = h.n;
-  auto      m = [&](int j) {
-    if (j == 0)
-      return y[1] - y[0];
-    if (j == n - 1)
-      return y[n - 1] - y[n - 2];
-    return (y[j + 1] - y[j - 1]) / 2;
-  };
-  return {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
-}
-
-/// The interpolated value at h of the samples whose weights are w (hermite_weights).
-double
-hermite_value(const Hermite &h, const std::array<double, 4> &w)
-{
-  return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
-}
-
-/// The interpolant's derivative by x at h and, if asked, its second derivative, from the
-/// samples' weights w (hermite_weights).
-void
-hermite_derivatives(const Hermite &h, const std::array<double, 4> &w, double step, double &slope,
-                    double *curvature = nullptr)
-{
-  const double u = h.u, u2 = u * u;
-  const double slope_basis[4]     = {6 * u2 - 6 * u, 3 * u2 - 4 * u + 1, -6 * u2 + 6 * u,
-                                     3 * u2 - 2 * u};
-  const double curvature_basis[4] = {12 * u - 6, 6 * u - 4, -12 * u + 6, 6 * u - 2};
-  slope = (slope_basis[0] * w[0] + slope_basis[1] * w[1] + slope_basis[2] * w[2] +
-           slope_basis[3] * w[3]) /
-          step;
-  if (curvature)
-    *curvature = (curvature_basis[0] * w[0] + curvature_basis[1] * w[1] +
-                  curvature_basis[2] * w[2] + curvature_basis[3] * w[3]) /
-                 (step * step);
-}
-
-/// The curve's offset at x with its slope; false outside the samples.
-bool
-interpolate_offset(const ToothPairCurve &c, double x, double &value, double &slope)
-{
-  Hermite h;
-  if (!hermite_at(c, x, h))
-    return false;
-  const std::array<double, 4> w = hermite_weights(h, c.offset);
-  value                         = hermite_value(h, w);
-  hermite_derivatives(h, w, c.step, slope);
-  return true;
-}
-
-} // namespace
-
-std::pair<double, double>
-band_edges(const ToothPairTables &t)
-{
-  // the most common class of a member; -1 when none is more common than every other
-  auto nominal = [](const std::vector<int> &classes, int count) {
-    std::vector<int> n(std::size_t(std::max(count, 0)), 0);
-    for (int c : classes)
-      if (c >= 0 && c < count)
-        ++n[std::size_t(c)];
-    int best = -1, most = 0, ties = 0;
-    for (int c = 0; c < count; ++c)
-      if (n[std::size_t(c)] > most)
-        best = c, most = n[std::size_t(c)], ties = 0;
-      else if (n[std::size_t(c)] == most)
-        ++ties;
-    return ties > 0 ? -1 : best;
-  };
-  const int             p = nominal(t.pinion_class, t.pinion_classes);
-  const int             g = nominal(t.gear_class, t.gear_classes);
-  const ToothPairCurve *d = &t.curve(drive_side, 0, mod(-1, t.gear_teeth));
-  const ToothPairCurve *c = &t.curve(coast_side, 0, 0);
-  if (p >= 0 && g >= 0 &&
-      !t.curves[drive_side][std::size_t(p * t.gear_classes + g)].offset.empty() &&
-      !t.curves[coast_side][std::size_t(p * t.gear_classes + g)].offset.empty())
-    {
-      d = &t.curves[drive_side][std::size_t(p * t.gear_classes + g)];
-      c = &t.curves[coast_side][std::size_t(p * t.gear_classes + g)];
-    }
-  double v[2] = {0, 0}, slope = 0;
-  if (!interpolate_offset(*d, 0.0, v[0], slope) || !interpolate_offset(*c, 0.0, v[1], slope))
-    require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
-                  "curves that cover the pairing's centre (local angle 0)");
-  return {v[0], v[1]};
-}
-
-double
-band_centre(const ToothPairTables &t)
-{
-  const auto [drive, coast] = band_edges(t);
-  return (drive + coast) / 2;
-}
-
-namespace
-{
-
-/// One mesh at one state: forces on its bodies, energies, root functions, outputs.
-struct MeshEval
-{
-  double torque_driver = 0, torque_driven = 0; ///< generalised forces on the two angles
-  double force[2] = {0, 0};                    ///< normal force per side [N]
-  double energy = 0, dissipation_rate = 0;
-  double max_penetration[2] = {-HUGE_VAL, -HUGE_VAL};
-  /// The second and third deepest penetrations per side [m] (pairs entering and leaving while
-  /// another touches)
-  double next_penetration[2][2] = {{-HUGE_VAL, -HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL}};
-  /// The k-th deepest penetration of a side (k = 0, 1, 2)
-  double
-  penetration(int side, int k) const
-  {
-    return k == 0 ? max_penetration[side] : next_penetration[side][k - 1];
-  }
-  /// dF/dt per side, linear in the two bodies' accelerations: its part without them and their
-  /// coefficients (force_rate)
-  double rate_fixed[2] = {0, 0}, rate_driver[2] = {0, 0}, rate_driven[2] = {0, 0};
-  /// dF/dt of a side [N/s] at the driver's and driven body's accelerations: zero where the
-  /// side's force peaks
-  double
-  force_rate(int side, double alpha_driver, double alpha_driven) const
-  {
-    return rate_fixed[side] + rate_driver[side] * alpha_driver + rate_driven[side] * alpha_driven;
-  }
-  /// The penetration rates of the touching pairs, weighted by their elastic force over d: zero
-  /// where the deepest penetration peaks (a finite number at first touch)
-  double penetration_rate = 0, penetration_weight = 0;
-  int    pairs            = 0;
-  double parametric_power = 0; ///< of a finite-element K_m's variation [W]
-};
-
-/// A finite-element mesh stiffness at pinion angle phi and its derivative by phi (periodic over
-/// the mesh cycle, linear between the samples).
-std::pair<double, double>
-mesh_stiffness_at(const TrainMesh &m, double phi)
-{
-  const std::vector<double> &K    = m.mesh_stiffness;
-  const int                  n    = int(K.size());
-  const double               step = 2 * pi / m.teeth.pinion_teeth / n;
-  const double               s    = (phi - m.mesh_stiffness_start) / step;
-  const double               f    = std::floor(s);
-  const int                  i    = mod(int(std::fmod(f, double(n))), n);
-  const double               u    = s - f;
-  const double               a = K[std::size_t(i)], b = K[std::size_t((i + 1) % n)];
-  return {a + u * (b - a), (b - a) / step};
-}
-
-class TrainSystem
-{
-public:
-  TrainSystem(const TrainModel &m, const TrainRunOptions &o)
-      : model(m)
-      , options(o)
-  {
-    n = int(model.bodies.size());
-    for (const TrainMesh &mesh : model.meshes)
-      centre.push_back(band_centre(mesh.teeth));
-  }
-
-  /// One mesh at (theta, omega).
-  MeshEval
-  mesh(int index, const double *theta, const double *omega) const
-  {
-    const TrainMesh       &m   = model.meshes[index];
-    const ToothPairTables &t   = m.teeth;
-    const double           phi = theta[m.driver] + m.pinion_angle_0;
-    const double           psi = theta[m.driven] + m.gear_angle_0;
-    const double           w_p = omega[m.driver], w_g = omega[m.driven];
-    const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
-    MeshEval               e;
-    const int              k0 = int(std::lround(phi * t.pinion_teeth / (2 * pi)));
-    const bool             fe = !m.mesh_stiffness.empty();
-    /// the deepest touching pair of each side (finite-element K_m)
-    struct Deepest
-    {
-      double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, curvature = 0;
-    } deepest[2];
-    for (int k = k0 - options.pairings_each_side; k <= k0 + options.pairings_each_side; ++k)
-      {
-        const double phi_k = phi - 2 * pi * k / t.pinion_teeth;
-        const int    i     = mod(-k, t.pinion_teeth);
-        for (int side = 0; side < 2; ++side)
-          {
-            const int             j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
-            const ToothPairCurve &c = t.curve(side, i, j);
-            Hermite               h;
-            if (!hermite_at(c, phi_k, h))
-              continue;
-            // d = s arm(phi_k) (psi_touch(phi_k) - psi); the derivatives only where it touches
-            double                      o_slope, arm_slope, o_curvature, arm_curvature;
-            const std::array<double, 4> w_o   = hermite_weights(h, c.offset);
-            const std::array<double, 4> w_arm = hermite_weights(h, c.arm);
-            const double                o     = hermite_value(h, w_o);
-            const double                arm   = hermite_value(h, w_arm);
-            const double                gap   = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
-            const double                s     = side == drive_side ? 1.0 : -1.0;
-            const double                d     = s * arm * gap;
-            double &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
-                   &p3 = e.next_penetration[side][1];
-            if (d > p1)
-              p3 = p2, p2 = p1, p1 = d;
-            else if (d > p2)
-              p3 = p2, p2 = d;
-            else
-              p3 = std::max(p3, d);
-            if (!(d > 0))
-              continue;
-            hermite_derivatives(h, w_o, c.step, o_slope, &o_curvature);
-            hermite_derivatives(h, w_arm, c.step, arm_slope, &arm_curvature);
-            const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
-            const double dd_dpsi = -s * arm;
-            const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
-            // d'' = d_phi phi'' + d_psi psi'' + curvature, curvature = d_phiphi phi'^2 +
-            // 2 d_phipsi phi' psi'
-            const double curvature =
-                s * (arm_curvature * gap + 2 * arm_slope * (ratio + o_slope) + arm * o_curvature) *
-                    w_p * w_p -
-                2 * s * arm_slope * w_p * w_g;
-            ++e.pairs;
-            if (fe)
-              {
-                if (d > deepest[side].d)
-                  deepest[side] = {d, dd_dphi, dd_dpsi, d_rate, curvature};
-                continue;
-              }
-            const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
-            const double F       = damped_impact_force(m.law, d, d_rate, elastic);
-            e.torque_driver -= F * dd_dphi;
-            e.torque_driven -= F * dd_dpsi;
-            e.force[side] += F;
-            e.energy += elastic * d / (m.law.exponent + 1); // impact_energy
-            e.dissipation_rate += (F - elastic) * d_rate;
-            e.penetration_rate += elastic / d * d_rate;
-            e.penetration_weight += elastic / d;
-            if (F > 0)
-              {
-                const auto [c, dc_dd] = impact_damping(m.law, d);
-                e.rate_fixed[side] +=
-                    m.law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c * curvature;
-                e.rate_driver[side] += c * dd_dphi;
-                e.rate_driven[side] += c * dd_dpsi;
-              }
-          }
-      }
-    if (fe)
-      {
-        const auto [K, dK_dphi] = mesh_stiffness_at(m, phi);
-        const ImpactLaw linear{K, 1.0, m.law.damping, m.law.depth};
-        for (int side = 0; side < 2; ++side)
-          {
-            const Deepest &p = deepest[side];
-            if (!(p.d > 0))
-              continue;
-            const double F = impact_force(linear, p.d, p.rate);
-            e.torque_driver -= F * p.dd_dphi;
-            e.torque_driven -= F * p.dd_dpsi;
-            e.force[side] += F;
-            e.energy += K * p.d * p.d / 2;
-            e.dissipation_rate += (F - K * p.d) * p.rate;
-            e.parametric_power += dK_dphi * w_p * p.d * p.d / 2;
-            e.penetration_rate += K * p.rate;
-            e.penetration_weight += K;
-            if (F > 0)
-              {
-                const auto [c, dc_dd] = impact_damping(linear, p.d);
-                e.rate_fixed[side] +=
-                    dK_dphi * w_p * p.d + K * p.rate + dc_dd * p.rate * p.rate + c * p.curvature;
-                e.rate_driver[side] += c * p.dd_dphi;
-                e.rate_driven[side] += c * p.dd_dpsi;
-              }
-          }
-      }
-    return e;
-  }
-
-  /// S of a mesh [m].
-  double
-  relative(int index, const double *theta) const
-  {
-    const TrainMesh &m     = model.meshes[index];
-    const double     ratio = double(m.teeth.pinion_teeth) / m.teeth.gear_teeth;
-    const double phi = theta[m.driver] + m.pinion_angle_0, psi = theta[m.driven] + m.gear_angle_0;
-    return m.gear_base_radius * (ratio * phi + centre[index] - psi);
-  }
-
-  /// Accelerations, the power of the torques (and of a finite-element K_m's variation) and the
-  /// dissipation rate at (t, theta, omega); the meshes as evaluated, if asked.
-  void
-  evaluate(double t, const double *theta, const double *omega, double *alpha, double &power,
-           double &dissipation, std::vector<MeshEval> *evaluated = nullptr) const
-  {
-    std::vector<double> Q(n, 0.0);
-    dissipation       = 0;
-    double parametric = 0;
-    if (evaluated)
-      evaluated->resize(model.meshes.size());
-    for (int i = 0; i < int(model.meshes.size()); ++i)
-      {
-        const MeshEval e = mesh(i, theta, omega);
-        if (evaluated)
-          (*evaluated)[std::size_t(i)] = e;
-        Q[model.meshes[i].driver] += e.torque_driver;
-        Q[model.meshes[i].driven] += e.torque_driven;
-        dissipation += e.dissipation_rate;
-        parametric += e.parametric_power;
-      }
-    for (const TrainShaft &s : model.shafts)
-      {
-        const double dw = omega[s.b] - omega[s.a];
-        const double T  = s.stiffness * (theta[s.b] - theta[s.a]) + s.damping * dw;
-        Q[s.a] += T;
-        Q[s.b] -= T;
-        dissipation += s.damping * dw * dw;
-      }
-    power = parametric;
-    for (int i = 0; i < n; ++i)
-      {
-        const TrainBody &b = model.bodies[i];
-        double           J = b.inertia, dJ = 0, external = 0;
-        if (b.has_crank)
-          {
-            const auto [Jc, dJc] = b.crank.inertia(theta[i] + b.crank.crank_angle_0);
-            J += Jc, dJ = dJc;
-            external -=
-                b.crank.piston_force * b.crank.piston(theta[i] + b.crank.crank_angle_0).second;
-          }
-        if (b.constant_speed)
-          {
-            alpha[i] = 0; // held by the torque that balances the rest
-            power += (dJ * omega[i] * omega[i] / 2 - Q[i]) * omega[i];
-            continue;
-          }
-        external += b.torque(t, omega[i]);
-        power += external * omega[i];
-        alpha[i] = (external + Q[i] - dJ * omega[i] * omega[i] / 2) / J;
-      }
-  }
-
-  double
-  kinetic(const double *theta, const double *omega) const
-  {
-    double E = 0;
-    for (int i = 0; i < n; ++i)
-      {
-        const TrainBody &b = model.bodies[i];
-        double           J = b.inertia;
-        if (b.has_crank)
-          J += b.crank.inertia(theta[i] + b.crank.crank_angle_0).first;
-        E += J * omega[i] * omega[i] / 2;
-      }
-    return E;
-  }
-
-  double
-  potential(const double *theta, const double *omega) const
-  {
-    double V = 0;
-    for (int i = 0; i < int(model.meshes.size()); ++i)
-      V += mesh(i, theta, omega).energy;
-    for (const TrainShaft &s : model.shafts)
-      V += s.stiffness * std::pow(theta[s.b] - theta[s.a], 2) / 2;
-    return V;
-  }
-
-  int                 n;
-  const TrainModel   &model;
-  TrainRunOptions     options;
-  std::vector<double> centre; ///< band centre per mesh [rad]
-};
-} // namespace
+using train_internal::MeshEval;
+using train_internal::TrainSystem;
 
 namespace
 {
@@ -528,14 +85,13 @@ struct LastEvaluation
     if (time == t && std::equal(y, y + 2 * n, state.begin(), state.end()))
       return;
     alpha.resize(std::size_t(n));
-    sys.evaluate(time, y, y + n, alpha.data(), power, dissipation, &meshes);
+    sys.evaluate(time, y, y + n, alpha.data(), power, dissipation, &meshes, true);
     t = time;
     state.assign(y, y + 2 * n);
   }
 };
 
-/// The train's CVODE problem: y = [theta; omega], quadratures [work; dissipated; the meshes'
-/// force integrals]; the root
+/// The train's CVODE problem: y = [theta; omega], quadratures [work; dissipated]; the root
 /// functions above. `touching` holds the count of touching pairs per mesh and side; `last`
 /// holds the last evaluation (the quadratures' and root functions', at the step's end).
 CvodeProblem
@@ -555,29 +111,19 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
     sys.evaluate(t, y, y + n, ydot + n, power, dissipation);
     return 0;
   };
-  // the work and the dissipated energy, then every mesh's force integrals (drive - coast,
-  // drive + coast: the anti-alias recorder's forces from their derivatives, outside the error
-  // test)
-  p.quadratures = 2 + 2 * meshes;
+  // the work and the dissipated energy
+  p.quadratures = 2;
   // the energies to the energy tolerance's share of the initial kinetic energy (at least a
   // microjoule), in every step: a relative test would let the local error grow with the work
   // done, which accumulates over a long run (a constant-speed drive against resistive torques)
   const double energy_tolerance =
       o.energy_tolerance > 0 ? o.energy_tolerance : o.relative_tolerance;
-  p.quadrature_tolerance.assign(std::size_t(p.quadratures),
-                                std::numeric_limits<double>::infinity());
-  std::fill_n(p.quadrature_tolerance.begin(), 2,
-              energy_tolerance * std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
+  p.quadrature_tolerance.assign(2, energy_tolerance *
+                                       std::max(1e-6, sys.kinetic(y0.data(), y0.data() + n)));
   p.quadrature_relative_tolerance = energy_tolerance;
-  p.quadrature_rhs                = [&sys, &last, meshes](double t, const double *y, double *q) {
+  p.quadrature_rhs                = [&sys, &last](double t, const double *y, double *q) {
     last.evaluate(sys, t, y);
     q[0] = last.power, q[1] = last.dissipation;
-    for (int i = 0; i < meshes; ++i)
-      {
-        const MeshEval &e = last.meshes[std::size_t(i)];
-        q[2 + i]          = e.force[drive_side] - e.force[coast_side];
-        q[2 + meshes + i] = e.force[drive_side] + e.force[coast_side];
-      }
     return 0;
   };
   const double hysteresis = touch_hysteresis(o);
@@ -692,6 +238,44 @@ interior_peak(const CvodeSolver &solver, const TrainSystem &sys, int mesh, int s
   return f1 > f2 ? x1 : x2;
 }
 
+/// The least and largest values over [a, b] (ends included) of the cubic Hermite interpolant
+/// of values f_a, f_b and rates r_a, r_b at a and b, and where the largest is.
+struct CubicRange
+{
+  double min = 0, max = 0, max_time = 0;
+};
+CubicRange
+cubic_range(double a, double b, double f_a, double f_b, double r_a, double r_b)
+{
+  const double h = b - a, m0 = h * r_a, m1 = h * r_b, d = f_b - f_a;
+  CubicRange   r{std::min(f_a, f_b), std::max(f_a, f_b), f_a > f_b ? a : b};
+  auto         consider = [&](double u) {
+    if (!(u > 0 && u < 1))
+      return;
+    const double u2 = u * u, u3 = u2 * u;
+    const double p = (2 * u3 - 3 * u2 + 1) * f_a + (u3 - 2 * u2 + u) * m0 +
+                     (-2 * u3 + 3 * u2) * f_b + (u3 - u2) * m1;
+    r.min = std::min(r.min, p);
+    if (p > r.max)
+      r.max = p, r.max_time = a + h * u;
+  };
+  // p'(u) = A u^2 + B u + C
+  const double A = 3 * (m0 + m1) - 6 * d, B = 6 * d - 4 * m0 - 2 * m1, C = m0;
+  if (std::abs(A) <= 1e-12 * (std::abs(B) + std::abs(C)))
+    {
+      if (B != 0)
+        consider(-C / B);
+    }
+  else if (const double disc = B * B - 4 * A * C; disc >= 0)
+    {
+      const double q = -(B + std::copysign(std::sqrt(disc), B)) / 2;
+      consider(q / A);
+      if (q != 0)
+        consider(C / q);
+    }
+  return r;
+}
+
 /// The time in (a, b) where a quantity with values f_a, f_b and rates r_a > 0 > r_b at the ends
 /// of a piece of a step peaks, from the cubic Hermite interpolant of those four numbers (the
 /// root of its derivative, a quadratic, where the derivative falls); the method's polynomial is
@@ -741,7 +325,7 @@ struct SolutionPoint
 /// midpoint above both ends', golden-section search: interior_peak).
 std::vector<double>
 piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double b,
-            const SolutionPoint &start, const std::vector<MeshEval> &middle,
+            const SolutionPoint &start, const std::vector<MeshEval> *middle,
             const SolutionPoint &end)
 {
   std::vector<double> peaks;
@@ -757,10 +341,16 @@ piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double 
           const double rb =
               fb > 0 ? eb.force_rate(side, end.alpha[m.driver], end.alpha[m.driven]) : 0;
           if (fa > 0 && fb > 0 && ra > 0 && rb < 0)
-            peaks.push_back(cubic_peak(a, b, fa, fb, ra, rb));
-          else if (const double x = interior_peak(solver, sys, i, side, a, b, fa,
-                                                  middle[std::size_t(i)].force[side], fb);
-                   x > 0)
+            {
+              peaks.push_back(cubic_peak(a, b, fa, fb, ra, rb));
+              continue;
+            }
+          // a peak the cubic shows inside, or (where the midpoint was evaluated) the midpoint
+          // above both ends
+          const CubicRange c     = cubic_range(a, b, fa, fb, ra, rb);
+          const double     f_mid = middle ? (*middle)[std::size_t(i)].force[side] : 0.0;
+          const double     guess = c.max > std::max(fa, fb) ? c.max : f_mid;
+          if (const double x = interior_peak(solver, sys, i, side, a, b, fa, guess, fb); x > 0)
             peaks.push_back(x);
         }
       if (ea.pairs > 0 && eb.pairs > 0)
@@ -774,6 +364,32 @@ piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double 
         }
     }
   return peaks;
+}
+
+/// Whether a contact could change inside the piece (a, b) of the last step unseen by the root
+/// test at its ends (hidden_contact_change then looks at its midpoint): a side's touch function
+/// whose cubic through the ends' values and rates comes within a quarter of its own excursion
+/// of zero on the piece (or a side without those rates).
+bool
+contact_may_change_inside(const SolutionPoint &start, const SolutionPoint &end,
+                          const std::vector<char> &touching, double hysteresis, double a, double b)
+{
+  for (std::size_t i = 0; i < start.meshes.size(); ++i)
+    for (int side = 0; side < 2; ++side)
+      {
+        const MeshEval &ea = start.meshes[i], &eb = end.meshes[i];
+        const int       count = touching[2 * i + std::size_t(side)];
+        const double    ga    = touch_value(ea, side, 0, count, hysteresis);
+        const double    gb    = touch_value(eb, side, 0, count, hysteresis);
+        if (ga <= -1 + hysteresis && gb <= -1 + hysteresis)
+          continue; // no pairing within reach at either end
+        const CubicRange c =
+            cubic_range(a, b, ga, gb, ea.deepest_rate[side], eb.deepest_rate[side]);
+        const double margin = (c.max - c.min) / 4;
+        if (count > 0 ? c.min <= margin : c.max >= -margin)
+          return true;
+      }
+  return false;
 }
 
 /// What the run records: the samples (from the integrator's interpolant, at the output times),
@@ -801,18 +417,51 @@ public:
       alias.emplace(o.sample_rate, samples, std::size_t(2 * n + 2 * meshes));
   }
 
-  /// The solution over [a, b], a piece of the last step, for the anti-alias recorder: the
-  /// states from the method's polynomial, the forces from their integrals' (the quadratures').
+  /// The solution over [a, b], a piece of the last step, for the anti-alias recorder: every
+  /// channel the cubic Hermite interpolant of its values and rates at the piece's ends (the
+  /// angles from the speeds, the speeds from the accelerations, the forces from their rates),
+  /// third-order accurate like the step and without the interpolations the method's own
+  /// polynomial would cost at every quadrature point.
   void
-  record(const CvodeSolver &solver, double a, double b)
+  record(double a, double b, const std::vector<double> &y_a, const SolutionPoint &at_a,
+         const std::vector<double> &y_b, const SolutionPoint &at_b)
   {
     if (!alias)
       return;
+    const std::size_t channels = std::size_t(2 * n + 2 * meshes);
+    ends.resize(4 * channels);
+    double *const value_a = ends.data(), *const rate_a = value_a + channels,
+                  *const value_b = rate_a + channels, *const rate_b = value_b + channels;
+    auto fill = [&](const std::vector<double> &y, const SolutionPoint &at, double *value,
+                    double *rate) {
+      for (int i = 0; i < n; ++i)
+        {
+          value[i] = y[std::size_t(i)], rate[i] = y[std::size_t(n + i)];
+          value[n + i] = y[std::size_t(n + i)], rate[n + i] = at.alpha[std::size_t(i)];
+        }
+      for (int i = 0; i < meshes; ++i)
+        {
+          const MeshEval  &e        = at.meshes[std::size_t(i)];
+          const TrainMesh &m        = sys.model.meshes[std::size_t(i)];
+          const double     alpha_p  = at.alpha[std::size_t(m.driver)],
+                       alpha_g      = at.alpha[std::size_t(m.driven)];
+          const double r_d          = e.force_rate(drive_side, alpha_p, alpha_g),
+                       r_c          = e.force_rate(coast_side, alpha_p, alpha_g);
+          value[2 * n + i]          = e.force[drive_side] - e.force[coast_side];
+          rate[2 * n + i]           = r_d - r_c;
+          value[2 * n + meshes + i] = e.force[drive_side] + e.force[coast_side];
+          rate[2 * n + meshes + i]  = r_d + r_c;
+        }
+    };
+    fill(y_a, at_a, value_a, rate_a);
+    fill(y_b, at_b, value_b, rate_b);
+    const double h = b - a;
     alias->advance(a, b, [&](double t, double *v) {
-      solver.interpolate(t, state);
-      std::copy(state.begin(), state.end(), v);
-      solver.interpolate_quadrature_rates(t, rates);
-      std::copy(rates.begin() + 2, rates.end(), v + 2 * n);
+      const double u = (t - a) / h, u2 = u * u, u3 = u2 * u;
+      const double h00 = 2 * u3 - 3 * u2 + 1, h10 = (u3 - 2 * u2 + u) * h, h01 = -2 * u3 + 3 * u2,
+                   h11 = (u3 - u2) * h;
+      for (std::size_t j = 0; j < channels; ++j)
+        v[j] = h00 * value_a[j] + h10 * rate_a[j] + h01 * value_b[j] + h11 * rate_b[j];
     });
   }
 
@@ -867,19 +516,28 @@ public:
       }
   }
 
-  /// The forces' integrals over [a, b], a piece of the last step, from the meshes at a, at the
-  /// midpoint and at b (Simpson's rule on the method's interpolant: its kinks - touch,
-  /// separation - are roots, and end the pieces).
+  /// The forces' integrals over [a, b], a piece of the last step, from the forces and their
+  /// rates at a and b (the integral of their cubic Hermite interpolant, exact for cubics as
+  /// Simpson's rule is: the force's kinks - touch, separation - are roots, and end the pieces).
   void
-  integrate(double a, double b, const std::vector<MeshEval> &at_a,
-            const std::vector<MeshEval> &middle, const std::vector<MeshEval> &at_b)
+  integrate(double a, double b, const SolutionPoint &at_a, const SolutionPoint &at_b)
   {
+    const double h = b - a;
     for (int i = 0; i < meshes; ++i)
-      for (int side = 0; side < 2; ++side)
-        impulse[std::size_t(2 * i + side)] +=
-            (b - a) / 6 *
-            (at_a[std::size_t(i)].force[side] + 4 * middle[std::size_t(i)].force[side] +
-             at_b[std::size_t(i)].force[side]);
+      {
+        const TrainMesh &m = sys.model.meshes[std::size_t(i)];
+        for (int side = 0; side < 2; ++side)
+          {
+            auto rate = [&](const SolutionPoint &p) {
+              return p.meshes[std::size_t(i)].force_rate(side, p.alpha[std::size_t(m.driver)],
+                                                         p.alpha[std::size_t(m.driven)]);
+            };
+            impulse[std::size_t(2 * i + side)] += h / 2 *
+                                                      (at_a.meshes[std::size_t(i)].force[side] +
+                                                       at_b.meshes[std::size_t(i)].force[side]) +
+                                                  h * h / 12 * (rate(at_a) - rate(at_b));
+          }
+      }
   }
 
   /// A side of mesh i starts (touch) or stops touching at t; a contact at the start (t = 0)
@@ -963,7 +621,7 @@ private:
   std::vector<std::optional<TrainImpact>> open;    ///< per mesh and side
   std::vector<double>                     impulse; ///< force integral since the start [N s]
   std::optional<AntiAliasRecorder>        alias;
-  std::vector<double>                     state, rates; ///< record's interpolations
+  std::vector<double>                     ends; ///< record's values and rates at the ends
 };
 /// The run's options, each against what it allows (InputError naming it).
 void
@@ -1041,9 +699,10 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
     double power, dissipation;
     point.alpha.resize(std::size_t(n));
     sys.evaluate(time, state.data(), state.data() + n, point.alpha.data(), power, dissipation,
-                 &point.meshes);
+                 &point.meshes, true);
   };
-  SolutionPoint start, end;
+  SolutionPoint       start, end;
+  std::vector<double> y_last = y; // the state at the piece's start
   point_at(0, y, start);
   long next = 1;
   // steps of at most 1/16 of the shortest tooth mesh period at the present speeds: a contact
@@ -1059,21 +718,29 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   for (double t = 0, last = 0; t < o.duration; last = t)
     {
       solver.set_max_step(max_step(y));
-      bool         root    = solver.step(o.duration, t, y, &fired);
-      const double hidden  = hidden_contact_change(solver, sys, touching, touch_hysteresis(o), last,
-                                                   t, hidden_fired, middle);
-      const bool   restart = hidden < t; // the run goes on from there
-      if (restart)
-        {
-          t = hidden, root = true;
-          solver.interpolate(t, y);
-          fired.swap(hidden_fired);
-          solver.interpolate((last + t) / 2, ys);
-          middle = meshes_at(sys, ys);
-        }
+      bool root = solver.step(o.duration, t, y, &fired);
       point_at(t, y, end);
-      rec.integrate(last, t, start.meshes, middle, end.meshes);
-      rec.record(solver, last, t);
+      // a contact that changes and changes back inside the step, looked for at its midpoint
+      // where the touch functions' cubics come near zero
+      bool have_middle = false, restart = false;
+      if (contact_may_change_inside(start, end, touching, touch_hysteresis(o), last, t))
+        {
+          have_middle         = true;
+          const double hidden = hidden_contact_change(solver, sys, touching, touch_hysteresis(o),
+                                                      last, t, hidden_fired, middle);
+          restart             = hidden < t; // the run goes on from there
+          if (restart)
+            {
+              t = hidden, root = true;
+              solver.interpolate(t, y);
+              fired.swap(hidden_fired);
+              solver.interpolate((last + t) / 2, ys);
+              middle = meshes_at(sys, ys);
+              point_at(t, y, end);
+            }
+        }
+      rec.integrate(last, t, start, end);
+      rec.record(last, t, y_last, start, y, end);
       for (; next <= samples && sample_time(next) <= t; ++next)
         {
           solver.interpolate(sample_time(next), ys, &qs);
@@ -1086,12 +753,14 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
           throw InputError("gear train: the state is not finite at t = " + std::to_string(t) +
                            " s; check the inertias and the contact law");
       rec.extremes(t, end.meshes);
-      for (const double x : piece_peaks(solver, sys, last, t, start, middle, end))
+      for (const double x :
+           piece_peaks(solver, sys, last, t, start, have_middle ? &middle : nullptr, end))
         {
           solver.interpolate(x, ys);
           rec.extremes(x, meshes_at(sys, ys));
         }
       std::swap(start, end);
+      y_last = y;
       if (root)
         {
           ++rec.out.events;

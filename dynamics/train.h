@@ -27,8 +27,12 @@
 // balance integrated alongside:
 //   work of the torques = kinetic energy change + potential energy + dissipated energy.
 // The steps never depend on the output rate: the samples are interpolated at the output times
-// from the method's polynomial, and the extremes, counts and impulses come from the steps and
-// roots themselves, so they are the same at any output rate.
+// from the method's polynomial (or, recorded without aliasing, averaged from the cubic Hermite
+// interpolant of every step piece's end values and rates), and the extremes, counts and
+// impulses come from the steps and roots themselves, so they are the same at any output rate.
+// A contact that changes and changes back inside a step is looked for at the step's midpoint
+// where a side's touch function, as the cubic through its ends' values and rates, comes near
+// zero.
 #pragma once
 
 #include "base/tooth_pairs.h"

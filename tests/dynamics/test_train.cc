@@ -283,7 +283,9 @@ TEST(Train, ExtremesCountsAndContactsDoNotDependOnTheOutputRate)
   for (const TrainImpact &c : dense.meshes[0].contacts)
     for (std::size_t i = 0; i < dense.t.size(); ++i)
       if (dense.t[i] >= c.touch && (c.separation < 0 || dense.t[i] <= c.separation))
-        EXPECT_LE(std::abs(dense.meshes[0].force[i]), c.peak * (1 + 1e-9)) << "t " << dense.t[i];
+        {
+          EXPECT_LE(std::abs(dense.meshes[0].force[i]), c.peak * (1 + 1e-9)) << "t " << dense.t[i];
+        }
   // the samples of the fastest output reach the located peak, the slowest' do not
   double slow = 0, fast = 0;
   for (double F : runs[0].meshes[0].force)

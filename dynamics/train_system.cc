@@ -1,0 +1,463 @@
+#include "dynamics/train_system.h"
+
+#include "base/types.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace gearkit
+{
+namespace
+{
+/// IMPACT's damping coefficient STEP(d, 0, 0, d_max, c_max) at penetration d > 0, and its
+/// derivative by d.
+std::pair<double, double>
+impact_damping(const ImpactLaw &law, double d)
+{
+  if (!(d < law.depth))
+    return {law.damping, 0.0};
+  const double x = d / law.depth;
+  return {law.damping * x * x * (3 - 2 * x), law.damping * 6 * x * (1 - x) / law.depth};
+}
+
+/// IMPACT's force from its elastic part K d^e (given: the caller has it).
+double
+damped_impact_force(const ImpactLaw &law, double d, double d_rate, double elastic)
+{
+  if (!(d > 0))
+    return 0;
+  return std::max(0.0, elastic + impact_damping(law, d).first * d_rate);
+}
+} // namespace
+
+double
+impact_force(const ImpactLaw &law, double d, double d_rate)
+{
+  return damped_impact_force(law, d, d_rate, law.stiffness * std::pow(d, law.exponent));
+}
+
+double
+impact_energy(const ImpactLaw &law, double d)
+{
+  return d > 0 ? law.stiffness * std::pow(d, law.exponent + 1) / (law.exponent + 1) : 0.0;
+}
+
+double
+impact_stiffness_si(double stiffness, double exponent, double length_unit)
+{
+  return stiffness / std::pow(length_unit, exponent);
+}
+
+namespace
+{
+/// Cubic Hermite interpolation of a curve's samples (slopes by central differences): where x
+/// falls and the value basis there, shared by the curve's offsets and arms (the derivatives'
+/// bases only where asked: hermite).
+struct Hermite
+{
+  int    n = 0, i = 0;
+  double u        = 0;  ///< position within the interval [i, i + 1]
+  double value[4] = {}; ///< weights of y_i, m_i, y_i+1, m_i+1
+};
+
+/// false outside the samples
+bool
+hermite_at(const ToothPairCurve &c, double x, Hermite &h)
+{
+  h.n = int(c.offset.size());
+  if (h.n < 2)
+    return false;
+  const double s = (x - c.start) / c.step;
+  if (!(s >= 0) || s > h.n - 1)
+    return false;
+  h.i            = std::min(int(s), h.n - 2);
+  const double u = h.u = s - h.i, u2 = u * u, u3 = u2 * u;
+  h.value[0] = 2 * u3 - 3 * u2 + 1;
+  h.value[1] = u3 - 2 * u2 + u;
+  h.value[2] = -2 * u3 + 3 * u2;
+  h.value[3] = u3 - u2;
+  return true;
+}
+
+/// The Hermite weights of samples y at h: y_i, its slope m_i, y_i+1, m_i+1 (central
+/// differences, one-sided at the ends).
+std::array<double, 4>
+hermite_weights(const Hermite &h, const std::vector<double> &y)
+{
+  const int n = h.n;
+  auto      m = [&](int j) {
+    if (j == 0)
+      return y[1] - y[0];
+    if (j == n - 1)
+      return y[n - 1] - y[n - 2];
+    return (y[j + 1] - y[j - 1]) / 2;
+  };
+  return {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
+}
+
+/// The interpolated value at h of the samples whose weights are w (hermite_weights).
+double
+hermite_value(const Hermite &h, const std::array<double, 4> &w)
+{
+  return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
+}
+
+/// The interpolant's derivative by x at h and, if asked, its second derivative, from the
+/// samples' weights w (hermite_weights).
+void
+hermite_derivatives(const Hermite &h, const std::array<double, 4> &w, double step, double &slope,
+                    double *curvature = nullptr)
+{
+  const double u = h.u, u2 = u * u;
+  const double slope_basis[4]     = {6 * u2 - 6 * u, 3 * u2 - 4 * u + 1, -6 * u2 + 6 * u,
+                                     3 * u2 - 2 * u};
+  const double curvature_basis[4] = {12 * u - 6, 6 * u - 4, -12 * u + 6, 6 * u - 2};
+  slope = (slope_basis[0] * w[0] + slope_basis[1] * w[1] + slope_basis[2] * w[2] +
+           slope_basis[3] * w[3]) /
+          step;
+  if (curvature)
+    *curvature = (curvature_basis[0] * w[0] + curvature_basis[1] * w[1] +
+                  curvature_basis[2] * w[2] + curvature_basis[3] * w[3]) /
+                 (step * step);
+}
+
+/// The curve's offset at x with its slope; false outside the samples.
+bool
+interpolate_offset(const ToothPairCurve &c, double x, double &value, double &slope)
+{
+  Hermite h;
+  if (!hermite_at(c, x, h))
+    return false;
+  const std::array<double, 4> w = hermite_weights(h, c.offset);
+  value                         = hermite_value(h, w);
+  hermite_derivatives(h, w, c.step, slope);
+  return true;
+}
+
+} // namespace
+
+std::pair<double, double>
+band_edges(const ToothPairTables &t)
+{
+  // the most common class of a member; -1 when none is more common than every other
+  auto nominal = [](const std::vector<int> &classes, int count) {
+    std::vector<int> n(std::size_t(std::max(count, 0)), 0);
+    for (int c : classes)
+      if (c >= 0 && c < count)
+        ++n[std::size_t(c)];
+    int best = -1, most = 0, ties = 0;
+    for (int c = 0; c < count; ++c)
+      if (n[std::size_t(c)] > most)
+        best = c, most = n[std::size_t(c)], ties = 0;
+      else if (n[std::size_t(c)] == most)
+        ++ties;
+    return ties > 0 ? -1 : best;
+  };
+  const int             p = nominal(t.pinion_class, t.pinion_classes);
+  const int             g = nominal(t.gear_class, t.gear_classes);
+  const ToothPairCurve *d = &t.curve(drive_side, 0, mod(-1, t.gear_teeth));
+  const ToothPairCurve *c = &t.curve(coast_side, 0, 0);
+  if (p >= 0 && g >= 0 &&
+      !t.curves[drive_side][std::size_t(p * t.gear_classes + g)].offset.empty() &&
+      !t.curves[coast_side][std::size_t(p * t.gear_classes + g)].offset.empty())
+    {
+      d = &t.curves[drive_side][std::size_t(p * t.gear_classes + g)];
+      c = &t.curves[coast_side][std::size_t(p * t.gear_classes + g)];
+    }
+  double v[2] = {0, 0}, slope = 0;
+  if (!interpolate_offset(*d, 0.0, v[0], slope) || !interpolate_offset(*c, 0.0, v[1], slope))
+    require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
+                  "curves that cover the pairing's centre (local angle 0)");
+  return {v[0], v[1]};
+}
+
+double
+band_centre(const ToothPairTables &t)
+{
+  const auto [drive, coast] = band_edges(t);
+  return (drive + coast) / 2;
+}
+
+namespace
+{
+
+/// A finite-element mesh stiffness at pinion angle phi and its derivative by phi (periodic over
+/// the mesh cycle, linear between the samples).
+std::pair<double, double>
+mesh_stiffness_at(const TrainMesh &m, double phi)
+{
+  const std::vector<double> &K    = m.mesh_stiffness;
+  const int                  n    = int(K.size());
+  const double               step = 2 * pi / m.teeth.pinion_teeth / n;
+  const double               s    = (phi - m.mesh_stiffness_start) / step;
+  const double               f    = std::floor(s);
+  const int                  i    = mod(int(std::fmod(f, double(n))), n);
+  const double               u    = s - f;
+  const double               a = K[std::size_t(i)], b = K[std::size_t((i + 1) % n)];
+  return {a + u * (b - a), (b - a) / step};
+}
+} // namespace
+
+namespace train_internal
+{
+TrainSystem::TrainSystem(const TrainModel &m, const TrainRunOptions &o)
+    : model(m)
+    , options(o)
+{
+  n = int(model.bodies.size());
+  for (const TrainMesh &mesh : model.meshes)
+    {
+      centre.push_back(band_centre(mesh.teeth));
+      // the local pinion angles any curve has samples at
+      std::pair<double, double> span{HUGE_VAL, -HUGE_VAL};
+      for (const auto &side : mesh.teeth.curves)
+        for (const ToothPairCurve &c : side)
+          if (c.offset.size() >= 2)
+            span = {std::min(span.first, c.start),
+                    std::max(span.second, c.start + double(c.offset.size() - 1) * c.step)};
+      sampled.push_back(span);
+    }
+}
+
+MeshEval
+TrainSystem::mesh(int index, const double *theta, const double *omega, bool deepest_rates) const
+{
+  const TrainMesh       &m   = model.meshes[index];
+  const ToothPairTables &t   = m.teeth;
+  const double           phi = theta[m.driver] + m.pinion_angle_0;
+  const double           psi = theta[m.driven] + m.gear_angle_0;
+  const double           w_p = omega[m.driver], w_g = omega[m.driven];
+  const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
+  MeshEval               e;
+  const int              k0 = int(std::lround(phi * t.pinion_teeth / (2 * pi)));
+  const bool             fe = !m.mesh_stiffness.empty();
+  /// the deepest touching pair of each side (finite-element K_m)
+  struct Deepest
+  {
+    double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, curvature = 0;
+  } deepest[2];
+  /// the deepest pairing of each side, for its rate (deepest_rates)
+  struct Nearest
+  {
+    const ToothPairCurve *curve = nullptr;
+    Hermite               h;
+    std::array<double, 4> w_o{}, w_arm{};
+    double                gap = 0, arm = 0, rate = 0;
+    bool                  has_rate = false;
+  } nearest[2];
+  // the pairings within reach whose local angle phi - 2 pi k / z1 some curve samples
+  const double per_tooth = t.pinion_teeth / (2 * pi);
+  const auto [lo, hi]    = sampled[std::size_t(index)];
+  const int k_first =
+      std::max(k0 - options.pairings_each_side, int(std::ceil((phi - hi) * per_tooth - 1e-9)));
+  const int k_last =
+      std::min(k0 + options.pairings_each_side, int(std::floor((phi - lo) * per_tooth + 1e-9)));
+  for (int k = k_first; k <= k_last; ++k)
+    {
+      const double phi_k = phi - 2 * pi * k / t.pinion_teeth;
+      const int    i     = mod(-k, t.pinion_teeth);
+      for (int side = 0; side < 2; ++side)
+        {
+          const int             j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
+          const ToothPairCurve &c = t.curve(side, i, j);
+          Hermite               h;
+          if (!hermite_at(c, phi_k, h))
+            continue;
+          // d = s arm(phi_k) (psi_touch(phi_k) - psi); the derivatives only where it touches
+          double                      o_slope, arm_slope, o_curvature, arm_curvature;
+          const std::array<double, 4> w_o   = hermite_weights(h, c.offset);
+          const std::array<double, 4> w_arm = hermite_weights(h, c.arm);
+          const double                o     = hermite_value(h, w_o);
+          const double                arm   = hermite_value(h, w_arm);
+          const double                gap   = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
+          const double                s     = side == drive_side ? 1.0 : -1.0;
+          const double                d     = s * arm * gap;
+          double &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
+                 &p3                = e.next_penetration[side][1];
+          const bool deepest_so_far = d > p1;
+          if (deepest_so_far)
+            {
+              p3 = p2, p2 = p1, p1 = d;
+              if (deepest_rates)
+                nearest[side] = {&c, h, w_o, w_arm, gap, arm, 0, false};
+            }
+          else if (d > p2)
+            p3 = p2, p2 = d;
+          else
+            p3 = std::max(p3, d);
+          if (!(d > 0))
+            continue;
+          hermite_derivatives(h, w_o, c.step, o_slope, &o_curvature);
+          hermite_derivatives(h, w_arm, c.step, arm_slope, &arm_curvature);
+          const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
+          const double dd_dpsi = -s * arm;
+          const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
+          if (deepest_rates && deepest_so_far)
+            nearest[side].rate = d_rate, nearest[side].has_rate = true;
+          // d'' = d_phi phi'' + d_psi psi'' + curvature, curvature = d_phiphi phi'^2 +
+          // 2 d_phipsi phi' psi'
+          const double curvature =
+              s * (arm_curvature * gap + 2 * arm_slope * (ratio + o_slope) + arm * o_curvature) *
+                  w_p * w_p -
+              2 * s * arm_slope * w_p * w_g;
+          ++e.pairs;
+          if (fe)
+            {
+              if (d > deepest[side].d)
+                deepest[side] = {d, dd_dphi, dd_dpsi, d_rate, curvature};
+              continue;
+            }
+          const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
+          const double F       = damped_impact_force(m.law, d, d_rate, elastic);
+          e.torque_driver -= F * dd_dphi;
+          e.torque_driven -= F * dd_dpsi;
+          e.force[side] += F;
+          e.energy += elastic * d / (m.law.exponent + 1); // impact_energy
+          e.dissipation_rate += (F - elastic) * d_rate;
+          e.penetration_rate += elastic / d * d_rate;
+          e.penetration_weight += elastic / d;
+          if (F > 0)
+            {
+              const auto [c, dc_dd] = impact_damping(m.law, d);
+              e.rate_fixed[side] +=
+                  m.law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c * curvature;
+              e.rate_driver[side] += c * dd_dphi;
+              e.rate_driven[side] += c * dd_dpsi;
+            }
+        }
+    }
+  for (int side = 0; deepest_rates && side < 2; ++side)
+    {
+      Nearest &p = nearest[side];
+      if (!p.curve || p.has_rate)
+        {
+          e.deepest_rate[side] = p.rate;
+          continue;
+        }
+      double       o_slope, arm_slope;
+      const double s = side == drive_side ? 1.0 : -1.0;
+      hermite_derivatives(p.h, p.w_o, p.curve->step, o_slope);
+      hermite_derivatives(p.h, p.w_arm, p.curve->step, arm_slope);
+      e.deepest_rate[side] =
+          s * (arm_slope * p.gap + p.arm * (ratio + o_slope)) * w_p - s * p.arm * w_g;
+    }
+  if (fe)
+    {
+      const auto [K, dK_dphi] = mesh_stiffness_at(m, phi);
+      const ImpactLaw linear{K, 1.0, m.law.damping, m.law.depth};
+      for (int side = 0; side < 2; ++side)
+        {
+          const Deepest &p = deepest[side];
+          if (!(p.d > 0))
+            continue;
+          const double F = impact_force(linear, p.d, p.rate);
+          e.torque_driver -= F * p.dd_dphi;
+          e.torque_driven -= F * p.dd_dpsi;
+          e.force[side] += F;
+          e.energy += K * p.d * p.d / 2;
+          e.dissipation_rate += (F - K * p.d) * p.rate;
+          e.parametric_power += dK_dphi * w_p * p.d * p.d / 2;
+          e.penetration_rate += K * p.rate;
+          e.penetration_weight += K;
+          if (F > 0)
+            {
+              const auto [c, dc_dd] = impact_damping(linear, p.d);
+              e.rate_fixed[side] +=
+                  dK_dphi * w_p * p.d + K * p.rate + dc_dd * p.rate * p.rate + c * p.curvature;
+              e.rate_driver[side] += c * p.dd_dphi;
+              e.rate_driven[side] += c * p.dd_dpsi;
+            }
+        }
+    }
+  return e;
+}
+
+double
+TrainSystem::relative(int index, const double *theta) const
+{
+  const TrainMesh &m     = model.meshes[index];
+  const double     ratio = double(m.teeth.pinion_teeth) / m.teeth.gear_teeth;
+  const double     phi = theta[m.driver] + m.pinion_angle_0, psi = theta[m.driven] + m.gear_angle_0;
+  return m.gear_base_radius * (ratio * phi + centre[index] - psi);
+}
+
+void
+TrainSystem::evaluate(double t, const double *theta, const double *omega, double *alpha,
+                      double &power, double &dissipation, std::vector<MeshEval> *evaluated,
+                      bool deepest_rates) const
+{
+  std::vector<double> Q(n, 0.0);
+  dissipation       = 0;
+  double parametric = 0;
+  if (evaluated)
+    evaluated->resize(model.meshes.size());
+  for (int i = 0; i < int(model.meshes.size()); ++i)
+    {
+      const MeshEval e = mesh(i, theta, omega, deepest_rates);
+      if (evaluated)
+        (*evaluated)[std::size_t(i)] = e;
+      Q[model.meshes[i].driver] += e.torque_driver;
+      Q[model.meshes[i].driven] += e.torque_driven;
+      dissipation += e.dissipation_rate;
+      parametric += e.parametric_power;
+    }
+  for (const TrainShaft &s : model.shafts)
+    {
+      const double dw = omega[s.b] - omega[s.a];
+      const double T  = s.stiffness * (theta[s.b] - theta[s.a]) + s.damping * dw;
+      Q[s.a] += T;
+      Q[s.b] -= T;
+      dissipation += s.damping * dw * dw;
+    }
+  power = parametric;
+  for (int i = 0; i < n; ++i)
+    {
+      const TrainBody &b = model.bodies[i];
+      double           J = b.inertia, dJ = 0, external = 0;
+      if (b.has_crank)
+        {
+          const auto [Jc, dJc] = b.crank.inertia(theta[i] + b.crank.crank_angle_0);
+          J += Jc, dJ = dJc;
+          external -=
+              b.crank.piston_force * b.crank.piston(theta[i] + b.crank.crank_angle_0).second;
+        }
+      if (b.constant_speed)
+        {
+          alpha[i] = 0; // held by the torque that balances the rest
+          power += (dJ * omega[i] * omega[i] / 2 - Q[i]) * omega[i];
+          continue;
+        }
+      external += b.torque(t, omega[i]);
+      power += external * omega[i];
+      alpha[i] = (external + Q[i] - dJ * omega[i] * omega[i] / 2) / J;
+    }
+}
+
+double
+TrainSystem::kinetic(const double *theta, const double *omega) const
+{
+  double E = 0;
+  for (int i = 0; i < n; ++i)
+    {
+      const TrainBody &b = model.bodies[i];
+      double           J = b.inertia;
+      if (b.has_crank)
+        J += b.crank.inertia(theta[i] + b.crank.crank_angle_0).first;
+      E += J * omega[i] * omega[i] / 2;
+    }
+  return E;
+}
+
+double
+TrainSystem::potential(const double *theta, const double *omega) const
+{
+  double V = 0;
+  for (int i = 0; i < int(model.meshes.size()); ++i)
+    V += mesh(i, theta, omega).energy;
+  for (const TrainShaft &s : model.shafts)
+    V += s.stiffness * std::pow(theta[s.b] - theta[s.a], 2) / 2;
+  return V;
+}
+} // namespace train_internal
+} // namespace gearkit

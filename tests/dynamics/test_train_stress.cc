@@ -139,3 +139,53 @@ TEST(TrainStress, MissingTooth)
   ASSERT_GE(long_ones.size(), 3u);
   EXPECT_NEAR(long_ones[2] - long_ones[1], 2 * pi / 167.5, 0.02 * 2 * pi / 167.5);
 }
+
+TEST(TrainStress, BriefContactsInsideOneStepAreFound)
+{
+  // Both bodies held at the kinematic speed (the motion is exact; free flight lets the steps
+  // grow to their bound of 1/16 of a mesh period) and a bump on the drive flank of every tooth
+  // pair: a raised cosine of half-width a quarter pitch rising 2 % above the half backlash, so
+  // each tooth pass touches for 0.045 of a mesh period - inside one step, not at its ends. Every
+  // pass is a contact, at the times the bump's geometry gives, whichever way the output is
+  // sampled. (Without the midpoint check 2 of the 15 are found: those a step happens to end in.)
+  const int       z   = 20;
+  const double    r_b = 0.05, beta = 1e-3, pitch = 2 * pi / z, sigma = pitch / 4, w = 100;
+  const double    rise = 1.02 * beta / 2;
+  ImpactLaw       law{1e3, 1.0, 0, 0};
+  TrainModel      m = two_body_model(1e-3, 1e-3, z, z, r_b, beta, law);
+  ToothPairCurve &c = m.meshes[0].teeth.curves[drive_side][0];
+  for (std::size_t i = 0; i < c.offset.size(); ++i)
+    {
+      const double x = c.start + double(i) * c.step;
+      if (std::abs(x) < sigma)
+        c.offset[i] += rise * std::pow(std::cos(pi * x / (2 * sigma)), 2);
+    }
+  for (TrainBody &b : m.bodies)
+    b.constant_speed = true, b.initial_speed = w;
+  const double x0 = -0.7 * pitch; // the first pass through the bump at 0.7 pitch
+  // ratio 1, both in the middle of the backlash (the ideal flanks' band is centred on 0)
+  m.bodies[0].initial_angle = m.bodies[1].initial_angle = x0;
+  // the contact: rise cos^2(pi x / 2 sigma) > beta / 2, |x| < x_c
+  const double x_c    = 2 * sigma / pi * std::acos(std::sqrt(beta / 2 / rise));
+  const int    passes = 15;
+  for (const double rate : {1e3, 2e5})
+    {
+      TrainRunOptions o;
+      o.duration          = (passes * pitch - x0 - pitch / 2) / w;
+      o.sample_rate       = rate;
+      const TrainResult r = simulate_train(m, o);
+      SCOPED_TRACE("output at " + std::to_string(rate) + " Hz");
+      EXPECT_GT(r.steps, std::size_t(16 * passes)); // the step bound, not the contacts, sets them
+      ASSERT_EQ(r.meshes[0].drive_impacts, std::size_t(passes));
+      EXPECT_EQ(r.meshes[0].coast_impacts, 0u);
+      for (std::size_t j = 0; j < r.meshes[0].contacts.size(); ++j)
+        {
+          const TrainImpact &k      = r.meshes[0].contacts[j];
+          const double       centre = (double(j) * pitch - x0) / w;
+          // the curve is a Hermite interpolant of 16 samples per half-width: its window within
+          // 2 % of the exact bump's
+          EXPECT_NEAR(k.touch, centre - x_c / w, 0.02 * x_c / w) << "pass " << j;
+          EXPECT_NEAR(k.separation, centre + x_c / w, 0.02 * x_c / w) << "pass " << j;
+        }
+    }
+}

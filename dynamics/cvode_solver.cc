@@ -217,14 +217,6 @@ CvodeSolver::interpolate(double t, std::vector<double> &y, std::vector<double> *
 }
 
 void
-CvodeSolver::interpolate_quadrature_rates(double t, std::vector<double> &rates) const
-{
-  N_Vector w = static_cast<N_Vector>(interpolated_quadratures);
-  check(CVodeGetQuadDky(memory, t, 1, w), "CVodeGetQuadDky", t);
-  rates.assign(N_VGetArrayPointer(w), N_VGetArrayPointer(w) + p.quadratures);
-}
-
-void
 CvodeSolver::reinit(double t, const std::vector<double> &y)
 {
   steps_before += steps_since_start(); // CVodeReInit zeroes CVODE's count

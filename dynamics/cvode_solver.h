@@ -64,10 +64,6 @@ public:
   /// method's interpolating polynomial (CVodeGetDky).
   void
   interpolate(double t, std::vector<double> &y, std::vector<double> *quadratures = nullptr) const;
-  /// The quadratures' rates (their integrands, as the method's polynomial has them) at time t
-  /// inside the last step.
-  void
-  interpolate_quadrature_rates(double t, std::vector<double> &rates) const;
   /// Restarts the method at (t, y), t inside the last step (an event, or a change the caller
   /// found inside the step), the quadratures interpolated there.
   void

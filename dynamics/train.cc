@@ -321,8 +321,9 @@ struct SolutionPoint
 /// The times inside the piece (a, b) of the last step where a side's force or a mesh's deepest
 /// penetration peaks: a side loaded at both ends whose force rate falls through zero (the cubic
 /// through the ends' forces and rates: cubic_peak), the deepest penetration likewise with its
-/// weighted rate, and a sharp peak the piece strides over (two sign changes: the force at the
-/// midpoint above both ends', golden-section search: interior_peak).
+/// weighted rate, and a peak the piece strides over (two sign changes of the rate: the cubic's
+/// interior maximum, or the force at the midpoint where it was evaluated, above both ends';
+/// golden-section search: interior_peak).
 std::vector<double>
 piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double b,
             const SolutionPoint &start, const std::vector<MeshEval> *middle,

@@ -25,7 +25,7 @@ namespace
 /// side's second and third deepest penetrations (a pair entering or leaving while another
 /// touches: the force law's kink there, and the damping spike of a pair entering at its tip
 /// edge, which the steps would otherwise stride over). The forces' and penetrations' peaks are
-/// located inside the steps without stopping the method (cubic_peak).
+/// located inside the steps without stopping the method (cubic_range).
 constexpr int roots_per_mesh  = 6;
 constexpr int ranked_contacts = 3; ///< pairs per side followed (contact ratios below 3)
 
@@ -239,7 +239,10 @@ interior_peak(const CvodeSolver &solver, const TrainSystem &sys, int mesh, int s
 }
 
 /// The least and largest values over [a, b] (ends included) of the cubic Hermite interpolant
-/// of values f_a, f_b and rates r_a, r_b at a and b, and where the largest is.
+/// of values f_a, f_b and rates r_a, r_b at a and b, and where the largest is. With r_a > 0 > r_b
+/// that is a peak inside, at the root of the cubic's rate (a quadratic) where it falls: the
+/// method's polynomial is that smooth inside a step, so the solution evaluated there gives the
+/// peak to second order in the cubic's error of its time.
 struct CubicRange
 {
   double min = 0, max = 0, max_time = 0;
@@ -266,39 +269,14 @@ cubic_range(double a, double b, double f_a, double f_b, double r_a, double r_b)
       if (B != 0)
         consider(-C / B);
     }
-  else if (const double disc = B * B - 4 * A * C; disc >= 0)
+  else // a negative discriminant from rounding adds a point of the cubic, no harm
     {
-      const double q = -(B + std::copysign(std::sqrt(disc), B)) / 2;
+      const double q = -(B + std::copysign(std::sqrt(std::max(0.0, B * B - 4 * A * C)), B)) / 2;
       consider(q / A);
       if (q != 0)
         consider(C / q);
     }
   return r;
-}
-
-/// The time in (a, b) where a quantity with values f_a, f_b and rates r_a > 0 > r_b at the ends
-/// of a piece of a step peaks, from the cubic Hermite interpolant of those four numbers (the
-/// root of its derivative, a quadratic, where the derivative falls); the method's polynomial is
-/// that smooth inside a step, so the solution evaluated there gives the peak to second order in
-/// the cubic's error of its time.
-double
-cubic_peak(double a, double b, double f_a, double f_b, double r_a, double r_b)
-{
-  const double h = b - a;
-  // p(u) = f_a H00 + h r_a H10 + f_b H01 + h r_b H11, p'(u) = A u^2 + B u + C
-  const double m0 = h * r_a, m1 = h * r_b, d = f_b - f_a;
-  const double A = 3 * (m0 + m1) - 6 * d, B = 6 * d - 4 * m0 - 2 * m1, C = m0;
-  double       u = 0.5;
-  if (std::abs(A) <= 1e-12 * (std::abs(B) + std::abs(C)))
-    u = B != 0 ? -C / B : 0.5;
-  else
-    {
-      const double disc = std::max(0.0, B * B - 4 * A * C);
-      const double q    = -(B + std::copysign(std::sqrt(disc), B)) / 2;
-      const double u1 = q / A, u2 = q != 0 ? C / q : u1;
-      u = 2 * A * u1 + B < 0 ? u1 : u2; // p' falls through zero at the peak
-    }
-  return a + h * std::clamp(u, 0.0, 1.0);
 }
 
 /// The meshes at the state y.
@@ -311,16 +289,30 @@ meshes_at(const TrainSystem &sys, const std::vector<double> &y)
   return e;
 }
 
-/// The meshes and the accelerations at a point of the solution.
+/// The meshes, the accelerations and each side's force rate dF/dt at a point of the solution.
 struct SolutionPoint
 {
-  std::vector<MeshEval> meshes;
-  std::vector<double>   alpha;
+  std::vector<MeshEval>              meshes;
+  std::vector<double>                alpha;
+  std::vector<std::array<double, 2>> force_rate; ///< per mesh, drive and coast [N/s]
+  /// force_rate from the meshes and accelerations
+  void
+  set_force_rates(const TrainSystem &sys)
+  {
+    force_rate.resize(meshes.size());
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+      {
+        const TrainMesh &m = sys.model.meshes[i];
+        for (int side = 0; side < 2; ++side)
+          force_rate[i][std::size_t(side)] = meshes[i].force_rate(
+              side, alpha[std::size_t(m.driver)], alpha[std::size_t(m.driven)]);
+      }
+  }
 };
 
 /// The times inside the piece (a, b) of the last step where a side's force or a mesh's deepest
 /// penetration peaks: a side loaded at both ends whose force rate falls through zero (the cubic
-/// through the ends' forces and rates: cubic_peak), the deepest penetration likewise with its
+/// through the ends' forces and rates: cubic_range), the deepest penetration likewise with its
 /// weighted rate, and a peak the piece strides over (two sign changes of the rate: the cubic's
 /// interior maximum, or the force at the midpoint where it was evaluated, above both ends';
 /// golden-section search: interior_peak).
@@ -332,25 +324,22 @@ piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double 
   std::vector<double> peaks;
   for (int i = 0; i < int(sys.model.meshes.size()); ++i)
     {
-      const TrainMesh &m  = sys.model.meshes[std::size_t(i)];
-      const MeshEval  &ea = start.meshes[std::size_t(i)], &eb = end.meshes[std::size_t(i)];
+      const MeshEval &ea = start.meshes[std::size_t(i)], &eb = end.meshes[std::size_t(i)];
       for (int side = 0; side < 2; ++side)
         {
-          const double fa = ea.force[side], fb = eb.force[side];
-          const double ra =
-              fa > 0 ? ea.force_rate(side, start.alpha[m.driver], start.alpha[m.driven]) : 0;
-          const double rb =
-              fb > 0 ? eb.force_rate(side, end.alpha[m.driver], end.alpha[m.driven]) : 0;
+          const double     fa = ea.force[side], fb = eb.force[side];
+          const double     ra = fa > 0 ? start.force_rate[std::size_t(i)][std::size_t(side)] : 0;
+          const double     rb = fb > 0 ? end.force_rate[std::size_t(i)][std::size_t(side)] : 0;
+          const CubicRange c  = cubic_range(a, b, fa, fb, ra, rb);
           if (fa > 0 && fb > 0 && ra > 0 && rb < 0)
             {
-              peaks.push_back(cubic_peak(a, b, fa, fb, ra, rb));
+              peaks.push_back(c.max_time); // the root of the cubic's rate where it falls
               continue;
             }
           // a peak the cubic shows inside, or (where the midpoint was evaluated) the midpoint
           // above both ends
-          const CubicRange c     = cubic_range(a, b, fa, fb, ra, rb);
-          const double     f_mid = middle ? (*middle)[std::size_t(i)].force[side] : 0.0;
-          const double     guess = c.max > std::max(fa, fb) ? c.max : f_mid;
+          const double f_mid = middle ? (*middle)[std::size_t(i)].force[side] : 0.0;
+          const double guess = c.max > std::max(fa, fb) ? c.max : f_mid;
           if (const double x = interior_peak(solver, sys, i, side, a, b, fa, guess, fb); x > 0)
             peaks.push_back(x);
         }
@@ -359,9 +348,10 @@ piece_peaks(const CvodeSolver &solver, const TrainSystem &sys, double a, double 
           const double ra = ea.penetration_rate / ea.penetration_weight;
           const double rb = eb.penetration_rate / eb.penetration_weight;
           if (ra > 0 && rb < 0)
-            peaks.push_back(cubic_peak(a, b, std::max(ea.max_penetration[0], ea.max_penetration[1]),
-                                       std::max(eb.max_penetration[0], eb.max_penetration[1]), ra,
-                                       rb));
+            peaks.push_back(
+                cubic_range(a, b, std::max(ea.max_penetration[0], ea.max_penetration[1]),
+                            std::max(eb.max_penetration[0], eb.max_penetration[1]), ra, rb)
+                    .max_time);
         }
     }
   return peaks;
@@ -442,12 +432,9 @@ public:
         }
       for (int i = 0; i < meshes; ++i)
         {
-          const MeshEval  &e        = at.meshes[std::size_t(i)];
-          const TrainMesh &m        = sys.model.meshes[std::size_t(i)];
-          const double     alpha_p  = at.alpha[std::size_t(m.driver)],
-                       alpha_g      = at.alpha[std::size_t(m.driven)];
-          const double r_d          = e.force_rate(drive_side, alpha_p, alpha_g),
-                       r_c          = e.force_rate(coast_side, alpha_p, alpha_g);
+          const MeshEval &e         = at.meshes[std::size_t(i)];
+          const double    r_d       = at.force_rate[std::size_t(i)][drive_side],
+                       r_c          = at.force_rate[std::size_t(i)][coast_side];
           value[2 * n + i]          = e.force[drive_side] - e.force[coast_side];
           rate[2 * n + i]           = r_d - r_c;
           value[2 * n + meshes + i] = e.force[drive_side] + e.force[coast_side];
@@ -524,21 +511,10 @@ public:
   integrate(double a, double b, const SolutionPoint &at_a, const SolutionPoint &at_b)
   {
     const double h = b - a;
-    for (int i = 0; i < meshes; ++i)
-      {
-        const TrainMesh &m = sys.model.meshes[std::size_t(i)];
-        for (int side = 0; side < 2; ++side)
-          {
-            auto rate = [&](const SolutionPoint &p) {
-              return p.meshes[std::size_t(i)].force_rate(side, p.alpha[std::size_t(m.driver)],
-                                                         p.alpha[std::size_t(m.driven)]);
-            };
-            impulse[std::size_t(2 * i + side)] += h / 2 *
-                                                      (at_a.meshes[std::size_t(i)].force[side] +
-                                                       at_b.meshes[std::size_t(i)].force[side]) +
-                                                  h * h / 12 * (rate(at_a) - rate(at_b));
-          }
-      }
+    for (std::size_t i = 0; i < std::size_t(meshes); ++i)
+      for (std::size_t side = 0; side < 2; ++side)
+        impulse[2 * i + side] += h / 2 * (at_a.meshes[i].force[side] + at_b.meshes[i].force[side]) +
+                                 h * h / 12 * (at_a.force_rate[i][side] - at_b.force_rate[i][side]);
   }
 
   /// A side of mesh i starts (touch) or stops touching at t; a contact at the start (t = 0)
@@ -693,14 +669,15 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   // and root functions' evaluation there, when it is theirs)
   auto point_at = [&](double time, const std::vector<double> &state, SolutionPoint &point) {
     if (last_evaluation.at(time, state))
+      point.meshes = last_evaluation.meshes, point.alpha = last_evaluation.alpha;
+    else
       {
-        point.meshes = last_evaluation.meshes, point.alpha = last_evaluation.alpha;
-        return;
+        double power, dissipation;
+        point.alpha.resize(std::size_t(n));
+        sys.evaluate(time, state.data(), state.data() + n, point.alpha.data(), power, dissipation,
+                     &point.meshes, true);
       }
-    double power, dissipation;
-    point.alpha.resize(std::size_t(n));
-    sys.evaluate(time, state.data(), state.data() + n, point.alpha.data(), power, dissipation,
-                 &point.meshes, true);
+    point.set_force_rates(sys);
   };
   SolutionPoint       start, end;
   std::vector<double> y_last = y; // the state at the piece's start

@@ -25,29 +25,26 @@ CrankSlider::piston(double c) const
   return {crank_radius * k + w, -crank_radius * s - crank_radius * crank_radius * s * k / w};
 }
 
-namespace
-{
-/// J(c) of the crank-slider's moving parts referred to the crank angle.
-double
-crank_inertia(const CrankSlider &k, double c)
-{
-  const double s = std::sin(c), co = std::cos(c), r = k.crank_radius, l = k.rod_length;
-  const double w  = std::sqrt(l * l - r * r * s * s);
-  const double xs = -r * s - r * r * s * co / w; // piston velocity per crank rate
-  const double px = -r * s, py = r * co;         // crank pin's
-  const double f  = k.rod_centre / l;
-  const double gx = px + f * (xs - px), gy = (1 - f) * py; // the rod's centre of mass
-  const double beta = r * co / w;                          // the rod's angular rate
-  return k.piston_mass * xs * xs + k.rod_mass * (gx * gx + gy * gy) + k.rod_inertia * beta * beta;
-}
-} // namespace
-
 std::pair<double, double>
 CrankSlider::inertia(double c) const
 {
-  const double h = 1e-5;
-  return {crank_inertia(*this, c),
-          (crank_inertia(*this, c + h) - crank_inertia(*this, c - h)) / (2 * h)};
+  // J(c) of the moving parts referred to the crank angle and dJ/dc, each term with its
+  // derivative by c (the chain rule through the crank-slider's kinematics)
+  const double s = std::sin(c), co = std::cos(c), r = crank_radius, l = rod_length;
+  const double w = std::sqrt(l * l - r * r * s * s), dw = -r * r * s * co / w;
+  // piston velocity per crank rate
+  const double xs  = -r * s - r * r * s * co / w;
+  const double dxs = -r * co - r * r * (co * co - s * s) / w + r * r * s * co * dw / (w * w);
+  // the crank pin's velocity, and the rod's centre of mass
+  const double px = -r * s, py = r * co, dpx = -r * co, dpy = -r * s;
+  const double f  = rod_centre / l;
+  const double gx = px + f * (xs - px), gy = (1 - f) * py;
+  const double dgx = dpx + f * (dxs - dpx), dgy = (1 - f) * dpy;
+  // the rod's angular rate per crank rate
+  const double beta = r * co / w, dbeta = (-r * s * w - r * co * dw) / (w * w);
+  return {
+      piston_mass * xs * xs + rod_mass * (gx * gx + gy * gy) + rod_inertia * beta * beta,
+      2 * (piston_mass * xs * dxs + rod_mass * (gx * dgx + gy * dgy) + rod_inertia * beta * dbeta)};
 }
 
 void

@@ -51,90 +51,83 @@ impact_stiffness_si(double stiffness, double exponent, double length_unit)
 
 namespace
 {
-/// Cubic Hermite interpolation of a curve's samples (slopes by central differences): where x
-/// falls and the value basis there, shared by the curve's offsets and arms (the derivatives'
-/// bases only where asked: hermite).
-struct Hermite
-{
-  int    n = 0, i = 0;
-  double u        = 0;  ///< position within the interval [i, i + 1]
-  double value[4] = {}; ///< weights of y_i, m_i, y_i+1, m_i+1
-};
-
-/// false outside the samples
-bool
-hermite_at(const ToothPairCurve &c, double x, Hermite &h)
-{
-  h.n = int(c.offset.size());
-  if (h.n < 2)
-    return false;
-  const double s = (x - c.start) / c.step;
-  if (!(s >= 0) || s > h.n - 1)
-    return false;
-  h.i            = std::min(int(s), h.n - 2);
-  const double u = h.u = s - h.i, u2 = u * u, u3 = u2 * u;
-  h.value[0] = 2 * u3 - 3 * u2 + 1;
-  h.value[1] = u3 - 2 * u2 + u;
-  h.value[2] = -2 * u3 + 3 * u2;
-  h.value[3] = u3 - u2;
-  return true;
-}
-
-/// The Hermite weights of samples y at h: y_i, its slope m_i, y_i+1, m_i+1 (central
-/// differences, one-sided at the ends).
+/// The Hermite cubic of samples y on interval i in powers of its local coordinate u in [0, 1]
+/// (slopes by central differences, one-sided at the ends; per sample step).
 std::array<double, 4>
-hermite_weights(const Hermite &h, const std::vector<double> &y)
+hermite_cubic(const std::vector<double> &y, std::size_t i)
 {
-  const int n = h.n;
-  auto      m = [&](int j) {
+  const std::size_t n = y.size();
+  auto              m = [&](std::size_t j) {
     if (j == 0)
       return y[1] - y[0];
     if (j == n - 1)
       return y[n - 1] - y[n - 2];
     return (y[j + 1] - y[j - 1]) / 2;
   };
-  return {y[h.i], m(h.i), y[h.i + 1], m(h.i + 1)};
+  const double y0 = y[i], y1 = y[i + 1], m0 = m(i), m1 = m(i + 1);
+  return {y0, m0, 3 * (y1 - y0) - 2 * m0 - m1, 2 * (y0 - y1) + m0 + m1};
 }
+} // namespace
 
-/// The interpolated value at h of the samples whose weights are w (hermite_weights).
-double
-hermite_value(const Hermite &h, const std::array<double, 4> &w)
+namespace train_internal
 {
-  return h.value[0] * w[0] + h.value[1] * w[1] + h.value[2] * w[2] + h.value[3] * w[3];
-}
-
-/// The interpolant's derivative by x at h and, if asked, its second derivative, from the
-/// samples' weights w (hermite_weights).
-void
-hermite_derivatives(const Hermite &h, const std::array<double, 4> &w, double step, double &slope,
-                    double *curvature = nullptr)
+CurveCubics::CurveCubics(const ToothPairCurve &c)
+    : start(c.start)
+    , step(c.step)
+    , intervals(c.offset.size() >= 2 ? int(c.offset.size()) - 1 : 0)
 {
-  const double u = h.u, u2 = u * u;
-  const double slope_basis[4]     = {6 * u2 - 6 * u, 3 * u2 - 4 * u + 1, -6 * u2 + 6 * u,
-                                     3 * u2 - 2 * u};
-  const double curvature_basis[4] = {12 * u - 6, 6 * u - 4, -12 * u + 6, 6 * u - 2};
-  slope = (slope_basis[0] * w[0] + slope_basis[1] * w[1] + slope_basis[2] * w[2] +
-           slope_basis[3] * w[3]) /
-          step;
-  if (curvature)
-    *curvature = (curvature_basis[0] * w[0] + curvature_basis[1] * w[1] +
-                  curvature_basis[2] * w[2] + curvature_basis[3] * w[3]) /
-                 (step * step);
+  for (int i = 0; i < intervals; ++i)
+    {
+      const std::array<double, 4> o = hermite_cubic(c.offset, std::size_t(i));
+      const std::array<double, 4> a = hermite_cubic(c.arm, std::size_t(i));
+      coefficients.push_back({o[0], o[1], o[2], o[3], a[0], a[1], a[2], a[3]});
+    }
 }
 
-/// The curve's offset at x with its slope; false outside the samples.
 bool
-interpolate_offset(const ToothPairCurve &c, double x, double &value, double &slope)
+CurveCubics::at(double x, CurvePoint &p) const
 {
-  Hermite h;
-  if (!hermite_at(c, x, h))
+  const double s = (x - start) / step;
+  if (!(s >= 0) || s > intervals)
     return false;
-  const std::array<double, 4> w = hermite_weights(h, c.offset);
-  value                         = hermite_value(h, w);
-  hermite_derivatives(h, w, c.step, slope);
+  const int i    = std::min(int(s), intervals - 1);
+  p.u            = s - i;
+  p.a            = coefficients[std::size_t(i)].data();
+  const double u = p.u, *c = p.a;
+  p.offset = ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+  p.arm    = ((c[7] * u + c[6]) * u + c[5]) * u + c[4];
   return true;
 }
 
+void
+CurveCubics::slopes(const CurvePoint &p, double &offset_slope, double &arm_slope) const
+{
+  const double u = p.u, *c = p.a;
+  offset_slope = ((3 * c[3] * u + 2 * c[2]) * u + c[1]) / step;
+  arm_slope    = ((3 * c[7] * u + 2 * c[6]) * u + c[5]) / step;
+}
+
+void
+CurveCubics::curvatures(const CurvePoint &p, double &offset_curvature, double &arm_curvature) const
+{
+  const double u = p.u, *c = p.a;
+  offset_curvature = (6 * c[3] * u + 2 * c[2]) / (step * step);
+  arm_curvature    = (6 * c[7] * u + 2 * c[6]) / (step * step);
+}
+} // namespace train_internal
+
+namespace
+{
+/// The curve's offset at x; false outside the samples.
+bool
+interpolate_offset(const ToothPairCurve &c, double x, double &value)
+{
+  train_internal::CurvePoint p;
+  if (!train_internal::CurveCubics(c).at(x, p))
+    return false;
+  value = p.offset;
+  return true;
+}
 } // namespace
 
 std::pair<double, double>
@@ -165,8 +158,8 @@ band_edges(const ToothPairTables &t)
       d = &t.curves[drive_side][std::size_t(p * t.gear_classes + g)];
       c = &t.curves[coast_side][std::size_t(p * t.gear_classes + g)];
     }
-  double v[2] = {0, 0}, slope = 0;
-  if (!interpolate_offset(*d, 0.0, v[0], slope) || !interpolate_offset(*c, 0.0, v[1], slope))
+  double v[2] = {0, 0};
+  if (!interpolate_offset(*d, 0.0, v[0]) || !interpolate_offset(*c, 0.0, v[1]))
     require_value(false, "Train mesh", "tooth pair curves at the pitch point", 0,
                   "curves that cover the pairing's centre (local angle 0)");
   return {v[0], v[1]};
@@ -209,6 +202,10 @@ TrainSystem::TrainSystem(const TrainModel &m, const TrainRunOptions &o)
   for (const TrainMesh &mesh : model.meshes)
     {
       centre.push_back(band_centre(mesh.teeth));
+      std::array<std::vector<CurveCubics>, 2> &tables = cubics.emplace_back();
+      for (int side = 0; side < 2; ++side)
+        for (const ToothPairCurve &c : mesh.teeth.curves[std::size_t(side)])
+          tables[std::size_t(side)].emplace_back(c);
       // the local pinion angles any curve has samples at
       std::pair<double, double> span{HUGE_VAL, -HUGE_VAL};
       for (const auto &side : mesh.teeth.curves)
@@ -221,14 +218,15 @@ TrainSystem::TrainSystem(const TrainModel &m, const TrainRunOptions &o)
 }
 
 MeshEval
-TrainSystem::mesh(int index, const double *theta, const double *omega, bool deepest_rates) const
+TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetail detail) const
 {
   const TrainMesh       &m   = model.meshes[index];
   const ToothPairTables &t   = m.teeth;
   const double           phi = theta[m.driver] + m.pinion_angle_0;
   const double           psi = theta[m.driven] + m.gear_angle_0;
   const double           w_p = omega[m.driver], w_g = omega[m.driven];
-  const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
+  const double           ratio   = double(t.pinion_teeth) / t.gear_teeth;
+  const bool             outputs = detail != MeshDetail::forces;
   MeshEval               e;
   const int              k0 = int(std::lround(phi * t.pinion_teeth / (2 * pi)));
   const bool             fe = !m.mesh_stiffness.empty();
@@ -237,14 +235,13 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, bool deep
   {
     double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, curvature = 0;
   } deepest[2];
-  /// the deepest pairing of each side, for its rate (deepest_rates)
+  /// the deepest pairing of each side, for its rate (MeshDetail::deepest_rates)
   struct Nearest
   {
-    const ToothPairCurve *curve = nullptr;
-    Hermite               h;
-    std::array<double, 4> w_o{}, w_arm{};
-    double                gap = 0, arm = 0, rate = 0;
-    bool                  has_rate = false;
+    const CurveCubics *curve = nullptr;
+    CurvePoint         p;
+    double             gap = 0, rate = 0;
+    bool               has_rate = false;
   } nearest[2];
   // the pairings within reach whose local angle phi - 2 pi k / z1 some curve samples
   const double per_tooth = t.pinion_teeth / (2 * pi);
@@ -259,48 +256,54 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, bool deep
       const int    i     = mod(-k, t.pinion_teeth);
       for (int side = 0; side < 2; ++side)
         {
-          const int             j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
-          const ToothPairCurve &c = t.curve(side, i, j);
-          Hermite               h;
-          if (!hermite_at(c, phi_k, h))
+          const int          j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
+          const CurveCubics &c = cubics[std::size_t(index)][std::size_t(side)][std::size_t(
+              t.pinion_class[std::size_t(i)] * t.gear_classes + t.gear_class[std::size_t(j)])];
+          CurvePoint         p;
+          if (!c.at(phi_k, p))
             continue;
           // d = s arm(phi_k) (psi_touch(phi_k) - psi); the derivatives only where it touches
-          double                      o_slope, arm_slope, o_curvature, arm_curvature;
-          const std::array<double, 4> w_o   = hermite_weights(h, c.offset);
-          const std::array<double, 4> w_arm = hermite_weights(h, c.arm);
-          const double                o     = hermite_value(h, w_o);
-          const double                arm   = hermite_value(h, w_arm);
-          const double                gap   = 2 * pi * k / t.gear_teeth + ratio * phi_k + o - psi;
-          const double                s     = side == drive_side ? 1.0 : -1.0;
-          const double                d     = s * arm * gap;
-          double &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
-                 &p3                = e.next_penetration[side][1];
-          const bool deepest_so_far = d > p1;
-          if (deepest_so_far)
+          const double gap            = 2 * pi * k / t.gear_teeth + ratio * phi_k + p.offset - psi;
+          const double s              = side == drive_side ? 1.0 : -1.0;
+          const double d              = s * p.arm * gap;
+          bool         deepest_so_far = false;
+          if (outputs)
             {
-              p3 = p2, p2 = p1, p1 = d;
-              if (deepest_rates)
-                nearest[side] = {&c, h, w_o, w_arm, gap, arm, 0, false};
+              double &p1 = e.max_penetration[side], &p2 = e.next_penetration[side][0],
+                     &p3 = e.next_penetration[side][1];
+              if ((deepest_so_far = d > p1))
+                {
+                  p3 = p2, p2 = p1, p1 = d;
+                  if (detail == MeshDetail::deepest_rates)
+                    nearest[side] = {&c, p, gap, 0, false};
+                }
+              else if (d > p2)
+                p3 = p2, p2 = d;
+              else
+                p3 = std::max(p3, d);
             }
-          else if (d > p2)
-            p3 = p2, p2 = d;
-          else
-            p3 = std::max(p3, d);
           if (!(d > 0))
             continue;
-          hermite_derivatives(h, w_o, c.step, o_slope, &o_curvature);
-          hermite_derivatives(h, w_arm, c.step, arm_slope, &arm_curvature);
-          const double dd_dphi = s * (arm_slope * gap + arm * (ratio + o_slope));
-          const double dd_dpsi = -s * arm;
+          double o_slope, arm_slope;
+          c.slopes(p, o_slope, arm_slope);
+          const double dd_dphi = s * (arm_slope * gap + p.arm * (ratio + o_slope));
+          const double dd_dpsi = -s * p.arm;
           const double d_rate  = dd_dphi * w_p + dd_dpsi * w_g;
-          if (deepest_rates && deepest_so_far)
+          if (detail == MeshDetail::deepest_rates && deepest_so_far)
             nearest[side].rate = d_rate, nearest[side].has_rate = true;
           // d'' = d_phi phi'' + d_psi psi'' + curvature, curvature = d_phiphi phi'^2 +
           // 2 d_phipsi phi' psi'
-          const double curvature =
-              s * (arm_curvature * gap + 2 * arm_slope * (ratio + o_slope) + arm * o_curvature) *
-                  w_p * w_p -
-              2 * s * arm_slope * w_p * w_g;
+          double curvature = 0;
+          if (outputs)
+            {
+              double o_curvature, arm_curvature;
+              c.curvatures(p, o_curvature, arm_curvature);
+              curvature = s *
+                              (arm_curvature * gap + 2 * arm_slope * (ratio + o_slope) +
+                               p.arm * o_curvature) *
+                              w_p * w_p -
+                          2 * s * arm_slope * w_p * w_g;
+            }
           ++e.pairs;
           if (fe)
             {
@@ -313,34 +316,35 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, bool deep
           e.torque_driver -= F * dd_dphi;
           e.torque_driven -= F * dd_dpsi;
           e.force[side] += F;
-          e.energy += elastic * d / (m.law.exponent + 1); // impact_energy
           e.dissipation_rate += (F - elastic) * d_rate;
+          if (!outputs)
+            continue;
+          e.energy += elastic * d / (m.law.exponent + 1); // impact_energy
           e.penetration_rate += elastic / d * d_rate;
           e.penetration_weight += elastic / d;
           if (F > 0)
             {
-              const auto [c, dc_dd] = impact_damping(m.law, d);
+              const auto [c_d, dc_dd] = impact_damping(m.law, d);
               e.rate_fixed[side] +=
-                  m.law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c * curvature;
-              e.rate_driver[side] += c * dd_dphi;
-              e.rate_driven[side] += c * dd_dpsi;
+                  m.law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c_d * curvature;
+              e.rate_driver[side] += c_d * dd_dphi;
+              e.rate_driven[side] += c_d * dd_dpsi;
             }
         }
     }
-  for (int side = 0; deepest_rates && side < 2; ++side)
+  for (int side = 0; detail == MeshDetail::deepest_rates && side < 2; ++side)
     {
-      Nearest &p = nearest[side];
-      if (!p.curve || p.has_rate)
+      const Nearest &q = nearest[side];
+      if (!q.curve || q.has_rate)
         {
-          e.deepest_rate[side] = p.rate;
+          e.deepest_rate[side] = q.rate;
           continue;
         }
       double       o_slope, arm_slope;
       const double s = side == drive_side ? 1.0 : -1.0;
-      hermite_derivatives(p.h, p.w_o, p.curve->step, o_slope);
-      hermite_derivatives(p.h, p.w_arm, p.curve->step, arm_slope);
+      q.curve->slopes(q.p, o_slope, arm_slope);
       e.deepest_rate[side] =
-          s * (arm_slope * p.gap + p.arm * (ratio + o_slope)) * w_p - s * p.arm * w_g;
+          s * (arm_slope * q.gap + q.p.arm * (ratio + o_slope)) * w_p - s * q.p.arm * w_g;
     }
   if (fe)
     {
@@ -387,14 +391,19 @@ TrainSystem::evaluate(double t, const double *theta, const double *omega, double
                       double &power, double &dissipation, std::vector<MeshEval> *evaluated,
                       bool deepest_rates) const
 {
-  std::vector<double> Q(n, 0.0);
-  dissipation       = 0;
-  double parametric = 0;
+  double              fixed[16] = {};
+  std::vector<double> more(n > 16 ? std::size_t(n) : 0, 0.0);
+  double *const       Q = n > 16 ? more.data() : fixed;
+  dissipation           = 0;
+  double parametric     = 0;
   if (evaluated)
     evaluated->resize(model.meshes.size());
   for (int i = 0; i < int(model.meshes.size()); ++i)
     {
-      const MeshEval e = mesh(i, theta, omega, deepest_rates);
+      const MeshEval e = mesh(i, theta, omega,
+                              !evaluated      ? MeshDetail::forces
+                              : deepest_rates ? MeshDetail::deepest_rates
+                                              : MeshDetail::outputs);
       if (evaluated)
         (*evaluated)[std::size_t(i)] = e;
       Q[model.meshes[i].driver] += e.torque_driver;

@@ -6,6 +6,7 @@
 
 #include "dynamics/train.h"
 
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -48,23 +49,64 @@ struct MeshEval
   double parametric_power = 0; ///< of a finite-element K_m's variation [W]
 };
 
+/// A tooth pair curve's offset and arm at a local pinion angle (CurveCubics::at).
+struct CurvePoint
+{
+  double        u      = 0;       ///< position within its interval [0, 1]
+  const double *a      = nullptr; ///< the interval's coefficients (offset 0-3, arm 4-7)
+  double        offset = 0, arm = 0;
+};
+
+/// A tooth pair curve (ToothPairCurve) as cubic Hermite pieces between its samples, slopes by
+/// central differences (one-sided at the ends), each piece's offset and arm in powers of its
+/// local coordinate: a value in three multiply-adds.
+class CurveCubics
+{
+public:
+  explicit CurveCubics(const ToothPairCurve &c);
+  /// The offset and arm at local pinion angle x; false outside the samples.
+  bool
+  at(double x, CurvePoint &p) const;
+  /// Their derivatives by the local pinion angle at p, first and second.
+  void
+  slopes(const CurvePoint &p, double &offset_slope, double &arm_slope) const;
+  void
+  curvatures(const CurvePoint &p, double &offset_curvature, double &arm_curvature) const;
+
+private:
+  double                             start, step;
+  int                                intervals;
+  std::vector<std::array<double, 8>> coefficients;
+};
+
+/// What TrainSystem::mesh evaluates: the forces and torques alone (the right-hand side), also
+/// the outputs (energies, penetrations, force rates), also the rates of the sides' deepest
+/// penetrations touching or not (a step's ends, where the recorder follows them).
+enum class MeshDetail
+{
+  forces,
+  outputs,
+  deepest_rates
+};
+
 /// The train's equations: each mesh's contact, the accelerations, the energies.
 class TrainSystem
 {
 public:
   TrainSystem(const TrainModel &m, const TrainRunOptions &o);
 
-  /// One mesh at (theta, omega); with deepest_rates, also the rates of the sides' deepest
-  /// penetrations (touching or not: a step's ends, where the recorder follows them).
+  /// One mesh at (theta, omega), as much as `detail` asks.
   MeshEval
-  mesh(int index, const double *theta, const double *omega, bool deepest_rates = false) const;
+  mesh(int index, const double *theta, const double *omega,
+       MeshDetail detail = MeshDetail::outputs) const;
 
   /// S of a mesh [m].
   double
   relative(int index, const double *theta) const;
 
   /// Accelerations, the power of the torques (and of a finite-element K_m's variation) and the
-  /// dissipation rate at (t, theta, omega); the meshes as evaluated, if asked.
+  /// dissipation rate at (t, theta, omega); the meshes as evaluated with their outputs, if
+  /// asked (without: the forces alone, the right-hand side's evaluation).
   void
   evaluate(double t, const double *theta, const double *omega, double *alpha, double &power,
            double &dissipation, std::vector<MeshEval> *evaluated = nullptr,
@@ -82,5 +124,7 @@ public:
   std::vector<double> centre; ///< band centre per mesh [rad]
   /// per mesh, the local pinion angles any of its curves has samples at [rad]
   std::vector<std::pair<double, double>> sampled;
+  /// per mesh and side, its curves as cubics (ToothPairTables::curves' order)
+  std::vector<std::array<std::vector<CurveCubics>, 2>> cubics;
 };
 } // namespace gearkit::train_internal

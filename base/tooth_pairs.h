@@ -46,8 +46,19 @@ mod(int a, int n)
   return ((a % n) + n) % n;
 }
 
+/// Where a tooth pair curve changes between flank-to-flank contact and the contact of a flank
+/// edge (a tip, a face end, a chipped region) on the other flank: the touch angle is the larger
+/// of the two contacts' there, so the curve's slope jumps (a kink, located between the samples).
+/// Its offset and arm as the curve reaches it from below [0] and from above [1].
+struct CurveKnot
+{
+  double at        = 0; ///< local pinion angle [rad]
+  double offset[2] = {0, 0}, arm[2] = {0, 0};
+};
+
 /// One class pair, one side: samples at local pinion angles start + i step (start a multiple
-/// of step: one grid through local angle 0 for every curve).
+/// of step: one grid through local angle 0 for every curve), and its kinks (at most one between
+/// two samples, in increasing order) that the samples' interpolation must not smooth over.
 struct ToothPairCurve
 {
   double              start = 0; ///< local pinion angle of the first sample [rad]
@@ -57,7 +68,8 @@ struct ToothPairCurve
   /// gear centre to the contact: n the gear flank's normal n_g, but the pinion flank's where an
   /// edge of the gear flank (its tip, a chip) touches the pinion inside its flank (the normal
   /// of the smooth surface; both agree in tangential contact). r_b2 cos(beta_b) for involutes.
-  std::vector<double> arm;
+  std::vector<double>    arm;
+  std::vector<CurveKnot> knots;
 };
 
 enum ToothPairSide

@@ -120,7 +120,8 @@ errors(const TrainResult &r, const TrainResult &ref)
 int
 main(int argc, char **argv)
 {
-  // --quick: 0.6 s, 10 speeds; --setting METHOD RTOL ATOL [METHOD RTOL ATOL ...]: those
+  // --quick: 0.6 s, 10 speeds; --setting METHOD RTOL ATOL [METHOD RTOL ATOL ...] (METHOD bdf,
+  // adams or auto): those
   // settings alone (one run each), no sweep
   const bool quick   = argc > 1 && std::string(argv[1]) == "--quick";
   const bool setting = argc >= 5 && (argc - 2) % 3 == 0 && std::string(argv[1]) == "--setting";
@@ -169,9 +170,10 @@ main(int argc, char **argv)
   std::vector<Setting> settings;
   if (setting)
     for (int a = 2; a + 2 < argc; a += 3)
-      settings.push_back(
-          {std::string(argv[a]) == "adams" ? TrainIntegrator::adams : TrainIntegrator::bdf,
-           std::stod(argv[a + 1]), std::stod(argv[a + 2])});
+      settings.push_back({std::string(argv[a]) == "adams"  ? TrainIntegrator::adams
+                          : std::string(argv[a]) == "auto" ? TrainIntegrator::automatic
+                                                           : TrainIntegrator::bdf,
+                          std::stod(argv[a + 1]), std::stod(argv[a + 2])});
   else
     for (TrainIntegrator method : {TrainIntegrator::bdf, TrainIntegrator::adams})
       for (double rtol : {1e-6, 1e-8, 1e-10})
@@ -187,7 +189,7 @@ main(int argc, char **argv)
           bench::median_seconds([&] { r = simulate_train(startup, o); }, quick || setting ? 1 : 3);
       const Errors e = errors(r, ref);
       std::printf("%-6s %8.0e %8.0e %9.2f %9zu %10.1e %10.1e %10.1e %10.1e %9.1e\n",
-                  c.method == TrainIntegrator::adams ? "adams" : "bdf", c.rtol, c.atol, t, r.steps,
+                  r.method == TrainIntegrator::adams ? "adams" : "bdf", c.rtol, c.atol, t, r.steps,
                   e.peak_01, e.peak_05, e.peak_all, e.speed, r.energy_error);
     }
 

@@ -200,10 +200,13 @@ TrainScene::declare(ParameterHandler &prm, const std::vector<std::string> &bodie
                       "low-pass: true to 0.4 times the sample rate, nothing folds back from "
                       "above half of it; the samples end on the last whole output interval); "
                       "false: the solution's values at the sample times (they alias).");
-    prm.declare_entry("integrator", "bdf", Patterns::Selection("bdf|adams"),
-                      "CVODE method: bdf (stiff: the IMPACT damping acts in microseconds) or "
-                      "adams.");
-    prm.declare_entry("relative tolerance", "1e-10", Patterns::Double(1e-15, 1e-2),
+    prm.declare_entry("integrator", "auto", Patterns::Selection("auto|bdf|adams"),
+                      "CVODE method: adams (orders up to 12, no Jacobian: for contacts whose "
+                      "damping acts slower than 10 us), bdf (stiff: IMPACT damping acting within "
+                      "microseconds), or auto: bdf where a mesh's damping time constant m_e / "
+                      "c_max (or a shaft's J / c) is below 10 us, adams otherwise (the log "
+                      "and results.h5 say which ran).");
+    prm.declare_entry("relative tolerance", "1e-8", Patterns::Double(1e-15, 1e-2),
                       "CVODE relative tolerance (also of the energy balance's quadratures).");
     prm.declare_entry("absolute tolerance", "1e-6", Patterns::Double(1e-12, 1e3),
                       "[um] Absolute tolerance as a length along the contact normals.");
@@ -329,16 +332,19 @@ TrainScene::parse(ParameterHandler &prm)
                 (prm.get("penetration depth unit") == "mm" ? mm : inch);
   });
   in_subsection(prm, {"Run"}, [&] {
-    run.duration    = prm.get_double("duration");
-    run.sample_rate = prm.get_double("sample rate");
-    run.anti_alias  = prm.get_bool("anti-alias");
-    run.method = prm.get("integrator") == "bdf" ? TrainIntegrator::bdf : TrainIntegrator::adams;
-    run.relative_tolerance = prm.get_double("relative tolerance");
-    run.absolute_tolerance = prm.get_double("absolute tolerance") * um;
-    run.energy_tolerance   = prm.get_double("energy tolerance");
-    run.max_steps          = prm.get_integer("max steps");
-    run.pairings_each_side = prm.get_integer("pairings each side");
-    maximum_cost           = prm.get_double("maximum estimated cost");
+    run.duration             = prm.get_double("duration");
+    run.sample_rate          = prm.get_double("sample rate");
+    run.anti_alias           = prm.get_bool("anti-alias");
+    const std::string method = prm.get("integrator");
+    run.method               = method == "bdf"     ? TrainIntegrator::bdf
+                               : method == "adams" ? TrainIntegrator::adams
+                                                   : TrainIntegrator::automatic;
+    run.relative_tolerance   = prm.get_double("relative tolerance");
+    run.absolute_tolerance   = prm.get_double("absolute tolerance") * um;
+    run.energy_tolerance     = prm.get_double("energy tolerance");
+    run.max_steps            = prm.get_integer("max steps");
+    run.pairings_each_side   = prm.get_integer("pairings each side");
+    maximum_cost             = prm.get_double("maximum estimated cost");
   });
   in_subsection(prm, {"Spectrum"}, [&] {
     spectrum_start            = prm.get_double("start");

@@ -221,6 +221,7 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
               "max |work - kinetic change - potential change - dissipated| over the run, "
               "relative to the largest of the terms");
       g.write("steps", double(r.steps), "1", "CVODE steps");
+      g.attribute("integrator", r.method == TrainIntegrator::bdf ? "bdf" : "adams");
       g.write("events", double(r.events), "1",
               "contact changes located (a side's or a tooth pair's touch and separation)");
       g.write("seconds", seconds, "s", "wall time of the run");
@@ -244,8 +245,10 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
       k.write("shaft_frequency", f.shaft, {nb}, "Hz", "every body's rotation frequency");
       k.write("mesh_frequency", f.mesh, {hsize_t(f.mesh.size())}, "Hz",
               "every mesh's tooth mesh frequency (GMF): pinion teeth x its shaft frequency");
-      log << "  " << train.name << ": " << r.steps << " steps, " << r.events << " events in "
-          << seconds << " s; energy error " << r.energy_error << "\n";
+      log << "  " << train.name << ": " << (r.method == TrainIntegrator::bdf ? "BDF" : "Adams")
+          << " (damping time constant " << damping_time_constant(model) * 1e6 << " us), " << r.steps
+          << " steps, " << r.events << " events in " << seconds << " s; energy error "
+          << r.energy_error << "\n";
 
       // 3. per mesh: series, impacts, the force spectrum and its lines
       for (std::size_t i = 0; i < model.meshes.size(); ++i)

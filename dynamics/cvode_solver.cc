@@ -11,6 +11,7 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 namespace gearkit
 {
@@ -85,7 +86,16 @@ CvodeSolver::CvodeSolver(const CvodeProblem &problem, double t0, const std::vect
       check(CVodeInit(memory, rhs_callback, t0, y), "CVodeInit", t0);
       check(CVodeSVtolerances(memory, p.relative_tolerance, atol), "CVodeSVtolerances", t0);
       check(CVodeSetUserData(memory, &p), "CVodeSetUserData", t0);
-      check(CVodeSetLinearSolver(memory, LS, A), "CVodeSetLinearSolver", t0);
+      if (p.functional_iteration)
+        {
+          SUNNonlinearSolver fixed_point = SUNNonlinSol_FixedPoint(y, 0, ctx);
+          if (!fixed_point)
+            throw InputError(p.what + ": cannot allocate the fixed-point iteration");
+          nonlinear = fixed_point;
+          check(CVodeSetNonlinearSolver(memory, fixed_point), "CVodeSetNonlinearSolver", t0);
+        }
+      else
+        check(CVodeSetLinearSolver(memory, LS, A), "CVodeSetLinearSolver", t0);
       check(CVodeSetMaxNumSteps(memory, p.max_steps_per_call), "CVodeSetMaxNumSteps", t0);
       if (p.quadratures > 0)
         {
@@ -147,6 +157,8 @@ CvodeSolver::release()
 {
   if (memory)
     CVodeFree(&memory);
+  if (nonlinear)
+    SUNNonlinSolFree(static_cast<SUNNonlinearSolver>(nonlinear));
   if (solver)
     SUNLinSolFree(static_cast<SUNLinearSolver>(solver));
   if (matrix)
@@ -159,7 +171,7 @@ CvodeSolver::release()
       SUNContext ctx = static_cast<SUNContext>(context);
       SUNContext_Free(&ctx);
     }
-  memory = solver = matrix = tolerance = state = context = quadrature = nullptr;
+  memory = solver = matrix = tolerance = state = context = quadrature = nonlinear = nullptr;
   interpolated = interpolated_quadratures = nullptr;
 }
 

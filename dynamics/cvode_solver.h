@@ -30,8 +30,12 @@ struct CvodeProblem
   /// relative test; 0 holds every step to the absolute tolerances.
   double                                                      quadrature_relative_tolerance = -1;
   std::function<int(double t, const double *y, double *qdot)> quadrature_rhs;
-  bool                                                        bdf                = true;
-  double                                                      relative_tolerance = 1e-8;
+  bool                                                        bdf = true;
+  /// Fixed-point (functional) iteration for the implicit stages instead of Newton's method
+  /// with a dense Jacobian: no Jacobian and no factorisation, for non-stiff problems (with
+  /// Adams); a stiff one fails to converge and shrinks the steps.
+  bool                functional_iteration = false;
+  double              relative_tolerance   = 1e-8;
   std::vector<double> absolute_tolerance; ///< per component (size entries)
   long                max_steps_per_call = 1000000;
   std::string         hint = "try a smaller tolerance or check the model's stiffnesses";
@@ -88,7 +92,7 @@ private:
                check(int flag, const char *call, double t) const;
   CvodeProblem p;
   void        *context = nullptr, *memory = nullptr, *state = nullptr, *tolerance = nullptr,
-       *matrix = nullptr, *solver = nullptr, *quadrature = nullptr;
+       *matrix = nullptr, *solver = nullptr, *quadrature = nullptr, *nonlinear = nullptr;
   /// interpolate's results (allocated once)
   void *interpolated = nullptr, *interpolated_quadratures = nullptr;
 };

@@ -63,6 +63,17 @@ touch_hysteresis(const TrainRunOptions &o)
   return 1e-3 * o.absolute_tolerance;
 }
 
+/// The kinks' root functions in order: (mesh, kink index).
+std::vector<std::pair<int, int>>
+kink_roots(const TrainSystem &sys)
+{
+  std::vector<std::pair<int, int>> r;
+  for (int i = 0; i < int(sys.model.meshes.size()); ++i)
+    for (int k = 0; k < int(sys.kinks(i).size()); ++k)
+      r.emplace_back(i, k);
+  return r;
+}
+
 /// The train as last evaluated at a step's end: CVODE evaluates the quadratures there, then the
 /// root functions (both reuse one evaluation), and the recorder's extremes reuse it too.
 struct LastEvaluation
@@ -104,8 +115,11 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
   p.what = "gear train";
   p.hint = "try a smaller tolerance, a smaller contact stiffness, or check the inertias";
   p.size = 2 * n;
-  p.bdf  = o.method == TrainIntegrator::bdf;
-  p.rhs  = [&sys, n](double t, const double *y, double *ydot) {
+  const TrainIntegrator method = resolve_integrator(sys.model, o.method);
+  p.bdf                        = method == TrainIntegrator::bdf;
+  // Adams for a contact that is not stiff: its natural iteration, no Jacobian
+  p.functional_iteration = method == TrainIntegrator::adams;
+  p.rhs                  = [&sys, n](double t, const double *y, double *ydot) {
     double power, dissipation;
     std::copy(y + n, y + 2 * n, ydot);
     sys.evaluate(t, y, y + n, ydot + n, power, dissipation);
@@ -127,8 +141,9 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
     return 0;
   };
   const double hysteresis = touch_hysteresis(o);
-  p.roots                 = roots_per_mesh * meshes;
-  p.root_functions        = [&sys, &touching, &last, meshes, hysteresis](double t, const double *y,
+  // the contacts' root functions, then one per kink of the tooth pair curves (kink_roots)
+  p.roots          = roots_per_mesh * meshes + int(kink_roots(sys).size());
+  p.root_functions = [&sys, &touching, &last, meshes, hysteresis](double t, const double *y,
                                                                   double *g) {
     last.evaluate(sys, t, y);
     for (int i = 0; i < meshes; ++i)
@@ -139,6 +154,12 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
           for (int k = 0; k < ranked_contacts; ++k)
             gi[rank_root(side, k)] =
                 touch_value(e, side, k, touching[std::size_t(2 * i + side)], hysteresis);
+      }
+    double *gk = g + roots_per_mesh * meshes;
+    for (int i = 0; i < meshes; ++i)
+      {
+        sys.kink_roots(i, y, gk);
+        gk += sys.kinks(i).size();
       }
   };
   // tolerances along the contact normals: angles over the body's largest base radius, speeds
@@ -622,7 +643,73 @@ check_run_options(const TrainRunOptions &o)
   require(o.pairings_each_side >= 1 && o.pairings_each_side <= 50, "pairings each side",
           o.pairings_each_side, "in [1, 50]");
 }
+/// Updates the touching counts from the contact roots that fired at t (CVODE's directions), the
+/// recorder's contacts with them; whether any changed.
+bool
+record_contact_changes(const std::vector<int> &fired, int meshes, double t,
+                       std::vector<char> &touching, TrainRecorder &rec)
+{
+  bool changed = false;
+  for (int i = 0; i < meshes; ++i)
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < ranked_contacts; ++k)
+        if (const int f = fired[std::size_t(roots_per_mesh * i + rank_root(side, k))])
+          {
+            char &count = touching[std::size_t(2 * i + side)];
+            count       = f > 0 ? std::max(count, char(k + 1)) : std::min(count, char(k));
+            if (k == 0)
+              rec.contact(i, side, f > 0, t);
+            changed = true;
+          }
+  return changed;
+}
+
+/// Whether a kink root that fired belongs to a pairing touching at its kink (`kinks`: the kink
+/// roots after the contacts', kink_roots).
+bool
+passes_touching_kink(const TrainSystem &sys, const std::vector<int> &fired,
+                     const std::vector<std::pair<int, int>> &kinks, const std::vector<double> &y)
+{
+  const std::size_t first = std::size_t(roots_per_mesh) * sys.model.meshes.size();
+  for (std::size_t r = first; r < fired.size(); ++r)
+    if (fired[r] && sys.kink_touches(kinks[r - first].first, kinks[r - first].second, y.data()))
+      return true;
+  return false;
+}
 } // namespace
+
+double
+damping_time_constant(const TrainModel &model)
+{
+  auto mobility = [&](int body, double radius) { // r^2 / J, 0 for a body held at its speed
+    const TrainBody &b = model.bodies[std::size_t(body)];
+    return b.constant_speed || !(b.inertia > 0) ? 0.0 : radius * radius / b.inertia;
+  };
+  double shortest = HUGE_VAL;
+  for (const TrainMesh &m : model.meshes)
+    {
+      const double per_mass = mobility(m.driver, m.pinion_base_radius) +
+                              mobility(m.driven, m.gear_base_radius); // 1 / m_e
+      if (m.law.damping > 0 && per_mass > 0)
+        shortest = std::min(shortest, 1 / (m.law.damping * per_mass));
+    }
+  for (const TrainShaft &s : model.shafts)
+    {
+      const double per_inertia = mobility(s.a, 1) + mobility(s.b, 1);
+      if (s.damping > 0 && per_inertia > 0)
+        shortest = std::min(shortest, 1 / (s.damping * per_inertia));
+    }
+  return shortest;
+}
+
+TrainIntegrator
+resolve_integrator(const TrainModel &model, TrainIntegrator method)
+{
+  if (method != TrainIntegrator::automatic)
+    return method;
+  return damping_time_constant(model) < stiff_time_constant ? TrainIntegrator::bdf
+                                                            : TrainIntegrator::adams;
+}
 
 TrainResult
 simulate_train(const TrainModel &model, const TrainRunOptions &o)
@@ -662,9 +749,10 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   std::optional<Progress> line;
   if (!o.progress.empty())
     line.emplace(o.progress, std::size_t(samples));
-  std::vector<int>      fired, hidden_fired;
-  std::vector<MeshEval> middle;
-  std::vector<double>   ys, qs, g(std::size_t(p.roots));
+  std::vector<int>                       fired, hidden_fired;
+  const std::vector<std::pair<int, int>> kinks = kink_roots(sys);
+  std::vector<MeshEval>                  middle;
+  std::vector<double>                    ys, qs, g(std::size_t(p.roots));
   // the meshes and accelerations at a piece's start and end (the end's from the quadratures'
   // and root functions' evaluation there, when it is theirs)
   auto point_at = [&](double time, const std::vector<double> &state, SolutionPoint &point) {
@@ -741,27 +829,19 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
       y_last = y;
       if (root)
         {
-          ++rec.out.events;
-          bool contact_change = false;
-          for (int i = 0; i < meshes; ++i)
-            for (int side = 0; side < 2; ++side)
-              for (int k = 0; k < ranked_contacts; ++k)
-                if (const int f = fired[std::size_t(roots_per_mesh * i + rank_root(side, k))])
-                  {
-                    char &count = touching[std::size_t(2 * i + side)];
-                    count       = f > 0 ? std::max(count, char(k + 1)) : std::min(count, char(k));
-                    if (k == 0)
-                      rec.contact(i, side, f > 0, t);
-                    contact_change = true;
-                  }
+          const bool contact_change = record_contact_changes(fired, meshes, t, touching, rec);
+          const bool kink           = passes_touching_kink(sys, fired, kinks, y);
           // restart the method at every touch and separation, of a side and of a pair (the
           // force law's derivatives jump there: BDF's history across the kink costs accuracy, the
           // energy balance of a damped driven run 1.6e-6 without the restarts against 1e-6 with
-          // them), after a change found inside a step, and where a root function is exactly zero at
-          // the root (rounding-quantised rates): CVODE would take it for a root "at and very near"
-          // the last one, a restart sets it aside
+          // them), where a touching pair passes a kink of its curve (its penetration's slope
+          // jumps, and with it the damping force), after a change found inside a step, and where
+          // a root function is exactly zero at the root (rounding-quantised rates): CVODE would
+          // take it for a root "at and very near" the last one, a restart sets it aside
+          if (contact_change)
+            ++rec.out.events;
           p.root_functions(t, y.data(), g.data());
-          if (contact_change || restart || std::find(g.begin(), g.end(), 0.0) != g.end())
+          if (contact_change || kink || restart || std::find(g.begin(), g.end(), 0.0) != g.end())
             solver.reinit(t, y);
         }
       if (solver.steps() > o.max_steps)
@@ -774,6 +854,8 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
           throw InputError(m.str());
         }
     }
-  return rec.finish(solver);
+  TrainResult r = rec.finish(solver);
+  r.method      = resolve_integrator(model, o.method);
+  return r;
 }
 } // namespace gearkit

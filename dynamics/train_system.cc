@@ -71,48 +71,167 @@ hermite_cubic(const std::vector<double> &y, std::size_t i)
 
 namespace train_internal
 {
+namespace
+{
+/// A point of a curve between kinks: local angle, offset, arm.
+struct CurveNode
+{
+  double x, offset, arm;
+};
+
+/// The Hermite piece from a to b with slopes m (by the local angle) in powers of its local
+/// coordinate u = (x - a.x) / (b.x - a.x).
+std::array<double, 8>
+hermite_piece(const CurveNode &a, const CurveNode &b, const double ma[2], const double mb[2])
+{
+  const double          w = b.x - a.x;
+  std::array<double, 8> c{};
+  const double          y0[2] = {a.offset, a.arm}, y1[2] = {b.offset, b.arm};
+  for (int k = 0; k < 2; ++k)
+    {
+      const double m0 = w * ma[k], m1 = w * mb[k];
+      c[std::size_t(4 * k)]     = y0[k];
+      c[std::size_t(4 * k + 1)] = m0;
+      c[std::size_t(4 * k + 2)] = 3 * (y1[k] - y0[k]) - 2 * m0 - m1;
+      c[std::size_t(4 * k + 3)] = 2 * (y0[k] - y1[k]) + m0 + m1;
+    }
+  return c;
+}
+
+/// The slopes (offset, arm) at x of the parabola through the three points of `f` (a smooth
+/// segment's nodes, ordered) nearest x; a secant for two, zero for one.
+void
+parabola_slopes(const std::vector<CurveNode> &f, double x, double m[2])
+{
+  m[0] = m[1] = 0;
+  if (f.size() < 2)
+    return;
+  if (f.size() == 2)
+    {
+      m[0] = (f[1].offset - f[0].offset) / (f[1].x - f[0].x);
+      m[1] = (f[1].arm - f[0].arm) / (f[1].x - f[0].x);
+      return;
+    }
+  const auto pos = std::lower_bound(f.begin(), f.end(), x,
+                                    [](const CurveNode &n, double v) { return n.x < v; }) -
+                   f.begin();
+  const auto       i  = std::size_t(std::clamp<long>(long(pos) - 1, 0, long(f.size()) - 3));
+  const CurveNode &p0 = f[i], &p1 = f[i + 1], &p2 = f[i + 2];
+  for (int k = 0; k < 2; ++k)
+    {
+      auto         y   = [k](const CurveNode &n) { return k == 0 ? n.offset : n.arm; };
+      const double d01 = (y(p1) - y(p0)) / (p1.x - p0.x), d12 = (y(p2) - y(p1)) / (p2.x - p1.x);
+      const double d012 = (d12 - d01) / (p2.x - p0.x);
+      m[k]              = d01 + d012 * ((x - p0.x) + (x - p1.x));
+    }
+}
+} // namespace
+
 CurveCubics::CurveCubics(const ToothPairCurve &c)
     : start(c.start)
     , step(c.step)
+    , inverse_step(1 / c.step)
     , intervals(c.offset.size() >= 2 ? int(c.offset.size()) - 1 : 0)
 {
+  intervals_.assign(std::size_t(intervals), {0, HUGE_VAL});
+  // the knots by interval: strictly inside one (it is split there), or on a sample (within
+  // rounding: the sample is the kink)
+  std::vector<const CurveKnot *> knot_in(std::size_t(intervals), nullptr),
+      knot_on(std::size_t(intervals + 1), nullptr);
+  for (const CurveKnot &k : c.knots)
+    {
+      const double s = (k.at - start) / step;
+      const int    j = int(std::lround(s));
+      if (std::abs(s - j) < 1e-9 && j >= 0 && j <= intervals)
+        knot_on[std::size_t(j)] = &k;
+      else if (const int i = int(std::floor(s)); i >= 0 && i < intervals)
+        knot_in[std::size_t(i)] = &k;
+    }
+  auto none = [](const std::vector<const CurveKnot *> &v) {
+    return std::none_of(v.begin(), v.end(), [](const CurveKnot *k) { return k; });
+  };
+  if (none(knot_in) && none(knot_on))
+    {
+      // no kink: the samples' Hermite cubics on the uniform grid (slopes by central
+      // differences, one-sided at the ends; per sample step)
+      for (int i = 0; i < intervals; ++i)
+        {
+          const std::array<double, 4> o = hermite_cubic(c.offset, std::size_t(i));
+          const std::array<double, 4> a = hermite_cubic(c.arm, std::size_t(i));
+          pieces.push_back(
+              {{o[0], o[1], o[2], o[3], a[0], a[1], a[2], a[3]}, start + i * step, 1 / step});
+          intervals_[std::size_t(i)].first = i;
+        }
+      return;
+    }
+  // smooth segments between the kinks, each interpolated on its own: slopes from the parabola
+  // through the three nearest nodes of its segment (samples closer to a kink than a hundredth
+  // of a step left out of the slopes: their differences would be rounding)
+  std::vector<std::vector<CurveNode>> segments(1);
+  for (int i = 0; i <= intervals; ++i)
+    {
+      const double x = start + i * step;
+      if (const CurveKnot *k = knot_on[std::size_t(i)]; k && i > 0 && i < intervals)
+        {
+          segments.back().push_back({x, k->offset[0], k->arm[0]});
+          segments.push_back({{x, k->offset[1], k->arm[1]}});
+        }
+      else
+        segments.back().push_back({x, c.offset[std::size_t(i)], c.arm[std::size_t(i)]});
+      if (i < intervals && knot_in[std::size_t(i)])
+        {
+          const CurveKnot &k = *knot_in[std::size_t(i)];
+          segments.back().push_back({k.at, k.offset[0], k.arm[0]});
+          segments.push_back({{k.at, k.offset[1], k.arm[1]}});
+        }
+    }
+  const double near = step / 100;
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    {
+      const std::vector<CurveNode> &nodes = segments[s];
+      std::vector<CurveNode>        fit;
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        {
+          const bool end = j == 0 || j + 1 == nodes.size();
+          if (end || ((s == 0 || nodes[j].x - nodes.front().x > near) &&
+                      (s + 1 == segments.size() || nodes.back().x - nodes[j].x > near)))
+            fit.push_back(nodes[j]);
+        }
+      for (std::size_t j = 0; j + 1 < nodes.size(); ++j)
+        {
+          double ma[2], mb[2];
+          parabola_slopes(fit, nodes[j].x, ma);
+          parabola_slopes(fit, nodes[j + 1].x, mb);
+          const double w = nodes[j + 1].x - nodes[j].x;
+          pieces.push_back({hermite_piece(nodes[j], nodes[j + 1], ma, mb), nodes[j].x, 1 / w});
+        }
+    }
+  // each interval's first piece, and where a kink splits it
+  std::size_t piece = 0;
   for (int i = 0; i < intervals; ++i)
     {
-      const std::array<double, 4> o = hermite_cubic(c.offset, std::size_t(i));
-      const std::array<double, 4> a = hermite_cubic(c.arm, std::size_t(i));
-      coefficients.push_back({o[0], o[1], o[2], o[3], a[0], a[1], a[2], a[3]});
+      intervals_[std::size_t(i)].first = int(piece);
+      if (const CurveKnot *k = knot_in[std::size_t(i)])
+        intervals_[std::size_t(i)].cut = k->at, piece += 2;
+      else
+        piece += 1;
     }
-}
-
-bool
-CurveCubics::at(double x, CurvePoint &p) const
-{
-  const double s = (x - start) / step;
-  if (!(s >= 0) || s > intervals)
-    return false;
-  const int i    = std::min(int(s), intervals - 1);
-  p.u            = s - i;
-  p.a            = coefficients[std::size_t(i)].data();
-  const double u = p.u, *c = p.a;
-  p.offset = ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
-  p.arm    = ((c[7] * u + c[6]) * u + c[5]) * u + c[4];
-  return true;
 }
 
 void
 CurveCubics::slopes(const CurvePoint &p, double &offset_slope, double &arm_slope) const
 {
   const double u = p.u, *c = p.a;
-  offset_slope = ((3 * c[3] * u + 2 * c[2]) * u + c[1]) / step;
-  arm_slope    = ((3 * c[7] * u + 2 * c[6]) * u + c[5]) / step;
+  offset_slope = ((3 * c[3] * u + 2 * c[2]) * u + c[1]) * p.inverse_width;
+  arm_slope    = ((3 * c[7] * u + 2 * c[6]) * u + c[5]) * p.inverse_width;
 }
 
 void
 CurveCubics::curvatures(const CurvePoint &p, double &offset_curvature, double &arm_curvature) const
 {
   const double u = p.u, *c = p.a;
-  offset_curvature = (6 * c[3] * u + 2 * c[2]) / (step * step);
-  arm_curvature    = (6 * c[7] * u + 2 * c[6]) / (step * step);
+  offset_curvature = (6 * c[3] * u + 2 * c[2]) * (p.inverse_width * p.inverse_width);
+  arm_curvature    = (6 * c[7] * u + 2 * c[6]) * (p.inverse_width * p.inverse_width);
 }
 } // namespace train_internal
 
@@ -203,9 +322,23 @@ TrainSystem::TrainSystem(const TrainModel &m, const TrainRunOptions &o)
     {
       centre.push_back(band_centre(mesh.teeth));
       std::array<std::vector<CurveCubics>, 2> &tables = cubics.emplace_back();
+      std::vector<Kink>                       &kinks  = kink_list.emplace_back();
+      const double                             pitch  = 2 * pi / mesh.teeth.pinion_teeth;
       for (int side = 0; side < 2; ++side)
         for (const ToothPairCurve &c : mesh.teeth.curves[std::size_t(side)])
-          tables[std::size_t(side)].emplace_back(c);
+          {
+            tables[std::size_t(side)].emplace_back(c);
+            for (const CurveKnot &k : c.knots)
+              {
+                const double phase = k.at - pitch * std::floor(k.at / pitch);
+                if (std::none_of(kinks.begin(), kinks.end(), [&](const Kink &o) {
+                      return o.side == side &&
+                             std::abs(std::remainder(o.at - phase, pitch)) < 1e-9 * pitch;
+                    }))
+                  kinks.push_back({side, phase, std::cos(mesh.teeth.pinion_teeth * phase / 2),
+                                   std::sin(mesh.teeth.pinion_teeth * phase / 2)});
+              }
+          }
       // the local pinion angles any curve has samples at
       std::pair<double, double> span{HUGE_VAL, -HUGE_VAL};
       for (const auto &side : mesh.teeth.curves)
@@ -375,6 +508,41 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetai
         }
     }
   return e;
+}
+
+void
+TrainSystem::kink_roots(int index, const double *theta, double *g) const
+{
+  const TrainMesh &m = model.meshes[std::size_t(index)];
+  const double     a = m.teeth.pinion_teeth * (theta[m.driver] + m.pinion_angle_0) / 2;
+  const double     s = std::sin(a), c = std::cos(a);
+  for (const Kink &k : kink_list[std::size_t(index)])
+    *g++ = s * k.cosine - c * k.sine; // sin(a - z1 at / 2)
+}
+
+bool
+TrainSystem::kink_touches(int index, int k, const double *theta) const
+{
+  const TrainMesh       &m     = model.meshes[std::size_t(index)];
+  const ToothPairTables &t     = m.teeth;
+  const Kink            &kink  = kink_list[std::size_t(index)][std::size_t(k)];
+  const double           pitch = 2 * pi / t.pinion_teeth;
+  const double           phi   = theta[m.driver] + m.pinion_angle_0;
+  const double           psi   = theta[m.driven] + m.gear_angle_0;
+  const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
+  // the pairing at the kink (its local angle phi - pitch k nearest the kink's phase), its
+  // penetration there (continuous through the kink)
+  const int          pairing = int(std::lround((phi - kink.at) / pitch));
+  const int          i       = mod(-pairing, t.pinion_teeth);
+  const int          j       = mod(kink.side == drive_side ? pairing - 1 : pairing, t.gear_teeth);
+  const CurveCubics &c       = cubics[std::size_t(index)][std::size_t(kink.side)][std::size_t(
+            t.pinion_class[std::size_t(i)] * t.gear_classes + t.gear_class[std::size_t(j)])];
+  CurvePoint         p;
+  const double       local = phi - pitch * pairing;
+  if (!c.at(local, p))
+    return false;
+  const double gap = 2 * pi * pairing / t.gear_teeth + ratio * local + p.offset - psi;
+  return (kink.side == drive_side ? 1.0 : -1.0) * p.arm * gap > 0;
 }
 
 double

@@ -52,21 +52,37 @@ struct MeshEval
 /// A tooth pair curve's offset and arm at a local pinion angle (CurveCubics::at).
 struct CurvePoint
 {
-  double        u      = 0;       ///< position within its interval [0, 1]
-  const double *a      = nullptr; ///< the interval's coefficients (offset 0-3, arm 4-7)
+  double        u             = 0;       ///< position within its piece [0, 1]
+  const double *a             = nullptr; ///< the piece's coefficients (offset 0-3, arm 4-7)
+  double        inverse_width = 0;       ///< of the piece's width [1/rad]
   double        offset = 0, arm = 0;
 };
 
-/// A tooth pair curve (ToothPairCurve) as cubic Hermite pieces between its samples, slopes by
-/// central differences (one-sided at the ends), each piece's offset and arm in powers of its
-/// local coordinate: a value in three multiply-adds.
+/// A tooth pair curve (ToothPairCurve) as cubic Hermite pieces between its samples, each
+/// piece's offset and arm in powers of its local coordinate (a value in three multiply-adds).
+/// Without kinks the slopes are central differences (one-sided at the ends); a kink
+/// (CurveKnot) splits its interval in two, and each smooth stretch between kinks takes its
+/// slopes from parabolas through its own nodes only: the kink stays a kink.
 class CurveCubics
 {
 public:
   explicit CurveCubics(const ToothPairCurve &c);
   /// The offset and arm at local pinion angle x; false outside the samples.
   bool
-  at(double x, CurvePoint &p) const;
+  at(double x, CurvePoint &p) const
+  {
+    const double s = (x - start) * inverse_step;
+    if (!(s >= 0) || s > intervals)
+      return false;
+    const Interval &i = intervals_[std::size_t(std::min(int(s), intervals - 1))];
+    const Piece    &q = pieces[std::size_t(i.first + (x >= i.cut))];
+    const double    u = p.u = (x - q.x0) * q.inverse_width;
+    const double   *c = p.a = q.c.data();
+    p.inverse_width         = q.inverse_width;
+    p.offset                = ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+    p.arm                   = ((c[7] * u + c[6]) * u + c[5]) * u + c[4];
+    return true;
+  }
   /// Their derivatives by the local pinion angle at p, first and second.
   void
   slopes(const CurvePoint &p, double &offset_slope, double &arm_slope) const;
@@ -74,9 +90,21 @@ public:
   curvatures(const CurvePoint &p, double &offset_curvature, double &arm_curvature) const;
 
 private:
-  double                             start, step;
-  int                                intervals;
-  std::vector<std::array<double, 8>> coefficients;
+  struct Piece
+  {
+    std::array<double, 8> c; ///< offset 0-3, arm 4-7
+    double                x0, inverse_width;
+  };
+  /// A sample interval: its first piece, and the kink splitting it (else HUGE_VAL)
+  struct Interval
+  {
+    int    first;
+    double cut;
+  };
+  double                start, step, inverse_step;
+  int                   intervals;
+  std::vector<Piece>    pieces;
+  std::vector<Interval> intervals_;
 };
 
 /// What TrainSystem::mesh evaluates: the forces and torques alone (the right-hand side), also
@@ -104,6 +132,29 @@ public:
   double
   relative(int index, const double *theta) const;
 
+  /// A kink of a mesh's tooth pair curves (ToothPairCurve::knots): its side and local pinion
+  /// angle; every pairing passes it once a mesh cycle.
+  struct Kink
+  {
+    int    side;
+    double at;
+    double cosine, sine; ///< of z1 at / 2
+  };
+  /// The kinks of mesh `index`, one per local angle (modulo a mesh cycle) over its class pairs.
+  const std::vector<Kink> &
+  kinks(int index) const
+  {
+    return kink_list[std::size_t(index)];
+  }
+  /// The root functions of mesh `index`'s kinks into g: sin(z1 (phi - at) / 2), zero
+  /// (changing sign) each time a pairing passes the kink.
+  void
+  kink_roots(int index, const double *theta, double *g) const;
+  /// Whether the pairing now nearest kink `k` of mesh `index` touches there (its penetration
+  /// just past the kink > 0): a pairing passing a kink apart feels nothing.
+  bool
+  kink_touches(int index, int k, const double *theta) const;
+
   /// Accelerations, the power of the torques (and of a finite-element K_m's variation) and the
   /// dissipation rate at (t, theta, omega); the meshes as evaluated with their outputs, if
   /// asked (without: the forces alone, the right-hand side's evaluation).
@@ -126,5 +177,6 @@ public:
   std::vector<std::pair<double, double>> sampled;
   /// per mesh and side, its curves as cubics (ToothPairTables::curves' order)
   std::vector<std::array<std::vector<CurveCubics>, 2>> cubics;
+  std::vector<std::vector<Kink>>                       kink_list;
 };
 } // namespace gearkit::train_internal

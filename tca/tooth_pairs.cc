@@ -49,6 +49,10 @@ struct Sample
 {
   double      offset = 0, arm = 0;
   PairContact contact; ///< where it was found (the next sample's search starts around it)
+  /// Which flank touches with an edge of its profile (a tip, a chipped region): 0 neither
+  /// (flank to flank), 1 the gear's, 2 the pinion's, 3 both. (Along the face a line contact's
+  /// closest point may lie on a face end anywhere on the curve: not a kink.)
+  int edges = 0;
 };
 
 /// One class pair's curve on one side from its representative pairing k.
@@ -72,8 +76,14 @@ public:
   std::optional<Sample>
   at(int i, const Sample *near = nullptr) const
   {
-    const double      local = i * step;
-    const PairContact c     = tca.pair(k, local + 2 * pi * k / z1, near ? &near->contact : nullptr);
+    return at_angle(i * step, near);
+  }
+
+  /// The same at any local pinion angle.
+  std::optional<Sample>
+  at_angle(double local, const Sample *near = nullptr) const
+  {
+    const PairContact c = tca.pair(k, local + 2 * pi * k / z1, near ? &near->contact : nullptr);
     if (!c.found)
       return std::nullopt;
     // The contact normal is that of the flank which is smooth at the contact: the gear's, but
@@ -93,7 +103,34 @@ public:
     // offset = psi_touch - 2 pi k / z2 - (z1 / z2) local, formed so that the large angles cancel
     // first.
     return Sample{(c.touch_angle - 2 * pi * k / z2) - ratio * local,
-                  std::abs(assembly.gear_axis().cross(r).dot(n)), c};
+                  std::abs(assembly.gear_axis().cross(r).dot(n)), c,
+                  (gear_u ? 0 : 1) + (pinion_u ? 0 : 2)};
+  }
+
+  /// The kink between samples a and b (local angles x_a < x_b) whose edges differ: the
+  /// change located by bisection to 1e-12 of a mesh cycle, the curve's values on either side
+  /// of it. None where a sample between them cannot be found (the pair parts there).
+  std::optional<CurveKnot>
+  knot(double x_a, const Sample &a, double x_b, const Sample &b) const
+  {
+    Sample       below = a, above = b;
+    const double tolerance = 1e-12 * (2 * pi / z1);
+    while (x_b - x_a > tolerance)
+      {
+        const double                m = (x_a + x_b) / 2;
+        const std::optional<Sample> s = at_angle(m, &below);
+        if (!s)
+          return std::nullopt;
+        if (s->edges == a.edges)
+          x_a = m, below = *s;
+        else
+          x_b = m, above = *s;
+      }
+    CurveKnot k;
+    k.at        = (x_a + x_b) / 2;
+    k.offset[0] = below.offset, k.offset[1] = above.offset;
+    k.arm[0] = below.arm, k.arm[1] = above.arm;
+    return k;
   }
 
   /// The curve, or nothing when the pair never touches within three mesh cycles of its
@@ -152,11 +189,18 @@ public:
     ToothPairCurve curve;
     curve.step  = step;
     curve.start = (centre - int(below.size())) * step;
-    for (auto it = below.rbegin(); it != below.rend(); ++it)
-      curve.offset.push_back(it->offset), curve.arm.push_back(it->arm);
-    curve.offset.push_back(first->offset), curve.arm.push_back(first->arm);
-    for (const Sample &t : above)
-      curve.offset.push_back(t.offset), curve.arm.push_back(t.arm);
+    std::vector<Sample> samples(below.rbegin(), below.rend());
+    samples.push_back(*first);
+    samples.insert(samples.end(), above.begin(), above.end());
+    for (std::size_t i = 0; i < samples.size(); ++i)
+      {
+        curve.offset.push_back(samples[i].offset), curve.arm.push_back(samples[i].arm);
+        if (i > 0 && samples[i].edges != samples[i - 1].edges)
+          if (const std::optional<CurveKnot> k =
+                  knot(curve.start + double(i - 1) * step, samples[i - 1],
+                       curve.start + double(i) * step, samples[i]))
+            curve.knots.push_back(*k);
+      }
     return curve;
   }
 

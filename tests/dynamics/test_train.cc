@@ -7,6 +7,7 @@
 #include "base/spectrum.h"
 #include "base/types.h"
 #include "dynamics/train.h"
+#include "dynamics/train_system.h"
 #include "tests/dynamics/train_fixture.h"
 
 #include <boost/numeric/odeint.hpp>
@@ -131,13 +132,17 @@ TEST(Train, TighterTolerancesHoldTheBalanceOfADampedDrivenRun)
   m.bodies[1].initial_speed   = 167.5 * z1 / z2;
   m.bodies[1].torque.constant = -5;
   TrainRunOptions o;
-  o.duration             = 0.3;
-  const TrainResult fine = simulate_train(m, o);
+  o.duration                   = 0.3;
+  const TrainResult at_default = simulate_train(m, o); // relative 1e-8: peaks to 0.1 %
+  o.relative_tolerance         = 1e-10;
+  const TrainResult fine       = simulate_train(m, o); // the energy balance to 1e-6
   o.relative_tolerance = 1e-9, o.absolute_tolerance = 1e-10;
   const TrainResult loose = simulate_train(m, o);
   o.relative_tolerance = 1e-11, o.absolute_tolerance = 1e-12;
   const TrainResult tight = simulate_train(m, o);
   EXPECT_LT(fine.energy_error, 1e-6);
+  EXPECT_LT(at_default.energy_error, 1e-5); // 3.6e-6 (BDF: this contact is stiff)
+  EXPECT_EQ(at_default.method, TrainIntegrator::bdf);
   EXPECT_GT(tight.meshes[0].drive_impacts, 2u);
   EXPECT_GT(tight.dissipated.back(), 1e-3);
   EXPECT_LT(tight.energy_error, 1e-6);
@@ -159,9 +164,10 @@ TEST(Train, RestitutionOfOneImpactMatchesTheLawIntegratedAlone)
   const double w0           = 5;
   m.bodies[0].initial_speed = w0;
   TrainRunOptions o;
-  o.duration          = 1e-3 / (r_bp * w0) + 1e-3; // reach the flank, bounce once
-  o.sample_rate       = 1e6;
-  const TrainResult r = simulate_train(m, o);
+  o.duration           = 1e-3 / (r_bp * w0) + 1e-3; // reach the flank, bounce once
+  o.sample_rate        = 1e6;
+  o.relative_tolerance = 1e-10; // the energy balance to 1e-6 (the default 1e-8: 1.3e-6)
+  const TrainResult r  = simulate_train(m, o);
   ASSERT_EQ(r.meshes[0].drive_impacts, 1u);
   ASSERT_EQ(r.meshes[0].coast_impacts, 0u);
   const std::size_t last     = r.t.size() - 1;
@@ -296,6 +302,58 @@ TEST(Train, ExtremesCountsAndContactsDoNotDependOnTheOutputRate)
   EXPECT_LT(slow, fast);
 }
 
+TEST(Train, KinkedCurvesGiveTheSameImpactsAtAnySampling)
+{
+  // A pair whose flanks recede linearly beyond the path of contact (a kink where it ends, off
+  // the sample grid), strong IMPACT damping: each pair entering through the kink meets a jump
+  // of its penetration rate, a damping spike c d'. With the kinks kept (knots, and a restart
+  // of the integrator where a touching pairing passes one) the impacts, peaks and impulses are
+  // those of the curve, not of its sampling: the same at 64 and 997 samples a cycle.
+  const double J_p = 1.06e-3, J_g = 0.05, r_bp = 0.032;
+  const int    z1 = 17, z2 = 60;
+  ImpactLaw    law{impact_stiffness_si(2e7, 2.2, 1e-3), 2.2, 4e5, 1e-7};
+  auto         run = [&](int samples, bool knots) {
+    TrainModel m = two_body_model(J_p, J_g, z1, z2, r_bp, 2e-3, law, 1.6);
+    m.meshes[0].teeth =
+        ideal_tables(z1, z2, m.meshes[0].gear_base_radius, 2e-3, 1.6, samples, true);
+    if (!knots)
+      for (ToothPairCurve &c : m.meshes[0].teeth.curves[drive_side])
+        c.knots.clear();
+    m.bodies[0].initial_speed   = 167.5;
+    m.bodies[1].initial_speed   = 167.5 * z1 / z2 * 0.99;
+    m.bodies[0].torque.constant = 20.0;
+    TrainRunOptions o;
+    o.duration           = 0.05;
+    o.relative_tolerance = 1e-10;
+    return simulate_train(m, o).meshes[0];
+  };
+  const MeshSeries coarse = run(64, true), fine = run(997, true);
+  const MeshSeries coarse_smeared = run(64, false), fine_smeared = run(997, false);
+  // the largest relative difference of the contacts' peaks and impulses between two runs
+  auto apart = [](const MeshSeries &x, const MeshSeries &y) {
+    double peaks = 0, impulses = 0;
+    for (std::size_t i = 0; i < std::min(x.contacts.size(), y.contacts.size()); ++i)
+      {
+        const TrainImpact &p = x.contacts[i], &q = y.contacts[i];
+        peaks    = std::max(peaks, std::abs(p.peak - q.peak) / std::abs(q.peak));
+        impulses = std::max(impulses, std::abs(p.impulse - q.impulse) / std::abs(q.impulse));
+      }
+    return std::pair{peaks, impulses};
+  };
+  ASSERT_GT(fine.impacts, 20u);
+  EXPECT_EQ(coarse.impacts, fine.impacts);
+  EXPECT_EQ(coarse.drive_impacts, fine.drive_impacts);
+  // (the runs' steps differ with the sampling: the located peaks agree to the interpolation
+  // within a step, 1.3e-5 here, the impulses to 1.5e-6)
+  const auto [peaks, impulses] = apart(coarse, fine);
+  EXPECT_LT(peaks, 1e-4);
+  EXPECT_LT(impulses, 1e-5);
+  // smeared over the samples next to it, the kink's spikes follow the sampling (21 % and 5 %)
+  const auto [smeared_peaks, smeared_impulses] = apart(coarse_smeared, fine_smeared);
+  EXPECT_GT(smeared_peaks, 1e3 * 1e-4);
+  EXPECT_GT(smeared_impulses, 1e3 * 1e-5);
+}
+
 TEST(Train, KinematicsThroughTwoStagesAndAClosureError)
 {
   TrainModel                m = seed002_kinematic_train();
@@ -366,6 +424,50 @@ TEST(Train, BandEdgesOfTheNominalTeeth)
   two.pinion_class    = {1, 0};
   two.gear_class[59]  = 0;
   EXPECT_NEAR(band_edges(two).first, -1e-3 + 2e-4, 1e-15);
+}
+
+TEST(Train, CurveCubicsKeepAKinkBetweenSamplesExact)
+{
+  // A curve flat up to x* and a parabola beyond (slope -b there), x* between two samples: with
+  // its knot the interpolant is exact (each side's parabola slopes and Hermite cubics reproduce
+  // quadratics), values and slopes on both sides of x*; without it the kink is smeared over the
+  // neighbouring intervals.
+  const double step = 0.01, kink = 0.2037, a = 3.0, b = 0.5, r = 0.05;
+  auto f   = [&](double x) { return x < kink ? 0.0 : -a * std::pow(x - kink, 2) - b * (x - kink); };
+  auto arm = [&](double x) { return r + (x < kink ? 0.0 : 1e-3 * (x - kink)); };
+  ToothPairCurve c;
+  c.start = 0, c.step = step;
+  for (int i = 0; i <= 40; ++i)
+    c.offset.push_back(f(i * step)), c.arm.push_back(arm(i * step));
+  ToothPairCurve smeared = c;
+  c.knots.push_back({kink, {0, 0}, {r, r}});
+  const train_internal::CurveCubics exact(c), plain(smeared);
+  double                            worst = 0, worst_plain = 0;
+  for (double x = 0; x <= 0.4; x += step / 7)
+    {
+      train_internal::CurvePoint p, q;
+      ASSERT_TRUE(exact.at(x, p));
+      ASSERT_TRUE(plain.at(x, q));
+      double slope, arm_slope;
+      exact.slopes(p, slope, arm_slope);
+      const double exact_slope = x < kink ? 0.0 : -2 * a * (x - kink) - b;
+      EXPECT_NEAR(p.offset, f(x), 1e-15) << x;
+      EXPECT_NEAR(p.arm, arm(x), 1e-15) << x;
+      EXPECT_NEAR(slope, exact_slope, 1e-12) << x;
+      EXPECT_NEAR(arm_slope, x < kink ? 0.0 : 1e-3, 1e-12) << x;
+      worst       = std::max(worst, std::abs(p.offset - f(x)));
+      worst_plain = std::max(worst_plain, std::abs(q.offset - f(x)));
+    }
+  EXPECT_GT(worst_plain, 1e3 * std::max(worst, 1e-16)) << worst << " " << worst_plain;
+  // just either side of the kink: the slopes of each side
+  train_internal::CurvePoint below, above;
+  ASSERT_TRUE(exact.at(kink - 1e-12, below));
+  ASSERT_TRUE(exact.at(kink + 1e-12, above));
+  double s_below, s_above, unused;
+  exact.slopes(below, s_below, unused);
+  exact.slopes(above, s_above, unused);
+  EXPECT_NEAR(s_below, 0, 1e-10);
+  EXPECT_NEAR(s_above, -b, 1e-10);
 }
 
 TEST(Train, CrankSliderInertiaAgainstFiniteDifferencesOfItsKinematics)

@@ -13,9 +13,11 @@ namespace gearkit::test_data
 /// Ideal conjugate flanks: every pairing touches over `contact_ratio` base pitches around its
 /// centre with a constant offset (drive -beta/2, coast +beta/2: the angular backlash beta) and
 /// arm r_bg; beyond, the flanks recede quadratically (100 um along the normal a pitch further)
-/// as tip edges do.
+/// as tip edges do, or with `kinked` linearly (the slope jumps where the path ends: a kink,
+/// given as a knot), sampled `samples` times a mesh cycle.
 inline ToothPairTables
-ideal_tables(int z1, int z2, double r_bg, double beta, double contact_ratio = 1.0)
+ideal_tables(int z1, int z2, double r_bg, double beta, double contact_ratio = 1.0, int samples = 64,
+             bool kinked = false)
 {
   ToothPairTables t;
   t.pinion_teeth = z1, t.gear_teeth = z2;
@@ -26,16 +28,19 @@ ideal_tables(int z1, int z2, double r_bg, double beta, double contact_ratio = 1.
   for (int side = 0; side < 2; ++side)
     {
       ToothPairCurve c;
-      const int      n = 64;
-      const double   s = side == drive_side ? -1.0 : 1.0;
-      c.step           = pitch / n;
-      c.start          = -(contact_ratio / 2 + 1) * pitch;
+      const double   s   = side == drive_side ? -1.0 : 1.0;
+      const double   end = contact_ratio * pitch / 2;
+      c.step             = pitch / samples;
+      c.start            = -(contact_ratio / 2 + 1) * pitch;
       for (double x = c.start; x <= -c.start + 1e-12; x += c.step)
         {
-          const double beyond = std::max(0.0, std::abs(x) - contact_ratio * pitch / 2) / pitch;
-          c.offset.push_back(s * (beta / 2 + 100e-6 / r_bg * beyond * beyond));
+          const double beyond = std::max(0.0, std::abs(x) - end) / pitch;
+          c.offset.push_back(s * (beta / 2 + 100e-6 / r_bg * (kinked ? beyond : beyond * beyond)));
           c.arm.push_back(r_bg);
         }
+      if (kinked)
+        for (double at : {-end, end})
+          c.knots.push_back({at, {s * beta / 2, s * beta / 2}, {r_bg, r_bg}});
       t.curves[side] = {c};
     }
   return t;

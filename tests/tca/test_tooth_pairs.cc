@@ -588,3 +588,37 @@ TEST(ToothPairs, MeasuredFlanks)
       virtual_cmm(*m.pinion, "pinion", 29, 9, 0, {0}, false));
   EXPECT_THROW(tooth_pair_tables(drive_only, m.gear_flanks, a), InputError);
 }
+
+TEST(ToothPairs, KinksSitWhereThePathOfContactEnds)
+{
+  // Each perfect pairing touches flank to flank over the path of contact and at a tip edge
+  // beyond it: two kinks per curve, eps_gamma mesh cycles apart (eps_alpha + eps_beta). The
+  // edge test looks 1e-6 of the profile's parameter range either side of the contact point, so
+  // the kinks sit within a few 1e-6 of a cycle of the exact ends (the samples alone: 1/64).
+  // The offset is continuous through a kink (zero on the path's side), the arm nearly so (the
+  // normal switches from the gear's to the pinion's, which agree where the edge starts).
+  for (double beta : {0.0, 15 * deg})
+    {
+      const Members         m     = make(seed_pair(beta));
+      const ToothPairTables t     = tooth_pair_tables(m.pinion_flanks, m.gear_flanks, m.a_w);
+      const ContactRatios   eps   = contact_ratios(*m.pinion, *m.gear, m.a_w);
+      const double          cycle = 2 * pi / 23;
+      for (int side : {drive_side, coast_side})
+        {
+          const ToothPairCurve &c = t.curves[side][0];
+          ASSERT_EQ(c.knots.size(), 2u) << "beta " << beta << " side " << side;
+          const CurveKnot &a = c.knots[0], &b = c.knots[1];
+          EXPECT_NEAR((b.at - a.at) / cycle, eps.transverse + eps.overlap, 1e-5)
+              << "beta " << beta << " side " << side;
+          for (const CurveKnot &k : c.knots)
+            {
+              EXPECT_NEAR(k.offset[0], k.offset[1], 1e-12);
+              EXPECT_NEAR(k.offset[0], 0, 1e-12);
+              EXPECT_NEAR(k.arm[0] / k.arm[1], 1, 1e-6);
+            }
+          // strictly between two samples, in order
+          EXPECT_GT(a.at, c.start);
+          EXPECT_LT(b.at, c.start + double(c.offset.size() - 1) * c.step);
+        }
+    }
+}

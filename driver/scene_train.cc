@@ -206,7 +206,7 @@ TrainScene::declare(ParameterHandler &prm, const std::vector<std::string> &bodie
                       "microseconds), or auto: bdf where a mesh's damping time constant m_e / "
                       "c_max (or a shaft's J / c) is below 10 us, adams otherwise (the log "
                       "and results.h5 say which ran).");
-    prm.declare_entry("relative tolerance", "1e-8", Patterns::Double(1e-15, 1e-2),
+    prm.declare_entry("relative tolerance", "7e-9", Patterns::Double(1e-15, 1e-2),
                       "CVODE relative tolerance (also of the energy balance's quadratures).");
     prm.declare_entry("absolute tolerance", "1e-6", Patterns::Double(1e-12, 1e3),
                       "[um] Absolute tolerance as a length along the contact normals.");

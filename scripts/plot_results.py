@@ -810,7 +810,10 @@ def plot_train(name, g, out_dir):
     last[1].set_title(f"energy balance (error {g['energy_error'][()]:.2g} of the largest term)")
     last[1].legend(fontsize=7)
     kin_f = g["kinematics"]
-    text = [f"{g['steps'][()]:.0f} CVODE steps, {g['events'][()]:.0f} events, "
+    method = g.attrs.get("integrator", "")
+    method = method.decode() if isinstance(method, bytes) else str(method)
+    method = f" ({method.upper() if method == 'bdf' else method.capitalize()})" if method else ""
+    text = [f"{g['steps'][()]:.0f} CVODE{method} steps, {g['events'][()]:.0f} events, "
             f"{g['seconds'][()]:.2f} s", "kinematic frequencies [Hz]:"]
     for body, fr in zip(bodies, kin_f["shaft_frequency"][:]):
         text.append(f"  {body}: {fr:.4f}")

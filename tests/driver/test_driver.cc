@@ -1282,7 +1282,7 @@ subsection Train
     subsection Run
       set duration    = 0.6
       set sample rate = 1000
-      # the energy balance to 1e-6 (the default 1e-8: 4.6e-6)
+      # the energy balance to 1e-6 (the default 7e-9: a few 1e-6)
       set relative tolerance = 1e-10
     end
     subsection Spectrum
@@ -1398,7 +1398,7 @@ TEST_F(DriverTest, TrainShaftTwistCarriesTheLoad)
                   "        set inertia = 2e-3\n        set shaft to        = d\n        set shaft stiffness "
                               "= 50\n        set shaft damping   = 0.05\n      end\n      subsection d\n        set "
                               "inertia = 1e-3\n        set torque  = -0.5\n      end");
-  // (the energy balance to 1e-6 at relative tolerance 1e-10; the default 1e-8: 1.1e-6)
+  // (the energy balance to 1e-6 at relative tolerance 1e-10; the default 7e-9: about 1e-6)
   text = std::regex_replace(text, std::regex("set duration    = 0.005"),
                             "set duration    = 0.2\n      set relative tolerance = 1e-10");
   ASSERT_NE(text.find("subsection d"), std::string::npos);

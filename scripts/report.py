@@ -109,7 +109,59 @@ def stats(values, units):
     return f"{mean} ({lo} .. {hi}) {esc(u)}"
 
 
-def stiffness_rows(name, g):
+def gear_rows(name, g):
+    """The pair's gear data as a drawing gives it, in mm and degrees: per member z, m_n, alpha_n,
+    x, b, d_a, d_f, beta; the pair's working centre distance and pressure angle, eps_alpha and
+    eps_beta."""
+    rows = []
+
+    def mm(v):
+        return f"{v * 1e3:.4f} mm"
+
+    def deg(v):
+        return f"{np.degrees(v):.4f}°"
+
+    for member in ("pinion", "gear"):
+        if member not in g:
+            continue
+        m = g[member]
+        parts = []
+        for key, label, fmt in (("number_of_teeth", "z", lambda v: f"{int(v)}"),
+                                ("normal_module", "m_n", mm),
+                                ("normal_pressure_angle", "α_n", deg),
+                                ("profile_shift", "x", lambda v: f"{v:.4f}"),
+                                ("face_width", "b", mm),
+                                ("tip_radius", "d_a", lambda v: mm(2 * v)),
+                                ("root_radius", "d_f", lambda v: mm(2 * v)),
+                                ("helix_angle", "β", deg)):
+            if key in m and m[key].shape == ():
+                parts.append(f"{label} {fmt(m[key][()])}")
+        if parts:
+            rows.append([esc(name), member, ", ".join(parts)])
+    for key, label, fmt in (("working_centre_distance", "working centre distance a_w",
+                             lambda v: f"{v * 1e3:.4f} mm"),
+                            ("working_pressure_angle", "working pressure angle α_wt",
+                             lambda v: f"{np.degrees(v):.4f}°"),
+                            ("transverse_contact_ratio", "transverse contact ratio ε_α",
+                             lambda v: f"{v:.3f}"),
+                            ("overlap_ratio", "overlap ratio ε_β", lambda v: f"{v:.3f}")):
+        if key in g:
+            rows.append([esc(name), label, fmt(g[key][()])])
+    return rows
+
+
+def te_harmonics(te):
+    """Peak-to-peak and the amplitudes of mesh orders 1-3 of a transmission error sampled at
+    uniform positions over one mesh cycle (the last position one step short of the cycle's end)."""
+    te = np.asarray(te, dtype=float)
+    spectrum = np.abs(np.fft.rfft(te - te.mean())) * 2 / te.size
+    # below the computation's resolution (rounding of the TE's mean): zero, not 1e-20
+    floor = 1e-12 * max(np.abs(te).max(), 1e-300)
+    return te.max() - te.min(), [spectrum[k] if k < spectrum.size and spectrum[k] > floor
+                                 else 0.0 for k in (1, 2, 3)]
+
+
+def stiffness_rows(name, g, base_radius=None):
     """Key numbers of one pair's loaded contact: per torque K_m, e_L - e_0, pressure, with the
     error estimate and the reference positions where present."""
     rows = []
@@ -117,10 +169,17 @@ def stiffness_rows(name, g):
     km = g["mesh_stiffness"][()]
     de = g["transmission_error_loaded"][()] - g["transmission_error_unloaded"][()][None, :]
     est = g["error_estimate"]["mesh_stiffness"][()] if "error_estimate" in g else None
+    r_b, where = ((base_radius, "along the line of action") if not isinstance(base_radius, tuple)
+                  else base_radius) if base_radius is not None else (0.0, "")
     for t, torque in enumerate(torques):
         label = f"{esc(name)}, {torque:g} N m"
         rows.append([label, "mesh stiffness K_m, mean (min .. max)", stats(km[t], "N/m")])
         rows.append([label, "e_L − e_0, mean (min .. max)", stats(de[t], "rad")])
+        pp, orders = te_harmonics(g["transmission_error_loaded"][t])
+        along = f" ({pp * r_b * 1e6:.3f} µm {where})" if r_b else ""
+        rows.append([label, "loaded transmission error e_L: peak-to-peak; mesh orders 1, 2, 3",
+                     f"{number(pp, 'rad')}{along}; "
+                     + ", ".join(number(a, "rad") for a in orders)])
         rows.append([label, "largest contact pressure", stats(g["peak_pressure"][t], "Pa")])
         if "edge_load_share" in g:
             share = g["edge_load_share"][t]
@@ -137,11 +196,15 @@ def stiffness_rows(name, g):
             rel = np.abs(est[t]) / km[t] * 100
             rows.append([label, "K_m estimated discretisation error (mean, largest)",
                          f"{rel.mean():.2f} %, {rel.max():.2f} %"])
-    for key, what in (("iso_c_th", "ISO 6336-1 c'_th b"), ("iso_c_prime", "ISO 6336-1 c' b"),
-                      ("iso_c_gamma_alpha", "ISO 6336-1 c_γα b")):
+    # like for like: the single pair's c' against K_m where one pair carries (its least value
+    # over the cycle), the mesh's c_gamma_alpha against K_m's mean
+    for key, what, ours, which in (
+            ("iso_c_th", "ISO 6336-1 c'_th b (one pair)", km.min(), "K_m least"),
+            ("iso_c_prime", "ISO 6336-1 c' b (one pair)", km.min(), "K_m least"),
+            ("iso_c_gamma_alpha", "ISO 6336-1 c_γα b (mesh)", km.mean(), "K_m mean")):
         if key in g:
-            rows.append([esc(name), what + " (K_m mean against it)",
-                         f"{number(g[key][()], 'N/m')} ({(km.mean() / g[key][()] - 1) * 100:+.1f} %)"])
+            rows.append([esc(name), f"{what} against {which}",
+                         f"{number(g[key][()], 'N/m')} ({which} {(ours / g[key][()] - 1) * 100:+.1f} %)"])
     if "reference" in g:
         r = g["reference"]
         pos = r["position"][()].astype(int)
@@ -311,13 +374,8 @@ def main():
         rows = []
         if "flanks" in f:
             for pair in f["flanks"]:
-                g = f["flanks"][pair]
-                for key in ("working_centre_distance", "working_pressure_angle"):
-                    if key in g:
-                        v = g[key][()]
-                        rows.append(["flanks", esc(pair) + " " + key.replace("_", " "),
-                                     f"{v * 1e3:.4f} mm" if key.endswith("distance")
-                                     else f"{np.degrees(v):.4f}°"])
+                rows += [["gear data", r[0] + ": " + r[1], r[2]]
+                         for r in gear_rows(pair, f["flanks"][pair])]
         if "ste" in f:
             for pair in f["ste"]:
                 g = f["ste"][pair]
@@ -328,7 +386,8 @@ def main():
                     rows.append(["unloaded TCA", f"{esc(pair)} e_0 peak-to-peak (measured flanks)",
                                  number(g["measured"]["peak_to_peak"][()], "rad")])
                 if "mean_pairs_in_contact" in g:
-                    rows.append(["unloaded TCA", f"{esc(pair)} mean pairs in contact",
+                    rows.append(["unloaded TCA", f"{esc(pair)} pairs touching without load, "
+                                 "mean (rigid teeth touch one at a time; the contact ratio is ε_α)",
                                  f"{g['mean_pairs_in_contact'][()]:.3f}"])
         if "compliance" in f:
             for pair in f["compliance"]:
@@ -340,8 +399,19 @@ def main():
                                      f"hexahedra, {m['seconds'][()]:.1f} s"])
         if "stiffness" in f:
             for pair in f["stiffness"]:
+                # the TE as a length: along the line of action (involutes: r_b1), else at the
+                # pinion's pitch radius where the unloaded TCA gives one (bevel pairs)
+                r_b = (f["flanks"][pair]["pinion"]["base_radius"][()]
+                       if "flanks" in f and pair in f["flanks"] and "pinion" in f["flanks"][pair]
+                       and "base_radius" in f["flanks"][pair]["pinion"] else None)
+                if r_b is None and "ste" in f and pair in f["ste"] and "pitch_radius" in f["ste"][pair]:
+                    r_b = (f["ste"][pair]["pitch_radius"][()], "at the pinion's pitch radius")
                 rows += [["loaded contact", r[0] + ": " + r[1], r[2]]
-                         for r in stiffness_rows(pair, f["stiffness"][pair])]
+                         for r in stiffness_rows(pair, f["stiffness"][pair], r_b)]
+                if "measured" in f["stiffness"][pair]:
+                    rows += [["loaded contact", r[0] + ": " + r[1], r[2]]
+                             for r in stiffness_rows(f"{pair} (measured flanks)",
+                                                     f["stiffness"][pair]["measured"], r_b)]
         if "dynamics" in f:
             for pair in f["dynamics"]:
                 rows += [["dynamics", r[0] + ": " + r[1], r[2]]

@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""The key-number table of a case's report.html against its results.h5 (issue 38): the gear data
+of every pair (tooth counts, contact ratios), and per pair and torque the loaded transmission
+error's peak-to-peak and mesh orders 1-3, recomputed here independently (a direct Fourier sum
+over the positions of one mesh cycle), and the ISO comparison like for like (c_gamma_alpha b
+against the mean K_m).
+
+  check_report_keys.py CASE_OUT_DIR
+"""
+import html
+import os
+import re
+import sys
+
+import h5py
+import numpy as np
+
+out = sys.argv[1]
+with open(os.path.join(out, "report.html"), encoding="utf-8") as fh:
+    page = fh.read()
+table = page[page.index('id="key"'):page.index('id="pictures"')]
+rows = {}
+for row in re.findall(r"<tr>(.*?)</tr>", table, re.S):
+    cells = [html.unescape(re.sub("<[^>]+>", "", c)).strip()
+             for c in re.findall(r"<td>(.*?)</td>", row, re.S)]
+    if len(cells) == 3:
+        rows[cells[1]] = cells[2]
+
+
+def numbers(text):
+    return [float(v) for v in re.findall(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?", text)]
+
+
+def near(shown, exact, what):
+    # the report shows four significant digits
+    assert abs(shown - exact) <= 6e-4 * abs(exact) + 1e-9, (what, shown, exact)
+
+
+checked = 0
+with h5py.File(os.path.join(out, "results.h5"), "r") as f:
+    for pair in f.get("flanks", {}):
+        g = f["flanks"][pair]
+        for member in ("pinion", "gear"):
+            if member in g and "number_of_teeth" in g[member]:
+                z = int(g[member]["number_of_teeth"][()])
+                assert rows[f"{pair}: {member}"].startswith(f"z {z}"), rows[f"{pair}: {member}"]
+                checked += 1
+        if "transverse_contact_ratio" in g:
+            eps = g["transverse_contact_ratio"][()]
+            assert rows[f"{pair}: transverse contact ratio ε_α"] == f"{eps:.3f}"
+            checked += 1
+    for pair in f.get("stiffness", {}):
+        s = f["stiffness"][pair]
+        for t, torque in enumerate(s["torque"][()]):
+            te = s["transmission_error_loaded"][t]
+            n = te.size
+            dft = [abs(np.sum(te * np.exp(-2j * np.pi * k * np.arange(n) / n))) * 2 / n
+                   for k in (1, 2, 3)]
+            key = (f"{pair}, {torque:g} N m: loaded transmission error e_L: peak-to-peak; "
+                   "mesh orders 1, 2, 3")
+            assert key in rows, (key, list(rows)[:20])
+            text = rows[key]
+            pp_shown = numbers(text.split("(")[0])[0]
+            near(pp_shown, (te.max() - te.min()) * 1e6, key + " p-p [urad]")
+            shown = numbers(text.split(";")[1])
+            for k in range(3):
+                near(shown[k], dft[k] * 1e6, f"{key} order {k + 1} [urad]")
+            checked += 4
+        if "iso_c_gamma_alpha" in s:
+            key = f"{pair}: ISO 6336-1 c_γα b (mesh) against K_m mean"
+            diff = (s["mesh_stiffness"][()].mean() / s["iso_c_gamma_alpha"][()] - 1) * 100
+            assert f"K_m mean {diff:+.1f} %" in rows[key], (rows[key], diff)
+            checked += 1
+assert checked > 0
+print(f"{os.path.basename(out)}: {checked} key numbers of report.html agree with results.h5")

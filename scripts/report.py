@@ -180,12 +180,15 @@ def stiffness_rows(name, g, base_radius=None):
         rows.append([label, "loaded transmission error e_L: peak-to-peak; mesh orders 1, 2, 3",
                      f"{number(pp, 'rad')}{along}; "
                      + ", ".join(number(a, "rad") for a in orders)])
-        rows.append([label, "largest contact pressure", stats(g["peak_pressure"][t], "Pa")])
+        if "interior_peak_pressure" in g:
+            rows.append([label, "largest contact pressure on the flanks' interior (Hertz's), "
+                         "mean (min .. max) over the positions",
+                         stats(g["interior_peak_pressure"][t], "Pa")])
+        rows.append([label, "largest contact pressure, flank-edge cells included (singular at "
+                     "corners: grows with mesh refinement)", stats(g["peak_pressure"][t], "Pa")])
         if "edge_load_share" in g:
             share = g["edge_load_share"][t]
             k = int(np.argmax(share))
-            rows.append([label, "largest pressure off the flanks' edges (Hertz's)",
-                         stats(g["interior_peak_pressure"][t], "Pa")])
             if share[k] > 0:
                 r_mm, z_mm = g["edge_position"][t, k] * 1e3
                 rows.append([label, "edge contact: largest share of the load on cells at a "
@@ -294,12 +297,27 @@ def dynamics_rows(name, g):
             dlf = s["dynamic_load_factor"][()]
             # a diverged speed has no results (zeros): it enters no maximum, mean or count
             ok = sweep_valid(s)
-            if ok.any():
-                k = int(np.argmax(np.where(ok, dlf, -np.inf)))
-                rows.append([label, f"largest dynamic load factor ({sweep} sweep)",
+            # headlines from the speeds whose motion settled (status 0); a speed that never
+            # repeated (inside a parametric instability, chaotic rattle) is listed apart
+            settled = ok & (s["status"][()] == 0) if "status" in s else ok
+            if settled.any():
+                k = int(np.argmax(np.where(settled, dlf, -np.inf)))
+                rows.append([label, f"largest dynamic load factor, settled speeds ({sweep} sweep)",
                              f"{dlf[k]:.3f} at {speed[k]:.0f} rpm"])
-                rows.append([label, f"DTE peak-to-peak ({sweep} sweep), mean (min .. max)",
-                             stats(s["dte_peak_to_peak"][()][ok], "m")])
+                dte = s["dte_peak_to_peak"][()]
+                j = int(np.argmax(np.where(settled, dte, -np.inf)))
+                rows.append([label, f"DTE peak-to-peak, settled speeds ({sweep} sweep), mean "
+                             "(min .. max); largest at",
+                             f"{stats(dte[settled], 'm')}; {speed[j]:.0f} rpm"])
+            unsettled = ok & ~settled
+            if unsettled.any():
+                listed = ", ".join(f"{v:.0f}" for v in speed[unsettled][:12])
+                more = " …" if unsettled.sum() > 12 else ""
+                worst = dlf[unsettled].max()
+                rows.append([label, f"speeds whose motion did not settle ({sweep} sweep): not "
+                             "in the headlines",
+                             f"{int(unsettled.sum())} of {len(speed)}: {listed}{more} rpm "
+                             f"(load factor there up to {worst:.3f})"])
             if not ok.all():
                 rows.append([label, f"DIVERGED speeds ({sweep} sweep): no results there",
                              diverged_speeds(s)])

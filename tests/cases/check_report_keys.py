@@ -3,7 +3,7 @@
 of every pair (tooth counts, contact ratios), and per pair and torque the loaded transmission
 error's peak-to-peak and mesh orders 1-3, recomputed here independently (a direct Fourier sum
 over the positions of one mesh cycle), and the ISO comparison like for like (c_gamma_alpha b
-against the mean K_m).
+against the mean K_m), and the dynamics' headline load factor from settled speeds alone.
 
   check_report_keys.py CASE_OUT_DIR
 """
@@ -71,5 +71,24 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
             diff = (s["mesh_stiffness"][()].mean() / s["iso_c_gamma_alpha"][()] - 1) * 100
             assert f"K_m mean {diff:+.1f} %" in rows[key], (rows[key], diff)
             checked += 1
+    # dynamics: the headline load factor from settled speeds only (status 0), never from a
+    # speed whose motion did not repeat or diverged
+    for pair in f.get("dynamics", {}):
+        for ex, e in f["dynamics"][pair].items():
+            if not isinstance(e, h5py.Group):
+                continue
+            for sweep in ("up", "down"):
+                if sweep not in e or "status" not in e[sweep]:
+                    continue
+                sw = e[sweep]
+                settled = sw["status"][()] == 0
+                if not settled.any():
+                    continue
+                dlf, speed = sw["dynamic_load_factor"][()], sw["speed"][()]
+                k = int(np.argmax(np.where(settled, dlf, -np.inf)))
+                key = (f"{pair}, {ex} excitation: largest dynamic load factor, settled speeds "
+                       f"({sweep} sweep)")
+                assert rows[key] == f"{dlf[k]:.3f} at {speed[k]:.0f} rpm", (key, rows[key])
+                checked += 1
 assert checked > 0
 print(f"{os.path.basename(out)}: {checked} key numbers of report.html agree with results.h5")

@@ -73,6 +73,9 @@ def gear_flank_coordinates(flanks, name, points):
 
 
 def plot_profiles(flanks, out_dir):
+    """The transverse tooth profiles of every parallel-axis pair in mesh at its working centre
+    distance: the whole pair (left) and the mesh region enlarged (right; dotted: base circles,
+    dashed: reference circles), pinion blue, gear red."""
     pairs = [n for n in flanks if not is_bevel(flanks[n])]
     if not pairs:
         return

@@ -55,6 +55,20 @@ def shown(value, units):
     return text, ("" if label == "1" else label)
 
 
+# The pictures in the order of the work: geometry, unloaded TCA, loaded contact, dynamics, trains.
+ORDER = ["profiles.png", "topography.png", "measured.png", "ste.png", "contact_pattern.png",
+         "hunting.png", "stiffness.png", "deflection.png", "dynamics.png", "dynamics_spectra.png",
+         "dynamics_time.png", "train_compare.png", "train_", "train_spectrogram.png"]
+
+
+def workflow_order(png):
+    if png in ORDER:
+        return (ORDER.index(png), png)
+    if png.startswith("train_"):
+        return (ORDER.index("train_"), png)
+    return (len(ORDER), png)
+
+
 def caption(png):
     f = CAPTIONS.get(png)
     if f is None and png.startswith("train_"):
@@ -445,8 +459,9 @@ def main():
         page.table(["stage", "what", "value"], rows, "key")
 
         # 2. Pictures
-        pngs = sorted(p for p in os.listdir(folder)
-                      if p.endswith(".png") and os.path.getmtime(os.path.join(folder, p)) >= made - 1)
+        pngs = sorted((p for p in os.listdir(folder)
+                       if p.endswith(".png") and os.path.getmtime(os.path.join(folder, p)) >= made - 1),
+                      key=workflow_order)
         page.h(2, "Pictures", "pictures")
         if not pngs:
             page.p("No pictures drawn from these results (run with <code>--plot</code>, as "

@@ -616,27 +616,36 @@ def plot_dynamics(dyn, flanks, out_dir):
 
 
 def plot_dynamics_spectra(dyn, out_dir):
-    """Per pair and excitation: the DTE amplitude spectrum of the up sweep against speed and mesh
-    order (a speed map, logarithmic colour): mesh orders are horizontal lines, resonances light
-    them up; measured flanks add orders between them (their excitation repeats over several
-    mesh cycles)."""
+    """Per pair and excitation: the DTE amplitude of mesh orders 1-4 against the speed (up sweep;
+    one curve an order, logarithmic scale: resonances are the peaks where an order meets a
+    mode), and the largest of the orders between them (grey: measured flanks repeat over several
+    mesh cycles and excite those too)."""
     rows = [(name, label) for name in dyn for label in ("theoretical", "measured")
             if label in dyn[name]]
     fig, axes = plt.subplots(len(rows), 1, figsize=(12, 4.2 * len(rows)), squeeze=False)
     for ax, (name, label) in zip(axes[:, 0], rows):
         d = dyn[name][label]["up"]
         rpm, order = d["speed"][:], d["spectrum_order"][:]
-        a = d["dte_spectrum"][:, 1:] * 1e6  # without the mean
-        a[diverged(d)] = np.nan  # no results there: blank columns
-        top = np.nanmax(a) if np.isfinite(a).any() else 1.0
-        image = ax.pcolormesh(rpm, order[1:], np.log10(np.maximum(a.T, top * 1e-4)),
-                              shading="nearest", cmap="viridis")
-        fig.colorbar(image, ax=ax, label="log10 DTE amplitude [um]")
+        a = d["dte_spectrum"][:] * 1e6
+        a[diverged(d)] = np.nan  # no results there: gaps
+        whole = np.abs(order - np.round(order)) < 1e-6
+        for k in (1, 2, 3, 4):
+            j = np.nonzero(whole & (np.round(order) == k))[0]
+            if j.size:
+                ax.plot(rpm, a[:, j[0]], lw=1.4, label=f"order {k}")
+        between = np.nonzero(~whole & (order > 0))[0]
+        if between.size:
+            ax.plot(rpm, np.nanmax(a[:, between], axis=1), color="0.6", lw=0.9,
+                    label="largest order between")
+        ax.set_yscale("log")
+        top = np.nanmax(a[:, order > 0]) if np.isfinite(a[:, order > 0]).any() else 1.0
+        ax.set_ylim(top * 1e-4, top * 2)  # below 1e-4 of the largest line: round-off, not signal
         ax.set_xlabel("pinion speed [rpm]")
-        ax.set_ylabel("mesh order")
+        ax.set_ylabel("DTE amplitude [um]")
         cycles = dyn[name][label]["excitation_cycles"][()]
-        ax.set_title(f"{name}, {label} flanks: DTE spectrum, swept up (excitation period "
+        ax.set_title(f"{name}, {label} flanks: DTE by mesh order, swept up (excitation period "
                      f"{cycles:.0f} mesh cycle{'s' if cycles > 1 else ''})")
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "dynamics_spectra.png"))
 

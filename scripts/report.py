@@ -152,15 +152,16 @@ def gear_rows(name, g):
                 parts.append(f"{label} {fmt(m[key][()])}")
         if parts:
             rows.append([esc(name), member, ", ".join(parts)])
-    for key, label, fmt in (("working_centre_distance", "working centre distance a_w",
-                             lambda v: f"{v * 1e3:.4f} mm"),
-                            ("working_pressure_angle", "working pressure angle α_wt",
-                             lambda v: f"{np.degrees(v):.4f}°"),
-                            ("transverse_contact_ratio", "transverse contact ratio ε_α",
-                             lambda v: f"{v:.3f}"),
-                            ("overlap_ratio", "overlap ratio ε_β", lambda v: f"{v:.3f}")):
+    parts = []
+    for key, label, fmt in (("working_centre_distance", "a_w", mm),
+                            ("working_pressure_angle", "α_wt", deg),
+                            ("transverse_contact_ratio", "ε_α", lambda v: f"{v:.3f}"),
+                            ("overlap_ratio", "ε_β", lambda v: f"{v:.3f}")):
         if key in g:
-            rows.append([esc(name), label, fmt(g[key][()])])
+            parts.append(f"{label} {fmt(g[key][()])}")
+    if parts:
+        rows.append([esc(name), "pair: working centre distance and pressure angle, contact ratios",
+                     ", ".join(parts)])
     return rows
 
 

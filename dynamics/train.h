@@ -19,12 +19,13 @@
 // with J_i' of a crank-slider's configuration-dependent inertia. A body at constant speed is
 // driven by whatever torque holds it (its work is counted).
 //
-// Time integration: CVODE (dynamics/cvode_solver.h; Adams or BDF) step by step, with event
-// location where a mesh's flank side or one of its tooth pairs starts or stops touching (the
-// method restarts there), the forces' and penetrations' peaks located inside the steps (the
-// cubic through a piece's end values and rates dF/dt, from the accelerations, where the rate
-// falls through zero; golden-section search for a sharp peak a step strides over), the energy
-// balance integrated alongside:
+// Time integration: CVODE (dynamics/cvode_solver.h; Adams with fixed-point iteration for soft
+// contacts, BDF with Newton for stiff ones: TrainIntegrator) step by step, with event location
+// where a mesh's flank side or one of its tooth pairs starts or stops touching and where a
+// touching pair passes a kink of its tooth pair curve (the method restarts there), the forces' and
+// penetrations' peaks located inside the steps (the cubic through a piece's end values and rates
+// dF/dt, from the accelerations, where the rate falls through zero; golden-section search for a
+// sharp peak a step strides over), the energy balance integrated alongside:
 //   work of the torques = kinetic energy change + potential energy + dissipated energy.
 // The steps never depend on the output rate: the samples are interpolated at the output times
 // from the method's polynomial (or, recorded without aliasing, averaged from the cubic Hermite
@@ -179,7 +180,7 @@ constexpr double stiff_time_constant = 1e-5;
 
 /// The shortest damping time constant of the train [s]: m_e / c_max of each mesh's contact
 /// (m_e = 1 / (r_bp^2 / J_p + r_bg^2 / J_g), bodies held at constant speed infinitely heavy)
-/// and J / c of each shaft's damping on its lighter body; infinite without damping.
+/// and J_e / c of each shaft's damping (J_e = 1 / (1 / J_a + 1 / J_b)); infinite without damping.
 double
 damping_time_constant(const TrainModel &model);
 

@@ -63,9 +63,9 @@ touch_hysteresis(const TrainRunOptions &o)
   return 1e-3 * o.absolute_tolerance;
 }
 
-/// The kinks' root functions in order: (mesh, kink index).
+/// The kinks' root functions in order (after the contacts'): (mesh, kink index).
 std::vector<std::pair<int, int>>
-kink_roots(const TrainSystem &sys)
+kink_root_list(const TrainSystem &sys)
 {
   std::vector<std::pair<int, int>> r;
   for (int i = 0; i < int(sys.model.meshes.size()); ++i)
@@ -141,8 +141,8 @@ train_problem(const TrainSystem &sys, const TrainRunOptions &o, const std::vecto
     return 0;
   };
   const double hysteresis = touch_hysteresis(o);
-  // the contacts' root functions, then one per kink of the tooth pair curves (kink_roots)
-  p.roots          = roots_per_mesh * meshes + int(kink_roots(sys).size());
+  // the contacts' root functions, then one per kink of the tooth pair curves (kink_root_list)
+  p.roots          = roots_per_mesh * meshes + int(kink_root_list(sys).size());
   p.root_functions = [&sys, &touching, &last, meshes, hysteresis](double t, const double *y,
                                                                   double *g) {
     last.evaluate(sys, t, y);
@@ -665,7 +665,7 @@ record_contact_changes(const std::vector<int> &fired, int meshes, double t,
 }
 
 /// Whether a kink root that fired belongs to a pairing touching at its kink (`kinks`: the kink
-/// roots after the contacts', kink_roots).
+/// roots after the contacts', kink_root_list).
 bool
 passes_touching_kink(const TrainSystem &sys, const std::vector<int> &fired,
                      const std::vector<std::pair<int, int>> &kinks, const std::vector<double> &y)
@@ -750,7 +750,7 @@ simulate_train(const TrainModel &model, const TrainRunOptions &o)
   if (!o.progress.empty())
     line.emplace(o.progress, std::size_t(samples));
   std::vector<int>                       fired, hidden_fired;
-  const std::vector<std::pair<int, int>> kinks = kink_roots(sys);
+  const std::vector<std::pair<int, int>> kinks = kink_root_list(sys);
   std::vector<MeshEval>                  middle;
   std::vector<double>                    ys, qs, g(std::size_t(p.roots));
   // the meshes and accelerations at a piece's start and end (the end's from the quadratures'

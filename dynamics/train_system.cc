@@ -51,6 +51,14 @@ impact_stiffness_si(double stiffness, double exponent, double length_unit)
 
 namespace
 {
+/// The cubic through values y0, y1 with slopes m0, m1 (by the local coordinate u in [0, 1]) in
+/// powers of u.
+std::array<double, 4>
+hermite_coefficients(double y0, double y1, double m0, double m1)
+{
+  return {y0, m0, 3 * (y1 - y0) - 2 * m0 - m1, 2 * (y0 - y1) + m0 + m1};
+}
+
 /// The Hermite cubic of samples y on interval i in powers of its local coordinate u in [0, 1]
 /// (slopes by central differences, one-sided at the ends; per sample step).
 std::array<double, 4>
@@ -64,8 +72,7 @@ hermite_cubic(const std::vector<double> &y, std::size_t i)
       return y[n - 1] - y[n - 2];
     return (y[j + 1] - y[j - 1]) / 2;
   };
-  const double y0 = y[i], y1 = y[i + 1], m0 = m(i), m1 = m(i + 1);
-  return {y0, m0, 3 * (y1 - y0) - 2 * m0 - m1, 2 * (y0 - y1) + m0 + m1};
+  return hermite_coefficients(y[i], y[i + 1], m(i), m(i + 1));
 }
 } // namespace
 
@@ -73,6 +80,15 @@ namespace train_internal
 {
 namespace
 {
+/// Pairing k's gap psi_touch - psi [rad] at local pinion angle `local` (its curve's offset
+/// there): its penetration is s arm gap.
+double
+pairing_gap(const ToothPairTables &t, int k, double local, double offset, double psi)
+{
+  const double ratio = double(t.pinion_teeth) / t.gear_teeth;
+  return 2 * pi * k / t.gear_teeth + ratio * local + offset - psi;
+}
+
 /// A point of a curve between kinks: local angle, offset, arm.
 struct CurveNode
 {
@@ -84,18 +100,10 @@ struct CurveNode
 std::array<double, 8>
 hermite_piece(const CurveNode &a, const CurveNode &b, const double ma[2], const double mb[2])
 {
-  const double          w = b.x - a.x;
-  std::array<double, 8> c{};
-  const double          y0[2] = {a.offset, a.arm}, y1[2] = {b.offset, b.arm};
-  for (int k = 0; k < 2; ++k)
-    {
-      const double m0 = w * ma[k], m1 = w * mb[k];
-      c[std::size_t(4 * k)]     = y0[k];
-      c[std::size_t(4 * k + 1)] = m0;
-      c[std::size_t(4 * k + 2)] = 3 * (y1[k] - y0[k]) - 2 * m0 - m1;
-      c[std::size_t(4 * k + 3)] = 2 * (y0[k] - y1[k]) + m0 + m1;
-    }
-  return c;
+  const double                w = b.x - a.x;
+  const std::array<double, 4> o = hermite_coefficients(a.offset, b.offset, w * ma[0], w * mb[0]);
+  const std::array<double, 4> r = hermite_coefficients(a.arm, b.arm, w * ma[1], w * mb[1]);
+  return {o[0], o[1], o[2], o[3], r[0], r[1], r[2], r[3]};
 }
 
 /// The slopes (offset, arm) at x of the parabola through the three points of `f` (a smooth
@@ -350,6 +358,16 @@ TrainSystem::TrainSystem(const TrainModel &m, const TrainRunOptions &o)
     }
 }
 
+const CurveCubics &
+TrainSystem::curve(int index, int side, int k) const
+{
+  const ToothPairTables &t = model.meshes[std::size_t(index)].teeth;
+  const int              i = mod(-k, t.pinion_teeth);
+  const int              j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
+  return cubics[std::size_t(index)][std::size_t(side)][std::size_t(
+      t.pinion_class[std::size_t(i)] * t.gear_classes + t.gear_class[std::size_t(j)])];
+}
+
 MeshEval
 TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetail detail) const
 {
@@ -386,17 +404,14 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetai
   for (int k = k_first; k <= k_last; ++k)
     {
       const double phi_k = phi - 2 * pi * k / t.pinion_teeth;
-      const int    i     = mod(-k, t.pinion_teeth);
       for (int side = 0; side < 2; ++side)
         {
-          const int          j = mod(side == drive_side ? k - 1 : k, t.gear_teeth);
-          const CurveCubics &c = cubics[std::size_t(index)][std::size_t(side)][std::size_t(
-              t.pinion_class[std::size_t(i)] * t.gear_classes + t.gear_class[std::size_t(j)])];
+          const CurveCubics &c = curve(index, side, k);
           CurvePoint         p;
           if (!c.at(phi_k, p))
             continue;
           // d = s arm(phi_k) (psi_touch(phi_k) - psi); the derivatives only where it touches
-          const double gap            = 2 * pi * k / t.gear_teeth + ratio * phi_k + p.offset - psi;
+          const double gap            = pairing_gap(t, k, phi_k, p.offset, psi);
           const double s              = side == drive_side ? 1.0 : -1.0;
           const double d              = s * p.arm * gap;
           bool         deepest_so_far = false;
@@ -529,19 +544,15 @@ TrainSystem::kink_touches(int index, int k, const double *theta) const
   const double           pitch = 2 * pi / t.pinion_teeth;
   const double           phi   = theta[m.driver] + m.pinion_angle_0;
   const double           psi   = theta[m.driven] + m.gear_angle_0;
-  const double           ratio = double(t.pinion_teeth) / t.gear_teeth;
   // the pairing at the kink (its local angle phi - pitch k nearest the kink's phase), its
   // penetration there (continuous through the kink)
   const int          pairing = int(std::lround((phi - kink.at) / pitch));
-  const int          i       = mod(-pairing, t.pinion_teeth);
-  const int          j       = mod(kink.side == drive_side ? pairing - 1 : pairing, t.gear_teeth);
-  const CurveCubics &c       = cubics[std::size_t(index)][std::size_t(kink.side)][std::size_t(
-            t.pinion_class[std::size_t(i)] * t.gear_classes + t.gear_class[std::size_t(j)])];
+  const CurveCubics &c       = curve(index, kink.side, pairing);
   CurvePoint         p;
   const double       local = phi - pitch * pairing;
   if (!c.at(local, p))
     return false;
-  const double gap = 2 * pi * pairing / t.gear_teeth + ratio * local + p.offset - psi;
+  const double gap = pairing_gap(t, pairing, local, p.offset, psi);
   return (kink.side == drive_side ? 1.0 : -1.0) * p.arm * gap > 0;
 }
 

@@ -128,6 +128,10 @@ public:
   mesh(int index, const double *theta, const double *omega,
        MeshDetail detail = MeshDetail::outputs) const;
 
+  /// The cubics of mesh `index`'s curve on `side` for pairing k (its teeth's class pair).
+  const CurveCubics &
+  curve(int index, int side, int k) const;
+
   /// S of a mesh [m].
   double
   relative(int index, const double *theta) const;

@@ -265,8 +265,7 @@ def train_rows(name, g):
                      f"{g['energy_error'][()]:.2e} of the largest term"])
     if "events" in g:
         rows.append([label, "contact changes located", f"{int(g['events'][()])}"])
-    method = g.attrs.get("integrator", "")
-    method = method.decode() if isinstance(method, bytes) else str(method)
+    method = attr(g, "integrator")
     if method and "steps" in g:
         rows.append([label, "integrator (CVODE), steps",
                      f"{'BDF' if method == 'bdf' else 'Adams'}, {int(g['steps'][()])}"])

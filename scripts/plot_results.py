@@ -122,29 +122,63 @@ def plot_profiles(flanks, out_dir):
 
 
 def plot_topography(flanks, out_dir):
-    """Flank topography of tooth 0, drive and coast, of every member: the modifications and
-    deviations along the normal in um over roll length (profile) and face width."""
-    members = [(pn, mn, flanks[pn][mn]) for pn in flanks for mn in ("pinion", "gear")
-               if not is_bevel(flanks[pn])]
-    if not members:
+    """K-chart of every member whose flanks carry modifications or deviations: the profile trace
+    (along the roll length, at mid-face) and the lead trace (along the face, at mid-profile) of
+    the flank most teeth share, drive solid and coast dashed, and the traces of every tooth that
+    differs from it (a proud or chipped tooth, a pitch error) through its largest difference;
+    right: the map of the flank with the largest deviation, um along the normal."""
+    rows = []
+    for pn in flanks:
+        if is_bevel(flanks[pn]):
+            continue
+        for mn in ("pinion", "gear"):
+            if mn not in flanks[pn]:
+                continue
+            m = flanks[pn][mn]
+            sides = {s: m[s]["deviation"][:] * 1e6 for s in ("drive", "coast") if s in m}
+            if any(np.abs(d).max() > 1e-3 for d in sides.values()):  # 1 nm: round-off below
+                rows.append((pn, mn, m, sides))
+    if not rows:
         return
-    fig, axes = plt.subplots(2, len(members), figsize=(4.2 * len(members), 7.5), squeeze=False)
-    for col, (pn, mn, m) in enumerate(members):
+    fig, axes = plt.subplots(len(rows), 3, figsize=(13, 3.9 * len(rows)), squeeze=False,
+                             layout="constrained")
+    for (ax_p, ax_l, ax_m), (pn, mn, m, sides) in zip(axes, rows):
         rb = m["base_radius"][()]
-        for row, side in enumerate(("drive", "coast")):
-            ax = axes[row][col]
+        worst = None
+        for (side, dev), style in zip(sides.items(), ("-", "--")):
             s = m[side]
-            dev = s["deviation"][0] * 1e6
             L = rb * s["roll_angle"][:] * 1e3
             z = s["z"][:] * 1e3
-            span = max(np.abs(dev).max(), 1.0)
-            im = ax.pcolormesh(z, L, dev, shading="gouraud", cmap="coolwarm", vmin=-span,
-                               vmax=span)
-            fig.colorbar(im, ax=ax, label="deviation [um]")
-            ax.set_title(f"{pn} {mn}, tooth 0, {side}")
-            ax.set_xlabel("face z [mm]")
-            ax.set_ylabel("roll length L [mm] (root to tip)")
-    fig.tight_layout()
+            common = np.median(dev, axis=0)  # the flank most teeth share
+            i, j = dev.shape[1] // 2, dev.shape[2] // 2
+            ax_p.plot(L, common[:, j], style, color="k", label=f"{side}, most teeth")
+            ax_l.plot(z, common[i, :], style, color="k", label=f"{side}, most teeth")
+            if worst is None or np.abs(common).max() > worst[0]:
+                worst = (np.abs(common).max(), common, L, z, f"{side}, most teeth")
+            differ = np.abs(dev - common).reshape(len(dev), -1).max(axis=1)
+            for n, k in enumerate(np.nonzero(differ > 1e-3)[0][:6]):
+                a, b = np.unravel_index(np.argmax(np.abs(dev[k] - common)), common.shape)
+                c = TRAIN_COLOURS[n % len(TRAIN_COLOURS)]
+                ax_p.plot(L, dev[k][:, b], style, color=c, lw=1.4, label=f"{side}, tooth {k}")
+                ax_l.plot(z, dev[k][a, :], style, color=c, lw=1.4, label=f"{side}, tooth {k}")
+                if np.abs(dev[k]).max() > worst[0]:
+                    worst = (np.abs(dev[k]).max(), dev[k], L, z, f"{side}, tooth {k}")
+        ax_p.set_xlabel("roll length L [mm] (root to tip)")
+        ax_p.set_ylabel("deviation [um]")
+        ax_p.set_title(f"{pn} {mn}: profile traces")
+        ax_l.set_xlabel("face z [mm]")
+        ax_l.set_title(f"{pn} {mn}: lead traces")
+        for ax in (ax_p, ax_l):
+            ax.grid(alpha=0.3)
+        ax_l.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        _, dev, L, z, what = worst
+        span = max(np.abs(dev).max(), 1e-3)
+        im = ax_m.pcolormesh(z, L, dev, shading="gouraud", cmap="coolwarm", vmin=-span,
+                             vmax=span)
+        fig.colorbar(im, ax=ax_m, label="deviation [um]")
+        ax_m.set_title(f"{mn} {what}")
+        ax_m.set_xlabel("face z [mm]")
+        ax_m.set_ylabel("roll length L [mm]")
     save(fig, os.path.join(out_dir, "topography.png"))
 
 
@@ -363,21 +397,31 @@ def plot_hunting(ste, flanks, out_dir):
 
 
 def plot_stiffness(st, flanks, out_dir):
-    """Loaded TE, K_m, load sharing and pressure map of every pair (one row per pair)."""
+    """Per pair, in three rows: the loaded against the unloaded TE and the mesh stiffness K_m
+    over the mesh cycle (with ISO 6336 and the error estimate); the load sharing between the
+    teeth and the loaded TE's peak-to-peak and mesh orders 1-3 over the torque; the largest
+    contact pressure on the pinion flank over all positions (colour capped at the flank
+    interior's largest pressure where no edge carries the peak, else the cells' 90th
+    percentile: cells above it, at a flank edge or tip corner where the pressure is singular,
+    marked with crosses)."""
     pairs = list(st.keys())
     if not pairs:
         return
-    fig, axes = plt.subplots(len(pairs), 4, figsize=(20, 4.6 * len(pairs)), squeeze=False)
-    for row, name in zip(axes, pairs):
+    fig = plt.figure(figsize=(12, 12.6 * len(pairs)), layout="constrained")
+    grid = fig.add_gridspec(3 * len(pairs), 2)
+    for p, name in enumerate(pairs):
         g = st[name]
+        axes = [fig.add_subplot(grid[3 * p + r, c]) for r in (0, 1) for c in (0, 1)]
+        axes.append(fig.add_subplot(grid[3 * p + 2, :]))
         phi = g["pinion_angle"][()]
         pin = flanks[name]["pinion"]
-        z1 = pin["number_of_teeth"][()] if "number_of_teeth" in pin else pin["teeth"][()] if "teeth" in pin else None
+        z1 = pin["number_of_teeth"][()] if "number_of_teeth" in pin else None
         x = phi / (2 * np.pi / z1) if z1 else phi
+        x_label = "mesh cycles" if z1 else "pinion angle [rad]"
         torques = g["torque"][()]
         colours = plt.cm.viridis(np.linspace(0, 0.85, len(torques)))
         variants = [(g, "-", "theory")] + ([(g["measured"], "--", "measured")] if "measured" in g else [])
-        ax = row[0]
+        ax = axes[0]
         for grp, style, label in variants:
             e0 = grp["transmission_error_unloaded"][()] * 1e6
             ax.plot(x, e0, style, color="grey", label=f"e_0 {label}")
@@ -390,11 +434,11 @@ def plot_stiffness(st, flanks, out_dir):
                 el = g["transmission_error_loaded"][k]
                 ax.fill_between(x, (el - err[k]) * 1e6, (el + err[k]) * 1e6, color=colours[k],
                                 alpha=0.25, lw=0)
-        ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
+        ax.set_xlabel(x_label)
         ax.set_ylabel("transmission error [urad, pinion]")
         ax.set_title(f"{name}: unloaded and loaded TE")
-        ax.legend(fontsize=7)
-        ax = row[1]
+        legend_below(ax)
+        ax = axes[1]
         for grp, style, label in variants:
             for k, t in enumerate(torques):
                 ax.plot(x, grp["mesh_stiffness"][k] * 1e-6, style, color=colours[k],
@@ -412,19 +456,20 @@ def plot_stiffness(st, flanks, out_dir):
             for k, t in enumerate(torques):
                 ax.plot(xr, ref["mesh_stiffness"][k] * 1e-6, "s", ms=7, mfc="none",
                         color=colours[k], label=f"reference mode, {t:g} N m")
-        for key, ls in (("iso_c_prime", ":"), ("iso_c_gamma_alpha", "-.")):
-            ax.axhline(g[key][()] * 1e-6, color="k", ls=ls, lw=1,
-                       label=key.replace("iso_", "ISO 6336 ").replace("_", " ") + " x b")
-        if "transverse_contact_ratio" in g:  # the theoretical mean the FE compares with
+        for key, ls, what in (("iso_c_prime", ":", "ISO 6336 c' b (one pair)"),
+                              ("iso_c_gamma_alpha", "-.", "ISO 6336 c_gamma_alpha b (mesh)")):
+            if key in g:
+                ax.axhline(g[key][()] * 1e-6, color="k", ls=ls, lw=1, label=what)
+        if "transverse_contact_ratio" in g and "iso_c_th" in g:  # the theoretical mean
             mean = g["iso_c_th"][()] * (0.75 * g["transverse_contact_ratio"][()] + 0.25)
             ax.axhline(mean * 1e-6, color="grey", ls="--", lw=1,
-                       label="ISO c'th (0.75 eps_alpha + 0.25) x b (theoretical)"
+                       label="ISO c'_th (0.75 eps_alpha + 0.25) b (theoretical)"
                        + (", virtual cylindrical gears" if "iso_basis" in g.attrs else ""))
-        ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
+        ax.set_xlabel(x_label)
         ax.set_ylabel("K_m [N/um]")
         ax.set_title("mesh stiffness K_m = F / (lambda (e_L - e_0))")
-        ax.legend(fontsize=7)
-        ax = row[2]
+        legend_below(ax)
+        ax = axes[2]
         k = len(torques) - 1
         share = g["pair_force"][k] / np.maximum(g["normal_force"][k][:, None], 1e-30)
         teeth = g["pinion_tooth"][()]
@@ -433,25 +478,100 @@ def plot_stiffness(st, flanks, out_dir):
             if y.max() > 0:
                 ax.plot(x, y, "o-", ms=3, label=f"pinion tooth {tooth}")
         ax.set_ylim(-0.05, 1.05)
-        ax.set_xlabel("mesh cycles" if z1 else "pinion angle [rad]")
+        ax.set_xlabel(x_label)
         ax.set_ylabel("share of the normal force")
         ax.set_title(f"load sharing at {torques[k]:g} N m")
-        ax.legend(fontsize=7)
-        ax = row[3]
-        im = pressure_map(ax, flanks, name, g["contact_cells"][k])
-        fig.colorbar(im, ax=ax, label="largest pressure [MPa]")
+        legend_below(ax, ncol=3)
+        plot_te_orders(axes[3], g, torques, variants)
+        ax = axes[4]
+        cap = pressure_cap(g, k)
+        im = pressure_map(ax, flanks, name, g["contact_cells"][k], cap)
+        fig.colorbar(im, ax=ax, label="largest pressure [MPa]", extend="max")
         ax.set_xlabel("cone distance - A_m [mm]" if is_bevel(flanks[name]) else "face position [mm]")
         ax.set_ylabel("height above the pitch cone [mm]" if is_bevel(flanks[name]) else "roll length [mm]")
-        ax.set_title(f"contact pressure on the pinion flank, {torques[k]:g} N m, all positions")
-    fig.tight_layout()
+        ax.set_title(f"contact pressure on the pinion flank, {torques[k]:g} N m, all positions "
+                     f"(colour capped at {cap * 1e-6:.0f} MPa; x: cells above it, up to "
+                     f"{g['peak_pressure'][k].max() * 1e-6:.0f} MPa)")
     save(fig, os.path.join(out_dir, "stiffness.png"))
 
 
-def pressure_map(ax, flanks, name, cells, nx=500, ny=300):
+def legend_below(ax, ncol=2):
+    """The legend under the axes, off the data (constrained layout makes room)."""
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol,
+              frameon=False)
+
+
+def plot_te_orders(ax, g, torques, variants):
+    """The loaded TE's peak-to-peak and its mesh orders 1-3 against the torque (te_harmonics:
+    the same numbers as the report's key table); at a single torque as bars."""
+    for v, (grp, style, label) in enumerate(variants):
+        values = [te_harmonics(te) for te in grp["transmission_error_loaded"][()]]
+        table = np.array([[pp] + list(orders) for pp, orders in values]) * 1e6
+        if len(torques) == 1:
+            width = 0.8 / len(variants)
+            ax.bar(np.arange(4) + (v - (len(variants) - 1) / 2) * width, table[0], width,
+                   color=["k", "C0", "C1", "C2"], alpha=1.0 if v == 0 else 0.45,
+                   label=label)
+            continue
+        for n, what in enumerate(("peak-to-peak", "order 1", "order 2", "order 3")):
+            ax.plot(torques, table[:, n], style + "o", color=["k", "C0", "C1", "C2"][n],
+                    label=f"{what}, {label}")
+    if len(torques) == 1:
+        ax.set_xticks(range(4), ["peak-to-peak", "order 1", "order 2", "order 3"])
+        ax.set_xlabel(f"at {torques[0]:g} N m" + (" (pale: measured flanks)"
+                                                  if len(variants) > 1 else ""))
+        ax.set_title("loaded TE: peak-to-peak and mesh orders 1-3")
+    else:
+        ax.set_xlabel("pinion torque [N m]")
+        ax.set_title("loaded TE over the torque: peak-to-peak and mesh orders 1-3")
+        legend_below(ax)
+    ax.set_ylabel("loaded TE [urad]")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3, axis="y")
+
+
+def te_harmonics(te):
+    """Peak-to-peak and the amplitudes of mesh orders 1-3 of a transmission error sampled at
+    uniform positions over one mesh cycle (the last position one step short of the cycle's end)."""
+    te = np.asarray(te, dtype=float)
+    spectrum = np.abs(np.fft.rfft(te - te.mean())) * 2 / te.size
+    # below the computation's resolution (rounding of the TE's mean): zero, not 1e-20
+    floor = 1e-12 * max(np.abs(te).max(), 1e-300)
+    return te.max() - te.min(), [spectrum[k] if k < spectrum.size and spectrum[k] > floor
+                                 else 0.0 for k in (1, 2, 3)]
+
+
+def edge_contact(g, k):
+    """Per position at torque k: True where the largest contact pressure sits on a flank-edge
+    cell (a tip corner, the start of the working flank, a face end: singular, growing with
+    mesh refinement) - there the interior's peak stands next to the singularity too. Neither is
+    a headline; the report lists these positions apart."""
+    if "interior_peak_pressure" not in g:
+        return np.zeros(g["peak_pressure"].shape[1], dtype=bool)
+    return g["peak_pressure"][k] > 1.01 * g["interior_peak_pressure"][k]
+
+
+def pressure_cap(g, k):
+    """The colour scale's top for torque k: the flank interior's largest pressure at the
+    positions without edge contact (Hertz's), else (every position touches an edge: unmodified
+    helical flanks) the loaded cells' 90th percentile - across a Hertz band the pressure
+    exceeds 0.995 of its peak on a tenth of the width, so the interior's peaks reach the top
+    while the singular edge cells, a few percent of all, are marked above it."""
+    if "interior_peak_pressure" in g:
+        clean = g["interior_peak_pressure"][k][~edge_contact(g, k)]
+        if clean.size and clean.max() > 0:
+            return clean.max()
+    cells = g["contact_cells"][k][..., 3]
+    loaded = cells[cells > 0]
+    return np.percentile(loaded, 90) if loaded.size else 1.0
+
+
+def pressure_map(ax, flanks, name, cells, cap, nx=500, ny=300):
     """The largest pressure over all positions on a raster of the pinion flank: the cells of each
     position and tooth pair are triangulated (Delaunay on their centres, triangles much longer
     than the cells dropped) and interpolated linearly. A scatter of the cell centres would alias
-    into stripes where the contact lines run obliquely (helical gears)."""
+    into stripes where the contact lines run obliquely (helical gears). Colours end at `cap`
+    [Pa]; the cells above it are marked with crosses."""
     pieces = []
     for c in cells:  # (cells, 4) per position: tooth, u, v, pressure
         c = c[c[:, 0] >= 0]
@@ -492,8 +612,13 @@ def pressure_map(ax, flanks, name, cells, nx=500, ny=300):
             skipped += 1
     if skipped:
         print(f"pressure map: {skipped} of {len(pieces)} contact zones could not be drawn")
+    above = [(f[p > cap], r[p > cap]) for f, r, p in pieces]
+    face = np.concatenate([a[0] for a in above])
+    if face.size:
+        ax.plot(face, np.concatenate([a[1] for a in above]), "x", color="tab:cyan", ms=5,
+                mew=1.2, label="cells above the colour scale")
     return ax.imshow(np.ma.masked_less_equal(P, 0) * 1e-6, origin="lower", aspect="auto",
-                     cmap="inferno", interpolation="nearest",
+                     cmap="inferno", interpolation="nearest", vmin=0, vmax=cap * 1e-6,
                      extent=(X.min(), X.max(), Y.min(), Y.max()))
 
 

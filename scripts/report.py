@@ -165,17 +165,6 @@ def gear_rows(name, g):
     return rows
 
 
-def te_harmonics(te):
-    """Peak-to-peak and the amplitudes of mesh orders 1-3 of a transmission error sampled at
-    uniform positions over one mesh cycle (the last position one step short of the cycle's end)."""
-    te = np.asarray(te, dtype=float)
-    spectrum = np.abs(np.fft.rfft(te - te.mean())) * 2 / te.size
-    # below the computation's resolution (rounding of the TE's mean): zero, not 1e-20
-    floor = 1e-12 * max(np.abs(te).max(), 1e-300)
-    return te.max() - te.min(), [spectrum[k] if k < spectrum.size and spectrum[k] > floor
-                                 else 0.0 for k in (1, 2, 3)]
-
-
 def stiffness_rows(name, g, base_radius=None):
     """Key numbers of one pair's loaded contact: per torque K_m, e_L - e_0, pressure, with the
     error estimate and the reference positions where present."""
@@ -190,26 +179,12 @@ def stiffness_rows(name, g, base_radius=None):
         label = f"{esc(name)}, {torque:g} N m"
         rows.append([label, "mesh stiffness K_m, mean (min .. max)", stats(km[t], "N/m")])
         rows.append([label, "e_L − e_0, mean (min .. max)", stats(de[t], "rad")])
-        pp, orders = te_harmonics(g["transmission_error_loaded"][t])
+        pp, orders = plot_results.te_harmonics(g["transmission_error_loaded"][t])
         along = f" ({pp * r_b * 1e6:.3f} µm {where})" if r_b else ""
         rows.append([label, "loaded transmission error e_L: peak-to-peak; mesh orders 1, 2, 3",
                      f"{number(pp, 'rad')}{along}; "
                      + ", ".join(number(a, "rad") for a in orders)])
-        if "interior_peak_pressure" in g:
-            rows.append([label, "largest contact pressure on the flanks' interior (Hertz's), "
-                         "mean (min .. max) over the positions",
-                         stats(g["interior_peak_pressure"][t], "Pa")])
-        rows.append([label, "largest contact pressure, flank-edge cells included (singular at "
-                     "corners: grows with mesh refinement)", stats(g["peak_pressure"][t], "Pa")])
-        if "edge_load_share" in g:
-            share = g["edge_load_share"][t]
-            k = int(np.argmax(share))
-            if share[k] > 0:
-                r_mm, z_mm = g["edge_position"][t, k] * 1e3
-                rows.append([label, "edge contact: largest share of the load on cells at a "
-                                    "flank edge (tip, face end, start of the working flank)",
-                             f"{share[k] * 100:.1f} % at position {k} (pinion point r "
-                             f"{r_mm:.3f} mm, z {z_mm:.3f} mm)"])
+        rows += pressure_rows(label, g, t)
         if est is not None:
             rel = np.abs(est[t]) / km[t] * 100
             rows.append([label, "K_m estimated discretisation error (mean, largest)",
@@ -233,6 +208,48 @@ def stiffness_rows(name, g, base_radius=None):
             rows.append([f"{esc(name)}, {torque:g} N m",
                          "fast mode against the reference mode (finite elements alone), by position",
                          diffs])
+    return rows
+
+
+def pressure_rows(label, g, t):
+    """The flank interior's largest contact pressure (Hertz's) from the positions whose largest
+    pressure is on no flank edge; the edge-contact positions apart, with their (singular,
+    mesh-dependent) pressure and the load share on edge cells."""
+    rows = []
+    edge = plot_results.edge_contact(g, t)
+    if "interior_peak_pressure" in g and (~edge).any():
+        interior = g["interior_peak_pressure"][t]
+        k = int(np.argmax(np.where(edge, -np.inf, interior)))
+        rows.append([label, "largest contact pressure in the flank interior (Hertz's), positions "
+                     "without edge contact: largest, at; mean (min .. max)",
+                     f"{number(interior[k], 'Pa')} at position {k}; "
+                     f"{stats(interior[~edge], 'Pa')} over {int((~edge).sum())} of {edge.size}"])
+    elif "interior_peak_pressure" in g:
+        cells = g["contact_cells"][t][..., 3]
+        loaded = cells[cells > 0]
+        rows.append([label, "largest contact pressure in the flank interior: not separable "
+                     "(every position's largest pressure is on a flank-edge cell); the loaded "
+                     "cells' pressure over all positions, median / 90th percentile",
+                     f"{number(np.median(loaded), 'Pa')} / {number(np.percentile(loaded, 90), 'Pa')}"])
+    if edge.any():
+        where = ", ".join(f"{k}: {g['peak_pressure'][t][k] * 1e-6:.0f}"
+                          for k in np.nonzero(edge)[0][:10])
+        rows.append([label, "edge contact: positions whose largest pressure is on a flank-edge "
+                     "cell (tip corner, start of the working flank, face end; singular: grows "
+                     "with mesh refinement), not in the line above",
+                     f"{int(edge.sum())} of {edge.size}, position: MPa {where}"
+                     + (" …" if edge.sum() > 10 else "")])
+    elif "interior_peak_pressure" not in g:
+        rows.append([label, "largest contact pressure, flank-edge cells included (singular at "
+                     "corners: grows with mesh refinement)", stats(g["peak_pressure"][t], "Pa")])
+    if "edge_load_share" in g:
+        share = g["edge_load_share"][t]
+        k = int(np.argmax(share))
+        if share[k] > 0:
+            r_mm, z_mm = g["edge_position"][t, k] * 1e3
+            rows.append([label, "edge load: largest share of the load on cells at a flank edge",
+                         f"{share[k] * 100:.1f} % at position {k} (pinion point r {r_mm:.3f} mm, "
+                         f"z {z_mm:.3f} mm)"])
     return rows
 
 

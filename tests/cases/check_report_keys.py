@@ -3,7 +3,9 @@
 of every pair (tooth counts, contact ratios), and per pair and torque the loaded transmission
 error's peak-to-peak and mesh orders 1-3, recomputed here independently (a direct Fourier sum
 over the positions of one mesh cycle), and the ISO comparison like for like (c_gamma_alpha b
-against the mean K_m), and the dynamics' headline load factor from settled speeds alone.
+against the mean K_m), the flank-interior pressure from positions without edge contact, the
+dynamics' headline load factor from settled speeds alone, and the trains' impacts per side and
+located largest force (counted from the contact table).
 
   check_report_keys.py CASE_OUT_DIR
 """
@@ -67,6 +69,20 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
             for k in range(3):
                 near(shown[k], dft[k] * 1e6, f"{key} order {k + 1} [urad]")
             checked += 4
+            # the interior pressure's headline: from positions whose largest pressure is on
+            # no flank-edge cell (a tip corner's singular value is never the headline)
+            if "interior_peak_pressure" in s and np.any(s["peak_pressure"][t] <=
+                                                        1.01 * s["interior_peak_pressure"][t]):
+                interior, peak = s["interior_peak_pressure"][t], s["peak_pressure"][t]
+                clean = peak <= 1.01 * interior
+                key = (f"{pair}, {torque:g} N m: largest contact pressure in the flank interior "
+                       "(Hertz's), positions without edge contact: largest, at; mean (min .. max)")
+                k = int(np.argmax(np.where(clean, interior, -np.inf)))
+                value = numbers(rows[key])
+                near(value[0], interior[k] * 1e-6, key)
+                assert value[1] == k and not np.any(interior[clean] > interior[k]), (key, value)
+                assert np.all(peak[clean] <= 1.01 * interior[k]), key
+                checked += 1
         if "iso_c_gamma_alpha" in s:
             key = f"{pair}: ISO 6336-1 c_γα b (mesh) against K_m mean"
             diff = (s["mesh_stiffness"][()].mean() / s["iso_c_gamma_alpha"][()] - 1) * 100
@@ -91,5 +107,20 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
                        f"({sweep} sweep)")
                 assert rows[key] == f"{dlf[k]:.3f} at {speed[k]:.0f} rpm", (key, rows[key])
                 checked += 1
+    # trains: impacts per side counted from the contact table, the largest force located
+    for name in f.get("train", {}):
+        g = f["train"][name]
+        for mesh in g.get("meshes", {}):
+            m = g["meshes"][mesh]
+            where = f"{name}, mesh {mesh}"
+            c = m["contacts"]
+            touch, side = c["touch"][()], c["side"][()]
+            drive, coast = int(np.sum((touch > 0) & (side > 0))), int(np.sum((touch > 0) & (side < 0)))
+            assert rows[f"{where}: impacts (drive / coast flanks)"] == \
+                f"{drive + coast} ({drive} / {coast})", (where, drive, coast)
+            peak = numbers(rows[f"{where}: largest force (located), at"])[0]
+            largest = c["peak"][()].max() if c["peak"].size else 0.0
+            near(peak, largest, where + " largest force [N]")
+            checked += 2
 assert checked > 0
 print(f"{os.path.basename(out)}: {checked} key numbers of report.html agree with results.h5")

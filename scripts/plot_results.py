@@ -219,7 +219,7 @@ def plot_ste(ste, flanks, out_dir):
     """Unloaded static transmission error of every pair over its mesh cycles, its mesh-order
     harmonics, and the contact path on the pinion flank."""
     pairs = list(ste)
-    fig, axes = plt.subplots(len(pairs), 3, figsize=(15, 3.8 * len(pairs)), squeeze=False,
+    fig, axes = plt.subplots(len(pairs), 3, figsize=(12.5, 3.8 * len(pairs)), squeeze=False,
                              gridspec_kw={"width_ratios": [2.2, 1, 1.2]})
     for row, name in zip(axes, pairs):
         g = ste[name]
@@ -356,7 +356,7 @@ def plot_hunting(ste, flanks, out_dir):
     pairs = [n for n in ste if "shaft_order_spectrum" in ste[n]]
     if not pairs:
         return
-    fig, axes = plt.subplots(len(pairs), 2, figsize=(15, 4 * len(pairs)), squeeze=False,
+    fig, axes = plt.subplots(len(pairs), 2, figsize=(12, 4 * len(pairs)), squeeze=False,
                              gridspec_kw={"width_ratios": [1.3, 1]})
     for row, name in zip(axes, pairs):
         g = ste[name]
@@ -647,8 +647,10 @@ def plot_dynamics(dyn, flanks, out_dir):
     enough mesh strain energy against the first three mesh orders, and the integrator's share:
     Newmark's estimated DTE error and its steps per mesh cycle at each speed."""
     pairs = list(dyn.keys())
-    fig, axes = plt.subplots(len(pairs), 5, figsize=(30, 4.8 * len(pairs)), squeeze=False)
-    for row, name in zip(axes, pairs):
+    fig, grid = plt.subplots(3 * len(pairs), 2, figsize=(12, 12 * len(pairs)), squeeze=False,
+                             layout="constrained")
+    for p, name in enumerate(pairs):
+        row = grid[3 * p:3 * p + 3].ravel()  # five panels and the legend's slot
         g = dyn[name]
         labels = [k for k in ("theoretical", "measured") if k in g]
         for label in labels:
@@ -659,6 +661,11 @@ def plot_dynamics(dyn, flanks, out_dir):
                 row[0].plot(rpm, valid(d, "dte_peak_to_peak") * 1e6, style, **kw)
                 row[1].plot(rpm, valid(d, "dte_rms") * 1e6, style, **kw)
                 row[2].plot(rpm, valid(d, "dynamic_load_factor"), style, **kw)
+                if "status" in d and np.any(d["status"][:] == 1):  # motion never repeated
+                    uns = d["status"][:] == 1
+                    row[2].plot(rpm[uns], d["dynamic_load_factor"][:][uns], "o", mfc="none",
+                                ms=5, color=kw["color"],
+                                label=f"{label}, {direction}: did not settle (not a headline)")
                 # diverged speeds (no results): crosses on the speed axis
                 bad = diverged(d)
                 for ax in row[:3]:
@@ -680,17 +687,22 @@ def plot_dynamics(dyn, flanks, out_dir):
                                alpha=0.15, lw=0)
         row[0].set_xlabel("pinion speed [rpm]")
         row[0].set_ylabel("DTE peak-to-peak [um]")
-        row[0].set_title(f"{name}: dynamic transmission error (shaded: parametrically unstable)")
-        row[0].legend(fontsize=7)
+        row[0].set_title(f"{name}: dynamic transmission error, peak-to-peak")
         row[1].set_xlabel("pinion speed [rpm]")
         row[1].set_ylabel("DTE RMS [um]")
         row[1].set_title("RMS of the dynamic transmission error")
-        row[1].legend(fontsize=7)
         row[2].set_xlabel("pinion speed [rpm]")
         row[2].set_ylabel("max F_m / static F_m")
         static = g[labels[0]]["static_mesh_force"][()]
         row[2].set_title(f"dynamic load factor (static mesh force {static:.0f} N)")
-        row[2].legend(fontsize=7)
+        # one legend for the three sweep panels, in the sixth slot
+        handles, names = row[2].get_legend_handles_labels()
+        if any(g[label].get("stability") is not None for label in labels):
+            handles.append(plt.Rectangle((0, 0), 1, 1, color="0.5", alpha=0.3))
+            names.append("shaded: parametrically unstable (Floquet)")
+        row[5].axis("off")
+        row[5].legend(handles, names, loc="center", fontsize=10, frameon=False,
+                      title=f"{name}: sweeps (up solid, down dashed)")
         ax = row[3]
         f_modes, energy = g["mode_frequency"][:], g["mode_mesh_energy"][:]
         rpm = g[labels[0]]["up"]["speed"][:]
@@ -700,11 +712,11 @@ def plot_dynamics(dyn, flanks, out_dir):
         for order in (1, 2, 3):
             n_end = min(n_max, top * 60 / (order * z))  # where the order leaves the plot
             ax.plot([0, n_end], [0, order * z * n_end / 60], "k-", lw=0.8)
-            ax.text(n_end, order * z * n_end / 60, f" {order}x", fontsize=7, va="top")
+            ax.text(n_end, order * z * n_end / 60, f" {order}x", fontsize=9, va="top")
         for f_mode, e in zip(f_modes, energy):
             if e > 0.05:
                 ax.axhline(f_mode, color="tab:red", lw=0.8 + 3 * e)
-                ax.text(0, f_mode, f" {f_mode:.0f} Hz ({100 * e:.0f} % in the mesh)", fontsize=7,
+                ax.text(0, f_mode, f" {f_mode:.0f} Hz ({100 * e:.0f} % in the mesh)", fontsize=9,
                         va="bottom")
         ax.set_xlim(0, n_max * 1.08)
         ax.set_ylim(0, top)
@@ -730,11 +742,9 @@ def plot_dynamics(dyn, flanks, out_dir):
             ax.set_yscale("log")
             steps_ax.set_yscale("log")
             steps_ax.set_ylabel("Newmark steps per mesh cycle (dotted)")
-            ax.legend(fontsize=7)
         ax.set_xlabel("pinion speed [rpm]")
         ax.set_ylabel("estimated DTE error [% of its RMS]")
         ax.set_title("integrator: Newmark's estimated error (dynamics/newmark_error.h)")
-    fig.tight_layout()
     save(fig, os.path.join(out_dir, "dynamics.png"))
     plot_dynamics_spectra(dyn, out_dir)
     plot_dynamics_time(dyn, out_dir)
@@ -787,7 +797,7 @@ def plot_dynamics_time(dyn, out_dir):
                          for l in ("theoretical", "measured") if l in dyn[n]
                          for k in dyn[n][l]["up"].get("time_series", {})}) for n in pairs}
     rows = [(n, v) for n in pairs for v in speeds[n]]
-    fig, axes = plt.subplots(len(rows), 2, figsize=(16, 3.2 * len(rows)), squeeze=False)
+    fig, axes = plt.subplots(len(rows), 2, figsize=(12, 3.2 * len(rows)), squeeze=False)
     for (ax_d, ax_f), (name, rpm) in zip(axes, rows):
         z = dyn[name]["pinion_teeth"][()]
         for label in ("theoretical", "measured"):
@@ -847,9 +857,11 @@ def plot_train(name, g, out_dir):
     meshes = names_of(g, "meshes")
     bodies = names_of(g, "bodies")
     t, t_label = time_axis(g["time"][:])
-    fig, axes = plt.subplots(len(meshes) + 1, 4, figsize=(18, 3.6 * (len(meshes) + 1)),
-                             squeeze=False)
-    for row, mesh in zip(axes, meshes):
+    n = 2 * len(meshes) + 2  # two rows of two panels a mesh; speeds and energy; the numbers
+    fig, grid = plt.subplots(n, 2, figsize=(12, 3.7 * (n - 1) + 2.2), squeeze=False,
+                             layout="constrained", height_ratios=[1] * (n - 1) + [0.55])
+    for i, mesh in enumerate(meshes):
+        row = grid[2 * i:2 * i + 2].ravel()
         m = g["meshes"][mesh]
         half = m["band_half_width"][()]
         row[0].plot(t, m["relative"][:] * 1e6, lw=0.8)
@@ -875,7 +887,7 @@ def plot_train(name, g, out_dir):
             largest = max(np.abs(force).max(), 1e-300)
             if np.abs(peaks).max() > 20 * largest:  # spikes far above the samples: both visible
                 row[1].set_yscale("symlog", linthresh=largest)
-            row[1].legend(fontsize=7, loc="lower right")
+            legend_below(row[1])
         first = m["first_contact"][()]
         row[1].set_xlabel(t_label)
         row[1].set_ylabel("normal force [N]")
@@ -928,7 +940,7 @@ def plot_train(name, g, out_dir):
         row[2].set_title(f"force spectrum from {sp['start'][()]:.3g} s: GMF {gmf:.2f} Hz\n"
                          "(harmonics red: found, grey: not)", fontsize=9)
         row[2].legend(fontsize=7)
-    last = axes[-1]
+    last = list(grid[-2]) + list(grid[-1])
     speed = g["speed"][:]
     for i, body in enumerate(bodies):
         last[0].plot(t, speed[i], lw=0.9, label=body)
@@ -959,10 +971,11 @@ def plot_train(name, g, out_dir):
     for body, j in zip(bodies, g["inertia"][:]):
         text.append(f"  J {body}: {j:.4g} kg m^2")
     last[2].axis("off")
-    last[2].text(0.02, 0.98, "\n".join(text), va="top", family="monospace", fontsize=9,
-                 transform=last[2].transAxes)
     last[3].axis("off")
-    fig.tight_layout()
+    half = (len(text) + 1) // 2  # the numbers in two columns under the speeds and the energy
+    for ax, part in ((last[2], text[:half]), (last[3], text[half:])):
+        ax.text(0.02, 0.98, "\n".join(part), va="top", family="monospace", fontsize=9,
+                transform=ax.transAxes)
     save(fig, os.path.join(out_dir, f"train_{name}.png"))
 
 
@@ -970,43 +983,57 @@ def plot_train_compare(trains, out_dir):
     """The trains of the scene over each other (perfect against defective gears): S and the
     force of every mesh and the speed of every body (the seeds' comparisons). Trains whose names
     end in the same _<suffix> (e.g. perfect_light, chipped_light) share a column; the others
-    share the first."""
+    share the first. The perfect train is drawn first and in grey, the others over it, the
+    largest force swing first; a speed that holds to round-off is drawn flat, not magnified
+    into noise."""
     groups = {}
     for name in trains:
         groups.setdefault(name.split("_", 1)[1] if "_" in name else "", []).append(name)
     first = trains[next(iter(trains))]
     meshes, bodies = names_of(first, "meshes"), names_of(first, "bodies")
     rows = len(meshes) * 2 + len(bodies)
-    fig, axes = plt.subplots(rows, len(groups), figsize=(14 * len(groups) ** 0.5 + 4,
-                                                         2.6 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, len(groups), figsize=(12, 2.3 * rows + 0.8), squeeze=False,
+                             layout="constrained", sharex="col")
     for column, (suffix, names) in zip(axes.T, groups.items()):
+        # the reference first, then the others from the largest force swing to the smallest:
+        # no defect's curve hides under a larger one
+        def swing(n):
+            return np.ptp(trains[n]["meshes"][meshes[0]]["force"][:]) if meshes[0] in \
+                trains[n]["meshes"] else 0.0
+        names = sorted(names, key=lambda n: (not n.startswith("perfect"), -swing(n)))
         for n, name in enumerate(names):
             g = trains[name]
-            c = TRAIN_COLOURS[n % len(TRAIN_COLOURS)]
+            reference = name.startswith("perfect")
+            c = "0.55" if reference else TRAIN_COLOURS[n % len(TRAIN_COLOURS)]
+            kw = dict(lw=1.4 if reference else 0.8, color=c, label=name)
             t, t_label = time_axis(g["time"][:])
             for i, mesh in enumerate(meshes):
                 if mesh not in g["meshes"]:
                     continue
                 m = g["meshes"][mesh]
-                column[2 * i].plot(t, m["relative"][:] * 1e6, lw=0.8, color=c, label=name)
+                column[2 * i].plot(t, m["relative"][:] * 1e6, **kw)
                 if n == 0:
                     half = m["band_half_width"][()] * 1e6
                     for s in (1, -1):
                         column[2 * i].axhline(s * half, color="k", ls="--", lw=0.7)
                 column[2 * i].set_ylabel(f"S {mesh} [um]")
-                column[2 * i + 1].plot(t, m["force"][:], lw=0.7, color=c, label=name)
+                column[2 * i + 1].plot(t, m["force"][:], **kw)
                 column[2 * i + 1].set_ylabel(f"force {mesh} [N]")
             for j, body in enumerate(names_of(g, "bodies")):
                 if j < len(bodies):
-                    column[2 * len(meshes) + j].plot(t, g["speed"][j], lw=0.8, color=c,
-                                                     label=name)
+                    column[2 * len(meshes) + j].plot(t, g["speed"][j], **kw)
                     column[2 * len(meshes) + j].set_ylabel(f"{body} [rad/s]")
         for ax in column:
-            ax.legend(fontsize=7, loc="upper right")
-            ax.set_xlabel(t_label)
-        column[0].set_title(f"{', '.join(names)}: S per mesh (dashed: the backlash band), "
-                            "forces, speeds", fontsize=10)
-    fig.tight_layout()
+            ax.ticklabel_format(axis="y", useOffset=False)
+            lo, hi = ax.get_ylim()
+            middle = 0.5 * (lo + hi)
+            if hi - lo < 1e-6 * abs(middle):  # a held speed: round-off, not signal
+                ax.set_ylim(middle * (1 - 1e-4), middle * (1 + 1e-4))
+        column[-1].set_xlabel(t_label)
+        column[0].set_title(f"S per mesh (dashed: the backlash band), forces, speeds",
+                            fontsize=10)
+        column[0].legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.12),
+                         ncol=len(names), frameon=False)
     save(fig, os.path.join(out_dir, "train_compare.png"))
 
 
@@ -1016,7 +1043,7 @@ def plot_train_spectrograms(trains, out_dir):
     names = [n for n in trains if "spectrogram" in trains[n]]
     if not names:
         return
-    fig, axes = plt.subplots(len(names), 1, figsize=(12, 4.5 * len(names)), squeeze=False)
+    fig, axes = plt.subplots(len(names), 1, figsize=(12, 3.6 * len(names)), squeeze=False)
     for ax, name in zip(axes[:, 0], names):
         s = trains[name]["spectrogram"]
         t, f, a = s["time"][:], s["frequency"][:], s["amplitude"][:]
@@ -1026,8 +1053,10 @@ def plot_train_spectrograms(trains, out_dir):
         fig.colorbar(image, ax=ax, label="log10 amplitude [N]")
         ax.set_xlabel("time [s]")
         ax.set_ylabel("frequency [Hz]")
+        df = f[1] - f[0] if f.size > 1 else 0.0  # the window's resolution: 1 / its length
         ax.set_title(f"{name}: spectrogram of the {s.attrs['mesh']} force magnitude "
-                     f"({(t[1] - t[0]) * 1e3 if t.size > 1 else 0:.0f} ms steps)")
+                     f"(windows of {1e3 / df if df else 0:.0f} ms: {df:.0f} Hz resolution, "
+                     f"{(t[1] - t[0]) * 1e3 if t.size > 1 else 0:.0f} ms steps)")
     fig.tight_layout()
     save(fig, os.path.join(out_dir, "train_spectrogram.png"))
 

@@ -1030,7 +1030,7 @@ def plot_train_compare(trains, out_dir):
             if hi - lo < 1e-6 * abs(middle):  # a held speed: round-off, not signal
                 ax.set_ylim(middle * (1 - 1e-4), middle * (1 + 1e-4))
         column[-1].set_xlabel(t_label)
-        column[0].set_title(f"S per mesh (dashed: the backlash band), forces, speeds",
+        column[0].set_title("S per mesh (dashed: the backlash band), forces, speeds",
                             fontsize=10)
         column[0].legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.12),
                          ncol=len(names), frameon=False)

@@ -162,7 +162,39 @@ def gear_rows(name, g):
     if parts:
         rows.append([esc(name), "pair: working centre distance and pressure angle, contact ratios",
                      ", ".join(parts)])
+    j = backlash(g)
+    if j is not None:
+        rows.append([esc(name), "pair: normal backlash at the operating centre distance "
+                     "(from the tooth thicknesses)", f"{j * 1e3:.4f} mm"])
     return rows
+
+
+def backlash(g):
+    """Normal backlash of an involute pair at its operating centre distance a: the working
+    circles' pitch less both transverse tooth thicknesses there (s(r) = 2 r (s_t / (2 r_ref) +
+    inv alpha_t - inv alpha(r))), times cos alpha' cos beta_b. None where the data are missing
+    (bevel pairs)."""
+    need = ("base_radius", "tooth_thickness_reference", "reference_radius",
+            "transverse_pressure_angle", "number_of_teeth", "base_helix_angle")
+    if "operating_centre_distance" not in g or not all(
+            m in g and all(k in g[m] for k in need) for m in ("pinion", "gear")):
+        return None
+    p, w = g["pinion"], g["gear"]
+    a = g["operating_centre_distance"][()]
+    cos_w = (p["base_radius"][()] + w["base_radius"][()]) / a
+    if not 0 < cos_w < 1:
+        return None
+
+    def inv(x):
+        return np.tan(x) - x
+    alpha_w = np.arccos(cos_w)
+    thickness = 0.0
+    for m in (p, w):
+        r_w = m["base_radius"][()] / cos_w
+        thickness += 2 * r_w * (m["tooth_thickness_reference"][()] / (2 * m["reference_radius"][()])
+                                + inv(m["transverse_pressure_angle"][()]) - inv(alpha_w))
+    pitch = 2 * np.pi * p["base_radius"][()] / cos_w / p["number_of_teeth"][()]
+    return (pitch - thickness) * cos_w * np.cos(p["base_helix_angle"][()])
 
 
 def stiffness_rows(name, g, base_radius=None):
@@ -179,6 +211,11 @@ def stiffness_rows(name, g, base_radius=None):
         label = f"{esc(name)}, {torque:g} N m"
         rows.append([label, "mesh stiffness K_m, mean (min .. max)", stats(km[t], "N/m")])
         rows.append([label, "e_L − e_0, mean (min .. max)", stats(de[t], "rad")])
+        share = g["pair_force"][t] / np.maximum(g["normal_force"][t][:, None], 1e-300)
+        carrying = np.sum(share > 0.01, axis=1)
+        rows.append([label, "load sharing: tooth pairs carrying over 1 % of the load (min .. "
+                     "max over the positions); the most loaded pair's share, least over the cycle",
+                     f"{carrying.min()} .. {carrying.max()} pairs; {share.max(axis=1).min() * 100:.1f} %"])
         pp, orders = plot_results.te_harmonics(g["transmission_error_loaded"][t])
         along = f" ({pp * r_b * 1e6:.3f} µm {where})" if r_b else ""
         rows.append([label, "loaded transmission error e_L: peak-to-peak; mesh orders 1, 2, 3",
@@ -297,6 +334,8 @@ def train_rows(name, g):
         rows.append([where, "largest force (located), at",
                      f"{number(m['max_force'][()], 'N')} at {m['max_force_time'][()] * 1e3:.4g} ms"])
         rows.append([where, "deepest penetration", number(m["max_penetration"][()], "m")])
+        rows.append([where, "backlash along the line of action (the band S moves in)",
+                     number(2 * m["band_half_width"][()], "m")])
         if "spectrum" not in m:
             rows.append([where, "force spectrum", "none: the speed does not hold over the "
                          "analysis interval (see the spectrogram)"])

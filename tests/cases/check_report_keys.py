@@ -52,6 +52,14 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
             row = rows[f"{pair}: pair: working centre distance and pressure angle, contact ratios"]
             assert f"ε_α {eps:.3f}" in row, row
             checked += 1
+        # at the working centre distance (zero backlash by its definition) the backlash from the
+        # tooth thicknesses vanishes: an exact check of the thickness arithmetic
+        key = (f"{pair}: pair: normal backlash at the operating centre distance (from the tooth "
+               "thicknesses)")
+        if key in rows and abs(g["operating_centre_distance"][()]
+                               - g["working_centre_distance"][()]) < 1e-12:
+            assert numbers(rows[key])[0] == 0.0, rows[key]
+            checked += 1
     for pair in f.get("stiffness", {}):
         s = f["stiffness"][pair]
         for t, torque in enumerate(s["torque"][()]):

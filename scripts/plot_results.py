@@ -39,6 +39,17 @@ def save(fig, path):
     print("picture:", path)
 
 
+# Below these the numbers are the computation's round-off, shown as 0: transmission errors and
+# angles 1e-10 rad (a 0.1 nm at a 1 m radius), lengths 1e-12 m.
+ANGLE_FLOOR, LENGTH_FLOOR = 1e-10, 1e-12
+
+
+def resolved(value, floor):
+    """value with everything smaller than floor in magnitude set to 0."""
+    a = np.asarray(value, dtype=float)
+    return np.where(np.abs(a) < floor, 0.0, a)
+
+
 def rotate(xy, angle):
     c, s = np.cos(angle), np.sin(angle)
     return xy @ np.array([[c, s], [-s, c]])
@@ -234,15 +245,17 @@ def plot_ste(ste, flanks, out_dir):
             row[0].legend(fontsize=8)
         row[0].set_xlabel("pinion angle [mesh cycles]")
         row[0].set_ylabel("e_0 [urad, pinion]")
-        row[0].set_title(f"{name}: unloaded STE, peak-to-peak {g['peak_to_peak'][()] * 1e6:.3g} urad")
+        pp = resolved(g["peak_to_peak"][()], ANGLE_FLOOR) * 1e6
+        row[0].set_title(f"{name}: unloaded STE, peak-to-peak {pp:.3g} urad"
+                         + (" (conjugate flanks)" if pp == 0 else ""))
         row[0].grid(alpha=0.3)
-        h = g["harmonics"][1:] * 1e6
+        h = resolved(g["harmonics"][1:], LENGTH_FLOOR) * 1e6
         orders = np.arange(1, len(h) + 1)
         width = 0.4 if measured is not None else 0.8
         row[1].bar(orders - (width / 2 if measured is not None else 0), h, width,
                    label="theoretical")
         if measured is not None:
-            row[1].bar(orders + width / 2, measured["harmonics"][1:] * 1e6, width,
+            row[1].bar(orders + width / 2, resolved(measured["harmonics"][1:], LENGTH_FLOOR) * 1e6, width,
                        label="measured")
             row[1].legend(fontsize=8)
         row[1].set_xlabel("mesh order")
@@ -1074,12 +1087,12 @@ def plot_deflection(dyn, ste, flanks, out_dir):
         aligned = ste[name] if label == "theoretical" else ste[name]["measured"]
         moved = d["tca"]
         z1 = int(flanks[name]["pinion"]["number_of_teeth"][()])
-        shift = d["transmission_error_mean_shift"][()] * 1e6
+        shift = resolved(d["transmission_error_mean_shift"][()], ANGLE_FLOOR) * 1e6
         for g, what in ((aligned, "as assembled"), (moved, "deflected")):
             cycles = g["pinion_angle"][:] * z1 / (2 * np.pi)
             te = g["transmission_error"][:] * 1e6
             left.plot(cycles, te - te.mean(), ".-", ms=3, lw=0.8,
-                      label=f"{what}: p-p {g['peak_to_peak'][()] * 1e6:.3g} urad")
+                      label=f"{what}: p-p {resolved(g['peak_to_peak'][()], ANGLE_FLOOR) * 1e6:.3g} urad")
         left.set_xlabel("pinion angle [mesh cycles]")
         left.set_ylabel("e_0 - mean [urad]")
         left.set_title(f"{name} ({label}): e_0, mean moved by {shift:.4g} urad", fontsize=10)
@@ -1090,19 +1103,24 @@ def plot_deflection(dyn, ste, flanks, out_dir):
             points = g["contact_in_gear_frame"][:][np.arange(len(lead)), lead, 0]
             face, profile = gear_flank_coordinates(flanks, name, points)
             right.plot(face, profile, style, ms=3, label=what)
+        def um(key):
+            return f"{resolved(d[key][()], LENGTH_FLOOR) * 1e6:+.3g} um"
+
+        def mrad(key):
+            return f"{resolved(d[key][()], ANGLE_FLOOR) * 1e3:+.3g} mrad"
         if "centre_distance" in ste[name]:
-            text = (f"a {d['centre_distance_error'][()] * 1e6:+.3g} um, offset "
-                    f"{d['offset'][()] * 1e6:+.3g} um, crossing {d['crossing_angle'][()] * 1e3:+.3g}"
-                    f" mrad, inclination {d['intersecting_angle'][()] * 1e3:+.3g} mrad")
+            text = (f"a {um('centre_distance_error')}, offset {um('offset')}, crossing "
+                    f"{mrad('crossing_angle')}, inclination {mrad('intersecting_angle')}")
         else:
-            text = (f"dE {d['offset'][()] * 1e6:+.3g} um, dP {d['pinion_axial_shift'][()] * 1e6:+.3g}"
-                    f" um, dG {d['gear_axial_shift'][()] * 1e6:+.3g} um, dgamma "
-                    f"{d['intersecting_angle'][()] * 1e3:+.3g} mrad")
+            text = (f"dE {um('offset')}, dP {um('pinion_axial_shift')}, dG "
+                    f"{um('gear_axial_shift')}, dgamma {mrad('intersecting_angle')}")
         right.set_title(f"contact path on the gear flank\ndeflection: {text}", fontsize=9)
         right.set_xlabel("face [mm]" if not is_bevel(flanks[name])
                          else "face: cone distance - A_m [mm] (toe to heel)")
         right.set_ylabel("gear roll length L [mm]" if not is_bevel(flanks[name])
                          else "height above the pitch cone [mm]")
+        half_b = flanks[name]["gear"]["face_width"][()] * 500  # the flank's extent, not round-off
+        right.set_xlim(-half_b * 1.05, half_b * 1.05)
         right.legend(fontsize=8)
         right.grid(alpha=0.3)
     fig.tight_layout()

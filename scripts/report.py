@@ -402,6 +402,23 @@ def dynamics_rows(name, g):
     return rows
 
 
+def with_notes(rows, notes):
+    """The key rows with the scene's notes (section Notes: `<name>\t<area>\t<text>` a line,
+    root attribute `notes`) each set after the last row of its area and name: the caveat next
+    to the number it qualifies."""
+    for line in notes.splitlines():
+        parts = line.split("\t", 2)
+        if len(parts) != 3 or not parts[2].strip():
+            continue
+        name, area, text = parts
+        row = [area, f"{esc(name)}: note", f'<span class="note">{esc(text)}</span>']
+        at = [i for i, r in enumerate(rows) if r[0] == area and r[1].startswith(esc(name))]
+        if not at:
+            at = [i for i, r in enumerate(rows) if r[0] == area]
+        rows.insert(at[-1] + 1 if at else len(rows), row)
+    return rows
+
+
 def scalar_rows(f):
     """Every scalar dataset of the results with its units and description."""
     rows = []
@@ -508,6 +525,7 @@ def main():
             for name in f["train"]:
                 rows += [["gear train", r[0] + ": " + r[1], r[2]]
                          for r in train_rows(name, f["train"][name])]
+        rows = with_notes(rows, attr(f, "notes"))
         total, bad = checks(f)
         rows.append(["checks", "finite values in every floating-point dataset",
                      f"{total - len(bad)} of {total} datasets"
@@ -557,7 +575,7 @@ h1{font-size:1.6em} h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-t
 table{border-collapse:collapse;margin:.5em 0} td,th{border:1px solid #ddd;padding:.25em .6em;
 text-align:left;vertical-align:top} th{background:#f3f3f3} table.key td:first-child{color:#666}
 figure{margin:1em 0} img{max-width:100%;border:1px solid #eee} figcaption{font-size:.9em;color:#444}
-.warnings{background:#fff3cd;border:2px solid #d39e00;padding:.2em 1em;font-weight:600}
+.note{color:#7a4b00;font-style:italic} .warnings{background:#fff3cd;border:2px solid #d39e00;padding:.2em 1em;font-weight:600}
 pre{background:#f7f7f7;padding:.6em;overflow:auto;font-size:.85em} .meta{color:#555}
 """
     # For the browser check (tests): how many pictures decoded, on the body once the page loaded.

@@ -147,7 +147,11 @@ def gear_rows(name, g):
                                 ("face_width", "b", mm),
                                 ("tip_radius", "d_a", lambda v: mm(2 * v)),
                                 ("root_radius", "d_f", lambda v: mm(2 * v)),
-                                ("helix_angle", "β", deg)):
+                                ("helix_angle", "β", deg),
+                                ("pitch_angle", "δ", deg),
+                                ("mean_pitch_radius", "d_m", lambda v: mm(2 * v)),
+                                ("addendum", "h_am", mm),
+                                ("dedendum", "h_fm", mm)):
             if key in m and m[key].shape == ():
                 parts.append(f"{label} {fmt(m[key][()])}")
         if parts:
@@ -156,12 +160,17 @@ def gear_rows(name, g):
     for key, label, fmt in (("working_centre_distance", "a_w", mm),
                             ("working_pressure_angle", "α_wt", deg),
                             ("transverse_contact_ratio", "ε_α", lambda v: f"{v:.3f}"),
-                            ("overlap_ratio", "ε_β", lambda v: f"{v:.3f}")):
+                            ("overlap_ratio", "ε_β", lambda v: f"{v:.3f}"),
+                            ("shaft_angle", "Σ", deg),
+                            ("mean_cone_distance", "R_m", mm),
+                            ("mean_normal_module", "m_mn", mm),
+                            ("mean_spiral_angle", "β_m", deg)):
         if key in g:
             parts.append(f"{label} {fmt(g[key][()])}")
     if parts:
-        rows.append([esc(name), "pair: working centre distance and pressure angle, contact ratios",
-                     ", ".join(parts)])
+        rows.append([esc(name), "pair: working centre distance and pressure angle, contact ratios"
+                     if "working_centre_distance" in g else "pair: shaft angle, mean cone distance, "
+                     "mean normal module and spiral angle", ", ".join(parts)])
     j = backlash(g)
     if j is not None:
         rows.append([esc(name), "pair: normal backlash at the operating centre distance "
@@ -402,6 +411,70 @@ def dynamics_rows(name, g):
     return rows
 
 
+def glance_rows(f):
+    """The headline of every pair (one row a torque) and of every train mesh: the numbers the
+    key table below details, from the same rules (settled speeds, no edge positions)."""
+    rows, trains = [], []
+    for pair in f["flanks"] if "flanks" in f else []:
+        fl = f["flanks"][pair]
+        eps = (f"{fl['transverse_contact_ratio'][()]:.3f} / {fl['overlap_ratio'][()]:.3f}"
+               if "transverse_contact_ratio" in fl and "overlap_ratio" in fl else "–")
+        ste = f["ste"][pair] if "ste" in f and pair in f["ste"] else None
+        e0 = number(plot_results.resolved(ste["peak_to_peak"][()], plot_results.ANGLE_FLOOR),
+                    "rad") if ste is not None and "peak_to_peak" in ste else "–"
+        dlf = "–"
+        if "dynamics" in f and pair in f["dynamics"]:
+            best = None
+            for ex, e in f["dynamics"][pair].items():
+                if isinstance(e, h5py.Group) and "up" in e:
+                    s = e["up"]
+                    ok = sweep_valid(s) & ((s["status"][()] == 0) if "status" in s else True)
+                    if ok.any():
+                        k = int(np.argmax(np.where(ok, s["dynamic_load_factor"][()], -np.inf)))
+                        v = (s["dynamic_load_factor"][()][k], s["speed"][()][k], ex)
+                        best = v if best is None or v[0] > best[0] else best
+            if best is not None:
+                dlf = f"{best[0]:.3f} at {best[1]:.0f} rpm ({esc(best[2])})"
+        if not ("stiffness" in f and pair in f["stiffness"]):
+            if ste is not None or dlf != "–":
+                rows.append([esc(pair), eps, e0, "–", "–", "–", "–", dlf])
+            continue
+        g = f["stiffness"][pair]
+        for t, torque in enumerate(g["torque"][()]):
+            pp, orders = plot_results.te_harmonics(g["transmission_error_loaded"][t])
+            edge = plot_results.edge_contact(g, t)
+            pressure = "–"
+            if "interior_peak_pressure" in g and (~edge).any():
+                pressure = number(g["interior_peak_pressure"][t][~edge].max(), "Pa")
+                if edge.any():
+                    pressure += f" ({int(edge.sum())} edge positions apart)"
+            elif "interior_peak_pressure" in g:
+                pressure = "every position on an edge (key numbers)"
+            rows.append([esc(pair), eps, e0, f"{torque:g} N m",
+                         f"{number(pp, 'rad')} ({', '.join(f'{a * 1e6:.3g}' for a in orders)})",
+                         stats(g["mesh_stiffness"][t], "N/m"), pressure, dlf])
+    for name in f["train"] if "train" in f else []:
+        g = f["train"][name]
+        for mesh in g["meshes"] if "meshes" in g else []:
+            m = g["meshes"][mesh]
+            first = m["first_contact"][()]
+            line = "–"
+            if "spectrum" in m:
+                lines = m["spectrum"]["lines"]
+                k = np.nonzero((lines["harmonic"][()] == 1) & (lines["sideband"][()] == 0))[0]
+                if k.size and lines["found"][()][k[0]]:
+                    line = (f"{lines['amplitude'][()][k[0]]:.3g} N at "
+                            f"{lines['frequency'][()][k[0]]:.2f} Hz")
+                elif k.size:
+                    line = "not found"
+            trains.append([f"{esc(name)}, {esc(mesh)}",
+                           f"{int(m['impacts'][()])} ({int(m['drive_impacts'][()])} / "
+                           f"{int(m['coast_impacts'][()])})",
+                           "none" if first < 0 else f"{first * 1e3:.4g} ms",
+                           number(m["max_force"][()], "N"), line])
+    return rows, trains
+
+
 def with_notes(rows, notes):
     """The key rows with the scene's notes (section Notes: `<name>\t<area>\t<text>` a line,
     root attribute `notes`) each set after the last row of its area and name: the caveat next
@@ -475,6 +548,17 @@ def main():
                      + "</ul></div>")
 
         # 1. Key numbers and their accuracy
+        glance, train_glance = glance_rows(f)
+        if glance:
+            page.h(2, "At a glance", "glance")
+            page.table(["pair", "ε_α / ε_β", "e_0 p-p", "torque", "e_L p-p (orders 1, 2, 3)",
+                        "K_m mean (min .. max)", "flank-interior pressure",
+                        "dynamic load factor (settled)"], glance, "glance")
+        if train_glance:
+            if not glance:
+                page.h(2, "At a glance", "glance")
+            page.table(["train, mesh", "impacts (drive / coast)", "first contact",
+                        "largest force (located)", "GMF line"], train_glance, "glance")
         page.h(2, "Key numbers", "key")
         rows = []
         if "flanks" in f:

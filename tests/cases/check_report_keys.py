@@ -29,6 +29,16 @@ for row in re.findall(r"<tr>(.*?)</tr>", table, re.S):
         rows[cells[1]] = cells[2]
 
 
+glance = []
+if 'id="glance"' in page:
+    for row in re.findall(r"<tr>(.*?)</tr>", page[page.index('id="glance"'):page.index('id="key"')],
+                          re.S):
+        cells = [html.unescape(re.sub("<[^>]+>", "", c)).strip()
+                 for c in re.findall(r"<td>(.*?)</td>", row, re.S)]
+        if cells:
+            glance.append(cells)
+
+
 def numbers(text):
     return [float(v) for v in re.findall(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?", text)]
 
@@ -77,6 +87,11 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
             for k in range(3):
                 near(shown[k], dft[k] * 1e6, f"{key} order {k + 1} [urad]")
             checked += 4
+            # the glance table's row of this pair and torque: the same peak-to-peak
+            at = [r for r in glance if len(r) == 8 and r[0] == pair and r[3] == f"{torque:g} N m"]
+            assert len(at) == 1, (pair, torque, glance)
+            near(numbers(at[0][4])[0], (te.max() - te.min()) * 1e6, "glance e_L p-p")
+            checked += 1
             # the interior pressure's headline: from positions whose largest pressure is on
             # no flank-edge cell (a tip corner's singular value is never the headline)
             if "interior_peak_pressure" in s and np.any(s["peak_pressure"][t] <=
@@ -115,6 +130,9 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
                        f"({sweep} sweep)")
                 assert rows[key] == f"{dlf[k]:.3f} at {speed[k]:.0f} rpm", (key, rows[key])
                 checked += 1
+                if sweep == "up":  # the glance's load factor: the largest settled of any excitation
+                    shown = [numbers(r[7])[0] for r in glance if len(r) == 8 and r[0] == pair]
+                    assert all(v >= round(dlf[k], 3) - 1e-9 for v in shown), (pair, shown, dlf[k])
     # trains: impacts per side counted from the contact table, the largest force located
     for name in f.get("train", {}):
         g = f["train"][name]

@@ -48,10 +48,10 @@ def esc(text):
 
 
 def shown(value, units):
-    """A number in display units, 4 significant digits."""
+    """A number in display units: 4 significant digits, whole numbers from 1e4 to 1e7."""
     scale, label = DISPLAY.get(units, (1.0, units))
     v = float(value) * scale
-    text = f"{v:.4g}" if abs(v) < 1e6 else f"{v:.4e}"
+    text = f"{v:.4g}" if abs(v) < 1e4 else f"{v:.0f}" if abs(v) < 1e7 else f"{v:.4e}"
     return text, ("" if label == "1" else label)
 
 
@@ -339,7 +339,7 @@ def train_rows(name, g):
                      f"{int(m['impacts'][()])} ({int(m['drive_impacts'][()])} / "
                      f"{int(m['coast_impacts'][()])})"])
         first = m["first_contact"][()]
-        rows.append([where, "first contact", "none" if first < 0 else f"{first * 1e3:.4g} ms"])
+        rows.append([where, "first contact", "none" if first < 0 else f"{first * 1e3:.3f} ms"])
         rows.append([where, "largest force (located), at",
                      f"{number(m['max_force'][()], 'N')} at {m['max_force_time'][()] * 1e3:.4g} ms"])
         rows.append([where, "deepest penetration", number(m["max_penetration"][()], "m")])
@@ -470,7 +470,7 @@ def glance_rows(f):
             trains.append([f"{esc(name)}, {esc(mesh)}",
                            f"{int(m['impacts'][()])} ({int(m['drive_impacts'][()])} / "
                            f"{int(m['coast_impacts'][()])})",
-                           "none" if first < 0 else f"{first * 1e3:.4g} ms",
+                           "none" if first < 0 else f"{first * 1e3:.3f} ms",
                            number(m["max_force"][()], "N"), line])
     return rows, trains
 

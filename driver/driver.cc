@@ -273,6 +273,9 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
     for (const std::string &w : scene.warnings)
       warnings += w + "\n";
     root.attribute("warnings", warnings);
+    // Caveats for the report to show next to the numbers they qualify (section Notes): one
+    // line per note, "<name>\t<area>\t<text>" (notes_text).
+    root.attribute("notes", notes_text(scene.notes));
   }
   for (const StageRun &r : summary.stages)
     results.copy_from(*files.at(r.name), "/" + r.name, "/" + r.name);

@@ -100,9 +100,16 @@ struct TrainNames
   std::vector<std::string> bodies, meshes;
 };
 
+/// The names a scene's Notes section holds (`section`: the scene has one, possibly empty).
+struct NotesNames
+{
+  bool                     section = false;
+  std::vector<std::string> names;
+};
+
 void
 declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs,
-            const std::vector<TrainNames> &trains = {})
+            const std::vector<TrainNames> &trains = {}, const NotesNames &notes = {})
 {
   in_subsection(prm, {"Scene"}, [&] { Scene::declare(prm); });
   for (const SectionDeclaration &s : pair_sections)
@@ -110,6 +117,12 @@ declare_all(ParameterHandler &prm, const std::vector<std::string> &pairs,
       in_subsection(prm, {s.name, pair}, [&] { s.declare(prm); });
   for (const TrainNames &t : trains)
     in_subsection(prm, {"Train", t.name}, [&] { TrainScene::declare(prm, t.bodies, t.meshes); });
+  // Notes only where the scene has them (no empty Notes blocks in every scene's parameters),
+  // for the names it opens there (each a pair or a train: checked before).
+  if (notes.section)
+    in_subsection(prm, {"Notes"}, [] {});
+  for (const std::string &n : notes.names)
+    in_subsection(prm, {"Notes", n}, [&] { NotesScene::declare(prm); });
 }
 
 /// Names of a list entry, each checked as an identifier, unique, at most `most`.
@@ -244,9 +257,16 @@ read_scene(const std::string &file)
             });
         }
 
+      // 1c. The names under Notes (optional): each a pair or a train of the scene.
+      const NotesNames         notes{text.has_subsection("Notes"), text.subsections_in("Notes")};
+      std::vector<std::string> train_names;
+      for (const TrainNames &t : trains)
+        train_names.push_back(t.name);
+      NotesScene::check_names(notes.names, pairs, train_names);
+
       // 2. Everything, strictly: unknown entries and values outside their patterns are errors.
       ParameterHandler prm;
-      declare_all(prm, pairs, trains);
+      declare_all(prm, pairs, trains, notes);
       text.parse(prm);
 
       // 3. Each section parses itself.
@@ -280,6 +300,16 @@ read_scene(const std::string &file)
           in_subsection(prm, {"Train", t.name}, [&] { train.parse(prm); });
           scene.trains.push_back(train);
         }
+      // the pairs' notes in the order of Scene/pairs, then the trains' (a name may be both)
+      std::vector<std::string> noted = pairs;
+      noted.insert(noted.end(), train_names.begin(), train_names.end());
+      for (std::size_t i = 0; i < noted.size(); ++i)
+        if (std::count(noted.begin(), noted.begin() + std::ptrdiff_t(i), noted[i]) == 0 &&
+            std::count(notes.names.begin(), notes.names.end(), noted[i]) > 0)
+          in_subsection(prm, {"Notes", noted[i]}, [&] {
+            for (SceneNote &n : NotesScene::parse(prm, noted[i]))
+              scene.notes.push_back(std::move(n));
+          });
 
       // 4. Each section checks itself against the rest of the scene: everything the scene
       //    alone can tell is refused here, before any stage runs.
@@ -339,7 +369,7 @@ print_parameters(std::ostream &out, const std::vector<std::string> &pairs)
   // deal.II's PRM listing omits the allowed values and its Description listing the defaults;
   // this one has both and is itself a valid scene file.
   ParameterHandler prm;
-  declare_all(prm, pairs, {{"train", {"input", "output"}, {"stage"}}});
+  declare_all(prm, pairs, {{"train", {"input", "output"}, {"stage"}}}, {true, pairs});
   std::stringstream json;
   prm.print_parameters(json, ParameterHandler::JSON);
   boost::property_tree::ptree tree;
@@ -368,9 +398,19 @@ print_parameters(std::ostream &out, const std::vector<std::string> &pairs)
   boost::property_tree::ptree scene_first;
   scene_first.add_child("Scene", tree.get_child("Scene"));
   for (const auto &[name, child] : tree)
-    if (name != "Scene" && name != "Train")
+    if (name != "Scene" && name != "Train" && name != "Notes")
       scene_first.add_child(name, child);
   print(out, scene_first, 0);
+  // The notes after the stages' sections: optional, for the pairs and the trains alike.
+  boost::property_tree::ptree notes;
+  notes.add_child("Notes", tree.get_child("Notes"));
+  out << "# Notes/<name> (optional): caveats the report shows next to the numbers they qualify,\n"
+      << "# one line of text per report area, for a pair of Scene/pairs or a train of "
+         "Scene/trains\n"
+      << "# (another name is refused). No stage reads them: changing a note recomputes nothing.\n"
+      << "# results.h5 carries them as its root attribute notes, one line per note:\n"
+      << "# <name> TAB <area> TAB <text>.\n";
+  print(out, notes, 0);
   // A train's section exists only for the trains Scene/trains names: commented out here (an
   // example train "train" with bodies input, output and mesh stage), so that the listing stays
   // a valid scene.

@@ -4,9 +4,10 @@
 // Every section is a struct that declares its parameters, parses them and checks them, side by
 // side in one source file (deal.II step-44 style): scene_flanks.cc (Flanks/<pair>),
 // scene_measured.cc, scene_tca.cc, scene_stiffness.cc (Finite elements, Loaded contact),
-// scene_dynamics.cc. declare() runs with the ParameterHandler inside the section's subsection,
-// parse() likewise, check() afterwards with the rest of the scene at hand: every check that the
-// scene alone allows runs when the scene is read, before any stage.
+// scene_dynamics.cc, scene_train.cc, scene_notes.cc (Notes/<pair or train>: caveats for the
+// report, in no cache key). declare() runs with the ParameterHandler inside the section's
+// subsection, parse() likewise, check() afterwards with the rest of the scene at hand: every check
+// that the scene alone allows runs when the scene is read, before any stage.
 #pragma once
 
 #include "dynamics/integrators.h"
@@ -410,6 +411,41 @@ train_cost_estimate(const TrainScene &train, const TrainModel &model);
 double
 train_mesh_centre_distance(const Scene &scene, const TrainMeshScene &mesh);
 
+/// A caveat carried with the numbers (section Notes/<name>, optional): the report shows `text`
+/// next to the numbers of `area` of the pair or train `name`. Notes enter no stage's cache key:
+/// changing one recomputes nothing.
+struct SceneNote
+{
+  std::string name; ///< a pair of Scene/pairs or a train of Scene/trains
+  std::string area; ///< one of note_areas()
+  std::string text; ///< one line: no tabs or line breaks (those read as spaces), not empty
+};
+
+/// The report areas a note can qualify, in the report's order, as the entries of Notes/<name>
+/// name them: gear data, unloaded TCA, loaded contact, dynamics, gear train.
+const std::vector<std::string> &
+note_areas();
+
+/// Section Notes/<name> (scene_notes.cc): one optional text per report area.
+struct NotesScene
+{
+  static void
+  declare(ParameterHandler &prm);
+  /// The entries that are set (not empty) as notes of `name`, in the order of note_areas().
+  static std::vector<SceneNote>
+  parse(ParameterHandler &prm, const std::string &name);
+  /// The names the scene opens under Notes must each be a pair or a train of the scene; else an
+  /// InputError naming the section, the name and the pairs and trains allowed.
+  static void
+  check_names(const std::vector<std::string> &names, const std::vector<std::string> &pairs,
+              const std::vector<std::string> &trains);
+};
+
+/// The notes as results.h5 carries them (root attribute `notes`): one line per note,
+/// "<name>\t<area>\t<text>\n"; empty without notes.
+std::string
+notes_text(const std::vector<SceneNote> &notes);
+
 struct Scene
 {
   std::string                          file;    ///< the scene file as given
@@ -422,8 +458,12 @@ struct Scene
   std::map<std::string, LoadedScene>   loaded;   ///< by pair name
   std::map<std::string, DynamicsScene> dynamics; ///< by pair name
   std::vector<TrainScene>              trains;   ///< Train/<train>, in the order of Scene/trains
+  /// Notes/<name>: the pairs' notes in the order of Scene/pairs, then the trains' in the order
+  /// of Scene/trains, each's in the order of note_areas(). In no stage's cache key.
+  std::vector<SceneNote> notes;
   /// The scene's parameters in canonical text form, one block per top-level subsection
-  /// ("Scene", "Flanks", "Measured flanks", ...); the cache keys hash these.
+  /// ("Scene", "Flanks", "Measured flanks", ..., "Notes" where the scene has notes); the cache
+  /// keys hash the blocks of their stages' sections (Notes in none).
   std::map<std::string, std::string> sections;
   /// Values a real design can have but that look like a unit slip or a typing error (the
   /// parameter, the value, the plausible range, the likely slip): the run goes on, and the log,

@@ -612,6 +612,17 @@ SceneText::rewrite_locations(const std::string &message) const
   return out + message.substr(p);
 }
 
+std::vector<std::string>
+SceneText::subsections_in(const std::string &path) const
+{
+  const std::string     prefix = path + "/";
+  std::set<std::string> names;
+  for (auto it = subsections_.lower_bound(prefix);
+       it != subsections_.end() && it->compare(0, prefix.size(), prefix) == 0; ++it)
+    names.insert(it->substr(prefix.size(), it->find('/', prefix.size()) - prefix.size()));
+  return {names.begin(), names.end()};
+}
+
 void
 SceneText::parse(dealii::ParameterHandler &prm, const bool skip_undefined) const
 {

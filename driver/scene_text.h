@@ -93,6 +93,12 @@ public:
     return subsections_.count(path) > 0;
   }
 
+  /// The names of the subsections the scene opens directly inside the subsection `path`
+  /// ("Notes": the names under Notes), in name order (a name with a / in it by its part before
+  /// the /).
+  std::vector<std::string>
+  subsections_in(const std::string &path) const;
+
 private:
   struct Source
   {

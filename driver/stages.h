@@ -39,7 +39,8 @@ struct StageDefinition
   std::string              name;
   std::string              description;
   std::vector<std::string> upstream; ///< stages whose results this one needs
-  std::vector<std::string> sections; ///< scene sections whose parameters enter the key
+  /// Scene sections whose parameters enter the key (never "Notes": a note changes no result).
+  std::vector<std::string> sections;
   /// Library folders whose code the stage runs (besides driver/): their source hashes enter
   /// the key, so changed code re-runs the stage.
   std::vector<std::string> code;

@@ -449,7 +449,11 @@ def glance_rows(f):
                 if edge.any():
                     pressure += f" ({int(edge.sum())} edge positions apart)"
             elif "interior_peak_pressure" in g:
-                pressure = "every position on an edge (key numbers)"
+                cells = g["contact_cells"][t][..., 3]
+                loaded = cells[cells > 0]
+                pressure = (f"every position on an edge; cells' median / 90th percentile "
+                            f"{number(np.median(loaded), 'Pa')} / "
+                            f"{number(np.percentile(loaded, 90), 'Pa')}")
             rows.append([esc(pair), eps, e0, f"{torque:g} N m",
                          f"{number(pp, 'rad')} ({', '.join(f'{a * 1e6:.3g}' for a in orders)})",
                          stats(g["mesh_stiffness"][t], "N/m"), pressure, dlf])
@@ -570,10 +574,12 @@ def main():
                 g = f["ste"][pair]
                 if "peak_to_peak" in g:
                     rows.append(["unloaded TCA", f"{esc(pair)} e_0 peak-to-peak (theoretical)",
-                                 number(g["peak_to_peak"][()], "rad")])
+                                 number(plot_results.resolved(g["peak_to_peak"][()],
+                                                              plot_results.ANGLE_FLOOR), "rad")])
                 if "measured" in g and "peak_to_peak" in g["measured"]:
                     rows.append(["unloaded TCA", f"{esc(pair)} e_0 peak-to-peak (measured flanks)",
-                                 number(g["measured"]["peak_to_peak"][()], "rad")])
+                                 number(plot_results.resolved(g["measured"]["peak_to_peak"][()],
+                                                              plot_results.ANGLE_FLOOR), "rad")])
                 if "mean_pairs_in_contact" in g:
                     rows.append(["unloaded TCA", f"{esc(pair)} pairs touching without load, "
                                  "mean (rigid teeth touch one at a time; the contact ratio is ε_α)",

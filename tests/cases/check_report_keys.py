@@ -21,12 +21,13 @@ out = sys.argv[1]
 with open(os.path.join(out, "report.html"), encoding="utf-8") as fh:
     page = fh.read()
 table = page[page.index('id="key"'):page.index('id="pictures"')]
-rows = {}
+rows, triples = {}, []
 for row in re.findall(r"<tr>(.*?)</tr>", table, re.S):
     cells = [html.unescape(re.sub("<[^>]+>", "", c)).strip()
              for c in re.findall(r"<td>(.*?)</td>", row, re.S)]
     if len(cells) == 3:
         rows[cells[1]] = cells[2]
+        triples.append(tuple(cells))
 
 
 glance = []
@@ -148,5 +149,15 @@ with h5py.File(os.path.join(out, "results.h5"), "r") as f:
             largest = c["peak"][()].max() if c["peak"].size else 0.0
             near(peak, largest, where + " largest force [N]")
             checked += 2
+    # the scene's notes, each in the key table under its area, after that area's rows
+    notes = f.attrs.get("notes", "")
+    notes = notes.decode() if isinstance(notes, bytes) else str(notes)
+    for line in notes.splitlines():
+        name, area, text = line.split("\t", 2)
+        assert (area, f"{name}: note", text) in triples, (name, area, text)
+        # after the last row of its area and name (or of its area)
+        at = triples.index((area, f"{name}: note", text))
+        assert triples[at - 1][0] == area, (name, area, triples[at - 1])
+        checked += 1
 assert checked > 0
 print(f"{os.path.basename(out)}: {checked} key numbers of report.html agree with results.h5")

@@ -735,7 +735,7 @@ def plot_dynamics(dyn, flanks, out_dir):
         ax.set_ylim(0, top)
         ax.set_xlabel("pinion speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
-        ax.set_title("Campbell: modes (red, width ~ mesh energy), mesh orders")
+        ax.set_title("Campbell: modes (red; width: mesh energy), orders")
         ax = row[4]
         steps_ax = None
         for label in labels:

@@ -351,6 +351,10 @@ def train_rows(name, g):
             continue
         lines = m["spectrum"]["lines"]
         h, sb, found = lines["harmonic"][()], lines["sideband"][()], lines["found"][()]
+        rows.append([where, "spectral lines found: GMF harmonics; their sidebands; shaft orders",
+                     f"{int(np.sum(found[(h > 0) & (sb == 0)]))} of {int(np.sum((h > 0) & (sb == 0)))}; "
+                     f"{int(np.sum(found[(h > 0) & (sb != 0)]))} of {int(np.sum((h > 0) & (sb != 0)))}; "
+                     f"{int(np.sum(found[h == 0]))} of {int(np.sum(h == 0))}"])
         k = np.nonzero((h == 1) & (sb == 0))[0]
         if k.size:
             i = int(k[0])
@@ -368,6 +372,13 @@ def dynamics_rows(name, g):
             continue
         label = f"{esc(name)}, {esc(ex)} excitation"
         rows.append([label, "static mesh force", number(e["static_mesh_force"][()], "N")])
+        if "stability" in e:
+            st = e["stability"]
+            grows = (st["unstable"][()] != 0) if "unstable" in st else st["spectral_radius"][()] > 1
+            rows.append([label, "speeds where the mesh in contact is parametrically unstable "
+                         "(Floquet: a disturbance grows)",
+                         ", ".join(f"{v:.0f}" for v in st["speed"][()][grows][:12])
+                         + (" …" if grows.sum() > 12 else "") + " rpm" if grows.any() else "none"])
         for sweep in ("up", "down"):
             if sweep not in e:
                 continue

@@ -2,8 +2,12 @@
 // command line run in this process, its output and messages captured.
 #pragma once
 
+#include "base/types.h"
 #include "driver/driver.h"
+#include "driver/scene.h"
 #include "tests/temp_directory_test.h"
+
+#include <gtest/gtest.h>
 
 #include <sstream>
 #include <string>
@@ -27,4 +31,27 @@ protected:
 
   std::ostringstream out, err;
 };
+
+/// The message read_scene refuses a scene file with ("" if it reads it).
+inline std::string
+refusal(const std::string &path)
+{
+  try
+    {
+      read_scene(path);
+    }
+  catch (const InputError &e)
+    {
+      return e.what();
+    }
+  return "";
+}
+
+/// Every piece in `text` (a message, a log), each missing one reported.
+inline void
+expect_contains(const std::string &text, const std::vector<std::string> &pieces)
+{
+  for (const std::string &p : pieces)
+    EXPECT_NE(text.find(p), std::string::npos) << "'" << p << "' in: " << text;
+}
 } // namespace gearkit::test_data

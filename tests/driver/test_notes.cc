@@ -20,6 +20,8 @@
 #include <sstream>
 
 using namespace gearkit;
+using test_data::expect_contains;
+using test_data::refusal;
 namespace fs = std::filesystem;
 
 namespace
@@ -28,28 +30,6 @@ const std::string source_dir = GEARKIT_SOURCE_DIR;
 
 class SceneNotes : public test_data::GearkitRun
 {
-protected:
-  // The message read_scene refuses a file with ("" if it reads it).
-  static std::string
-  refusal(const std::string &path)
-  {
-    try
-      {
-        read_scene(path);
-      }
-    catch (const InputError &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
-
-  static void
-  expect_contains(const std::string &text, const std::vector<std::string> &pieces)
-  {
-    for (const std::string &p : pieces)
-      EXPECT_NE(text.find(p), std::string::npos) << "'" << p << "' in: " << text;
-  }
 };
 
 const std::string two_pairs = R"(

@@ -15,6 +15,8 @@
 #include <sstream>
 
 using namespace gearkit;
+using test_data::expect_contains;
+using test_data::refusal;
 namespace fs = std::filesystem;
 
 namespace
@@ -28,21 +30,6 @@ protected:
   {
     std::ofstream(dir / name, std::ios::binary) << content;
     return (dir / name).string();
-  }
-
-  // The message read_scene refuses a file with ("" if it reads it).
-  static std::string
-  refusal(const std::string &path)
-  {
-    try
-      {
-        read_scene(path);
-      }
-    catch (const InputError &e)
-      {
-        return e.what();
-      }
-    return "";
   }
 
   // Runs a scene that must be refused: exit 1, every expected piece in the message, no result.

@@ -15,6 +15,7 @@
 #include <regex>
 
 using namespace gearkit;
+using test_data::expect_contains;
 namespace fs = std::filesystem;
 
 namespace
@@ -179,13 +180,6 @@ with(const std::string &text, const std::string &from, const std::string &to)
       std::regex_replace(text, std::regex(from), to, std::regex_constants::format_first_only);
   EXPECT_NE(edited, text) << from;
   return edited;
-}
-
-void
-expect_contains(const std::string &text, const std::vector<std::string> &parts)
-{
-  for (const std::string &p : parts)
-    EXPECT_NE(text.find(p), std::string::npos) << p << "\n in: " << text;
 }
 } // namespace
 

@@ -900,13 +900,13 @@ def plot_train(name, g, out_dir):
             largest = max(np.abs(force).max(), 1e-300)
             if np.abs(peaks).max() > 20 * largest:  # spikes far above the samples: both visible
                 row[1].set_yscale("symlog", linthresh=largest)
-            legend_below(row[1])
+            legend_below(row[1], ncol=1)
         first = m["first_contact"][()]
         row[1].set_xlabel(t_label)
         row[1].set_ylabel("normal force [N]")
         row[1].set_title(f"force (drive +, coast -): {m['impacts'][()]:.0f} impacts "
                          f"({m['drive_impacts'][()]:.0f} drive, {m['coast_impacts'][()]:.0f} "
-                         f"coast)\nfirst {first * 1e3:.3g} ms, peak {m['max_force'][()]:.4g} N",
+                         f"coast)\nfirst {first * 1e3:.3f} ms, peak {m['max_force'][()]:.0f} N",
                          fontsize=9)
         touches = m["contacts"]["touch"][:] if "contacts" in m else np.zeros(0)
         sides = m["contacts"]["side"][:] if "contacts" in m else np.zeros(0)

@@ -29,6 +29,22 @@ file_contents(const std::string &path)
   return s.str();
 }
 
+/// The driver files every stage runs: the scene reading (its pairs and TCA sections every stage
+/// uses), the stage graph, the cache and HDF5 files, the pairs' members and TCA set-up. Each
+/// stage adds its own stage file and section files (StageDefinition::code); driver.cc, main.cc,
+/// the notes and the other stages' files enter no other stage's key.
+const std::vector<std::string> &
+driver_code_of_every_stage()
+{
+  static const std::vector<std::string> files = {
+      "driver/cache.cc",     "driver/cache.h",         "driver/h5_file.cc",
+      "driver/h5_file.h",    "driver/pair_members.cc", "driver/pair_members.h",
+      "driver/pair_tca.cc",  "driver/pair_tca.h",      "driver/scene.cc",
+      "driver/scene.h",      "driver/scene_flanks.cc", "driver/scene_parameters.h",
+      "driver/scene_tca.cc", "driver/scene_text.cc",   "driver/scene_text.h",
+      "driver/stages.cc",    "driver/stages.h"};
+  return files;
+}
 } // namespace
 
 const std::vector<StageDefinition> &
@@ -39,7 +55,8 @@ stage_definitions()
        "flank geometry (involute or spiral bevel), flank grids, mass properties",
        {},
        {"Flanks"},
-       {"base", "geometry", "tca"}, // tca: the spiral bevel's modified-roll synthesis
+       // tca: the spiral bevel's modified-roll synthesis
+       {"base", "geometry", "tca", "driver/stage_flanks.cc"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_flanks_stage,
        nullptr,
@@ -58,7 +75,7 @@ stage_definitions()
        "measured flank point sets (virtual CMM, synthesised, or read from files)",
        {"flanks"},
        {"Measured flanks"},
-       {"base", "geometry"},
+       {"base", "geometry", "driver/stage_measured.cc", "driver/scene_measured.cc"},
        [](const Scene &scene) {
          std::vector<std::string> files;
          for (const auto &[pair, m] : scene.measured)
@@ -72,28 +89,31 @@ stage_definitions()
        "unloaded tooth contact analysis: static transmission error, contact path, normals",
        {"flanks", "measured"},
        {"TCA"},
-       {"base", "geometry", "tca"},
+       {"base", "geometry", "tca", "driver/stage_ste.cc"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_ste_stage},
       {"compliance",
        "finite-element compliance of both members (gmsh tooth segments, deal.II + PETSc)",
        {"flanks"},
        {"Flanks", "TCA", "Finite elements"},
-       {"base", "geometry", "tca", "meshes", "stiffness"},
+       {"base", "geometry", "tca", "meshes", "stiffness", "driver/stage_stiffness.cc",
+        "driver/scene_stiffness.cc"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_compliance_stage},
       {"stiffness",
        "loaded contact over the mesh cycle: loaded TE, mesh stiffness, load sharing, pressure",
        {"flanks", "measured", "compliance"},
        {"TCA", "Loaded contact"},
-       {"base", "geometry", "tca", "meshes", "stiffness"},
+       {"base", "geometry", "tca", "meshes", "stiffness", "driver/stage_stiffness.cc",
+        "driver/scene_stiffness.cc"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_stiffness_stage},
       {"dynamics",
        "14-DOF pair dynamics: static equilibrium, modes, speed sweeps up and down",
        {"flanks", "ste"},
        {"TCA", "Measured flanks", "Dynamics"},
-       {"base", "geometry", "tca", "dynamics"},
+       {"base", "geometry", "tca", "dynamics", "driver/stage_dynamics.cc",
+        "driver/scene_dynamics.cc", "driver/scene_measured.cc"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {
@@ -114,7 +134,7 @@ stage_definitions()
        "gear-train impact dynamics: tooth pair curves, IMPACT contact, CVODE run, spectra",
        {"flanks"},
        {"Flanks", "TCA", "Train"},
-       {"base", "geometry", "tca", "dynamics"},
+       {"base", "geometry", "tca", "dynamics", "driver/stage_train.cc", "driver/scene_train.cc"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_train_stage,
        [](const Scene &scene) {
@@ -185,9 +205,11 @@ std::string
 stage_key(const Scene &scene, const std::string &stage)
 {
   const StageDefinition &s    = stage_definition(stage);
-  std::string            text = s.name + "\ncode driver " + source_hashes().at("driver") + "\n";
-  for (const std::string &folder : s.code)
-    text += "code " + folder + " " + source_hashes().at(folder) + "\n";
+  std::string            text = s.name + "\n";
+  for (const std::string &code : driver_code_of_every_stage())
+    text += "code " + code + " " + source_hashes().at(code) + "\n";
+  for (const std::string &code : s.code)
+    text += "code " + code + " " + source_hashes().at(code) + "\n";
   for (const std::string &section : s.sections)
     {
       const auto it = scene.sections.find(section);

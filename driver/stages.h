@@ -41,8 +41,10 @@ struct StageDefinition
   std::vector<std::string> upstream; ///< stages whose results this one needs
   /// Scene sections whose parameters enter the key (never "Notes": a note changes no result).
   std::vector<std::string> sections;
-  /// Library folders whose code the stage runs (besides driver/): their source hashes enter
-  /// the key, so changed code re-runs the stage.
+  /// Library folders ("stiffness") and driver files ("driver/stage_stiffness.cc") whose code
+  /// the stage runs besides the driver files every stage runs (stages.cc): their source hashes
+  /// (driver/source_hashes.py: tokens, without comments and help texts) enter the key, so
+  /// changed code re-runs the stage and a reworded help text or comment does not.
   std::vector<std::string> code;
   /// Input files whose contents enter the key (e.g. CMM files).
   std::function<std::vector<std::string>(const Scene &)>                                input_files;

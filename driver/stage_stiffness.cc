@@ -355,122 +355,260 @@ run_reference_mode(const PairScene &pair, const FeScene &fe, const LoadedScene &
   rg.write("seconds", seconds, {P}, "s", "mesh, assembly, factorisation, solves");
 }
 
+namespace
+{
+/// The compliance table of one member as the compliance stage computed it (its group in
+/// compliance/<pair>, or in its coarse subgroup).
+FlankCompliance
+read_table(const MemberFlanks &flanks, const H5Group &tables, const char *member, const FeScene &fe,
+           const LoadedScene &lc, FlankSide side)
+{
+  const H5Group m = tables.group(member);
+  FlankGridSpec spec;
+  spec.teeth        = m.read_ints("teeth");
+  spec.cyclic_tooth = int(m.read_doubles("cyclic_tooth").front());
+  spec.cyclic_reach = int(m.read_doubles("cyclic_reach").front());
+  spec.follow_load  = lc.follow_load;
+  spec.side         = side;
+  spec.n_u = fe.n_u, spec.n_v = fe.n_v;
+  spec.graded = fe.graded_grid;
+  FlankCompliance           t(flanks, spec);
+  std::vector<hsize_t>      shape;
+  const std::vector<double> S = m.read_doubles("compliance", &shape);
+  t.set(
+      Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[1]), Eigen::Index(shape[0])));
+  return t;
+}
+
+/// The loaded contact's results of one mesh cycle into `g` (stiffness/<pair>, or its measured
+/// subgroup).
+void
+write_mesh_cycle(const MeshCycleContact &c, const std::vector<double> &torques,
+                 const std::vector<double> &refused, const H5Group &g)
+{
+  const hsize_t N = c.positions, M = c.torques, S = c.slots, C = c.cells;
+  g.write("torque", torques, {M}, "N m", "pinion torques (those solved)");
+  if (!refused.empty())
+    {
+      g.write("refused_torque", refused, {refused.size()}, "N m",
+              "torques of the scene the loaded contact could not solve (attribute "
+              "stiffness/<pair>/warnings: why)");
+    }
+  g.write("pinion_angle", c.pinion_angle, {N}, "rad", "pinion rotation phi");
+  g.write("transmission_error_unloaded", c.unloaded_te, {N}, "rad", "e_0 (pinion radians)");
+  g.write("transmission_error_loaded", c.loaded_te, {M, N}, "rad",
+          "e_L per torque and position (pinion radians, gear held)");
+  g.write("mesh_stiffness", c.mesh_stiffness, {M, N}, "N/m", "K_m = F / (lambda (e_L - e_0))");
+  g.write("normal_force", c.normal_force, {M, N}, "N", "total normal force F");
+  g.write("lever", c.lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
+  g.write("pair_force", c.pair_force, {M, N, S}, "N",
+          "normal force per pair slot of the unloaded TCA at the same position");
+  g.write("pinion_tooth", c.slot_tooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
+  g.write("peak_pressure", c.peak_pressure, {M, N}, "Pa", "largest cell pressure");
+  g.write("interior_peak_pressure", c.interior_peak_pressure, {M, N}, "Pa",
+          "largest pressure on cells off the flanks' edges (Hertz's where the flanks are "
+          "smooth)");
+  g.write("edge_load_share", c.edge_load_share, {M, N}, "1",
+          "edge contact: force on cells at an edge of either flank (tip, face end, start "
+          "of the working flank) / F");
+  g.write("edge_position", c.edge_position, {M, N, 2}, "m",
+          "the most loaded edge cell's pinion point: radius, axial position (0: none)");
+  g.write("gap_band", c.gap_band, {M, N}, "m",
+          "the contact zone's band fitted to the load (the zone reaches where the "
+          "unloaded gap opens to this)");
+  g.write("contact_cells", c.cell_pressure, {M, N, C, 4}, "mixed",
+          "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
+  g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
+          "unloaded contact ratio (eps_gamma for conjugate flanks)");
+}
+
+/// The loaded contact of one pair's mesh cycle at the scene's torques, written to `g`: a torque
+/// that fails at some position is refused alone, with a warning (into `warnings`); the others
+/// are kept. The contact at the kept torques and those torques.
+std::pair<MeshCycleContact, std::vector<double>>
+analyse_mesh_cycle(const PairScene &pair, const LoadedScene &lc, const UnloadedTca &t,
+                   const LoadedContactOptions &lo, const StructuralCompliance &sp,
+                   const StructuralCompliance &sg, const H5Group &g, const char *label,
+                   std::string &warnings, std::ostream &log)
+{
+  Progress               progress("stiffness", lc.positions * lc.torques.size());
+  const MeshCycleContact all =
+      loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg, [&] { progress.advance(); });
+  std::vector<std::size_t> keep;
+  std::vector<double>      torques, refused;
+  for (std::size_t k = 0; k < all.torques; ++k)
+    if (all.torque_failure[k].empty())
+      keep.push_back(k), torques.push_back(lc.torques[k]);
+    else
+      {
+        std::ostringstream w;
+        w << "Loaded contact/" << pair.name << "/torques" << label << ": " << lc.torques[k]
+          << " N m refused: " << all.torque_failure[k];
+        log << "  warning: " << w.str() << "\n";
+        warnings += w.str() + "\n";
+        refused.push_back(lc.torques[k]);
+      }
+  if (keep.empty())
+    throw InputError("loaded contact of " + pair.name + label +
+                     ": no torque could be solved; at the first, " + all.torque_failure.front());
+  MeshCycleContact  c = select_torques(all, keep);
+  const std::size_t n = c.positions;
+  for (std::size_t k = 0; k < c.torques; ++k)
+    {
+      double k_mean = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const double de = c.loaded_te[k * n + i] - c.unloaded_te[i];
+          k_mean += c.mesh_stiffness[k * n + i] / n;
+          de_min = std::min(de_min, de), de_max = std::max(de_max, de);
+        }
+      log << "  " << pair.name << label << ", " << torques[k] << " N m: K_m mean " << k_mean
+          << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6 << " urad\n";
+    }
+  write_mesh_cycle(c, torques, refused, g);
+  return {std::move(c), torques};
+}
+
+/// The discretisation error estimate (mesh_cycle_error): the same mesh cycle on the coarse
+/// mesh's tables (element sizes times c), and on half the contact cells; written to
+/// stiffness/<pair>/error_estimate, or a warning (into `warnings`) where a contact failed.
+void
+run_error_estimate(const PairScene &pair, const FeScene &fe, const LoadedScene &lc, FlankSide side,
+                   const PairMembers &members, const UnloadedTca &theory, const H5Group &cg,
+                   const LoadedContactOptions &lo, const StructuralCompliance &sp,
+                   const StructuralCompliance &sg, const MeshCycleContact &fine,
+                   const std::vector<double> &torques, const H5Group &g, std::string &warnings,
+                   std::ostream &log)
+{
+  const H5Group         coarse_tables = cg.group("coarse");
+  const double          c             = coarse_tables.read_double("coarsening");
+  const FlankCompliance cp2  = read_table(*members.pinion, coarse_tables, "pinion", fe, lc, side);
+  const FlankCompliance cgr2 = read_table(*members.gear, coarse_tables, "gear", fe, lc, side);
+  LoadedContactOptions  half = lo;
+  half.cells                 = halved_cells(lo.cells);
+  Progress               progress("stiffness error estimate", 2 * lc.positions * torques.size());
+  const auto             step = [&] { progress.advance(); };
+  const MeshCycleContact coarse =
+      loaded_contact_cycle(theory, lc.positions, torques, lo, table_compliance(cp2, true),
+                           table_compliance(cgr2, false), step);
+  const MeshCycleContact halved =
+      loaded_contact_cycle(theory, lc.positions, torques, half, sp, sg, step);
+  std::string lost;
+  for (std::size_t k = 0; k < torques.size() && lost.empty(); ++k)
+    for (const MeshCycleContact *other : {&coarse, &halved})
+      if (lost.empty() && !other->torque_failure[k].empty())
+        lost = "Loaded contact/" + pair.name + ": no error estimate (at " +
+               std::to_string(torques[k]) + " N m on " +
+               (other == &coarse ? "the coarse elements" : "half the cells") +
+               " the contact failed: " + other->torque_failure[k] + ")";
+  if (!lost.empty())
+    {
+      log << "  warning: " << lost << "\n";
+      warnings += lost + "\n";
+      return;
+    }
+  const MeshCycleError err = mesh_cycle_error(fine, coarse, c, halved);
+  const std::size_t    n = fine.positions, M = fine.torques;
+  const H5Group        e = g.group("error_estimate");
+  e.attribute("method", "|K(h) - K(c h)| / (c - 1) of the finite elements (the "
+                        "compliance tables on a mesh of c times the element sizes at "
+                        "the flanks, c = compliance/<pair>/coarse/coarsening, 2 unless "
+                        "that mesh failed) plus |K(cells) - K(cells / 2)| of the contact "
+                        "cells (half across and along); an upper estimate wherever the "
+                        "error falls at least linearly with the size");
+  e.write("mesh_stiffness", err.mesh_stiffness, {M, n}, "N/m", "estimated error of K_m");
+  e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n}, "N/m",
+          "|K(h) - K(c h)| / (c - 1)");
+  e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n}, "N/m",
+          "|K(cells) - K(cells / 2)|");
+  e.write("transmission_error_loaded", err.loaded_te, {M, n}, "rad",
+          "estimated error of e_L (the same two changes)");
+  for (std::size_t k = 0; k < M; ++k)
+    {
+      double largest = 0, mean = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const double r = err.mesh_stiffness[k * n + i] / fine.mesh_stiffness[k * n + i];
+          largest        = std::max(largest, r), mean += r / n;
+        }
+      log << "  " << pair.name << ", " << torques[k] << " N m: K_m error estimate mean "
+          << mean * 100 << " %, largest " << largest * 100 << " %\n";
+    }
+}
+
+/// ISO 6336-1 method B beside the finite elements (the standard's yardstick); for spiral bevel
+/// pairs on the virtual cylindrical gears of the mean point (ISO 10300-1).
+void
+write_iso(const PairScene &pair, const PairMembers &members, const H5Group &g)
+{
+  const bool    bevel = pair.type == PairType::spiral_bevel;
+  const IsoPair iso =
+      bevel ? iso_pair(pair.bevel)
+            : iso_pair(involute(*members.pinion), involute(*members.gear), members.centre_distance);
+  if (bevel)
+    g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
+  const double b = iso.face_width;
+  g.write("transverse_contact_ratio", iso.input.transverse_contact_ratio, "1",
+          "eps_alpha of the geometry");
+  g.write("overlap_ratio", iso.overlap_ratio, "1", "eps_beta of the geometry");
+  const IsoMeshStiffness s = iso6336_mesh_stiffness(iso.input);
+  g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",
+          "ISO 6336-1 method B single stiffness c' times the face width");
+  g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b, "N/m",
+          "ISO 6336-1 method B mesh stiffness c_gamma_alpha times the face width");
+  g.write("iso_c_th", s.c_th * 1e9 * b, "N/m",
+          "ISO 6336-1 theoretical single stiffness c'_th times the face width");
+}
+
+/// The measured flanks' loaded contact (stiffness/<pair>/measured) on the theoretical pair's
+/// compliances: each cell looks up the theoretical flank at its own position
+/// (MemberFlanks::rotational_parameters).
+void
+run_measured_flanks(const PairScene &pair, const LoadedScene &lc, const TcaScene &tca,
+                    const PairMembers &members, LoadedContactOptions lo,
+                    const StructuralCompliance &sp, const StructuralCompliance &sg,
+                    const H5Group &measured, const H5Group &g, std::string &warnings,
+                    std::ostream &log)
+{
+  const FlankSide side = tca.options.side;
+  const auto      mp =
+      std::make_shared<MeasuredMemberFlanks>(read_measured(measured.group("pinion"), "pinion"));
+  const auto mgr =
+      std::make_shared<MeasuredMemberFlanks>(read_measured(measured.group("gear"), "gear"));
+  lo.table_parameters = [&](ContactCell &c) {
+    std::tie(c.table_u1, c.table_v1) = members.pinion->rotational_parameters(
+        mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position);
+    std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
+        mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
+  };
+  lo.cells.zone_from_gaps = true; // the measured flanks' local curvature carries their noise
+  const H5Group gm        = g.group("measured");
+  gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");
+  analyse_mesh_cycle(pair, lc, UnloadedTca(mp, mgr, members.assembly, tca.options), lo, sp, sg, gm,
+                     " measured", warnings, log);
+}
+} // namespace
+
 void
 run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group &out,
                     std::ostream &log)
 {
   for (const PairScene &pair : scene.pairs)
     {
+      // 1. The pair, its scene sections and the compliance tables as the compliance stage
+      //    computed them.
       const FeScene      fe   = pair_fe(scene, pair);
       const LoadedScene &lc   = scene.loaded.at(pair.name);
       const TcaScene    &tca  = scene.tca.at(pair.name);
       const FlankSide    side = tca.options.side;
       const PairMembers  members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
-      const bool    bevel = pair.type == PairType::spiral_bevel;
-      const H5Group cg    = upstream.at("compliance")->group(pair.name);
-
-      // The compliance tables as the compliance stage computed them.
-      auto table = [&](const MemberFlanks &flanks, const H5Group &tables, const char *member) {
-        const H5Group m = tables.group(member);
-        FlankGridSpec spec;
-        spec.teeth        = m.read_ints("teeth");
-        spec.cyclic_tooth = int(m.read_doubles("cyclic_tooth").front());
-        spec.cyclic_reach = int(m.read_doubles("cyclic_reach").front());
-        spec.follow_load  = lc.follow_load;
-        spec.side         = side;
-        spec.n_u = fe.n_u, spec.n_v = fe.n_v;
-        spec.graded = fe.graded_grid;
-        FlankCompliance           t(flanks, spec);
-        std::vector<hsize_t>      shape;
-        const std::vector<double> S = m.read_doubles("compliance", &shape);
-        t.set(Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[1]),
-                                                Eigen::Index(shape[0])));
-        return t;
-      };
-      const FlankCompliance      cp  = table(*members.pinion, cg, "pinion");
-      const FlankCompliance      cgr = table(*members.gear, cg, "gear");
+      const H5Group              cg  = upstream.at("compliance")->group(pair.name);
+      const FlankCompliance      cp  = read_table(*members.pinion, cg, "pinion", fe, lc, side);
+      const FlankCompliance      cgr = read_table(*members.gear, cg, "gear", fe, lc, side);
       const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cgr, false);
 
-      std::string pair_warnings; // of the loaded contact: refused torques, a lost estimate
-      auto analyse = [&](const UnloadedTca &t, const LoadedContactOptions &lo, const H5Group &g,
-                         const char *label) {
-        Progress               progress("stiffness", lc.positions * lc.torques.size());
-        const MeshCycleContact all = loaded_contact_cycle(t, lc.positions, lc.torques, lo, sp, sg,
-                                                          [&] { progress.advance(); });
-        // A torque that fails at some position is refused alone, with a warning; the others
-        // are kept.
-        std::vector<std::size_t> keep;
-        std::vector<double>      torques, refused;
-        for (std::size_t k = 0; k < all.torques; ++k)
-          if (all.torque_failure[k].empty())
-            keep.push_back(k), torques.push_back(lc.torques[k]);
-          else
-            {
-              std::ostringstream w;
-              w << "Loaded contact/" << pair.name << "/torques" << label << ": " << lc.torques[k]
-                << " N m refused: " << all.torque_failure[k];
-              log << "  warning: " << w.str() << "\n";
-              pair_warnings += w.str() + "\n";
-              refused.push_back(lc.torques[k]);
-            }
-        if (keep.empty())
-          throw InputError("loaded contact of " + pair.name + label +
-                           ": no torque could be solved; at the first, " +
-                           all.torque_failure.front());
-        const MeshCycleContact c = select_torques(all, keep);
-        const std::size_t      n = c.positions;
-        for (std::size_t k = 0; k < c.torques; ++k)
-          {
-            double k_mean = 0, de_min = HUGE_VAL, de_max = -HUGE_VAL;
-            for (std::size_t i = 0; i < n; ++i)
-              {
-                const double de = c.loaded_te[k * n + i] - c.unloaded_te[i];
-                k_mean += c.mesh_stiffness[k * n + i] / n;
-                de_min = std::min(de_min, de), de_max = std::max(de_max, de);
-              }
-            log << "  " << pair.name << label << ", " << torques[k] << " N m: K_m mean " << k_mean
-                << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6 << " urad\n";
-          }
-        const hsize_t N = n, M = c.torques, S = c.slots, C = c.cells;
-        g.write("torque", torques, {M}, "N m", "pinion torques (those solved)");
-        if (!refused.empty())
-          {
-            g.write("refused_torque", refused, {refused.size()}, "N m",
-                    "torques of the scene the loaded contact could not solve (attribute "
-                    "stiffness/<pair>/warnings: why)");
-          }
-        g.write("pinion_angle", c.pinion_angle, {N}, "rad", "pinion rotation phi");
-        g.write("transmission_error_unloaded", c.unloaded_te, {N}, "rad", "e_0 (pinion radians)");
-        g.write("transmission_error_loaded", c.loaded_te, {M, N}, "rad",
-                "e_L per torque and position (pinion radians, gear held)");
-        g.write("mesh_stiffness", c.mesh_stiffness, {M, N}, "N/m",
-                "K_m = F / (lambda (e_L - e_0))");
-        g.write("normal_force", c.normal_force, {M, N}, "N", "total normal force F");
-        g.write("lever", c.lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
-        g.write("pair_force", c.pair_force, {M, N, S}, "N",
-                "normal force per pair slot of the unloaded TCA at the same position");
-        g.write("pinion_tooth", c.slot_tooth, {N, S}, "1",
-                "pinion tooth of each pair slot (-1: empty)");
-        g.write("peak_pressure", c.peak_pressure, {M, N}, "Pa", "largest cell pressure");
-        g.write("interior_peak_pressure", c.interior_peak_pressure, {M, N}, "Pa",
-                "largest pressure on cells off the flanks' edges (Hertz's where the flanks are "
-                "smooth)");
-        g.write("edge_load_share", c.edge_load_share, {M, N}, "1",
-                "edge contact: force on cells at an edge of either flank (tip, face end, start "
-                "of the working flank) / F");
-        g.write("edge_position", c.edge_position, {M, N, 2}, "m",
-                "the most loaded edge cell's pinion point: radius, axial position (0: none)");
-        g.write("gap_band", c.gap_band, {M, N}, "m",
-                "the contact zone's band fitted to the load (the zone reaches where the "
-                "unloaded gap opens to this)");
-        g.write("contact_cells", c.cell_pressure, {M, N, C, 4}, "mixed",
-                "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
-        g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
-                "unloaded contact ratio (eps_gamma for conjugate flanks)");
-        return std::make_pair(c, torques);
-      };
-
+      // 2. The loaded contact over the mesh cycle at every torque (fast mode).
       LoadedContactOptions lo;
       lo.cells           = lc.cells;
       lo.pinion_material = lo.gear_material = fe.material;
@@ -479,118 +617,23 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.communicator = MPI_COMM_WORLD; // the positions shared among the processes
       const H5Group g = out.group(pair.name);
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
+      std::string       pair_warnings; // of the loaded contact: refused torques, a lost estimate
       const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
-      const auto [fine, torques] = analyse(theory, lo, g, "");
+      const auto [fine, torques] =
+          analyse_mesh_cycle(pair, lc, theory, lo, sp, sg, g, "", pair_warnings, log);
 
+      // 3. Its accuracy: the discretisation error estimate, the reference mode's positions.
       if (cg.has("coarse"))
-        {
-          // The discretisation error estimate (mesh_cycle_error): the same mesh cycle on the
-          // coarse mesh's tables (element sizes times c), and on half the contact cells.
-          const double          c    = cg.group("coarse").read_double("coarsening");
-          const FlankCompliance cp2  = table(*members.pinion, cg.group("coarse"), "pinion");
-          const FlankCompliance cgr2 = table(*members.gear, cg.group("coarse"), "gear");
-          LoadedContactOptions  half = lo;
-          half.cells                 = halved_cells(lo.cells);
-          Progress   progress("stiffness error estimate", 2 * lc.positions * torques.size());
-          const auto step = [&] { progress.advance(); };
-          const MeshCycleContact coarse =
-              loaded_contact_cycle(theory, lc.positions, torques, lo, table_compliance(cp2, true),
-                                   table_compliance(cgr2, false), step);
-          const MeshCycleContact halved =
-              loaded_contact_cycle(theory, lc.positions, torques, half, sp, sg, step);
-          std::string lost;
-          for (std::size_t k = 0; k < torques.size() && lost.empty(); ++k)
-            for (const MeshCycleContact *other : {&coarse, &halved})
-              if (lost.empty() && !other->torque_failure[k].empty())
-                lost = "Loaded contact/" + pair.name + ": no error estimate (at " +
-                       std::to_string(torques[k]) + " N m on " +
-                       (other == &coarse ? "the coarse elements" : "half the cells") +
-                       " the contact failed: " + other->torque_failure[k] + ")";
-          if (!lost.empty())
-            {
-              log << "  warning: " << lost << "\n";
-              pair_warnings += lost + "\n";
-            }
-          else
-            {
-              const MeshCycleError err = mesh_cycle_error(fine, coarse, c, halved);
-              const std::size_t    n = fine.positions, M = fine.torques;
-              const H5Group        e = g.group("error_estimate");
-              e.attribute("method",
-                          "|K(h) - K(c h)| / (c - 1) of the finite elements (the "
-                          "compliance tables on a mesh of c times the element sizes at "
-                          "the flanks, c = compliance/<pair>/coarse/coarsening, 2 unless "
-                          "that mesh failed) plus |K(cells) - K(cells / 2)| of the contact "
-                          "cells (half across and along); an upper estimate wherever the "
-                          "error falls at least linearly with the size");
-              e.write("mesh_stiffness", err.mesh_stiffness, {M, n}, "N/m",
-                      "estimated error of K_m");
-              e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n}, "N/m",
-                      "|K(h) - K(c h)| / (c - 1)");
-              e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n}, "N/m",
-                      "|K(cells) - K(cells / 2)|");
-              e.write("transmission_error_loaded", err.loaded_te, {M, n}, "rad",
-                      "estimated error of e_L (the same two changes)");
-              for (std::size_t k = 0; k < M; ++k)
-                {
-                  double largest = 0, mean = 0;
-                  for (std::size_t i = 0; i < n; ++i)
-                    {
-                      const double r =
-                          err.mesh_stiffness[k * n + i] / fine.mesh_stiffness[k * n + i];
-                      largest = std::max(largest, r), mean += r / n;
-                    }
-                  log << "  " << pair.name << ", " << torques[k] << " N m: K_m error estimate mean "
-                      << mean * 100 << " %, largest " << largest * 100 << " %\n";
-                }
-            }
-        }
-
+        run_error_estimate(pair, fe, lc, side, members, theory, cg, lo, sp, sg, fine, torques, g,
+                           pair_warnings, log);
       if (!lc.reference_positions.empty())
         run_reference_mode(pair, fe, lc, tca, members, theory, cg, lo, fine, torques, out, g, log);
 
-      // ISO 6336-1 method B beside it (the standard's yardstick); for spiral bevel pairs on the
-      // virtual cylindrical gears of the mean point (ISO 10300-1).
-      const IsoPair iso = bevel ? iso_pair(pair.bevel)
-                                : iso_pair(involute(*members.pinion), involute(*members.gear),
-                                           members.centre_distance);
-      if (bevel)
-        g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
-      const double b = iso.face_width;
-      g.write("transverse_contact_ratio", iso.input.transverse_contact_ratio, "1",
-              "eps_alpha of the geometry");
-      g.write("overlap_ratio", iso.overlap_ratio, "1", "eps_beta of the geometry");
-      const IsoMeshStiffness s = iso6336_mesh_stiffness(iso.input);
-      g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",
-              "ISO 6336-1 method B single stiffness c' times the face width");
-      g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b, "N/m",
-              "ISO 6336-1 method B mesh stiffness c_gamma_alpha times the face width");
-      g.write("iso_c_th", s.c_th * 1e9 * b, "N/m",
-              "ISO 6336-1 theoretical single stiffness c'_th times the face width");
-
-      if (lc.measured)
-        {
-          // (a measurement source is there: LoadedScene::check)
-          const H5Group mg = upstream.at("measured")->group(pair.name);
-          const auto    mp =
-              std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("pinion"), "pinion"));
-          const auto mgr =
-              std::make_shared<MeasuredMemberFlanks>(read_measured(mg.group("gear"), "gear"));
-          // Compliances reused: each cell looks up the theoretical flank at its own position
-          // (MemberFlanks::rotational_parameters).
-          lo.table_parameters = [&](ContactCell &c) {
-            std::tie(c.table_u1, c.table_v1) = members.pinion->rotational_parameters(
-                mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position);
-            std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
-                mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
-          };
-          lo.cells.zone_from_gaps =
-              true; // the measured flanks' local curvature carries their noise
-          const H5Group gm = g.group("measured");
-          gm.attribute("method",
-                       "fast mode on the measured flanks, theoretical compliances reused");
-          analyse(UnloadedTca(mp, mgr, members.assembly, tca.options), lo, gm, " measured");
-        }
+      // 4. ISO 6336-1 beside it, and the measured flanks on the same compliances.
+      write_iso(pair, members, g);
+      if (lc.measured) // (a measurement source is there: LoadedScene::check)
+        run_measured_flanks(pair, lc, tca, members, lo, sp, sg,
+                            upstream.at("measured")->group(pair.name), g, pair_warnings, log);
       if (!pair_warnings.empty())
         g.attribute("warnings", pair_warnings);
     }

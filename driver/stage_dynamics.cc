@@ -401,6 +401,224 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
     log << "  " << what << ": parametrically unstable in contact (Floquet) at [rpm]:" << unstable
         << "\n";
 }
+/// K_m over the mesh cycle (n samples): the scene's constant and variation, or the stiffness
+/// stage's at the torque nearest the scene's (the measured flanks' where there are some).
+std::vector<double>
+mesh_stiffness_table(const DynamicsScene &d, const Upstream &upstream, const PairScene &pair,
+                     bool measured, int n)
+{
+  if (!d.fe_stiffness)
+    return varying_mesh_stiffness(d.mesh_stiffness, d.stiffness_variation, n);
+  const H5Group        all     = upstream.at("stiffness")->group(pair.name);
+  const bool           own     = measured && all.has("measured");
+  const auto           torques = all.read_doubles("torque");
+  std::vector<hsize_t> shape;
+  const auto           K    = own ? all.group("measured").read_doubles("mesh_stiffness", &shape)
+                                  : all.read_doubles("mesh_stiffness", &shape);
+  std::size_t          best = 0;
+  for (std::size_t t = 1; t < torques.size(); ++t)
+    if (std::abs(torques[t] - d.torque) < std::abs(torques[best] - d.torque))
+      best = t;
+  return resample_periodic(std::vector<double>(K.begin() + long(best * shape[1]),
+                                               K.begin() + long((best + 1) * shape[1])),
+                           n);
+}
+
+/// One excitation of a pair (theoretical or measured flanks): its model on the tables of the
+/// TCA, in the system deflection's fixed point, and its static equilibrium.
+struct Excitation
+{
+  std::string                label;
+  std::unique_ptr<PairModel> model;
+  StaticEquilibrium          s;
+  double                     TE = 0, TL = 0;
+};
+
+/// The excitation `label` of the pair: its tables (K excitation cycles of n samples), the system
+/// deflection's fixed point over them, the static equilibrium; written to <pair>/<label>.
+Excitation
+build_excitation(const char *label, const PairScene &pair, const DynamicsScene &d,
+                 const TcaScene &tca, const PairMembers &members, const Upstream &upstream,
+                 const PairModelParameters &p, const H5Group &g, std::ostream &log)
+{
+  const bool    measured    = std::string(label) == "measured";
+  const H5Group ste         = upstream.at("ste")->group(pair.name);
+  const int     n           = tca.options.positions_per_mesh;
+  const Vec3    pinion_axis = Vec3::UnitZ();
+  const Vec3    gear_axis   = -members.assembly.gear_axis(); // its driven sense
+  const int     K =
+      measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles) : 1;
+  // the tables of an analysis; the system deflection's fixed point over them
+  std::optional<H5Group> measured_ste;
+  if (measured)
+    measured_ste.emplace(ste.group("measured"));
+  const H5Group &aligned   = measured ? *measured_ste : ste;
+  const auto     tables_of = [&](const ContactTables &c) {
+    MeshCycleSamples tables = mesh_cycle_samples(
+            c, n, K, pinion_axis, mesh_stiffness_table(d, upstream, pair, measured, n));
+    if (measured) // kinks and noise: no ringing between the samples
+      tables.interpolation = MeshInterpolation::makima;
+    if (!d.tca_transmission_error)
+      for (int i = 0; i < n * K; ++i)
+        tables.transmission_error[std::size_t(i)] =
+            d.transmission_error_amplitude * std::sin(2 * pi * i / n);
+    return tables;
+  };
+  // the measured flanks, read when the deflection first needs them
+  std::pair<MemberPointer, MemberPointer> flanks;
+  PairMembers                             moved      = members;
+  Misalignment                            misaligned = tca.misalignment;
+  TcaResult                               deflected;
+  const auto                              tables_at = [&](const RigidMotion &u) {
+    DeflectedTables out;
+    if (u.translation.isZero(0) && u.rotation.isZero(0))
+      return out.tables = tables_of(contact_tables(aligned)), out;
+    TcaScene t = tca;
+    t.misalignment = misalignment_after(members.assembly, tca.misalignment, u, &out.taken);
+    misaligned = t.misalignment;
+    moved = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
+    if (measured && !flanks.first)
+      flanks = measured_members(upstream.at("measured")->group(pair.name));
+    try
+      {
+        deflected =
+            pair_tca(measured ? flanks.first : moved.pinion, measured ? flanks.second : moved.gear,
+                     moved.assembly, t, measured, [] {});
+      }
+    catch (const InputError &e)
+      {
+        std::ostringstream msg;
+        msg << "Dynamics/" << pair.name << "/system deflection: the static load moves "
+            << "the gear by " << u.translation.norm() * 1e6 << " um and " << u.rotation.norm() * 1e3
+            << " mrad relative to the pinion, and the TCA "
+            << "there fails (" << e.what() << "); stiffen the supports (bearing and "
+            << "axial stiffness), lower the torque, or set system deflection = false";
+        throw InputError(msg.str());
+      }
+    out.tables = tables_of(contact_tables(deflected));
+    return out;
+  };
+  SystemDeflectionOptions so;
+  so.motor_torque = d.torque;
+  so.pinion_axis = pinion_axis, so.gear_axis = gear_axis;
+  so.pinion_centre           = members.assembly.pinion_centre();
+  so.gear_centre             = members.assembly.gear_to_global(Vec3::Zero(), 0);
+  so.max_iterations          = d.system_deflection && d.tca_transmission_error ? 10 : 0;
+  SystemDeflection        sd = system_deflection(p, tables_at, so);
+  Excitation              e{label, std::move(sd.model), sd.equilibrium, d.torque, sd.load_torque};
+  const MeshCycleSamples &tables = e.model->tables();
+  const H5Group           eg     = g.group(label);
+  if (so.max_iterations > 0)
+    write_deflection(eg.group("deflection"), sd, tca, misaligned, moved, deflected, aligned, log,
+                     pair.name + " " + label);
+  eg.write("static_mesh_force", e.s.mesh_force, "N", "F_m in the static equilibrium");
+  eg.write("static_deflection", e.s.deflection, "m", "delta_D - E_t - b_c, static");
+  eg.write("load_torque", e.TL, "N m", "T_L balancing the pinion torque");
+  eg.write("excitation_cycles", double(K), "mesh cycles", "period of the tables");
+  const auto  &et   = tables.transmission_error;
+  const double wrap = et.front() - et.back();
+  double       step = 0;
+  for (std::size_t i = 1; i < et.size(); ++i)
+    step = std::max(step, std::abs(et[i] - et[i - 1]));
+  eg.write("wrap_step", wrap, "m",
+           "E_t(period start) - E_t(last sample): the step where the tables wrap");
+  log << "  " << pair.name << " " << label << ": " << K << " mesh cycle" << (K > 1 ? "s" : "")
+      << " of " << n << " samples per period";
+  if (measured)
+    log << "; E_t steps " << wrap * 1e6 << " um where the period wraps (largest step "
+        << "between samples " << step * 1e6 << " um)";
+  log << "\n";
+  return e;
+}
+
+/// The sweeps' tasks: per excitation up and down (each from the static equilibrium at its
+/// first speed), in blocks; `first_task` gets where each (excitation, direction) begins, and the
+/// end.
+std::vector<SweepTask>
+sweep_tasks(const std::vector<Excitation> &excitations, const DynamicsScene &d,
+            std::vector<std::size_t> &first_task)
+{
+  std::vector<SweepTask> tasks;
+  for (const Excitation &e : excitations)
+    for (bool up : {true, false})
+      {
+        SweepOptions o;
+        o.motor_torque = e.TE, o.load_torque = e.TL;
+        o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
+        o.steady_tolerance      = d.steady_tolerance;
+        o.spectrum_orders       = d.spectrum_orders;
+        o.series_speeds         = d.series_speeds;
+        o.run.method            = d.integrator;
+        o.run.steps_per_cycle   = d.steps_per_cycle;
+        o.accuracy              = d.accuracy;
+        o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
+        o.speeds                = sweep_speeds(d);
+        if (!up)
+          std::reverse(o.speeds.begin(), o.speeds.end());
+        first_task.push_back(tasks.size());
+        for (const SweepOptions &b : split_sweep(o, d.sweep_blocks, d.warmup_speeds))
+          tasks.push_back({e.model.get(), e.s.q, PairVector::Zero(), b});
+      }
+  first_task.push_back(tasks.size());
+  return tasks;
+}
+
+/// One excitation's sweeps (up and down) written to <pair>/<label>/{up,down}, and the log's
+/// summary: the largest load factor, the speeds that did not settle, did not reach the accuracy
+/// or diverged.
+void
+write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> &first_task,
+             const std::vector<std::vector<SweepPoint>> &results, std::size_t n_tasks,
+             const DynamicsScene &d, const std::string &pair, const H5Group &g, std::ostream &log)
+{
+  const H5Group eg  = g.group(e.label);
+  double        dlf = 0, unreached_error = 0;
+  std::string   unsteady, diverged, unreached;
+  for (int dir = 0; dir < 2; ++dir)
+    {
+      const std::size_t       j = 2 * x + std::size_t(dir);
+      std::vector<SweepPoint> points;
+      for (std::size_t t = first_task[j]; t < first_task[j + 1]; ++t)
+        points.insert(points.end(), results[t].begin(), results[t].end());
+      write_sweep(eg.group(dir == 0 ? "up" : "down"), points);
+      for (const auto &pt : points)
+        {
+          const std::string at = " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
+                                 (dir == 0 ? " up" : " down");
+          if (pt.diverged)
+            {
+              std::ostringstream when;
+              when << at << " (after " << pt.diverged_time * 1e3 << " ms)";
+              diverged += when.str();
+            }
+          else
+            dlf = std::max(dlf, pt.load_factor);
+          if (!pt.diverged && pt.period == 0 && d.steady_tolerance > 0)
+            unsteady += at;
+          // Newmark at the sweep's most steps, its error estimate still above the accuracy
+          // (the recorded motion's harmonics ask for more)
+          if (!pt.diverged && d.accuracy > 0 && pt.error_estimate > d.accuracy)
+            unreached += at, unreached_error = std::max(unreached_error, pt.error_estimate);
+        }
+    }
+  log << "  " << pair << " " << e.label << ": " << d.speeds << " speeds up and down in " << n_tasks
+      << " tasks, largest dynamic load factor " << dlf
+      << (diverged.empty() ? "" : " (of the speeds that did not diverge)") << "\n";
+  if (!unsteady.empty())
+    log << "  " << pair << " " << e.label << ": not steady within " << d.settle_cycles
+        << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady << "\n";
+  if (!unreached.empty())
+    log << "  " << pair << " " << e.label << ": accuracy " << d.accuracy
+        << " not reached within the sweep's most Newmark steps ("
+        << std::max(SweepOptions().most_steps, d.steps_per_cycle)
+        << " per mesh cycle; the recorded motion's harmonics asked for more), error "
+           "estimates up to "
+        << unreached_error << " (error_estimate) at [rpm]:" << unreached << "\n";
+  if (!diverged.empty())
+    log << "  " << pair << " " << e.label << ": DIVERGED (the response grew past "
+        << int(SweepOptions().divergence_factor)
+        << " times its length scale: no results there, status 2) at [rpm]:" << diverged << "\n";
+}
 } // namespace
 
 void
@@ -409,225 +627,39 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
 {
   for (const PairScene &pair : scene.pairs)
     {
+      // 1. The pair and its model placed in the assembly.
       const DynamicsScene &d   = scene.dynamics.at(pair.name);
       const TcaScene      &tca = scene.tca.at(pair.name);
       const PairMembers    members =
           theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
-      const H5Group ste = upstream.at("ste")->group(pair.name);
-      const int     n = tca.options.positions_per_mesh, z1 = members.pinion->teeth();
-      const Vec3    pinion_axis = Vec3::UnitZ();
-      const Vec3    gear_axis   = -members.assembly.gear_axis(); // its driven sense
-
-      // K_m over the cycle: from the stiffness stage at the torque nearest the scene's
-      auto stiffness = [&](bool measured) {
-        if (!d.fe_stiffness)
-          return varying_mesh_stiffness(d.mesh_stiffness, d.stiffness_variation, n);
-        const H5Group        all     = upstream.at("stiffness")->group(pair.name);
-        const bool           own     = measured && all.has("measured");
-        const auto           torques = all.read_doubles("torque");
-        std::vector<hsize_t> shape;
-        const auto           K = own ? all.group("measured").read_doubles("mesh_stiffness", &shape)
-                                     : all.read_doubles("mesh_stiffness", &shape);
-        std::size_t          best = 0;
-        for (std::size_t t = 1; t < torques.size(); ++t)
-          if (std::abs(torques[t] - d.torque) < std::abs(torques[best] - d.torque))
-            best = t;
-        return resample_periodic(std::vector<double>(K.begin() + long(best * shape[1]),
-                                                     K.begin() + long((best + 1) * shape[1])),
-                                 n);
-      };
-
+      const int                 z1 = members.pinion->teeth();
       const PairModelParameters p =
-          placed_in_assembly(d.model, z1, pinion_axis, members.assembly.gear_axis());
+          placed_in_assembly(d.model, z1, Vec3::UnitZ(), members.assembly.gear_axis());
 
-      // the excitations: models and static equilibria
-      struct Excitation
-      {
-        std::string                label;
-        std::unique_ptr<PairModel> model;
-        StaticEquilibrium          s;
-        double                     TE = 0, TL = 0;
-      };
+      // 2. The excitations: models on the TCA's tables, static equilibria, the modes.
       std::vector<Excitation> excitations;
       const H5Group           g = out.group(pair.name);
       for (const char *label : {"theoretical", "measured"})
-        {
-          const bool measured = std::string(label) == "measured";
-          if (!(measured ? d.measured : d.theoretical))
-            continue;
-          const int K =
-              measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles)
-                       : 1;
-          // the tables of an analysis; the system deflection's fixed point over them
-          std::optional<H5Group> measured_ste;
-          if (measured)
-            measured_ste.emplace(ste.group("measured"));
-          const H5Group &aligned   = measured ? *measured_ste : ste;
-          const auto     tables_of = [&](const ContactTables &c) {
-            MeshCycleSamples tables = mesh_cycle_samples(c, n, K, pinion_axis, stiffness(measured));
-            if (measured) // kinks and noise: no ringing between the samples
-              tables.interpolation = MeshInterpolation::makima;
-            if (!d.tca_transmission_error)
-              for (int i = 0; i < n * K; ++i)
-                tables.transmission_error[std::size_t(i)] =
-                    d.transmission_error_amplitude * std::sin(2 * pi * i / n);
-            return tables;
-          };
-          // the measured flanks, read when the deflection first needs them
-          std::pair<MemberPointer, MemberPointer> flanks;
-          PairMembers                             moved      = members;
-          Misalignment                            misaligned = tca.misalignment;
-          TcaResult                               deflected;
-          const auto                              tables_at = [&](const RigidMotion &u) {
-            DeflectedTables out;
-            if (u.translation.isZero(0) && u.rotation.isZero(0))
-              return out.tables = tables_of(contact_tables(aligned)), out;
-            TcaScene t = tca;
-            t.misalignment = misalignment_after(members.assembly, tca.misalignment, u, &out.taken);
-            misaligned = t.misalignment;
-            moved = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
-            if (measured && !flanks.first)
-              flanks = measured_members(upstream.at("measured")->group(pair.name));
-            try
-              {
-                deflected = pair_tca(measured ? flanks.first : moved.pinion,
-                                     measured ? flanks.second : moved.gear, moved.assembly, t,
-                                     measured, [] {});
-              }
-            catch (const InputError &e)
-              {
-                std::ostringstream msg;
-                msg << "Dynamics/" << pair.name << "/system deflection: the static load moves "
-                    << "the gear by " << u.translation.norm() * 1e6 << " um and "
-                    << u.rotation.norm() * 1e3 << " mrad relative to the pinion, and the TCA "
-                    << "there fails (" << e.what() << "); stiffen the supports (bearing and "
-                    << "axial stiffness), lower the torque, or set system deflection = false";
-                throw InputError(msg.str());
-              }
-            out.tables = tables_of(contact_tables(deflected));
-            return out;
-          };
-          SystemDeflectionOptions so;
-          so.motor_torque = d.torque;
-          so.pinion_axis = pinion_axis, so.gear_axis = gear_axis;
-          so.pinion_centre    = members.assembly.pinion_centre();
-          so.gear_centre      = members.assembly.gear_to_global(Vec3::Zero(), 0);
-          so.max_iterations   = d.system_deflection && d.tca_transmission_error ? 10 : 0;
-          SystemDeflection sd = system_deflection(p, tables_at, so);
-          Excitation       e{label, std::move(sd.model), sd.equilibrium, d.torque, sd.load_torque};
-          const MeshCycleSamples &tables = e.model->tables();
-          const H5Group           eg     = g.group(label);
-          if (so.max_iterations > 0)
-            write_deflection(eg.group("deflection"), sd, tca, misaligned, moved, deflected, aligned,
-                             log, pair.name + " " + label);
-          eg.write("static_mesh_force", e.s.mesh_force, "N", "F_m in the static equilibrium");
-          eg.write("static_deflection", e.s.deflection, "m", "delta_D - E_t - b_c, static");
-          eg.write("load_torque", e.TL, "N m", "T_L balancing the pinion torque");
-          eg.write("excitation_cycles", double(K), "mesh cycles", "period of the tables");
-          const auto  &et   = tables.transmission_error;
-          const double wrap = et.front() - et.back();
-          double       step = 0;
-          for (std::size_t i = 1; i < et.size(); ++i)
-            step = std::max(step, std::abs(et[i] - et[i - 1]));
-          eg.write("wrap_step", wrap, "m",
-                   "E_t(period start) - E_t(last sample): the step where the tables wrap");
-          log << "  " << pair.name << " " << label << ": " << K << " mesh cycle"
-              << (K > 1 ? "s" : "") << " of " << n << " samples per period";
-          if (measured)
-            log << "; E_t steps " << wrap * 1e6 << " um where the period wraps (largest step "
-                << "between samples " << step * 1e6 << " um)";
-          log << "\n";
-          excitations.push_back(std::move(e));
-        }
+        if (std::string(label) == "measured" ? d.measured : d.theoretical)
+          excitations.push_back(
+              build_excitation(label, pair, d, tca, members, upstream, p, g, log));
       log << "  " << pair.name << ": static mesh force " << excitations.front().s.mesh_force
           << " N\n";
       write_modes(g, *excitations.front().model, excitations.front().label, z1, log, pair.name);
       for (const Excitation &e : excitations)
         check_accuracy(*e.model, e.TL, d, pair.name);
 
-      // the sweeps: per excitation up and down (each from the static equilibrium at its first
-      // speed), in blocks
-      std::vector<SweepTask>   tasks;
-      std::vector<std::size_t> first_task; // per (excitation, direction)
-      for (const Excitation &e : excitations)
-        for (bool up : {true, false})
-          {
-            SweepOptions o;
-            o.motor_torque = e.TE, o.load_torque = e.TL;
-            o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
-            o.steady_tolerance      = d.steady_tolerance;
-            o.spectrum_orders       = d.spectrum_orders;
-            o.series_speeds         = d.series_speeds;
-            o.run.method            = d.integrator;
-            o.run.steps_per_cycle   = d.steps_per_cycle;
-            o.accuracy              = d.accuracy;
-            o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
-            o.speeds                = sweep_speeds(d);
-            if (!up)
-              std::reverse(o.speeds.begin(), o.speeds.end());
-            first_task.push_back(tasks.size());
-            for (const SweepOptions &b : split_sweep(o, d.sweep_blocks, d.warmup_speeds))
-              tasks.push_back({e.model.get(), e.s.q, PairVector::Zero(), b});
-          }
-      first_task.push_back(tasks.size());
+      // 3. The sweeps, shared among the processes and threads; the Floquet stability.
+      std::vector<std::size_t>     first_task; // per (excitation, direction)
+      const std::vector<SweepTask> tasks = sweep_tasks(excitations, d, first_task);
       const auto results = run_everywhere(tasks, "dynamics " + pair.name + ": speed");
-
       for (const Excitation &e : excitations)
         write_stability(g.group(e.label).group("stability"), *e.model, d, e.TE, e.TL, log,
                         pair.name + " " + e.label);
+
+      // 4. The sweeps' results.
       for (std::size_t x = 0; x < excitations.size(); ++x)
-        {
-          const H5Group eg  = g.group(excitations[x].label);
-          double        dlf = 0, unreached_error = 0;
-          std::string   unsteady, diverged, unreached;
-          for (int dir = 0; dir < 2; ++dir)
-            {
-              const std::size_t       j = 2 * x + std::size_t(dir);
-              std::vector<SweepPoint> points;
-              for (std::size_t t = first_task[j]; t < first_task[j + 1]; ++t)
-                points.insert(points.end(), results[t].begin(), results[t].end());
-              write_sweep(eg.group(dir == 0 ? "up" : "down"), points);
-              for (const auto &pt : points)
-                {
-                  const std::string at =
-                      " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
-                      (dir == 0 ? " up" : " down");
-                  if (pt.diverged)
-                    {
-                      std::ostringstream when;
-                      when << at << " (after " << pt.diverged_time * 1e3 << " ms)";
-                      diverged += when.str();
-                    }
-                  else
-                    dlf = std::max(dlf, pt.load_factor);
-                  if (!pt.diverged && pt.period == 0 && d.steady_tolerance > 0)
-                    unsteady += at;
-                  // Newmark at the sweep's most steps, its error estimate still above the
-                  // accuracy (the recorded motion's harmonics ask for more)
-                  if (!pt.diverged && d.accuracy > 0 && pt.error_estimate > d.accuracy)
-                    unreached += at, unreached_error = std::max(unreached_error, pt.error_estimate);
-                }
-            }
-          log << "  " << pair.name << " " << excitations[x].label << ": " << d.speeds
-              << " speeds up and down in " << tasks.size() << " tasks, largest dynamic load factor "
-              << dlf << (diverged.empty() ? "" : " (of the speeds that did not diverge)") << "\n";
-          if (!unsteady.empty())
-            log << "  " << pair.name << " " << excitations[x].label << ": not steady within "
-                << d.settle_cycles << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady
-                << "\n";
-          if (!unreached.empty())
-            log << "  " << pair.name << " " << excitations[x].label << ": accuracy " << d.accuracy
-                << " not reached within the sweep's most Newmark steps ("
-                << std::max(SweepOptions().most_steps, d.steps_per_cycle)
-                << " per mesh cycle; the recorded motion's harmonics asked for more), error "
-                   "estimates up to "
-                << unreached_error << " (error_estimate) at [rpm]:" << unreached << "\n";
-          if (!diverged.empty())
-            log << "  " << pair.name << " " << excitations[x].label
-                << ": DIVERGED (the response grew past " << int(SweepOptions().divergence_factor)
-                << " times its length scale: no results there, status 2) at [rpm]:" << diverged
-                << "\n";
-        }
+        write_sweeps(excitations[x], x, first_task, results, tasks.size(), d, pair.name, g, log);
     }
 }
 } // namespace gearkit

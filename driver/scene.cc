@@ -203,6 +203,136 @@ Scene::declare(ParameterHandler &prm)
                     "subsection Train/<name> whose meshes use pairs of this scene.");
 }
 
+namespace
+{
+/// Step 1 of read_scene: the pair names of Scene/pairs, each a valid name, at most 20, none
+/// twice, each described under Flanks.
+std::vector<std::string>
+read_pair_names(const SceneText &text, ParameterHandler &header)
+{
+  std::vector<std::string> pairs;
+  in_subsection(header, {"Scene"}, [&] { pairs = split_list(header.get("pairs")); });
+  for (const std::string &p : pairs)
+    check_identifier(p, "Scene/pairs: the pair name");
+  // Each pair costs its members' construction and checks when the scene is read (tenths of a
+  // second); a gearbox has a handful. Bounded, so no input makes the reader run for long.
+  if (pairs.size() > 20)
+    throw InputError("Scene/pairs: " + std::to_string(pairs.size()) +
+                     " pairs is not allowed; at most 20 in one scene (split it)");
+  if (std::set<std::string>(pairs.begin(), pairs.end()).size() != pairs.size())
+    throw InputError("Scene/pairs: a pair name appears twice; each pair needs its own name");
+  if (const auto missing = undescribed_pairs(text, pairs); !missing.empty())
+    throw InputError("Scene/pairs: the pair '" + missing.front() + "' has no subsection Flanks/" +
+                     missing.front() + "; describe every pair named in pairs (or remove the name)");
+  return pairs;
+}
+
+/// Step 1b: the trains of Scene/trains and the names of their bodies and meshes (which name
+/// subsections).
+std::vector<TrainNames>
+read_train_names(const SceneText &text, ParameterHandler &header)
+{
+  std::vector<TrainNames> trains;
+  in_subsection(header, {"Scene"}, [&] {
+    for (const std::string &t : names_of(header.get("trains"), "Scene/trains", 20))
+      trains.push_back({t, {}, {}});
+  });
+  if (trains.empty())
+    return trains;
+  ParameterHandler names;
+  in_subsection(names, {"Scene"}, [&] { Scene::declare(names); });
+  for (const TrainNames &t : trains)
+    in_subsection(names, {"Train", t.name}, [&] { TrainScene::declare(names, {}, {}); });
+  text.parse(names, true);
+  for (TrainNames &t : trains)
+    in_subsection(names, {"Train", t.name}, [&] {
+      t.bodies = names_of(names.get("bodies"), "Train/" + t.name + "/bodies", 50);
+      t.meshes = names_of(names.get("meshes"), "Train/" + t.name + "/meshes", 50);
+    });
+  return trains;
+}
+
+/// Step 3: each section parses itself into `scene`.
+void
+parse_sections(ParameterHandler &prm, const std::string &file,
+               const std::vector<std::string> &pairs, const std::vector<TrainNames> &trains,
+               const std::vector<std::string> &train_names, const NotesNames &notes, Scene &scene)
+{
+  in_subsection(prm, {"Scene"}, [&] {
+    scene.name    = prm.get("name");
+    scene.outputs = split_list(prm.get("outputs"));
+  });
+  if (scene.name.empty())
+    scene.name = fs::path(file).stem().string();
+  check_identifier(scene.name, "Scene/name");
+  if (scene.outputs.empty())
+    throw InputError(std::string("Scene/outputs is empty; name what to compute, from: ") +
+                     output_names);
+  const std::string dir = fs::path(file).parent_path().string();
+  for (const std::string &p : pairs)
+    {
+      PairScene pair;
+      pair.name = p;
+      in_subsection(prm, {"Flanks", p}, [&] { pair.parse(prm); });
+      in_subsection(prm, {"Measured flanks", p}, [&] { scene.measured[p].parse(prm, dir); });
+      in_subsection(prm, {"TCA", p}, [&] { scene.tca[p].parse(prm); });
+      in_subsection(prm, {"Finite elements", p}, [&] { scene.fe[p].parse(prm); });
+      in_subsection(prm, {"Loaded contact", p}, [&] { scene.loaded[p].parse(prm); });
+      in_subsection(prm, {"Dynamics", p}, [&] { scene.dynamics[p].parse(prm); });
+      scene.pairs.push_back(pair);
+    }
+  for (const TrainNames &t : trains)
+    {
+      TrainScene train;
+      train.name = t.name;
+      in_subsection(prm, {"Train", t.name}, [&] { train.parse(prm); });
+      scene.trains.push_back(train);
+    }
+  // the pairs' notes in the order of Scene/pairs, then the trains' (a name may be both)
+  std::vector<std::string> noted = pairs;
+  noted.insert(noted.end(), train_names.begin(), train_names.end());
+  for (std::size_t i = 0; i < noted.size(); ++i)
+    if (std::count(noted.begin(), noted.begin() + std::ptrdiff_t(i), noted[i]) == 0 &&
+        std::count(notes.names.begin(), notes.names.end(), noted[i]) > 0)
+      in_subsection(prm, {"Notes", noted[i]}, [&] {
+        for (SceneNote &n : NotesScene::parse(prm, noted[i]))
+          scene.notes.push_back(std::move(n));
+      });
+}
+
+/// Step 4: each section checks itself against the rest of the scene: everything the scene
+/// alone can tell is refused here, before any stage runs. Implausible values a real design can
+/// have go to scene.warnings; the dynamics' and the trains' plausibility (masses, speeds, cost)
+/// only where they run. A section is judged against its pair only where its stage runs (the
+/// stage graph, driver/stages.cc): its defaults suit no particular pair (the finite elements'
+/// 7 segment teeth refused the unloaded TCA of a 6-tooth pinion).
+void
+check_sections(Scene &scene)
+{
+  const std::vector<std::string> stages = required_stages(scene);
+  auto                           runs   = [&](const char *stage) {
+    return std::find(stages.begin(), stages.end(), stage) != stages.end();
+  };
+  for (const PairScene &pair : scene.pairs)
+    {
+      const std::string &p = pair.name;
+      pair.check(scene.warnings);
+      scene.measured.at(p).check(pair);
+      scene.tca.at(p).complete_and_check(pair, scene.measured.at(p), scene.warnings);
+      scene.fe.at(p).check(pair, runs("compliance"), scene.warnings);
+      scene.loaded.at(p).check(pair, scene.measured.at(p), runs("stiffness"), scene.warnings);
+      scene.dynamics.at(p).check(pair, scene.tca.at(p), runs("dynamics"), scene.warnings);
+    }
+  const bool train_wanted =
+      std::find(scene.outputs.begin(), scene.outputs.end(), "train") != scene.outputs.end();
+  if (train_wanted && scene.trains.empty())
+    throw InputError("Scene/trains is empty with outputs = train; name the trains to run "
+                     "(each with a subsection Train/<name>)");
+  for (const TrainScene &t : scene.trains)
+    t.check(scene, train_wanted, scene.warnings);
+}
+} // namespace
+
 Scene
 read_scene(const std::string &file)
 {
@@ -217,47 +347,13 @@ read_scene(const std::string &file)
       //    reads this text.
       const SceneText text(file);
 
-      // 1. The scene header alone, to learn the pair names the other sections use.
+      // 1. The scene header alone, to learn the pair and train names the other sections use,
+      //    and the names under Notes (optional: each a pair or a train of the scene).
       ParameterHandler header;
       in_subsection(header, {"Scene"}, [&] { Scene::declare(header); });
       text.parse(header, true);
-      std::vector<std::string> pairs;
-      in_subsection(header, {"Scene"}, [&] { pairs = split_list(header.get("pairs")); });
-      for (const std::string &p : pairs)
-        check_identifier(p, "Scene/pairs: the pair name");
-      // Each pair costs its members' construction and checks when the scene is read (tenths of
-      // a second); a gearbox has a handful. Bounded, so no input makes the reader run for long.
-      if (pairs.size() > 20)
-        throw InputError("Scene/pairs: " + std::to_string(pairs.size()) +
-                         " pairs is not allowed; at most 20 in one scene (split it)");
-      if (std::set<std::string>(pairs.begin(), pairs.end()).size() != pairs.size())
-        throw InputError("Scene/pairs: a pair name appears twice; each pair needs its own name");
-      if (const auto missing = undescribed_pairs(text, pairs); !missing.empty())
-        throw InputError("Scene/pairs: the pair '" + missing.front() +
-                         "' has no subsection Flanks/" + missing.front() +
-                         "; describe every pair named in pairs (or remove the name)");
-
-      // 1b. The trains, and the names of their bodies and meshes (which name subsections).
-      std::vector<TrainNames> trains;
-      in_subsection(header, {"Scene"}, [&] {
-        for (const std::string &t : names_of(header.get("trains"), "Scene/trains", 20))
-          trains.push_back({t, {}, {}});
-      });
-      if (!trains.empty())
-        {
-          ParameterHandler names;
-          in_subsection(names, {"Scene"}, [&] { Scene::declare(names); });
-          for (const TrainNames &t : trains)
-            in_subsection(names, {"Train", t.name}, [&] { TrainScene::declare(names, {}, {}); });
-          text.parse(names, true);
-          for (TrainNames &t : trains)
-            in_subsection(names, {"Train", t.name}, [&] {
-              t.bodies = names_of(names.get("bodies"), "Train/" + t.name + "/bodies", 50);
-              t.meshes = names_of(names.get("meshes"), "Train/" + t.name + "/meshes", 50);
-            });
-        }
-
-      // 1c. The names under Notes (optional): each a pair or a train of the scene.
+      const std::vector<std::string> pairs  = read_pair_names(text, header);
+      const std::vector<TrainNames>  trains = read_train_names(text, header);
       const NotesNames         notes{text.has_subsection("Notes"), text.subsections_in("Notes")};
       std::vector<std::string> train_names;
       for (const TrainNames &t : trains)
@@ -269,78 +365,9 @@ read_scene(const std::string &file)
       declare_all(prm, pairs, trains, notes);
       text.parse(prm);
 
-      // 3. Each section parses itself.
-      in_subsection(prm, {"Scene"}, [&] {
-        scene.name    = prm.get("name");
-        scene.outputs = split_list(prm.get("outputs"));
-      });
-      if (scene.name.empty())
-        scene.name = fs::path(file).stem().string();
-      check_identifier(scene.name, "Scene/name");
-      if (scene.outputs.empty())
-        throw InputError(std::string("Scene/outputs is empty; name what to compute, from: ") +
-                         output_names);
-      const std::string dir = fs::path(file).parent_path().string();
-      for (const std::string &p : pairs)
-        {
-          PairScene pair;
-          pair.name = p;
-          in_subsection(prm, {"Flanks", p}, [&] { pair.parse(prm); });
-          in_subsection(prm, {"Measured flanks", p}, [&] { scene.measured[p].parse(prm, dir); });
-          in_subsection(prm, {"TCA", p}, [&] { scene.tca[p].parse(prm); });
-          in_subsection(prm, {"Finite elements", p}, [&] { scene.fe[p].parse(prm); });
-          in_subsection(prm, {"Loaded contact", p}, [&] { scene.loaded[p].parse(prm); });
-          in_subsection(prm, {"Dynamics", p}, [&] { scene.dynamics[p].parse(prm); });
-          scene.pairs.push_back(pair);
-        }
-      for (const TrainNames &t : trains)
-        {
-          TrainScene train;
-          train.name = t.name;
-          in_subsection(prm, {"Train", t.name}, [&] { train.parse(prm); });
-          scene.trains.push_back(train);
-        }
-      // the pairs' notes in the order of Scene/pairs, then the trains' (a name may be both)
-      std::vector<std::string> noted = pairs;
-      noted.insert(noted.end(), train_names.begin(), train_names.end());
-      for (std::size_t i = 0; i < noted.size(); ++i)
-        if (std::count(noted.begin(), noted.begin() + std::ptrdiff_t(i), noted[i]) == 0 &&
-            std::count(notes.names.begin(), notes.names.end(), noted[i]) > 0)
-          in_subsection(prm, {"Notes", noted[i]}, [&] {
-            for (SceneNote &n : NotesScene::parse(prm, noted[i]))
-              scene.notes.push_back(std::move(n));
-          });
-
-      // 4. Each section checks itself against the rest of the scene: everything the scene
-      //    alone can tell is refused here, before any stage runs.
-      //    Implausible values a real design can have go to scene.warnings; the dynamics' and
-      //    the trains' plausibility (masses, speeds, cost) only where they run.
-      //    A section is judged against its pair only where its stage runs (the stage graph,
-      //    driver/stages.cc): its defaults suit no particular pair (the finite elements' 7
-      //    segment teeth refused the unloaded TCA of a 6-tooth pinion).
-      auto wanted = [&](const char *output) {
-        return std::find(scene.outputs.begin(), scene.outputs.end(), output) != scene.outputs.end();
-      };
-      const std::vector<std::string> stages = required_stages(scene);
-      auto                           runs   = [&](const char *stage) {
-        return std::find(stages.begin(), stages.end(), stage) != stages.end();
-      };
-      for (const PairScene &pair : scene.pairs)
-        {
-          const std::string &p = pair.name;
-          pair.check(scene.warnings);
-          scene.measured.at(p).check(pair);
-          scene.tca.at(p).complete_and_check(pair, scene.measured.at(p), scene.warnings);
-          scene.fe.at(p).check(pair, runs("compliance"), scene.warnings);
-          scene.loaded.at(p).check(pair, scene.measured.at(p), runs("stiffness"), scene.warnings);
-          scene.dynamics.at(p).check(pair, scene.tca.at(p), runs("dynamics"), scene.warnings);
-        }
-      const bool train_wanted = wanted("train");
-      if (train_wanted && scene.trains.empty())
-        throw InputError("Scene/trains is empty with outputs = train; name the trains to run "
-                         "(each with a subsection Train/<name>)");
-      for (const TrainScene &t : scene.trains)
-        t.check(scene, train_wanted, scene.warnings);
+      // 3. Each section parses itself; 4. and checks itself against the rest of the scene.
+      parse_sections(prm, file, pairs, trains, train_names, notes, scene);
+      check_sections(scene);
 
       // 5. The parameters as text, one block per section: the cache keys hash these.
       std::ostringstream printed;

@@ -457,15 +457,16 @@ TrainScene::model(const Scene &scene) const
 TrainCost
 train_cost_estimate(const TrainScene &train, const TrainModel &model)
 {
-  // Fit to bench_train_startup (bench/README.md, 2-core Xeon: seed 002's two meshes, 3 pairings
-  // each side): BDF at relative tolerance 1e-6, 1e-8, 1e-10 took 60, 167 and 335 CVODE steps
-  // per mesh cycle (summed over the meshes; the steady sweep of stage 1 alike: 336 at 1e-10),
-  // 6.2 us a step for its 28 tooth pairs (2 flank sides x 7 pairings x 2 meshes) on the idle
-  // machine. Measured again with two other builds running (the test's small train, 0.5 s at
-  // 1e-10): 130k steps where this estimates 90k, 13.6 us a step. The estimate takes 2 us + 0.3
-  // us per tooth pair (10.4 us for 28): between the idle and the loaded machine, so that a
-  // refusal is never far off. Adams takes about half the steps: the estimate is BDF's. Each
-  // output sample costs at least a step's work (the root functions and the record).
+  // Fit to bench_train_startup (bench/HISTORY.md, its 2026-11-24 table, 2-core Xeon: seed 002's
+  // two meshes, 3 pairings each side): BDF at relative tolerance 1e-6, 1e-8, 1e-10 took 60, 167
+  // and 335 CVODE steps per mesh cycle (summed over the meshes; the steady sweep of stage 1
+  // alike: 336 at 1e-10), 6.2 us a step for its 28 tooth pairs (2 flank sides x 7 pairings x 2
+  // meshes) on the idle machine. Measured again with two other builds running (the test's small
+  // train, 0.5 s at 1e-10): 130k steps where this estimates 90k, 13.6 us a step. The estimate
+  // takes 2 us + 0.3 us per tooth pair (10.4 us for 28): between the idle and the loaded
+  // machine, so that a refusal is never far off. Adams takes about half the steps: the estimate
+  // is BDF's. Each output sample costs at least a step's work (the root functions and the
+  // record).
   TrainCost c;
   for (const TrainMesh &m : model.meshes)
     c.mesh_cycles += std::abs(model.bodies[std::size_t(m.driver)].initial_speed) *

@@ -300,6 +300,40 @@ parse_sections(ParameterHandler &prm, const std::string &file,
       });
 }
 
+/// The torques a K_m table is asked at (the dynamics' pinion torque, a train mesh's stiffness
+/// torque) against those the loaded contact computes: K_m is the secant stiffness at one load, so
+/// another torque's table is a different stiffness; a warning names both (the run takes the
+/// nearest, nearest_torque).
+void
+check_stiffness_torques(Scene &scene, bool dynamics_runs, bool trains_run)
+{
+  const auto check = [&](const std::string &parameter, double wanted, const std::string &pair) {
+    const std::vector<double> &torques = scene.loaded.at(pair).torques;
+    if (wanted <= 0 || torques.empty())
+      return;
+    const double taken = torques[nearest_torque(torques, wanted)];
+    if (std::abs(taken - wanted) > 1e-9 * wanted)
+      {
+        std::ostringstream w;
+        w << parameter << " = " << wanted << " N m is not a torque of Loaded contact/" << pair
+          << "/torques; K_m is the secant stiffness at one load, so the run takes the table at "
+          << "the nearest, " << taken << " N m (" << std::showpos << (taken / wanted - 1) * 100
+          << std::noshowpos << " %); add the torque there to run on its own K_m";
+        scene.warnings.push_back(w.str());
+      }
+  };
+  if (dynamics_runs)
+    for (const auto &[pair, d] : scene.dynamics)
+      if (d.fe_stiffness)
+        check("Dynamics/" + pair + "/pinion torque", d.torque, pair);
+  if (trains_run)
+    for (const TrainScene &t : scene.trains)
+      for (const TrainMeshScene &m : t.meshes)
+        if (m.fe_stiffness)
+          check("Train/" + t.name + "/Meshes/" + m.name + "/stiffness torque", m.stiffness_torque,
+                m.pair);
+}
+
 /// Step 4: each section checks itself against the rest of the scene: everything the scene
 /// alone can tell is refused here, before any stage runs. Implausible values a real design can
 /// have go to scene.warnings; the dynamics' and the trains' plausibility (masses, speeds, cost)
@@ -330,8 +364,20 @@ check_sections(Scene &scene)
                      "(each with a subsection Train/<name>)");
   for (const TrainScene &t : scene.trains)
     t.check(scene, train_wanted, scene.warnings);
+  check_stiffness_torques(scene, runs("dynamics"), train_wanted);
 }
 } // namespace
+
+std::size_t
+nearest_torque(const std::vector<double> &torques, double wanted)
+{
+  std::size_t best = 0;
+  for (std::size_t t = 1; t < torques.size(); ++t)
+    if (wanted > 0 ? std::abs(torques[t] - wanted) < std::abs(torques[best] - wanted)
+                   : torques[t] > torques[best])
+      best = t;
+  return best;
+}
 
 Scene
 read_scene(const std::string &file)

@@ -519,6 +519,13 @@ void
 check_torque(const std::string &parameter, double torque, const PairScene &pair,
              std::vector<std::string> &warnings);
 
+/// The index of the loaded contact's torque a K_m table is taken at (the dynamics' pinion
+/// torque, a train mesh's stiffness torque): the nearest to `wanted` (the first of two as near),
+/// the largest where `wanted` is 0. K_m is the secant stiffness at one load: read_scene warns
+/// where the torque asked for is not one the loaded contact computes.
+std::size_t
+nearest_torque(const std::vector<double> &torques, double wanted);
+
 /// Reads and checks a scene file. Throws InputError naming the file, line, parameter and what is
 /// allowed.
 Scene

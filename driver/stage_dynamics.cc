@@ -415,10 +415,7 @@ mesh_stiffness_table(const DynamicsScene &d, const Upstream &upstream, const Pai
   std::vector<hsize_t> shape;
   const auto           K    = own ? all.group("measured").read_doubles("mesh_stiffness", &shape)
                                   : all.read_doubles("mesh_stiffness", &shape);
-  std::size_t          best = 0;
-  for (std::size_t t = 1; t < torques.size(); ++t)
-    if (std::abs(torques[t] - d.torque) < std::abs(torques[best] - d.torque))
-      best = t;
+  const std::size_t    best = nearest_torque(torques, d.torque);
   return resample_periodic(std::vector<double>(K.begin() + long(best * shape[1]),
                                                K.begin() + long((best + 1) * shape[1])),
                            n);

@@ -30,12 +30,8 @@ fe_mesh_stiffness(const H5Group &stiffness, const std::string &pair, double torq
   const auto           phi     = g.read_doubles("pinion_angle");
   std::vector<hsize_t> shape;
   const auto           K    = g.read_doubles("mesh_stiffness", &shape);
-  std::size_t          best = 0;
-  for (std::size_t t = 1; t < torques.size(); ++t)
-    if (torque > 0 ? std::abs(torques[t] - torque) < std::abs(torques[best] - torque)
-                   : torques[t] > torques[best])
-      best = t;
-  const std::size_t n = shape.size() == 2 ? std::size_t(shape[1]) : 0;
+  const std::size_t    best = nearest_torque(torques, torque);
+  const std::size_t    n    = shape.size() == 2 ? std::size_t(shape[1]) : 0;
   // uniform positions over one mesh cycle (the stiffness stage's), or the table is refused
   const double step = 2 * pi / z1 / double(std::max<std::size_t>(n, 1));
   for (std::size_t i = 1; i < phi.size(); ++i)

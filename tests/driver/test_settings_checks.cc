@@ -324,3 +324,31 @@ TEST_F(SettingsChecks, AContactRatioBelowOneIsWarnedAndTheTcaShowsTheGap)
   EXPECT_LT(*std::max_element(e.begin(), e.end()) - *std::min_element(e.begin(), e.end()), 1e-11);
   EXPECT_NEAR(read("flanks/p1/transverse_contact_ratio").at(0), 0.8404, 1e-4);
 }
+
+TEST_F(SettingsChecks, ADynamicsTorqueTheLoadedContactDoesNotComputeIsWarnedWithTheOneTaken)
+{
+  // K_m is the secant stiffness at one load: the dynamics takes the loaded contact's table at
+  // the nearest torque (nearest_torque: the first of two as near, the largest for 0), and the
+  // scene says so when the torque asked for is not one the loaded contact computes.
+  EXPECT_EQ(nearest_torque({100, 200}, 150), 0u);
+  EXPECT_EQ(nearest_torque({100, 200}, 151), 1u);
+  EXPECT_EQ(nearest_torque({100, 300, 200}, 0), 1u);
+  EXPECT_EQ(nearest_torque({250}, 10), 0u);
+  std::string text = with(dynamics_scene("5e-3"), "set mesh stiffness source     = constant",
+                          "set mesh stiffness source     = finite elements\n"
+                          "    set pinion torque             = 150");
+  text += "subsection Loaded contact\n  subsection p1\n    set torques = 100, 200\n  end\nend\n";
+  const auto warned = [&](const std::string &scene) {
+    std::string all;
+    for (const std::string &w : read_scene(file("scene.prm", scene)).warnings)
+      all += w + "\n";
+    return all;
+  };
+  expect_contains(warned(text), {"Dynamics/p1/pinion torque = 150 N m is not a torque of Loaded "
+                                 "contact/p1/torques",
+                                 "the nearest, 100 N m (-33.3333 %)"});
+  EXPECT_EQ(warned(with(text, "set pinion torque             = 150",
+                        "set pinion torque             = 200"))
+                .find("is not a torque of"),
+            std::string::npos);
+}

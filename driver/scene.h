@@ -11,6 +11,7 @@
 #pragma once
 
 #include "dynamics/integrators.h"
+#include "dynamics/sweep.h"
 #include "dynamics/train.h"
 #include "geometry/bevel_gear.h"
 #include "geometry/involute_gear.h"
@@ -254,10 +255,10 @@ struct DynamicsScene
   double              speed_from = 0, speed_to = 0; ///< [rad/s]
   int                 speeds        = 0;
   int                 settle_cycles = 200, record_cycles = 50;
-  double              steady_tolerance = 1e-4; ///< SweepOptions::steady_tolerance
+  double              steady_tolerance = SweepOptions().steady_tolerance; ///< its default
   Integrator          integrator       = Integrator::newmark;
   int                 steps_per_cycle  = 64;
-  double              accuracy         = 0.005; ///< SweepOptions::accuracy (Newmark; 0: steps)
+  double accuracy = SweepOptions().accuracy; ///< SweepOptions::accuracy (Newmark; 0: steps)
   /// The tables from the TCA at the position the static load deflects the pair to
   /// (dynamics/deflection.h), else as assembled.
   bool system_deflection = true;

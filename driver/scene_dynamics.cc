@@ -67,7 +67,8 @@ DynamicsScene::declare(ParameterHandler &prm)
   prm.declare_entry("settle cycles", "200", Patterns::Integer(0),
                     "Most mesh cycles to settle at each speed (less when the motion repeats).");
   prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
-  prm.declare_entry("steady tolerance", "1e-4", Patterns::Double(0),
+  prm.declare_entry("steady tolerance", plausible_number(SweepOptions().steady_tolerance),
+                    Patterns::Double(0),
                     "Settled when the states at whole excitation periods repeat within this, "
                     "relative to the static mesh deflection, over three whole periods of the "
                     "motion (1 to 4 excitation periods; CVODE: at least 1e3 times its "
@@ -77,7 +78,7 @@ DynamicsScene::declare(ParameterHandler &prm)
       "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps per speed, as many as the accuracy asks (the fast path); cvode: "
       "adaptive, events at the backlash.");
-  prm.declare_entry("accuracy", "0.005", Patterns::Double(0, 0.5),
+  prm.declare_entry("accuracy", plausible_number(SweepOptions().accuracy), Patterns::Double(0, 0.5),
                     "Newmark: the relative RMS error of the DTE wanted; the steps per mesh "
                     "cycle then follow at each speed from an estimate of the rule's error "
                     "(dynamics/newmark_error.h: its frequency warping, for the tables' forcing "

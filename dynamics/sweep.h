@@ -37,8 +37,9 @@ struct SweepOptions
   /// repeat to) over three whole periods (1 to 4 periods of the excitation; a period above 1
   /// only while the shorter periods' mismatches hold still over ten mesh cycles: not a
   /// decaying transient);
-  /// 0: always settle for settle_cycles.
-  double steady_tolerance  = 1e-6;
+  /// 0: always settle for settle_cycles. The default is the scene's (Dynamics/<pair>/steady
+  /// tolerance takes it from here).
+  double steady_tolerance  = 1e-4;
   int    min_settle_cycles = 20;
   /// Diverged when |delta_D - E_t| passes this times the response's own length scale - the
   /// static deflection plus the half backlash plus E_t's peak-to-peak - or the state is not
@@ -64,8 +65,9 @@ struct SweepOptions
   /// the least) are the fewest whose error for the tables' forcing is within it
   /// (NewmarkError::steps), then raised, the speed settled and recorded again (up to four
   /// times), while the recorded motion's harmonics (NewmarkError::recorded: what contact loss
-  /// and K_m's variation add) say more than half of it; 0: run's steps at every speed.
-  double accuracy = 0;
+  /// and K_m's variation add) say more than half of it; 0: run's steps at every speed. The
+  /// default (0.5 % of the DTE RMS) is the scene's (Dynamics/<pair>/accuracy takes it from here).
+  double accuracy = 0.005;
   /// The most Newmark steps per mesh cycle the accuracy may ask for (a bound on the sweep's
   /// cost; at least run.steps_per_cycle): where it asks more, the speed runs with these and its
   /// error estimate above the accuracy (a caller refuses an accuracy the forced estimate puts

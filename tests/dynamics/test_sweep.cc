@@ -122,6 +122,8 @@ TEST(Sweep, SpectrumMatchesTheFrequencyDomainOverOneAndThreeMeshCycles)
       const double    TL = 100;
       const auto      s  = model.static_equilibrium(TL);
       SweepOptions    o;
+      // a tight steady check and fixed Newmark steps, as this test was written for
+      o.steady_tolerance = 1e-6, o.accuracy = 0;
       o.motor_torque = s.motor_torque, o.load_torque = TL;
       o.speeds        = {2 * pi * 2000 / 60, 2 * pi * 3000 / 60};
       o.settle_cycles = 3000, o.record_cycles = 31; // rounded up to whole periods
@@ -192,6 +194,8 @@ TEST(Sweep, ThreadsAndBlocksReproduceTheSequentialSweep)
   const PairModel model(test_data::bevel_like_parameters(10e-6), t);
   const auto      s = model.static_equilibrium(60);
   SweepOptions    o;
+  // a tight steady check and fixed Newmark steps, as this test was written for
+  o.steady_tolerance = 1e-6, o.accuracy = 0;
   o.motor_torque = s.motor_torque, o.load_torque = 60;
   for (int i = 0; i < 18; ++i)
     o.speeds.push_back(2 * pi * (500 + 400.0 * i) / 60);
@@ -309,6 +313,8 @@ TEST(Floquet, ConstantMeshMatchesTheStateMatrixAndVaryingStiffnessResonatesParam
   tight.half_backlash       = 0;
   const PairModel lin(tight, varying);
   SweepOptions    sw;
+  // a tight steady check and fixed Newmark steps, as this test was written for
+  sw.steady_tolerance = 1e-6, sw.accuracy = 0;
   sw.load_torque = 100, sw.motor_torque = lin.static_equilibrium(100).motor_torque;
   sw.speeds        = {2 * pi * 2 * f / 55, 2 * pi * 1.3 * f / 55};
   sw.settle_cycles = 3000, sw.record_cycles = 10;

@@ -436,179 +436,31 @@ public:
   /// polynomial would cost at every quadrature point.
   void
   record(double a, double b, const std::vector<double> &y_a, const SolutionPoint &at_a,
-         const std::vector<double> &y_b, const SolutionPoint &at_b)
-  {
-    if (!alias)
-      return;
-    const std::size_t channels = std::size_t(2 * n + 2 * meshes);
-    ends.resize(4 * channels);
-    double *const value_a = ends.data(), *const rate_a = value_a + channels,
-                  *const value_b = rate_a + channels, *const rate_b = value_b + channels;
-    auto fill = [&](const std::vector<double> &y, const SolutionPoint &at, double *value,
-                    double *rate) {
-      for (int i = 0; i < n; ++i)
-        {
-          value[i] = y[std::size_t(i)], rate[i] = y[std::size_t(n + i)];
-          value[n + i] = y[std::size_t(n + i)], rate[n + i] = at.alpha[std::size_t(i)];
-        }
-      for (int i = 0; i < meshes; ++i)
-        {
-          const MeshEval &e         = at.meshes[std::size_t(i)];
-          const double    r_d       = at.force_rate[std::size_t(i)][drive_side],
-                       r_c          = at.force_rate[std::size_t(i)][coast_side];
-          value[2 * n + i]          = e.force[drive_side] - e.force[coast_side];
-          rate[2 * n + i]           = r_d - r_c;
-          value[2 * n + meshes + i] = e.force[drive_side] + e.force[coast_side];
-          rate[2 * n + meshes + i]  = r_d + r_c;
-        }
-    };
-    fill(y_a, at_a, value_a, rate_a);
-    fill(y_b, at_b, value_b, rate_b);
-    const double h = b - a;
-    alias->advance(a, b, [&](double t, double *v) {
-      const double u = (t - a) / h, u2 = u * u, u3 = u2 * u;
-      const double h00 = 2 * u3 - 3 * u2 + 1, h10 = (u3 - 2 * u2 + u) * h, h01 = -2 * u3 + 3 * u2,
-                   h11 = (u3 - u2) * h;
-      for (std::size_t j = 0; j < channels; ++j)
-        v[j] = h00 * value_a[j] + h10 * rate_a[j] + h01 * value_b[j] + h11 * rate_b[j];
-    });
-  }
+         const std::vector<double> &y_b, const SolutionPoint &at_b);
 
   /// The output sample at time t.
   void
-  sample(double t, const std::vector<double> &state, const std::vector<double> &q)
-  {
-    out.t.push_back(t);
-    for (int i = 0; i < n; ++i)
-      {
-        out.angle[i].push_back(state[i]);
-        out.speed[i].push_back(state[n + i]);
-      }
-    for (int i = 0; i < meshes; ++i)
-      {
-        const MeshEval e = sys.mesh(i, state.data(), state.data() + n);
-        out.meshes[i].relative.push_back(sys.relative(i, state.data()));
-        out.meshes[i].force.push_back(e.force[drive_side] - e.force[coast_side]);
-        out.meshes[i].magnitude.push_back(e.force[drive_side] + e.force[coast_side]);
-        out.meshes[i].pairs.push_back(e.pairs);
-      }
-    const double K = sys.kinetic(state.data(), state.data() + n);
-    const double V = sys.potential(state.data(), state.data() + n);
-    out.work.push_back(q[0]);
-    out.kinetic.push_back(K);
-    out.potential.push_back(V);
-    out.dissipated.push_back(q[1]);
-    scale = std::max({scale, std::abs(q[0]), K, V, std::abs(q[1])});
-    out.energy_error =
-        std::max(out.energy_error, std::abs(q[0] - (K - kinetic0) - (V - potential0) - q[1]));
-  }
+  sample(double t, const std::vector<double> &state, const std::vector<double> &q);
 
   /// The forces and penetrations at a point of the solution (a step's end, a root): the
   /// meshes evaluated there.
   void
-  extremes(double t, const std::vector<MeshEval> &evaluated)
-  {
-    for (int i = 0; i < meshes; ++i)
-      {
-        const MeshEval &e  = evaluated[std::size_t(i)];
-        MeshSeries     &ms = out.meshes[i];
-        for (int side = 0; side < 2; ++side)
-          {
-            const double F = e.force[side];
-            if (F > ms.max_force)
-              ms.max_force = F, ms.max_force_time = t;
-            ms.max_penetration            = std::max(ms.max_penetration, e.max_penetration[side]);
-            std::optional<TrainImpact> &c = open[std::size_t(2 * i + side)];
-            if (c && F > c->peak)
-              c->peak = F, c->peak_time = t;
-          }
-      }
-  }
+  extremes(double t, const std::vector<MeshEval> &evaluated);
 
   /// The forces' integrals over [a, b], a piece of the last step, from the forces and their
   /// rates at a and b (the integral of their cubic Hermite interpolant, exact for cubics as
   /// Simpson's rule is: the force's kinks - touch, separation - are roots, and end the pieces).
   void
-  integrate(double a, double b, const SolutionPoint &at_a, const SolutionPoint &at_b)
-  {
-    const double h = b - a;
-    for (std::size_t i = 0; i < std::size_t(meshes); ++i)
-      for (std::size_t side = 0; side < 2; ++side)
-        impulse[2 * i + side] += h / 2 * (at_a.meshes[i].force[side] + at_b.meshes[i].force[side]) +
-                                 h * h / 12 * (at_a.force_rate[i][side] - at_b.force_rate[i][side]);
-  }
+  integrate(double a, double b, const SolutionPoint &at_a, const SolutionPoint &at_b);
 
   /// A side of mesh i starts (touch) or stops touching at t; a contact at the start (t = 0)
   /// is recorded, but is no impact.
   void
-  contact(int i, int side, bool touch, double t)
-  {
-    MeshSeries                 &ms = out.meshes[i];
-    std::optional<TrainImpact> &c  = open[std::size_t(2 * i + side)];
-    if (touch)
-      {
-        if (t > 0)
-          {
-            ++ms.impacts;
-            ++(side == drive_side ? ms.drive_impacts : ms.coast_impacts);
-          }
-        if (ms.first_contact < 0)
-          ms.first_contact = t;
-        c.emplace();
-        c->side = side, c->touch = t, c->peak_time = t;
-        c->impulse = impulse[std::size_t(2 * i + side)]; // the integral so far; then the change
-        return;
-      }
-    if (!c)
-      return;
-    c->separation = t;
-    c->impulse    = impulse[std::size_t(2 * i + side)] - c->impulse;
-    ms.contacts.push_back(*c);
-    c.reset();
-  }
+  contact(int i, int side, bool touch, double t);
 
   /// The result, with the contacts still open at the end (separation -1).
   TrainResult
-  finish(const CvodeSolver &solver)
-  {
-    for (int i = 0; i < meshes; ++i)
-      for (int side = 0; side < 2; ++side)
-        if (std::optional<TrainImpact> &c = open[std::size_t(2 * i + side)])
-          {
-            c->impulse = impulse[std::size_t(2 * i + side)] - c->impulse;
-            out.meshes[i].contacts.push_back(*c);
-            c.reset();
-          }
-    for (MeshSeries &ms : out.meshes)
-      std::sort(ms.contacts.begin(), ms.contacts.end(),
-                [](const TrainImpact &a, const TrainImpact &b) { return a.touch < b.touch; });
-    out.steps        = std::size_t(solver.steps());
-    out.energy_error = out.energy_error / scale;
-    if (alias) // the recorded series in place of the point samples
-      {
-        if (!alias->done() || alias->output(0).size() != out.t.size())
-          throw std::logic_error("gear train: the anti-alias record does not cover the samples");
-        for (int i = 0; i < n; ++i)
-          {
-            out.angle[i] = std::move(alias->output(std::size_t(i)));
-            out.speed[i] = std::move(alias->output(std::size_t(n + i)));
-          }
-        std::vector<double> theta(static_cast<std::size_t>(n));
-        for (int i = 0; i < meshes; ++i)
-          {
-            MeshSeries &ms = out.meshes[i];
-            ms.force       = std::move(alias->output(std::size_t(2 * n + i)));
-            ms.magnitude   = std::move(alias->output(std::size_t(2 * n + meshes + i)));
-            for (std::size_t k = 0; k < out.t.size(); ++k)
-              {
-                for (int j = 0; j < n; ++j)
-                  theta[j] = out.angle[j][k];
-                ms.relative[k] = sys.relative(i, theta.data());
-              }
-          }
-      }
-    return std::move(out);
-  }
+  finish(const CvodeSolver &solver);
 
   TrainResult out;
 
@@ -621,6 +473,174 @@ private:
   std::optional<AntiAliasRecorder>        alias;
   std::vector<double>                     ends; ///< record's values and rates at the ends
 };
+
+void
+TrainRecorder::record(double a, double b, const std::vector<double> &y_a, const SolutionPoint &at_a,
+                      const std::vector<double> &y_b, const SolutionPoint &at_b)
+{
+  if (!alias)
+    return;
+  const std::size_t channels = std::size_t(2 * n + 2 * meshes);
+  ends.resize(4 * channels);
+  double *const value_a = ends.data(), *const rate_a = value_a + channels,
+                *const value_b = rate_a + channels, *const rate_b = value_b + channels;
+  auto fill = [&](const std::vector<double> &y, const SolutionPoint &at, double *value,
+                  double *rate) {
+    for (int i = 0; i < n; ++i)
+      {
+        value[i] = y[std::size_t(i)], rate[i] = y[std::size_t(n + i)];
+        value[n + i] = y[std::size_t(n + i)], rate[n + i] = at.alpha[std::size_t(i)];
+      }
+    for (int i = 0; i < meshes; ++i)
+      {
+        const MeshEval &e         = at.meshes[std::size_t(i)];
+        const double    r_d       = at.force_rate[std::size_t(i)][drive_side],
+                     r_c          = at.force_rate[std::size_t(i)][coast_side];
+        value[2 * n + i]          = e.force[drive_side] - e.force[coast_side];
+        rate[2 * n + i]           = r_d - r_c;
+        value[2 * n + meshes + i] = e.force[drive_side] + e.force[coast_side];
+        rate[2 * n + meshes + i]  = r_d + r_c;
+      }
+  };
+  fill(y_a, at_a, value_a, rate_a);
+  fill(y_b, at_b, value_b, rate_b);
+  const double h = b - a;
+  alias->advance(a, b, [&](double t, double *v) {
+    const double u = (t - a) / h, u2 = u * u, u3 = u2 * u;
+    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = (u3 - 2 * u2 + u) * h, h01 = -2 * u3 + 3 * u2,
+                 h11 = (u3 - u2) * h;
+    for (std::size_t j = 0; j < channels; ++j)
+      v[j] = h00 * value_a[j] + h10 * rate_a[j] + h01 * value_b[j] + h11 * rate_b[j];
+  });
+}
+
+void
+TrainRecorder::sample(double t, const std::vector<double> &state, const std::vector<double> &q)
+{
+  out.t.push_back(t);
+  for (int i = 0; i < n; ++i)
+    {
+      out.angle[i].push_back(state[i]);
+      out.speed[i].push_back(state[n + i]);
+    }
+  for (int i = 0; i < meshes; ++i)
+    {
+      const MeshEval e = sys.mesh(i, state.data(), state.data() + n);
+      out.meshes[i].relative.push_back(sys.relative(i, state.data()));
+      out.meshes[i].force.push_back(e.force[drive_side] - e.force[coast_side]);
+      out.meshes[i].magnitude.push_back(e.force[drive_side] + e.force[coast_side]);
+      out.meshes[i].pairs.push_back(e.pairs);
+    }
+  const double K = sys.kinetic(state.data(), state.data() + n);
+  const double V = sys.potential(state.data(), state.data() + n);
+  out.work.push_back(q[0]);
+  out.kinetic.push_back(K);
+  out.potential.push_back(V);
+  out.dissipated.push_back(q[1]);
+  scale = std::max({scale, std::abs(q[0]), K, V, std::abs(q[1])});
+  out.energy_error =
+      std::max(out.energy_error, std::abs(q[0] - (K - kinetic0) - (V - potential0) - q[1]));
+}
+
+void
+TrainRecorder::extremes(double t, const std::vector<MeshEval> &evaluated)
+{
+  for (int i = 0; i < meshes; ++i)
+    {
+      const MeshEval &e  = evaluated[std::size_t(i)];
+      MeshSeries     &ms = out.meshes[i];
+      for (int side = 0; side < 2; ++side)
+        {
+          const double F = e.force[side];
+          if (F > ms.max_force)
+            ms.max_force = F, ms.max_force_time = t;
+          ms.max_penetration            = std::max(ms.max_penetration, e.max_penetration[side]);
+          std::optional<TrainImpact> &c = open[std::size_t(2 * i + side)];
+          if (c && F > c->peak)
+            c->peak = F, c->peak_time = t;
+        }
+    }
+}
+
+void
+TrainRecorder::integrate(double a, double b, const SolutionPoint &at_a, const SolutionPoint &at_b)
+{
+  const double h = b - a;
+  for (std::size_t i = 0; i < std::size_t(meshes); ++i)
+    for (std::size_t side = 0; side < 2; ++side)
+      impulse[2 * i + side] += h / 2 * (at_a.meshes[i].force[side] + at_b.meshes[i].force[side]) +
+                               h * h / 12 * (at_a.force_rate[i][side] - at_b.force_rate[i][side]);
+}
+
+void
+TrainRecorder::contact(int i, int side, bool touch, double t)
+{
+  MeshSeries                 &ms = out.meshes[i];
+  std::optional<TrainImpact> &c  = open[std::size_t(2 * i + side)];
+  if (touch)
+    {
+      if (t > 0)
+        {
+          ++ms.impacts;
+          ++(side == drive_side ? ms.drive_impacts : ms.coast_impacts);
+        }
+      if (ms.first_contact < 0)
+        ms.first_contact = t;
+      c.emplace();
+      c->side = side, c->touch = t, c->peak_time = t;
+      c->impulse = impulse[std::size_t(2 * i + side)]; // the integral so far; then the change
+      return;
+    }
+  if (!c)
+    return;
+  c->separation = t;
+  c->impulse    = impulse[std::size_t(2 * i + side)] - c->impulse;
+  ms.contacts.push_back(*c);
+  c.reset();
+}
+
+TrainResult
+TrainRecorder::finish(const CvodeSolver &solver)
+{
+  for (int i = 0; i < meshes; ++i)
+    for (int side = 0; side < 2; ++side)
+      if (std::optional<TrainImpact> &c = open[std::size_t(2 * i + side)])
+        {
+          c->impulse = impulse[std::size_t(2 * i + side)] - c->impulse;
+          out.meshes[i].contacts.push_back(*c);
+          c.reset();
+        }
+  for (MeshSeries &ms : out.meshes)
+    std::sort(ms.contacts.begin(), ms.contacts.end(),
+              [](const TrainImpact &a, const TrainImpact &b) { return a.touch < b.touch; });
+  out.steps        = std::size_t(solver.steps());
+  out.energy_error = out.energy_error / scale;
+  if (alias) // the recorded series in place of the point samples
+    {
+      if (!alias->done() || alias->output(0).size() != out.t.size())
+        throw std::logic_error("gear train: the anti-alias record does not cover the samples");
+      for (int i = 0; i < n; ++i)
+        {
+          out.angle[i] = std::move(alias->output(std::size_t(i)));
+          out.speed[i] = std::move(alias->output(std::size_t(n + i)));
+        }
+      std::vector<double> theta(static_cast<std::size_t>(n));
+      for (int i = 0; i < meshes; ++i)
+        {
+          MeshSeries &ms = out.meshes[i];
+          ms.force       = std::move(alias->output(std::size_t(2 * n + i)));
+          ms.magnitude   = std::move(alias->output(std::size_t(2 * n + meshes + i)));
+          for (std::size_t k = 0; k < out.t.size(); ++k)
+            {
+              for (int j = 0; j < n; ++j)
+                theta[j] = out.angle[j][k];
+              ms.relative[k] = sys.relative(i, theta.data());
+            }
+        }
+    }
+  return std::move(out);
+}
+
 /// The run's options, each against what it allows (InputError naming it).
 void
 check_run_options(const TrainRunOptions &o)

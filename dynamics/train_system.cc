@@ -368,6 +368,78 @@ TrainSystem::curve(int index, int side, int k) const
       t.pinion_class[std::size_t(i)] * t.gear_classes + t.gear_class[std::size_t(j)])];
 }
 
+namespace
+{
+/// The deepest touching pair of a mesh's side (a finite-element K_m acts on it alone): its
+/// approach d, d's derivatives by the pinion and gear angles, its rate and d'' less the angles'
+/// accelerations' part.
+struct DeepestPair
+{
+  double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, curvature = 0;
+};
+
+/// One touching pair's IMPACT force (approach d > 0, its rate and derivatives as DeepestPair's)
+/// added to the mesh's torques and force; with `outputs` its energy and the rates that locate
+/// the force's peaks as well.
+void
+add_impact_pair(const ImpactLaw &law, int side, double d, double d_rate, double dd_dphi,
+                double dd_dpsi, double curvature, bool outputs, MeshEval &e)
+{
+  const double elastic = law.stiffness * std::pow(d, law.exponent);
+  const double F       = damped_impact_force(law, d, d_rate, elastic);
+  e.torque_driver -= F * dd_dphi;
+  e.torque_driven -= F * dd_dpsi;
+  e.force[side] += F;
+  e.dissipation_rate += (F - elastic) * d_rate;
+  if (!outputs)
+    return;
+  e.energy += elastic * d / (law.exponent + 1); // impact_energy
+  e.penetration_rate += elastic / d * d_rate;
+  e.penetration_weight += elastic / d;
+  if (F > 0)
+    {
+      const auto [c_d, dc_dd] = impact_damping(law, d);
+      e.rate_fixed[side] +=
+          law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c_d * curvature;
+      e.rate_driver[side] += c_d * dd_dphi;
+      e.rate_driven[side] += c_d * dd_dpsi;
+    }
+}
+
+/// The finite-element mesh stiffness's force on each side's deepest pair (linear in its
+/// approach, K_m at the pinion angle phi) added to the mesh's torques, force and energy.
+void
+add_stiffness_forces(const TrainMesh &m, double phi, double w_p, const DeepestPair (&deepest)[2],
+                     MeshEval &e)
+{
+  const auto [K, dK_dphi] = mesh_stiffness_at(m, phi);
+  const ImpactLaw linear{K, 1.0, m.law.damping, m.law.depth};
+  for (int side = 0; side < 2; ++side)
+    {
+      const DeepestPair &p = deepest[side];
+      if (!(p.d > 0))
+        continue;
+      const double F = impact_force(linear, p.d, p.rate);
+      e.torque_driver -= F * p.dd_dphi;
+      e.torque_driven -= F * p.dd_dpsi;
+      e.force[side] += F;
+      e.energy += K * p.d * p.d / 2;
+      e.dissipation_rate += (F - K * p.d) * p.rate;
+      e.parametric_power += dK_dphi * w_p * p.d * p.d / 2;
+      e.penetration_rate += K * p.rate;
+      e.penetration_weight += K;
+      if (F > 0)
+        {
+          const auto [c, dc_dd] = impact_damping(linear, p.d);
+          e.rate_fixed[side] +=
+              dK_dphi * w_p * p.d + K * p.rate + dc_dd * p.rate * p.rate + c * p.curvature;
+          e.rate_driver[side] += c * p.dd_dphi;
+          e.rate_driven[side] += c * p.dd_dpsi;
+        }
+    }
+}
+} // namespace
+
 MeshEval
 TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetail detail) const
 {
@@ -381,11 +453,7 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetai
   MeshEval               e;
   const int              k0 = int(std::lround(phi * t.pinion_teeth / (2 * pi)));
   const bool             fe = !m.mesh_stiffness.empty();
-  /// the deepest touching pair of each side (finite-element K_m)
-  struct Deepest
-  {
-    double d = 0, dd_dphi = 0, dd_dpsi = 0, rate = 0, curvature = 0;
-  } deepest[2];
+  DeepestPair            deepest[2]; // of each side (finite-element K_m)
   /// the deepest pairing of each side, for its rate (MeshDetail::deepest_rates)
   struct Nearest
   {
@@ -459,25 +527,7 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetai
                 deepest[side] = {d, dd_dphi, dd_dpsi, d_rate, curvature};
               continue;
             }
-          const double elastic = m.law.stiffness * std::pow(d, m.law.exponent);
-          const double F       = damped_impact_force(m.law, d, d_rate, elastic);
-          e.torque_driver -= F * dd_dphi;
-          e.torque_driven -= F * dd_dpsi;
-          e.force[side] += F;
-          e.dissipation_rate += (F - elastic) * d_rate;
-          if (!outputs)
-            continue;
-          e.energy += elastic * d / (m.law.exponent + 1); // impact_energy
-          e.penetration_rate += elastic / d * d_rate;
-          e.penetration_weight += elastic / d;
-          if (F > 0)
-            {
-              const auto [c_d, dc_dd] = impact_damping(m.law, d);
-              e.rate_fixed[side] +=
-                  m.law.exponent * elastic / d * d_rate + dc_dd * d_rate * d_rate + c_d * curvature;
-              e.rate_driver[side] += c_d * dd_dphi;
-              e.rate_driven[side] += c_d * dd_dpsi;
-            }
+          add_impact_pair(m.law, side, d, d_rate, dd_dphi, dd_dpsi, curvature, outputs, e);
         }
     }
   for (int side = 0; detail == MeshDetail::deepest_rates && side < 2; ++side)
@@ -495,33 +545,7 @@ TrainSystem::mesh(int index, const double *theta, const double *omega, MeshDetai
           s * (arm_slope * q.gap + q.p.arm * (ratio + o_slope)) * w_p - s * q.p.arm * w_g;
     }
   if (fe)
-    {
-      const auto [K, dK_dphi] = mesh_stiffness_at(m, phi);
-      const ImpactLaw linear{K, 1.0, m.law.damping, m.law.depth};
-      for (int side = 0; side < 2; ++side)
-        {
-          const Deepest &p = deepest[side];
-          if (!(p.d > 0))
-            continue;
-          const double F = impact_force(linear, p.d, p.rate);
-          e.torque_driver -= F * p.dd_dphi;
-          e.torque_driven -= F * p.dd_dpsi;
-          e.force[side] += F;
-          e.energy += K * p.d * p.d / 2;
-          e.dissipation_rate += (F - K * p.d) * p.rate;
-          e.parametric_power += dK_dphi * w_p * p.d * p.d / 2;
-          e.penetration_rate += K * p.rate;
-          e.penetration_weight += K;
-          if (F > 0)
-            {
-              const auto [c, dc_dd] = impact_damping(linear, p.d);
-              e.rate_fixed[side] +=
-                  dK_dphi * w_p * p.d + K * p.rate + dc_dd * p.rate * p.rate + c * p.curvature;
-              e.rate_driver[side] += c * p.dd_dphi;
-              e.rate_driven[side] += c * p.dd_dpsi;
-            }
-        }
-    }
+    add_stiffness_forces(m, phi, w_p, deepest, e);
   return e;
 }
 

@@ -53,18 +53,12 @@ require(bool ok, const InvoluteGearData &d, const std::string &parameter, double
     throw InputError(d.name + ": " + parameter + " = " + str(value) + (unit.empty() ? "" : " ") +
                      unit + " is not allowed; " + allowed);
 }
-} // namespace
 
-std::shared_ptr<const InvoluteGear>
-InvoluteGear::create(const InvoluteGearData &data)
+// The data's own ranges, checked first: every derived quantity divides by or takes roots of
+// them.
+void
+check_data(const InvoluteGearData &d)
 {
-  return std::shared_ptr<const InvoluteGear>(new InvoluteGear(data));
-}
-
-InvoluteGear::InvoluteGear(const InvoluteGearData &data)
-    : d(data)
-{
-  // Why first: every derived quantity below divides by or takes roots of these.
   require(d.teeth >= 3, d, "number of teeth", d.teeth, "", "it must be >= 3");
   require(d.normal_module > 0, d, "normal module", d.normal_module * 1e3, "mm", "it must be > 0");
   require(d.normal_pressure_angle > 0 && d.normal_pressure_angle < pi / 4, d,
@@ -82,7 +76,85 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
           "it must be >= 0");
   require(d.density > 0, d, "density", d.density, "kg/m^3", "it must be > 0");
   require(d.bore_diameter >= 0, d, "bore diameter", d.bore_diameter * 1e3, "mm", "it must be >= 0");
+}
 
+// Modifications and deviations are micrometre-sized corrections of the involute: one that
+// removes more than half the tooth's thickness at the tip removes the tooth. Refused before
+// anything is computed on such a tooth (their lengths: check_modifications). `limit`: half the
+// normal tooth thickness at the tip.
+void
+check_correction_sizes(const InvoluteGearData &d, double limit)
+{
+  const auto        fits = [&](double value) { return std::abs(value) <= limit; };
+  const std::string within =
+      "its size must be at most half the normal tooth thickness at the tip, s_an / 2 = " +
+      str(limit * 1e6) + " um";
+  for (const auto &[side, m] : {std::pair{"drive flank ", &d.drive_modifications},
+                                {"coast flank ", &d.coast_modifications}})
+    {
+      const std::string s = side;
+      for (const auto &[name, value] : {std::pair{"tip relief", m->tip_relief},
+                                        {"root relief", m->root_relief},
+                                        {"lead crowning", m->lead_crowning},
+                                        {"end relief", m->end_relief},
+                                        {"profile crowning", m->profile_crowning},
+                                        {"profile slope deviation", m->profile_slope},
+                                        {"helix slope deviation", m->helix_slope},
+                                        {"waviness amplitude", m->waviness_amplitude}})
+        require(fits(value), d, s + name, value * 1e6, "um", within);
+    }
+  require(d.runout.eccentricity <= limit, d, "runout", d.runout.eccentricity * 1e6, "um", within);
+  for (const EccentricTooth &e : d.eccentric_teeth)
+    require(fits(e.offset), d, "eccentric tooth offset", e.offset * 1e6, "um", within);
+}
+
+// The eccentric and chipped teeth's indices, and the chips' extent between the root and tip
+// circles.
+void
+check_damaged_teeth(const InvoluteGearData &d, double root_radius, double tip_radius)
+{
+  for (const EccentricTooth &e : d.eccentric_teeth)
+    require(e.tooth >= 0 && e.tooth < d.teeth, d, "eccentric tooth index", e.tooth, "",
+            "it must lie in [0, " + str(d.teeth - 1) + "]");
+  for (const ChippedTooth &c : d.chipped_teeth)
+    {
+      require(c.tooth >= 0 && c.tooth < d.teeth, d, "chipped tooth index", c.tooth, "",
+              "it must lie in [0, " + str(d.teeth - 1) + "]");
+      require(c.radius >= root_radius && c.radius < tip_radius, d, "chip diameter",
+              2 * c.radius * 1e3, "mm",
+              "it must lie in [d_f, d_a) = [" + str(2 * root_radius * 1e3) + ", " +
+                  str(2 * tip_radius * 1e3) + ") mm");
+      require(c.face_fraction > 0 && c.face_fraction <= 1, d, "chip face fraction", c.face_fraction,
+              "", "it must lie in (0, 1]");
+    }
+}
+} // namespace
+
+std::shared_ptr<const InvoluteGear>
+InvoluteGear::create(const InvoluteGearData &data)
+{
+  return std::shared_ptr<const InvoluteGear>(new InvoluteGear(data));
+}
+
+InvoluteGear::InvoluteGear(const InvoluteGearData &data)
+    : d(data)
+{
+  // In this order: each phase uses what the ones before derived, and refuses what contradicts
+  // it before anything is computed on it.
+  check_data(d);
+  set_nominal_geometry();
+  set_form_circle();
+  check_tip_thickness();
+  set_tooth_angles();
+  check_damaged_teeth(d, root_radius, tip_radius);
+  set_modification_frame();
+}
+
+// The nominal dimensions (ISO 21771 symbols) from the data; a bore or a tip circle they
+// contradict refused.
+void
+InvoluteGear::set_nominal_geometry()
+{
   const double mn = d.normal_module, an = d.normal_pressure_angle, b = d.helix_angle;
   transverse_module         = mn / std::cos(b);
   transverse_pressure_angle = std::atan(std::tan(an) / std::cos(b));
@@ -103,7 +175,14 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
   require(tip_radius > base_radius, d, "addendum factor", d.addendum_factor, "",
           "the tip circle must lie outside the base circle (d_b = " + str(2 * base_radius * 1e3) +
               " mm)");
+}
 
+// Where the involute starts: the form point generated by the cutter's straight flank, or with
+// undercut the root trochoid's crossing; the rack heights that generate the form and tip points.
+void
+InvoluteGear::set_form_circle()
+{
+  const double mn = d.normal_module, an = d.normal_pressure_angle;
   // Rack heights (below the datum line, towards the gear centre) of the straight cutter flank:
   // its lower end, where the cutter tip rounding starts, generates the form point.
   const double rho = d.root_radius_factor * mn;
@@ -156,7 +235,14 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
           "the tip circle (d_a = " + str(2 * tip_radius * 1e3) +
               " mm) must lie outside the form circle (d_Ff = " + str(2 * form_radius * 1e3) +
               " mm)");
+}
 
+// The tooth's normal thickness at the tip (refused where the tooth is pointed below the tip
+// circle, a warning where it nearly is), which bounds the modifications' and deviations' sizes.
+void
+InvoluteGear::check_tip_thickness()
+{
+  const double mn = d.normal_module, b = d.helix_angle;
   const double s_at = tooth_thickness(tip_radius);
   require(s_at > 0, d, "addendum factor", d.addendum_factor, "",
           "the tooth is pointed below the tip circle (tip thickness " + str(s_at * 1e3) +
@@ -167,34 +253,13 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
     gear_checks.warnings.push_back(
         d.name + ": tip thickness s_an = " + str(gear_checks.tip_thickness_normal * 1e3) +
         " mm is below 0.2 m_n (nearly pointed tooth)");
+  check_correction_sizes(d, gear_checks.tip_thickness_normal / 2);
+}
 
-  // Modifications and deviations are micrometre-sized corrections of the involute: one that
-  // removes more than half the tooth's thickness at the tip removes the tooth. Refused before
-  // anything is computed on such a tooth (their lengths: check_modifications below).
-  const double      limit = gear_checks.tip_thickness_normal / 2;
-  const auto        fits  = [&](double value) { return std::abs(value) <= limit; };
-  const std::string within =
-      "its size must be at most half the normal tooth thickness at the tip, s_an / 2 = " +
-      str(limit * 1e6) + " um";
-  for (const auto &[side, m] : {std::pair{"drive flank ", &d.drive_modifications},
-                                {"coast flank ", &d.coast_modifications}})
-    {
-      const std::string s = side;
-      for (const auto &[name, value] : {std::pair{"tip relief", m->tip_relief},
-                                        {"root relief", m->root_relief},
-                                        {"lead crowning", m->lead_crowning},
-                                        {"end relief", m->end_relief},
-                                        {"profile crowning", m->profile_crowning},
-                                        {"profile slope deviation", m->profile_slope},
-                                        {"helix slope deviation", m->helix_slope},
-                                        {"waviness amplitude", m->waviness_amplitude}})
-        require(fits(value), d, s + name, value * 1e6, "um", within);
-    }
-  require(d.runout.eccentricity <= limit, d, "runout", d.runout.eccentricity * 1e6, "um", within);
-  for (const EccentricTooth &e : d.eccentric_teeth)
-    require(fits(e.offset), d, "eccentric tooth offset", e.offset * 1e6, "um", within);
-
-  // Tooth positions with cumulative single pitch deviations (closure: they sum to zero).
+// Tooth positions with cumulative single pitch deviations (closure: they sum to zero).
+void
+InvoluteGear::set_tooth_angles()
+{
   tooth_angle.resize(d.teeth);
   if (!d.single_pitch_deviations.empty())
     {
@@ -213,22 +278,13 @@ InvoluteGear::InvoluteGear(const InvoluteGearData &data)
         cumulative += d.single_pitch_deviations[k];
       tooth_angle[k] = 2 * pi * k / d.teeth + cumulative / reference_radius;
     }
+}
 
-  for (const EccentricTooth &e : d.eccentric_teeth)
-    require(e.tooth >= 0 && e.tooth < d.teeth, d, "eccentric tooth index", e.tooth, "",
-            "it must lie in [0, " + str(d.teeth - 1) + "]");
-  for (const ChippedTooth &c : d.chipped_teeth)
-    {
-      require(c.tooth >= 0 && c.tooth < d.teeth, d, "chipped tooth index", c.tooth, "",
-              "it must lie in [0, " + str(d.teeth - 1) + "]");
-      require(c.radius >= root_radius && c.radius < tip_radius, d, "chip diameter",
-              2 * c.radius * 1e3, "mm",
-              "it must lie in [d_f, d_a) = [" + str(2 * root_radius * 1e3) + ", " +
-                  str(2 * tip_radius * 1e3) + ") mm");
-      require(c.face_fraction > 0 && c.face_fraction <= 1, d, "chip face fraction", c.face_fraction,
-              "", "it must lie in (0, 1]");
-    }
-
+// The extent the modifications refer to (from the start of the active profile where it is
+// given), both sides' modifications checked against it.
+void
+InvoluteGear::set_modification_frame()
+{
   require(d.active_profile_start_radius == 0 ||
               (d.active_profile_start_radius >= form_radius * (1 - 1e-12) &&
                d.active_profile_start_radius < tip_radius),

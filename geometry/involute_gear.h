@@ -196,6 +196,18 @@ private:
   explicit InvoluteGear(const InvoluteGearData &data);
   friend class InvoluteFlank;
 
+  // The constructor's phases, in its order (involute_gear.cc).
+  void
+  set_nominal_geometry();
+  void
+  set_form_circle();
+  void
+  check_tip_thickness();
+  void
+  set_tooth_angles();
+  void
+  set_modification_frame();
+
   /// Rack cutter (transverse) point and cutter-outward normal mapped into the gear (tooth 0).
   Vec2
   generate(const Vec2 &rack_point, const Vec2 &rack_normal, Vec2 *gear_normal) const;

@@ -104,68 +104,102 @@ private:
   int    centre;
 };
 
-/// The gmsh model, mesh and files (inside a GmshSession; options already checked).
-void
-build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std::string &path,
-                SegmentMeshInfo &info, double flank_size, double far_size, int layers)
+/// A curve's points mirrored in y (the coast half of a tooth from the drive half).
+std::vector<Vec2>
+mirror(std::vector<Vec2> c)
 {
-  const InvoluteGearData &d  = gear.data();
-  const int               z  = d.teeth;
-  const double            mn = d.normal_module, b = d.face_width;
-  gmsh::model::add("tooth_segment");
-  // Drive half of tooth 0 from gear.half_tooth_profile: root land [0, n), fillet [n, 2n),
-  // involute [2n, 3n] (form point to tip corner), tip land. The coast half is its mirror in y.
-  const int               n    = o.curve_points;
-  const std::vector<Vec2> half = gear.half_tooth_profile(n);
-  const std::vector<Vec2> fillet(half.begin() + n, half.begin() + 2 * n + 1); // to the form point
-  const std::vector<Vec2> involute(half.begin() + 2 * n, half.begin() + 3 * n + 1);
-  auto                    mirror = [](std::vector<Vec2> c) {
-    for (Vec2 &p : c)
-      p.y() = -p.y();
-    return c;
-  };
-  auto inner = [](const std::vector<Vec2> &c, double angle, bool reversed) {
-    std::vector<Vec2> out;
-    for (std::size_t i = 1; i + 1 < c.size(); ++i)
-      out.push_back(rotate(c[reversed ? c.size() - 1 - i : i], angle));
-    return out;
-  };
+  for (Vec2 &p : c)
+    p.y() = -p.y();
+  return c;
+}
 
-  const double dphi    = gear.helix_sign * std::tan(d.helix_angle) / gear.reference_radius;
-  const double phi0    = -dphi * b / 2; // the section at z = -b/2
-  const double pitch   = 2 * pi / z;
-  const bool   whole   = o.teeth == z;
-  const bool   round   = whole || o.whole_rim; // rim and bore all round, no cuts
-  const int    half_n  = whole ? z / 2 : (o.teeth - 1) / 2;
-  const double a_start = phi0 + pitch * (o.central_tooth - half_n) - pitch / 2;
-  const double a_end   = a_start + pitch * o.teeth;
-  const double ri = info.rim_inner_radius, rf = gear.root_radius;
-  info.whole = round;
+/// A curve's inner points (without its ends), turned by `angle`, in reverse if `reversed`.
+std::vector<Vec2>
+inner(const std::vector<Vec2> &c, double angle, bool reversed)
+{
+  std::vector<Vec2> out;
+  for (std::size_t i = 1; i + 1 < c.size(); ++i)
+    out.push_back(rotate(c[reversed ? c.size() - 1 - i : i], angle));
+  return out;
+}
 
-  SectionBuilder                   s(-b / 2);
-  std::vector<std::pair<int, int>> fillets; // (curve, segment tooth)
+/// The segment's tooth profile and its place on the gear: what build_and_write's phases
+/// share.
+struct SegmentLayout
+{
+  SegmentLayout(const InvoluteGear &gear, const SegmentMeshOptions &o, const SegmentMeshInfo &info)
+      : gear(gear)
+      , o(o)
+      , d(gear.data())
+      , z(d.teeth)
+      , mn(d.normal_module)
+      , b(d.face_width)
+      , n(o.curve_points)
+      , dphi(gear.helix_sign * std::tan(d.helix_angle) / gear.reference_radius)
+      , phi0(-dphi * b / 2)
+      , pitch(2 * pi / z)
+      , whole(o.teeth == z)
+      , round(whole || o.whole_rim)
+      , half_n(whole ? z / 2 : (o.teeth - 1) / 2)
+      , a_start(phi0 + pitch * (o.central_tooth - half_n) - pitch / 2)
+      , a_end(a_start + pitch * o.teeth)
+      , ri(info.rim_inner_radius)
+      , rf(gear.root_radius)
+  {
+    // Drive half of tooth 0 from gear.half_tooth_profile: root land [0, n), fillet [n, 2n),
+    // involute [2n, 3n] (form point to tip corner), tip land. The coast half is its mirror in y.
+    const std::vector<Vec2> half = gear.half_tooth_profile(n);
+    fillet.assign(half.begin() + n, half.begin() + 2 * n + 1); // to the form point
+    involute.assign(half.begin() + 2 * n, half.begin() + 3 * n + 1);
+  }
+
+  const InvoluteGear       &gear;
+  const SegmentMeshOptions &o;
+  const InvoluteGearData   &d;
+  const int                 z;
+  const double              mn, b;
+  const int                 n;                ///< spline points per fillet and per involute
+  std::vector<Vec2>         fillet, involute; ///< of tooth 0's drive half
+  const double              dphi;             ///< the helix's turn per length [rad/m]
+  const double              phi0;             ///< the section at z = -b/2
+  const double              pitch;
+  const bool                whole;
+  const bool                round; ///< rim and bore all round, no cuts
+  const int                 half_n;
+  const double              a_start, a_end; ///< the segment's cuts (the section's angles)
+  const double              ri, rf;         ///< rim inner and root radius
+};
+
+/// The transverse section at z = -b/2 in the geo kernel, its curves in `s` and the fillets
+/// (curve, segment tooth) in `fillets`; returns its plane surface.
+int
+build_section(const SegmentLayout &l, SegmentMeshInfo &info, SectionBuilder &s,
+              std::vector<std::pair<int, int>> &fillets)
+{
+  const SegmentMeshOptions &o = l.o;
+  info.whole                  = l.round;
   // Counter-clockwise: cut at the start, root arcs and teeth, cut at the end, bore back. The
   // whole gear: the teeth all round, then the bore as a hole; the whole rim: the segment's
   // teeth, the root circle round to the first, then the bore as a hole.
-  const Vec2 bore_start = polar(ri, a_start), root_start = polar(rf, a_start);
-  const Vec2 root_end = polar(rf, a_end), bore_end = polar(ri, a_end);
+  const Vec2 bore_start = polar(l.ri, l.a_start), root_start = polar(l.rf, l.a_start);
+  const Vec2 root_end = polar(l.rf, l.a_end), bore_end = polar(l.ri, l.a_end);
   const int  p_root_start = s.point(root_start);
-  const int  p_bore_start = round ? 0 : s.point(bore_start);
-  if (!round)
+  const int  p_bore_start = l.round ? 0 : s.point(bore_start);
+  if (!l.round)
     s.line(p_bore_start, p_root_start, boundary::cut_start);
   int  previous    = p_root_start;
   Vec2 previous_xy = root_start;
   for (int i = 0; i < o.teeth; ++i)
     {
-      const int    k = ((o.central_tooth - half_n + i) % z + z) % z;
-      const double a = phi0 + pitch * (o.central_tooth - half_n + i);
+      const int    k = ((o.central_tooth - l.half_n + i) % l.z + l.z) % l.z;
+      const double a = l.phi0 + l.pitch * (o.central_tooth - l.half_n + i);
       info.member_teeth.push_back(k);
       s.tooth                              = i;
-      const std::vector<Vec2> coast_fillet = mirror(fillet), coast_involute = mirror(involute);
+      const std::vector<Vec2> coast_fillet = mirror(l.fillet), coast_involute = mirror(l.involute);
       const Vec2 c0 = rotate(coast_fillet.front(), a), c1 = rotate(coast_fillet.back(), a);
       const Vec2 c2 = rotate(coast_involute.back(), a);
-      const Vec2 d2 = rotate(involute.back(), a), d1 = rotate(fillet.back(), a);
-      const Vec2 d0  = rotate(fillet.front(), a);
+      const Vec2 d2 = rotate(l.involute.back(), a), d1 = rotate(l.fillet.back(), a);
+      const Vec2 d0  = rotate(l.fillet.front(), a);
       const int  pc0 = s.point(c0), pc1 = s.point(c1), pc2 = s.point(c2);
       const int  pd2 = s.point(d2), pd1 = s.point(d1), pd0 = s.point(d0);
       s.arc(previous, previous_xy, pc0, c0, boundary::free);
@@ -173,14 +207,14 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       fillets.emplace_back(s.curves.back(), i);
       s.spline(pc1, inner(coast_involute, a, false), pc2, boundary::flank(i, FlankSide::coast));
       s.arc(pc2, c2, pd2, d2, boundary::free);
-      s.spline(pd2, inner(involute, a, true), pd1, boundary::flank(i, FlankSide::drive));
-      s.spline(pd1, inner(fillet, a, true), pd0, boundary::free);
+      s.spline(pd2, inner(l.involute, a, true), pd1, boundary::flank(i, FlankSide::drive));
+      s.spline(pd1, inner(l.fillet, a, true), pd0, boundary::free);
       fillets.emplace_back(s.curves.back(), i);
       previous = pd0, previous_xy = d0;
     }
   s.tooth = -1;
   std::vector<int> loops;
-  if (round)
+  if (l.round)
     {
       s.arc(previous, previous_xy, p_root_start, root_start, boundary::free, true);
       loops.push_back(gmsh::model::geo::addCurveLoop(s.curves));
@@ -189,7 +223,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       std::vector<int>  p;
       std::vector<Vec2> xy;
       for (int k = 0; k < 3; ++k)
-        xy.push_back(polar(ri, a_start + 2 * pi * k / 3)), p.push_back(s.point(xy.back()));
+        xy.push_back(polar(l.ri, l.a_start + 2 * pi * k / 3)), p.push_back(s.point(xy.back()));
       for (int k = 0; k < 3; ++k)
         s.arc(p[k], xy[k], p[(k + 1) % 3], xy[(k + 1) % 3], boundary::bore);
       loops.push_back(gmsh::model::geo::addCurveLoop(
@@ -205,7 +239,17 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     }
   const int section = gmsh::model::geo::addPlaneSurface(loops);
   gmsh::model::geo::synchronize();
+  return section;
+}
 
+/// The element sizes as gmsh's background field, and the meshing options (the section
+/// recombined into quadrilaterals, everything subdivided into hexahedra).
+void
+set_sizes(const SegmentLayout &l, const SectionBuilder &s,
+          const std::vector<std::pair<int, int>> &fillets, int section, double flank_size,
+          double far_size)
+{
+  const SegmentMeshOptions &o = l.o;
   // Fine at the flanks and fillets, coarse toward the bore: distance threshold fields, the
   // loaded side's flanks at the flank size, the other flanks and the fillets at theirs.
   const double        other_size = o.other_size > 0 ? o.other_size : flank_size;
@@ -215,7 +259,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   for (std::size_t c = 0; c < s.curves.size(); ++c)
     if (const auto f = std::find(s.fine.begin(), s.fine.end(), s.curves[c]); f != s.fine.end())
       {
-        if (std::abs(s.fine_tooth[std::size_t(f - s.fine.begin())] - half_n) > fine_half)
+        if (std::abs(s.fine_tooth[std::size_t(f - s.fine.begin())] - l.half_n) > fine_half)
           {
             away.push_back(s.curves[c]);
             continue;
@@ -229,13 +273,13 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   auto                threshold_about = [&](const std::vector<double> &curves, double size) {
     const int distance = gmsh::model::mesh::field::add("Distance");
     gmsh::model::mesh::field::setNumbers(distance, "CurvesList", curves);
-    gmsh::model::mesh::field::setNumber(distance, "NumPointsPerCurve", 4 * n);
+    gmsh::model::mesh::field::setNumber(distance, "NumPointsPerCurve", 4 * l.n);
     const int threshold = gmsh::model::mesh::field::add("Threshold");
     gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
     gmsh::model::mesh::field::setNumber(threshold, "SizeMin", 2 * size);
     gmsh::model::mesh::field::setNumber(threshold, "SizeMax", 2 * far_size);
     gmsh::model::mesh::field::setNumber(threshold, "DistMin", size);
-    gmsh::model::mesh::field::setNumber(threshold, "DistMax", 2 * mn);
+    gmsh::model::mesh::field::setNumber(threshold, "DistMax", 2 * l.mn);
     fields.push_back(threshold);
   };
   threshold_about(loaded, flank_size);
@@ -243,7 +287,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     {
       std::vector<double> fine_fillets; // of the teeth with fine elements
       for (const auto &[curve, tooth] : fillets)
-        if (std::abs(tooth - half_n) <= fine_half)
+        if (std::abs(tooth - l.half_n) <= fine_half)
           fine_fillets.push_back(curve);
       threshold_about(fine_fillets, o.fillet_size);
     }
@@ -251,7 +295,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     threshold_about(others, other_size);
   // a tooth needs a few elements across (coarser ones fold at the fillets)
   if (!away.empty())
-    threshold_about(away, std::max(other_size, std::min(far_size, mn / 2)));
+    threshold_about(away, std::max(other_size, std::min(far_size, l.mn / 2)));
   for (const Vec2 &c : o.refine_points)
     {
       std::ostringstream distance_to;
@@ -280,13 +324,18 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   // halved to compensate.
   gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);
   gmsh::model::geo::mesh::setRecombine(2, section);
+}
 
-  // Extrude over the face along the helix.
+/// The section extruded over the face along the helix, and the physical groups: returns the
+/// surfaces per boundary id.
+std::map<int, std::vector<int>>
+extrude_section(const SegmentLayout &l, const SectionBuilder &s, int section, int layers)
+{
   gmsh::vectorpair out;
-  if (dphi == 0)
-    gmsh::model::geo::extrude({{2, section}}, 0, 0, b, out, {(layers + 1) / 2}, {}, true);
+  if (l.dphi == 0)
+    gmsh::model::geo::extrude({{2, section}}, 0, 0, l.b, out, {(layers + 1) / 2}, {}, true);
   else
-    gmsh::model::geo::twist({{2, section}}, 0, 0, 0, 0, 0, b, 0, 0, 1, dphi * b, out,
+    gmsh::model::geo::twist({{2, section}}, 0, 0, 0, 0, 0, l.b, 0, 0, 1, l.dphi * l.b, out,
                             {(layers + 1) / 2}, {}, true);
   gmsh::model::geo::synchronize();
   const int top = out[0].second, volume = out[1].second;
@@ -299,40 +348,47 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
     gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, surfaces, id),
                                  boundary::name(id));
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 1), "body");
+  return groups;
+}
 
-  // Flank nodes onto the exact involute (splines and the subdivision's new nodes are off by up
-  // to a few micrometres; contact gaps are micrometres): at the node's radius and z, the polar
-  // angle of the involute, theta_b - inv(alpha_r) from the tooth's centre line turned by the
-  // helix.
-  const auto onto_involutes = [&] {
-    const double theta_b = std::atan2(involute.front().y(), involute.front().x()) +
-                           gear.roll_angle_form - std::atan(gear.roll_angle_form);
-    for (int i = 0; i < o.teeth; ++i)
-      for (FlankSide side : {FlankSide::drive, FlankSide::coast})
-        {
-          const double             sign = side == FlankSide::drive ? 1 : -1;
-          const double             a    = phi0 + pitch * (o.central_tooth - half_n + i);
-          std::vector<std::size_t> flank_nodes;
-          std::vector<double>      xyz;
-          gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes,
-                                                      xyz);
-          for (std::size_t k = 0; k < flank_nodes.size(); ++k)
-            {
-              const double r = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
-              const double xi =
-                  std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
-              const double angle =
-                  a + dphi * (zk + b / 2) + sign * (theta_b - (xi - std::atan(xi)));
-              gmsh::model::mesh::setNode(flank_nodes[k],
-                                         {r * std::cos(angle), r * std::sin(angle), zk}, {});
-            }
-        }
-  };
+/// Flank nodes onto the exact involute (splines and the subdivision's new nodes are off by up
+/// to a few micrometres; contact gaps are micrometres): at the node's radius and z, the polar
+/// angle of the involute, theta_b - inv(alpha_r) from the tooth's centre line turned by the
+/// helix.
+void
+onto_involutes(const SegmentLayout &l)
+{
+  const InvoluteGear &gear    = l.gear;
+  const double        theta_b = std::atan2(l.involute.front().y(), l.involute.front().x()) +
+                         gear.roll_angle_form - std::atan(gear.roll_angle_form);
+  for (int i = 0; i < l.o.teeth; ++i)
+    for (FlankSide side : {FlankSide::drive, FlankSide::coast})
+      {
+        const double             sign = side == FlankSide::drive ? 1 : -1;
+        const double             a    = l.phi0 + l.pitch * (l.o.central_tooth - l.half_n + i);
+        std::vector<std::size_t> flank_nodes;
+        std::vector<double>      xyz;
+        gmsh::model::mesh::getNodesForPhysicalGroup(2, boundary::flank(i, side), flank_nodes, xyz);
+        for (std::size_t k = 0; k < flank_nodes.size(); ++k)
+          {
+            const double r = std::hypot(xyz[3 * k], xyz[3 * k + 1]), zk = xyz[3 * k + 2];
+            const double xi =
+                std::sqrt(std::max(0.0, r * r / (gear.base_radius * gear.base_radius) - 1));
+            const double angle =
+                a + l.dphi * (zk + l.b / 2) + sign * (theta_b - (xi - std::atan(xi)));
+            gmsh::model::mesh::setNode(flank_nodes[k],
+                                       {r * std::cos(angle), r * std::sin(angle), zk}, {});
+          }
+      }
+}
 
-  // gmsh's 2-D algorithms in turn until the worst element is acceptable (the best one if none
-  // is): at some sizes one of them leaves a sliver at a root land or fillet whose subdivision
-  // folds (bench/README.md, "Mesh quality"); the first is the one every earlier mesh used.
-  // (8, frontal-Delaunay for quadrilaterals, crashes with a background field in gmsh 4.8.)
+/// The mesh by gmsh's 2-D algorithms in turn until the worst element is acceptable (the best
+/// one if none is): at some sizes one of them leaves a sliver at a root land or fillet whose
+/// subdivision folds (bench/README.md, "Mesh quality"); the first is the one every earlier mesh
+/// used. (8, frontal-Delaunay for quadrilaterals, crashes with a background field in gmsh 4.8.)
+void
+generate_mesh(const SegmentLayout &l, SegmentMeshInfo &info, double flank_size, double far_size)
+{
   const int algorithms[] = {6, 5, 1}; // frontal-Delaunay, Delaunay, MeshAdapt
   int       best         = 0;
   double    best_quality = -std::numeric_limits<double>::infinity();
@@ -345,7 +401,7 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
       gmsh::option::setNumber("Mesh.Algorithm", algorithm);
       gmsh::model::mesh::generate(3);
       std::tie(info.hexahedra, info.nodes) = require_hexahedra("tooth segment mesh");
-      onto_involutes();
+      onto_involutes(l);
       info.mesh_algorithm        = algorithm;
       info.worst_corner_jacobian = worst_corner_jacobian();
       if (info.worst_corner_jacobian >= SegmentMeshInfo::acceptable_corner_jacobian)
@@ -356,26 +412,42 @@ build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std
   if (!(info.worst_corner_jacobian > 0))
     {
       std::ostringstream msg;
-      msg << "tooth segment mesh of " << d.name << ": gmsh folds an element with every 2-D "
+      msg << "tooth segment mesh of " << l.d.name << ": gmsh folds an element with every 2-D "
           << "algorithm at these sizes (flank " << flank_size * 1e3 << " mm, far " << far_size * 1e3
           << " mm; worst corner Jacobian " << best_quality
           << " of its mean); allowed: positive at every corner. Try other element sizes";
       throw InputError(msg.str());
     }
+}
+
+/// The gmsh model, mesh and files (inside a GmshSession; options already checked).
+void
+build_and_write(const InvoluteGear &gear, const SegmentMeshOptions &o, const std::string &path,
+                SegmentMeshInfo &info, double flank_size, double far_size, int layers)
+{
+  gmsh::model::add("tooth_segment");
+  const SegmentLayout              l(gear, o, info);
+  SectionBuilder                   s(-l.b / 2);
+  std::vector<std::pair<int, int>> fillets; // (curve, segment tooth)
+  const int                        section = build_section(l, info, s, fillets);
+  set_sizes(l, s, fillets, section, flank_size, far_size);
+  const std::map<int, std::vector<int>> groups = extrude_section(l, s, section, layers);
+  generate_mesh(l, info, flank_size, far_size);
 
   // Analytic volume: N/z of the gear's nominal section minus the rim's inner disc, times b (the
   // whole rim: the rest of the root disc too).
   const double outline_area = polygon_moments(gear.transverse_outline(400)).area;
-  const double toothed      = double(o.teeth) / z;
-  info.analytic_volume      = b * (toothed * (outline_area - pi * ri * ri) +
-                              (round ? (1 - toothed) * pi * (rf * rf - ri * ri) : 0));
+  const double toothed      = double(o.teeth) / l.z;
+  const double ri = l.ri, rf = l.rf;
+  info.analytic_volume = l.b * (toothed * (outline_area - pi * ri * ri) +
+                                (l.round ? (1 - toothed) * pi * (rf * rf - ri * ri) : 0));
 
   write_mesh_atomically(path);
 
   std::vector<int> ids;
   for (const auto &g : groups)
     ids.push_back(g.first);
-  write_text_atomically(path + ".json", segment_sidecar(d.name, info, ids));
+  write_text_atomically(path + ".json", segment_sidecar(l.d.name, info, ids));
 }
 } // namespace
 

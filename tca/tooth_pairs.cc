@@ -81,128 +81,18 @@ public:
 
   /// The same at any local pinion angle.
   std::optional<Sample>
-  at_angle(double local, const Sample *near = nullptr) const
-  {
-    const PairContact c = tca.pair(k, local + 2 * pi * k / z1, near ? &near->contact : nullptr);
-    if (!c.found)
-      return std::nullopt;
-    // The contact normal is that of the flank which is smooth at the contact: the gear's, but
-    // the pinion's where an edge of the gear flank (its tip, a chip) touches the pinion inside
-    // its flank. (Both agree in a tangential contact; at an edge they part by up to tens of
-    // degrees before the pair has receded by `recess`.)
-    const FlankSide side   = tca.options_data().side;
-    const Flank    &pf     = tca.pinion_flanks().flank(c.pinion_tooth, side);
-    const Flank    &gf     = tca.gear_flanks().flank(c.gear_tooth, side);
-    const bool      gear_u = smooth(gf, c.u2, c.v2, true), gear_v = smooth(gf, c.u2, c.v2, false);
-    const bool pinion_u = smooth(pf, c.u1, c.v1, true), pinion_v = smooth(pf, c.u1, c.v1, false);
-    const bool use_pinion =
-        !(gear_u && gear_v) && ((pinion_u && pinion_v) || (!gear_u && pinion_u));
-    const Vec3      n        = use_pinion ? c.normal_pinion : c.normal_gear;
-    const Assembly &assembly = tca.assembly_data();
-    const Vec3      r        = c.position - assembly.gear_centre();
-    // offset = psi_touch - 2 pi k / z2 - (z1 / z2) local, formed so that the large angles cancel
-    // first.
-    return Sample{(c.touch_angle - 2 * pi * k / z2) - ratio * local,
-                  std::abs(assembly.gear_axis().cross(r).dot(n)), c,
-                  (gear_u ? 0 : 1) + (pinion_u ? 0 : 2)};
-  }
+  at_angle(double local, const Sample *near = nullptr) const;
 
   /// The kink between samples a and b (local angles x_a < x_b) whose edges differ: the
   /// change located by bisection to 1e-12 of a mesh cycle, the curve's values on either side
   /// of it. None where a sample between them cannot be found (the pair parts there).
   std::optional<CurveKnot>
-  knot(double x_a, const Sample &a, double x_b, const Sample &b) const
-  {
-    Sample       below = a, above = b;
-    const double tolerance = 1e-12 * (2 * pi / z1);
-    while (x_b - x_a > tolerance)
-      {
-        const double                m = (x_a + x_b) / 2;
-        const std::optional<Sample> s = at_angle(m, &below);
-        if (!s)
-          return std::nullopt;
-        if (s->edges == a.edges)
-          x_a = m, below = *s;
-        else
-          x_b = m, above = *s;
-      }
-    CurveKnot k;
-    k.at        = (x_a + x_b) / 2;
-    k.offset[0] = below.offset, k.offset[1] = above.offset;
-    k.arm[0] = below.arm, k.arm[1] = above.arm;
-    return k;
-  }
+  knot(double x_a, const Sample &a, double x_b, const Sample &b) const;
 
   /// The curve, or nothing when the pair never touches within three mesh cycles of its
   /// centre (why: in `why`).
   std::optional<ToothPairCurve>
-  run(std::string &why) const
-  {
-    // The pairing's centre: local angle 0, else the nearest position where it touches (within
-    // three mesh cycles).
-    const int             n      = options.samples_per_mesh;
-    const int             coarse = std::max(1, n / 8);
-    int                   centre = 0;
-    std::optional<Sample> first  = at(0);
-    for (int j = 1; !first && j * coarse <= 3 * n; ++j)
-      for (int sign : {-1, 1})
-        if (!first)
-          {
-            centre = sign * j * coarse;
-            first  = at(centre);
-          }
-    if (!first)
-      {
-        std::ostringstream m;
-        m << "tooth pair curves: pinion tooth " << mod(-k, z1) << " and gear tooth "
-          << mod(s > 0 ? k - 1 : k, z2) << " never meet on the "
-          << to_string(tca.options_data().side)
-          << " flanks within three mesh cycles of their pairing's centre; expected flanks that "
-             "mesh (check the centre distance, hands and face widths)";
-        why = m.str();
-        return std::nullopt;
-      }
-
-    // Outwards both ways while the pair touches, through the first sample whose touch angle has
-    // fallen more than `recess` (along the normal) behind the most advanced one so far.
-    std::vector<Sample> below, above;
-    double              lead  = s * first->offset; // the most advanced touch so far
-    const int           limit = z1 * n / 2;        // half a turn: never reached by a real mesh
-    for (int direction : {1, -1})
-      {
-        std::vector<Sample> &side = direction > 0 ? above : below;
-        for (int i = centre + direction;; i += direction)
-          {
-            if (std::abs(i - centre) > limit)
-              throw InputError("tooth pair curves: a pairing touches over half a turn of the "
-                               "pinion; expected flanks of a gear mesh");
-            const std::optional<Sample> t = at(i, side.empty() ? &*first : &side.back());
-            if (!t)
-              break;
-            side.push_back(*t);
-            lead = std::max(lead, s * t->offset);
-            if (t->arm * (lead - s * t->offset) > options.recess)
-              break;
-          }
-      }
-
-    ToothPairCurve curve;
-    curve.step  = step;
-    curve.start = (centre - int(below.size())) * step;
-    std::vector<Sample> samples(below.rbegin(), below.rend());
-    samples.push_back(*first);
-    samples.insert(samples.end(), above.begin(), above.end());
-    for (std::size_t i = 0; i < samples.size(); ++i)
-      {
-        curve.offset.push_back(samples[i].offset), curve.arm.push_back(samples[i].arm);
-        if (i > 0 && samples[i].edges != samples[i - 1].edges)
-          if (const std::optional<CurveKnot> k =
-                  knot(curve.start + double(i - 1) * step, samples[i - 1],
-                       curve.start + double(i) * step, samples[i]))
-            curve.knots.push_back(*k);
-      }
-    return curve;
-  }
+  run(std::string &why) const;
 
 private:
   const UnloadedTca      &tca;
@@ -211,6 +101,123 @@ private:
   int                     z1, z2;
   double                  ratio, step, s;
 };
+
+std::optional<Sample>
+CurveWalk::at_angle(double local, const Sample *near) const
+{
+  const PairContact c = tca.pair(k, local + 2 * pi * k / z1, near ? &near->contact : nullptr);
+  if (!c.found)
+    return std::nullopt;
+  // The contact normal is that of the flank which is smooth at the contact: the gear's, but
+  // the pinion's where an edge of the gear flank (its tip, a chip) touches the pinion inside
+  // its flank. (Both agree in a tangential contact; at an edge they part by up to tens of
+  // degrees before the pair has receded by `recess`.)
+  const FlankSide side   = tca.options_data().side;
+  const Flank    &pf     = tca.pinion_flanks().flank(c.pinion_tooth, side);
+  const Flank    &gf     = tca.gear_flanks().flank(c.gear_tooth, side);
+  const bool      gear_u = smooth(gf, c.u2, c.v2, true), gear_v = smooth(gf, c.u2, c.v2, false);
+  const bool      pinion_u = smooth(pf, c.u1, c.v1, true), pinion_v = smooth(pf, c.u1, c.v1, false);
+  const bool use_pinion = !(gear_u && gear_v) && ((pinion_u && pinion_v) || (!gear_u && pinion_u));
+  const Vec3 n          = use_pinion ? c.normal_pinion : c.normal_gear;
+  const Assembly &assembly = tca.assembly_data();
+  const Vec3      r        = c.position - assembly.gear_centre();
+  // offset = psi_touch - 2 pi k / z2 - (z1 / z2) local, formed so that the large angles cancel
+  // first.
+  return Sample{(c.touch_angle - 2 * pi * k / z2) - ratio * local,
+                std::abs(assembly.gear_axis().cross(r).dot(n)), c,
+                (gear_u ? 0 : 1) + (pinion_u ? 0 : 2)};
+}
+
+std::optional<CurveKnot>
+CurveWalk::knot(double x_a, const Sample &a, double x_b, const Sample &b) const
+{
+  Sample       below = a, above = b;
+  const double tolerance = 1e-12 * (2 * pi / z1);
+  while (x_b - x_a > tolerance)
+    {
+      const double                m = (x_a + x_b) / 2;
+      const std::optional<Sample> s = at_angle(m, &below);
+      if (!s)
+        return std::nullopt;
+      if (s->edges == a.edges)
+        x_a = m, below = *s;
+      else
+        x_b = m, above = *s;
+    }
+  CurveKnot k;
+  k.at        = (x_a + x_b) / 2;
+  k.offset[0] = below.offset, k.offset[1] = above.offset;
+  k.arm[0] = below.arm, k.arm[1] = above.arm;
+  return k;
+}
+
+std::optional<ToothPairCurve>
+CurveWalk::run(std::string &why) const
+{
+  // The pairing's centre: local angle 0, else the nearest position where it touches (within
+  // three mesh cycles).
+  const int             n      = options.samples_per_mesh;
+  const int             coarse = std::max(1, n / 8);
+  int                   centre = 0;
+  std::optional<Sample> first  = at(0);
+  for (int j = 1; !first && j * coarse <= 3 * n; ++j)
+    for (int sign : {-1, 1})
+      if (!first)
+        {
+          centre = sign * j * coarse;
+          first  = at(centre);
+        }
+  if (!first)
+    {
+      std::ostringstream m;
+      m << "tooth pair curves: pinion tooth " << mod(-k, z1) << " and gear tooth "
+        << mod(s > 0 ? k - 1 : k, z2) << " never meet on the " << to_string(tca.options_data().side)
+        << " flanks within three mesh cycles of their pairing's centre; expected flanks that "
+           "mesh (check the centre distance, hands and face widths)";
+      why = m.str();
+      return std::nullopt;
+    }
+
+  // Outwards both ways while the pair touches, through the first sample whose touch angle has
+  // fallen more than `recess` (along the normal) behind the most advanced one so far.
+  std::vector<Sample> below, above;
+  double              lead  = s * first->offset; // the most advanced touch so far
+  const int           limit = z1 * n / 2;        // half a turn: never reached by a real mesh
+  for (int direction : {1, -1})
+    {
+      std::vector<Sample> &side = direction > 0 ? above : below;
+      for (int i = centre + direction;; i += direction)
+        {
+          if (std::abs(i - centre) > limit)
+            throw InputError("tooth pair curves: a pairing touches over half a turn of the "
+                             "pinion; expected flanks of a gear mesh");
+          const std::optional<Sample> t = at(i, side.empty() ? &*first : &side.back());
+          if (!t)
+            break;
+          side.push_back(*t);
+          lead = std::max(lead, s * t->offset);
+          if (t->arm * (lead - s * t->offset) > options.recess)
+            break;
+        }
+    }
+
+  ToothPairCurve curve;
+  curve.step  = step;
+  curve.start = (centre - int(below.size())) * step;
+  std::vector<Sample> samples(below.rbegin(), below.rend());
+  samples.push_back(*first);
+  samples.insert(samples.end(), above.begin(), above.end());
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    {
+      curve.offset.push_back(samples[i].offset), curve.arm.push_back(samples[i].arm);
+      if (i > 0 && samples[i].edges != samples[i - 1].edges)
+        if (const std::optional<CurveKnot> k =
+                knot(curve.start + double(i - 1) * step, samples[i - 1],
+                     curve.start + double(i) * step, samples[i]))
+          curve.knots.push_back(*k);
+    }
+  return curve;
+}
 } // namespace
 
 ToothPairTables

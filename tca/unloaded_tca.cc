@@ -165,121 +165,196 @@ UnloadedTca::solve_touch(int j, const Vec3 &X, double expected, double &psi, dou
   return flank.contains(u2, v2) ? Touch::on_flank : Touch::none;
 }
 
-PairContact
-UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
+/// pair_contact's search, one tooth pair at one pinion angle, in its phases: the touch angle
+/// sampled over the pinion flank (sample, with face_end for a mate beyond the gear's face), the
+/// starts of the pattern search (starts), the pattern search from them with its Newton jumps
+/// along a ridge (maximum), and Newton on the touch angle's stationarity (pinned).
+class UnloadedTca::ContactSearch
 {
-  // Pair k: the k-th pinion tooth to pass the line of centres (tooth -k) and its mate.
-  PairContact  c;
-  const bool   drive = options.side == FlankSide::drive;
-  const double s     = drive ? 1.0 : -1.0;
-  c.pinion_tooth     = mod(-k, pinion->teeth());
-  c.gear_tooth       = mod(drive ? k - 1 : k, gear->teeth());
-  if (!pinion->has(c.pinion_tooth, options.side) || !gear->has(c.gear_tooth, options.side))
-    return c;
-  const Flank      &flank      = pinion->flank(c.pinion_tooth, options.side);
-  const FlankDomain d          = flank.domain();
-  const Flank      &gear_flank = gear->flank(c.gear_tooth, options.side);
-  const FlankDomain dg         = gear_flank.domain();
-  const double      expected   = ratio * phi;
-
-  // (robust_search) A pinion point whose mate lies beyond an end of the gear's face: moved
-  // along the pinion's face (v1, at fixed u1) to where the gear's face end meets it, by Newton
-  // on r_g(u2, v_end) = Rz(psi) Q(X(u1, v1)). The contact of a face end then lies on a line of
-  // samples at fixed u1 instead of a thin band the pattern search cannot follow (a modified
-  // helical pinion's face edge stands off its face plane by the modification times sin beta_b,
-  // beyond the gear's face).
-  auto face_end = [&](double u1, double &v1, double &psi, double &u2, double &v2) {
-    v2 = v2 > dg.v_max ? dg.v_max : dg.v_min;
-    for (int it = 0; it < 40; ++it)
-      {
-        FlankPoint p, q;
-        try // (a generated flank exists only where its cutter reaches, as in solve_touch)
-          {
-            p = flank.evaluate(u1, v1);
-            q = gear_flank.evaluate(u2, v2);
-          }
-        catch (const InputError &)
-          {
-            return false;
-          }
-        const Vec3 Q =
-            assembly.global_to_gear_unrotated(assembly.pinion_to_global(p.position, phi));
-        const Vec3 RQ = rot_z(psi) * Q;
-        const Vec3 F  = q.position - RQ;
-        if (F.norm() < 1e-12 * Q.norm())
-          {
-            psi                = expected + wrap(psi - expected);
-            const double tol_u = 1e-12 * (dg.u_max - dg.u_min) + 1e-12 / q.d_du.norm();
-            const double tol_v = 1e-12 * (d.v_max - d.v_min) + 1e-12 / p.d_dv.norm();
-            if (!(u2 >= dg.u_min - tol_u && u2 <= dg.u_max + tol_u && v1 >= d.v_min - tol_v &&
-                  v1 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / gear->teeth()))
-              return false;
-            u2 = std::clamp(u2, dg.u_min, dg.u_max);
-            v1 = std::clamp(v1, d.v_min, d.v_max);
-            return flank.contains(u1, v1) && gear_flank.contains(u2, v2);
-          }
-        Eigen::Matrix3d J;
-        J.col(0)        = q.d_du;
-        J.col(1)        = -(rot_z(psi) * assembly.global_to_gear_unrotated_vector(
-                                             assembly.pinion_vector_to_global(p.d_dv, phi)));
-        J.col(2)        = -Vec3::UnitZ().cross(RQ);
-        const Vec3 step = J.partialPivLu().solve(-F);
-        u2 += step.x();
-        v1 += step.y();
-        psi += step.z();
-        if (!std::isfinite(psi + u2 + v1))
-          return false;
-      }
-    return false;
-  };
-
-  // s * touch angle of a pinion flank point; -inf where the gear flank cannot reach it.
+public:
+  /// s * touch angle of a pinion flank point; -inf where the gear flank cannot reach it.
   struct Sample
   {
     double value = -HUGE_VAL, u1 = 0, v1 = 0, psi = 0, u2 = 0, v2 = 0;
-    bool   face_end = false; ///< moved to the gear's face end (face_end above)
+    bool   face_end = false; ///< moved to the gear's face end (face_end below)
   };
-  int  samples = 0;
-  auto sample  = [&](double u1, double v1) {
-    if (++samples > options.most_samples)
-      {
-        std::ostringstream m;
-        m << "unloaded TCA: the contact search of pinion tooth " << c.pinion_tooth
-          << " with gear tooth " << c.gear_tooth << " at pinion angle " << phi
-          << " rad took more than " << options.most_samples
-          << " flank samples without converging; expected a touch angle with one maximum "
-              "over the flank (flanks that are smooth, and mismatched for a localised bearing or "
-              "conjugate)";
-        throw InputError(m.str());
-      }
-    Sample out;
-    out.u1 = std::clamp(u1, d.u_min, d.u_max);
-    out.v1 = std::clamp(v1, d.v_min, d.v_max);
-    if (!flank.contains(out.u1, out.v1))
-      return out;
-    const Vec3  X = assembly.pinion_to_global(flank.evaluate(out.u1, out.v1).position, phi);
-    const Touch t = solve_touch(c.gear_tooth, X, expected, out.psi, out.u2, out.v2);
-    out.face_end  = t == Touch::beyond_face && options.robust_search;
-    if (t == Touch::on_flank || (out.face_end && face_end(out.u1, out.v1, out.psi, out.u2, out.v2)))
-      out.value = s * out.psi;
-    return out;
+
+  ContactSearch(const UnloadedTca &tca, int pinion_tooth, int gear_tooth, double phi)
+      : tca(tca)
+      , options(tca.options)
+      , assembly(tca.assembly)
+      , pinion_tooth(pinion_tooth)
+      , gear_tooth(gear_tooth)
+      , phi(phi)
+      , s(options.side == FlankSide::drive ? 1.0 : -1.0)
+      , flank(tca.pinion->flank(pinion_tooth, options.side))
+      , d(flank.domain())
+      , gear_flank(tca.gear->flank(gear_tooth, options.side))
+      , dg(gear_flank.domain())
+      , expected(tca.ratio * phi)
+      , nu(options.profile_samples)
+      , nv(options.face_samples)
+      , hu0((d.u_max - d.u_min) / (nu - 1))
+      , hv0((d.v_max - d.v_min) / (nv - 1))
+  {
+  }
+
+  std::vector<Sample>
+  starts(const PairContact *near);
+  Sample
+  maximum(const std::vector<Sample> &starts);
+  Sample
+  pinned(Sample best);
+  void
+  fill(PairContact &c, const Sample &best) const;
+
+private:
+  /// A pattern search's position and step sizes.
+  struct Search
+  {
+    Sample at;
+    double hu, hv;
   };
-  // t beats u; a sample moved to the gear's face end only by more than 1e-10 rad (a few pm at
-  // the flank): where the flanks touch along a line through the face end, the line's interior
-  // points are the contact (their tangency is pinned below; the face end's only to ~1e-7).
-  auto better = [](const Sample &t, const Sample &u) {
+
+  bool
+  face_end(double u1, double &v1, double &psi, double &u2, double &v2) const;
+  Sample
+  sample(double u1, double v1);
+  /// t beats u; a sample moved to the gear's face end only by more than 1e-10 rad (a few pm at
+  /// the flank): where the flanks touch along a line through the face end, the line's interior
+  /// points are the contact (their tangency is pinned in pinned(); the face end's only to
+  /// ~1e-7).
+  static bool
+  better(const Sample &t, const Sample &u)
+  {
     auto rank = [](const Sample &x) {
       return x.face_end ? x.value - 1e-10 * (1 + std::abs(x.value)) : x.value;
     };
     return rank(t) > rank(u);
-  };
+  }
+  static bool
+  at_edge(double x, double lo, double hi)
+  {
+    return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
+  }
+  bool
+  gear_edge(const Sample &t) const
+  {
+    return at_edge(t.u2, dg.u_min, dg.u_max) || at_edge(t.v2, dg.v_min, dg.v_max);
+  }
+  Eigen::Vector2d
+  gradient(const Sample &t, bool free_u, bool free_v) const;
+  Eigen::Vector2d
+  newton_step(const Sample &t, bool free_u, bool free_v, bool *found = nullptr);
+  void
+  jump(Search &x);
+  void
+  refine(Search &x, double until);
 
-  // A grid over the flank, then a pattern search that halves its step around the best sample
-  // (it follows the maximum into corners and along edges as well as to interior maxima); with
-  // robust_search also around the grid's other local maxima and a nearby position's contact,
-  // the best result kept.
-  const int           nu = options.profile_samples, nv = options.face_samples;
-  const double        hu0 = (d.u_max - d.u_min) / (nu - 1), hv0 = (d.v_max - d.v_min) / (nv - 1);
+  const UnloadedTca &tca;
+  const TcaOptions  &options;
+  const Assembly    &assembly;
+  const int          pinion_tooth, gear_tooth;
+  const double       phi;
+  const double       s; ///< 1 on the drive flanks, -1 on the coast flanks
+  const Flank       &flank;
+  const FlankDomain  d;
+  const Flank       &gear_flank;
+  const FlankDomain  dg;
+  const double       expected;     ///< the gear's rotation for conjugate flanks
+  const int          nu, nv;       ///< the grid's samples over the flank
+  const double       hu0, hv0;     ///< and its steps
+  int                samples = 0;  ///< flank samples taken (options.most_samples bounds them)
+  int                crawl   = 64; ///< moves at one step size before a Newton step (below)
+};
+
+// (robust_search) A pinion point whose mate lies beyond an end of the gear's face: moved
+// along the pinion's face (v1, at fixed u1) to where the gear's face end meets it, by Newton
+// on r_g(u2, v_end) = Rz(psi) Q(X(u1, v1)). The contact of a face end then lies on a line of
+// samples at fixed u1 instead of a thin band the pattern search cannot follow (a modified
+// helical pinion's face edge stands off its face plane by the modification times sin beta_b,
+// beyond the gear's face).
+bool
+UnloadedTca::ContactSearch::face_end(double u1, double &v1, double &psi, double &u2,
+                                     double &v2) const
+{
+  v2 = v2 > dg.v_max ? dg.v_max : dg.v_min;
+  for (int it = 0; it < 40; ++it)
+    {
+      FlankPoint p, q;
+      try // (a generated flank exists only where its cutter reaches, as in solve_touch)
+        {
+          p = flank.evaluate(u1, v1);
+          q = gear_flank.evaluate(u2, v2);
+        }
+      catch (const InputError &)
+        {
+          return false;
+        }
+      const Vec3 Q  = assembly.global_to_gear_unrotated(assembly.pinion_to_global(p.position, phi));
+      const Vec3 RQ = rot_z(psi) * Q;
+      const Vec3 F  = q.position - RQ;
+      if (F.norm() < 1e-12 * Q.norm())
+        {
+          psi                = expected + wrap(psi - expected);
+          const double tol_u = 1e-12 * (dg.u_max - dg.u_min) + 1e-12 / q.d_du.norm();
+          const double tol_v = 1e-12 * (d.v_max - d.v_min) + 1e-12 / p.d_dv.norm();
+          if (!(u2 >= dg.u_min - tol_u && u2 <= dg.u_max + tol_u && v1 >= d.v_min - tol_v &&
+                v1 <= d.v_max + tol_v && std::abs(wrap(psi - expected)) < pi / tca.gear->teeth()))
+            return false;
+          u2 = std::clamp(u2, dg.u_min, dg.u_max);
+          v1 = std::clamp(v1, d.v_min, d.v_max);
+          return flank.contains(u1, v1) && gear_flank.contains(u2, v2);
+        }
+      Eigen::Matrix3d J;
+      J.col(0)        = q.d_du;
+      J.col(1)        = -(rot_z(psi) * assembly.global_to_gear_unrotated_vector(
+                                           assembly.pinion_vector_to_global(p.d_dv, phi)));
+      J.col(2)        = -Vec3::UnitZ().cross(RQ);
+      const Vec3 step = J.partialPivLu().solve(-F);
+      u2 += step.x();
+      v1 += step.y();
+      psi += step.z();
+      if (!std::isfinite(psi + u2 + v1))
+        return false;
+    }
+  return false;
+}
+
+UnloadedTca::ContactSearch::Sample
+UnloadedTca::ContactSearch::sample(double u1, double v1)
+{
+  if (++samples > options.most_samples)
+    {
+      std::ostringstream m;
+      m << "unloaded TCA: the contact search of pinion tooth " << pinion_tooth
+        << " with gear tooth " << gear_tooth << " at pinion angle " << phi << " rad took more than "
+        << options.most_samples
+        << " flank samples without converging; expected a touch angle with one maximum "
+           "over the flank (flanks that are smooth, and mismatched for a localised bearing or "
+           "conjugate)";
+      throw InputError(m.str());
+    }
+  Sample out;
+  out.u1 = std::clamp(u1, d.u_min, d.u_max);
+  out.v1 = std::clamp(v1, d.v_min, d.v_max);
+  if (!flank.contains(out.u1, out.v1))
+    return out;
+  const Vec3  X = assembly.pinion_to_global(flank.evaluate(out.u1, out.v1).position, phi);
+  const Touch t = tca.solve_touch(gear_tooth, X, expected, out.psi, out.u2, out.v2);
+  out.face_end  = t == Touch::beyond_face && options.robust_search;
+  if (t == Touch::on_flank || (out.face_end && face_end(out.u1, out.v1, out.psi, out.u2, out.v2)))
+    out.value = s * out.psi;
+  return out;
+}
+
+// A grid over the flank, then a pattern search that halves its step around the best sample
+// (it follows the maximum into corners and along edges as well as to interior maxima); with
+// robust_search also around the grid's other local maxima and a nearby position's contact,
+// the best result kept.
+std::vector<UnloadedTca::ContactSearch::Sample>
+UnloadedTca::ContactSearch::starts(const PairContact *near)
+{
   std::vector<Sample> grid(nu * nv);
   Sample              best;
   for (int i = 0; i < nu; ++i)
@@ -327,122 +402,127 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
       else if (better(closest, starts[0]))
         starts[0] = closest;
     }
-  // The gradient of s psi in the free flank parameters follows from the implicit function
-  // theorem on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ; the Newton
-  // step on its stationarity from differences of it (a pseudo-inverse handles line contact: a
-  // singular Hessian along the contact line).
-  auto at_edge = [](double x, double lo, double hi) {
-    return x - lo < 1e-7 * (hi - lo) || hi - x < 1e-7 * (hi - lo);
-  };
-  auto gear_edge = [&](const Sample &t) {
-    return at_edge(t.u2, dg.u_min, dg.u_max) || at_edge(t.v2, dg.v_min, dg.v_max);
-  };
-  auto gradient = [&](const Sample &t, bool free_u, bool free_v) {
-    const FlankPoint      p = flank.evaluate(t.u1, t.v1);
-    const FlankPoint      q = gear_flank.evaluate(t.u2, t.v2);
-    const Vec3            X = assembly.pinion_to_global(p.position, phi);
-    const Vec3            Q = assembly.global_to_gear_unrotated(X);
-    const Eigen::Matrix3d R = rot_z(t.psi);
-    Eigen::Matrix3d       J;
-    J.col(0)         = q.d_du;
-    J.col(1)         = q.d_dv;
-    J.col(2)         = -Vec3::UnitZ().cross(R * Q);
-    const auto lu    = J.partialPivLu();
-    auto       d_psi = [&](const Vec3 &dr) {
-      const Vec3 dQ =
-          assembly.global_to_gear_unrotated_vector(assembly.pinion_vector_to_global(dr, phi));
-      return s * lu.solve(R * dQ).z();
-    };
-    return Eigen::Vector2d(free_u ? d_psi(p.d_du) : 0.0, free_v ? d_psi(p.d_dv) : 0.0);
-  };
-  // (`found`: whether the difference samples touch at all)
-  auto newton_step = [&](const Sample &t, bool free_u, bool free_v, bool *found = nullptr) {
-    const Eigen::Vector2d g0 = gradient(t, free_u, free_v);
-    const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
-    Eigen::Matrix2d       H = Eigen::Matrix2d::Zero();
-    for (int k = 0; k < 2; ++k)
-      if (k == 0 ? free_u : free_v)
-        {
-          const Sample near = k == 0 ? sample(t.u1 + eu, t.v1) : sample(t.u1, t.v1 + ev);
-          if (found && near.value == -HUGE_VAL)
-            *found = false;
-          H.col(k) = (gradient(near, free_u, free_v) - g0) / (k == 0 ? eu : ev);
-        }
-    return Eigen::Vector2d(-H.completeOrthogonalDecomposition().solve(g0));
-  };
+  return starts;
+}
 
-  // Each start coarsely (to 1e-4 of the grid step), then the best of them to the end. A search
-  // that keeps moving at one step size crawls along a ridge oblique to the flank parameters
-  // (near line contact): every 64 moves (8 once one has gained) it tries the Newton step of the
-  // touch angle's quadratic model, halved until it gains, which goes along the ridge at once
-  // (see pair()).
-  struct Search
-  {
-    Sample at;
-    double hu, hv;
+// The gradient of s psi in the free flank parameters follows from the implicit function
+// theorem on r_g(u2, v2) = Rz(psi) Q(X(u1, v1)): d(u2, v2, psi) = J^-1 Rz(psi) dQ; the Newton
+// step on its stationarity from differences of it (a pseudo-inverse handles line contact: a
+// singular Hessian along the contact line).
+Eigen::Vector2d
+UnloadedTca::ContactSearch::gradient(const Sample &t, bool free_u, bool free_v) const
+{
+  const FlankPoint      p = flank.evaluate(t.u1, t.v1);
+  const FlankPoint      q = gear_flank.evaluate(t.u2, t.v2);
+  const Vec3            X = assembly.pinion_to_global(p.position, phi);
+  const Vec3            Q = assembly.global_to_gear_unrotated(X);
+  const Eigen::Matrix3d R = rot_z(t.psi);
+  Eigen::Matrix3d       J;
+  J.col(0)         = q.d_du;
+  J.col(1)         = q.d_dv;
+  J.col(2)         = -Vec3::UnitZ().cross(R * Q);
+  const auto lu    = J.partialPivLu();
+  auto       d_psi = [&](const Vec3 &dr) {
+    const Vec3 dQ =
+        assembly.global_to_gear_unrotated_vector(assembly.pinion_vector_to_global(dr, phi));
+    return s * lu.solve(R * dQ).z();
   };
-  int  crawl = 64; // moves at one step size before a Newton step; 8 once one has helped
-  auto jump  = [&](Search &x) {
-    const bool free_u = !at_edge(x.at.u1, d.u_min, d.u_max);
-    const bool free_v = !at_edge(x.at.v1, d.v_min, d.v_max);
-    if (!(free_u || free_v) || gear_edge(x.at) || x.at.face_end)
+  return Eigen::Vector2d(free_u ? d_psi(p.d_du) : 0.0, free_v ? d_psi(p.d_dv) : 0.0);
+}
+
+// (`found`: whether the difference samples touch at all)
+Eigen::Vector2d
+UnloadedTca::ContactSearch::newton_step(const Sample &t, bool free_u, bool free_v, bool *found)
+{
+  const Eigen::Vector2d g0 = gradient(t, free_u, free_v);
+  const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
+  Eigen::Matrix2d       H = Eigen::Matrix2d::Zero();
+  for (int k = 0; k < 2; ++k)
+    if (k == 0 ? free_u : free_v)
+      {
+        const Sample near = k == 0 ? sample(t.u1 + eu, t.v1) : sample(t.u1, t.v1 + ev);
+        if (found && near.value == -HUGE_VAL)
+          *found = false;
+        H.col(k) = (gradient(near, free_u, free_v) - g0) / (k == 0 ? eu : ev);
+      }
+  return Eigen::Vector2d(-H.completeOrthogonalDecomposition().solve(g0));
+}
+
+// A search that keeps moving at one step size crawls along a ridge oblique to the flank
+// parameters (near line contact): every `crawl` moves (64, 8 once a jump has gained) refine
+// tries the Newton step of the touch angle's quadratic model, halved until it gains, which goes
+// along the ridge at once (see pair()).
+void
+UnloadedTca::ContactSearch::jump(Search &x)
+{
+  const bool free_u = !at_edge(x.at.u1, d.u_min, d.u_max);
+  const bool free_v = !at_edge(x.at.v1, d.v_min, d.v_max);
+  if (!(free_u || free_v) || gear_edge(x.at) || x.at.face_end)
+    return;
+  bool            found = true;
+  Eigen::Vector2d step;
+  try // (a difference sample beyond where a generated gear flank exists: no step)
+    {
+      step = newton_step(x.at, free_u, free_v, &found);
+    }
+  catch (const InputError &)
+    {
       return;
-    bool            found = true;
-    Eigen::Vector2d step;
-    try // (a difference sample beyond where a generated gear flank exists: no step)
-      {
-        step = newton_step(x.at, free_u, free_v, &found);
-      }
-    catch (const InputError &)
-      {
-        return;
-      }
-    if (!found)
-      return;
-    for (int halvings = 0; halvings < 30 && step.allFinite(); ++halvings, step /= 2)
-      {
-        const Sample t = sample(x.at.u1 + step.x(), x.at.v1 + step.y());
-        if (better(t, x.at))
-          {
-            x.at  = t;
-            crawl = 8;
-            return;
-          }
-      }
-  };
-  auto refine = [&](Search &x, double until) {
-    int moves = 0; // at this step size
-    while ((x.hu > 1e-11 * (d.u_max - d.u_min) || x.hv > 1e-11 * (d.v_max - d.v_min)) &&
-           x.hu > until * hu0)
-      {
-        Sample next = x.at;
-        for (int a = -1; a <= 1; ++a)
-          for (int b = -1; b <= 1; ++b)
-            if (a || b)
-              {
-                const Sample t = sample(x.at.u1 + a * x.hu, x.at.v1 + b * x.hv);
-                if (better(t, next))
-                  next = t;
-              }
-        // A move must gain more than the touch angle's rounding (1e-15 relative): along a
-        // contact line the angle is flat to rounding, and a walk along a ridge of rounding
-        // noise at steps of 1e-11 of the flank would take ~1e11 samples.
-        const bool moved = !(next.u1 == x.at.u1 && next.v1 == x.at.v1);
-        const bool gain  = moved && (next.value > x.at.value + 1e-15 * (1 + std::abs(x.at.value)) ||
-                                    (x.at.value == -HUGE_VAL && next.value > -HUGE_VAL) ||
-                                    next.face_end != x.at.face_end);
-        if (!gain)
-          {
-            x.hu /= 2, x.hv /= 2, moves = 0;
-            continue;
-          }
-        x.at = next;
-        if (++moves % crawl == 0)
-          jump(x);
-        if (moves == 128) // a ridge too slanted for the jumps: on at a finer step (bounded work)
+    }
+  if (!found)
+    return;
+  for (int halvings = 0; halvings < 30 && step.allFinite(); ++halvings, step /= 2)
+    {
+      const Sample t = sample(x.at.u1 + step.x(), x.at.v1 + step.y());
+      if (better(t, x.at))
+        {
+          x.at  = t;
+          crawl = 8;
+          return;
+        }
+    }
+}
+
+void
+UnloadedTca::ContactSearch::refine(Search &x, double until)
+{
+  int moves = 0; // at this step size
+  while ((x.hu > 1e-11 * (d.u_max - d.u_min) || x.hv > 1e-11 * (d.v_max - d.v_min)) &&
+         x.hu > until * hu0)
+    {
+      Sample next = x.at;
+      for (int a = -1; a <= 1; ++a)
+        for (int b = -1; b <= 1; ++b)
+          if (a || b)
+            {
+              const Sample t = sample(x.at.u1 + a * x.hu, x.at.v1 + b * x.hv);
+              if (better(t, next))
+                next = t;
+            }
+      // A move must gain more than the touch angle's rounding (1e-15 relative): along a
+      // contact line the angle is flat to rounding, and a walk along a ridge of rounding
+      // noise at steps of 1e-11 of the flank would take ~1e11 samples.
+      const bool moved = !(next.u1 == x.at.u1 && next.v1 == x.at.v1);
+      const bool gain  = moved && (next.value > x.at.value + 1e-15 * (1 + std::abs(x.at.value)) ||
+                                  (x.at.value == -HUGE_VAL && next.value > -HUGE_VAL) ||
+                                  next.face_end != x.at.face_end);
+      if (!gain)
+        {
           x.hu /= 2, x.hv /= 2, moves = 0;
-      }
-  };
+          continue;
+        }
+      x.at = next;
+      if (++moves % crawl == 0)
+        jump(x);
+      if (moves == 128) // a ridge too slanted for the jumps: on at a finer step (bounded work)
+        x.hu /= 2, x.hv /= 2, moves = 0;
+    }
+}
+
+// Each start coarsely (to 1e-4 of the grid step), then the best of them to the end.
+UnloadedTca::ContactSearch::Sample
+UnloadedTca::ContactSearch::maximum(const std::vector<Sample> &starts)
+{
   Search found{Sample(), hu0, hv0};
   for (const Sample &start : starts)
     if (start.value > -HUGE_VAL)
@@ -454,13 +534,15 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
           found = x;
       }
   refine(found, 0);
+  return found.at;
+}
 
-  // Newton on the stationarity of the touch angle (the classical tangency condition) in the
-  // free parameters: the pattern search locates the maximum to ~1e-8 (the touch angle is flat
-  // there), Newton pins it to rounding.
-  best = found.at;
-  if (best.value == -HUGE_VAL)
-    return c;
+// Newton on the stationarity of the touch angle (the classical tangency condition) in the
+// free parameters: the pattern search locates the maximum to ~1e-8 (the touch angle is flat
+// there), Newton pins it to rounding.
+UnloadedTca::ContactSearch::Sample
+UnloadedTca::ContactSearch::pinned(Sample best)
+{
   const bool free_u = !at_edge(best.u1, d.u_min, d.u_max);
   const bool free_v = !at_edge(best.v1, d.v_min, d.v_max);
   if ((free_u || free_v) && !gear_edge(best))
@@ -475,7 +557,12 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
         if (done)
           break;
       }
+  return best;
+}
 
+void
+UnloadedTca::ContactSearch::fill(PairContact &c, const Sample &best) const
+{
   c.found       = true;
   c.touch_angle = best.psi;
   c.u1 = best.u1, c.v1 = best.v1, c.u2 = best.u2, c.v2 = best.v2;
@@ -483,6 +570,24 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
            at_edge(c.u2, dg.u_min, dg.u_max) || at_edge(c.v2, dg.v_min, dg.v_max);
   set_contact_geometry(c, assembly, flank, gear_flank, phi, c.touch_angle);
   set_relative_curvature(c, assembly, flank, gear_flank, phi, c.touch_angle);
+}
+
+PairContact
+UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
+{
+  // Pair k: the k-th pinion tooth to pass the line of centres (tooth -k) and its mate.
+  PairContact c;
+  const bool  drive = options.side == FlankSide::drive;
+  c.pinion_tooth    = mod(-k, pinion->teeth());
+  c.gear_tooth      = mod(drive ? k - 1 : k, gear->teeth());
+  if (!pinion->has(c.pinion_tooth, options.side) || !gear->has(c.gear_tooth, options.side))
+    return c;
+  ContactSearch               search(*this, c.pinion_tooth, c.gear_tooth, phi);
+  const auto                  starts = search.starts(near);
+  const ContactSearch::Sample best   = search.maximum(starts);
+  if (best.value == -HUGE_VAL) // the gear flank reaches no point of the pinion flank
+    return c;
+  search.fill(c, search.pinned(best));
   return c;
 }
 

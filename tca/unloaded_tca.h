@@ -187,6 +187,8 @@ public:
 private:
   PairContact
   pair_contact(int k, double phi, const PairContact *near = nullptr) const;
+  /// pair_contact's search in its phases (unloaded_tca.cc).
+  class ContactSearch;
   /// touch_angle's solve: none (no solution near `expected`, or off the flank), beyond_face
   /// (on the gear flank's surface continued beyond an end of its face: v2 outside the domain),
   /// on_flank.

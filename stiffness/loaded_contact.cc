@@ -298,132 +298,109 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
   return out;
 }
 
-MeshCycleContact
-loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &torques,
-                     const LoadedContactOptions &lo, const StructuralCompliance &sp,
-                     const StructuralCompliance &sg, const std::function<void()> &step)
+namespace
 {
-  const int m = int(torques.size());
-  for (const double T : torques) // bad input: refused whole (a failing solve: per torque)
-    if (!(T >= 0) || !std::isfinite(T))
-      throw InputError("loaded contact: the pinion torques must be finite and >= 0 (got " +
-                       std::to_string(T) + " N m)");
-  const double             mesh_angle = 2 * pi / t.pinion_flanks().teeth();
-  std::vector<TcaPosition> positions;
-  double                   touching = 0;
-  for (int i = 0; i < n; ++i)
+/// What the tables need of one solved (torque, position) of a mesh cycle; sent to every
+/// process.
+struct Solved
+{
+  double              eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
+  double              interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0, gap_band = 0;
+  std::vector<double> pair_force;
+  std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
+  std::string                        failure;
+};
+
+/// The loaded contact of job `job` of a mesh cycle (torque job / n at position job % n) into
+/// s; false where it failed (InputError: its message in s.failure).
+bool
+solve_job(const UnloadedTca &t, int n, const std::vector<TcaPosition> &positions,
+          const std::vector<double> &torques, const LoadedContactOptions &lo,
+          const StructuralCompliance &sp, const StructuralCompliance &sg, std::size_t job,
+          Solved &s)
+{
+  LoadedPosition r;
+  try
     {
-      positions.push_back(t.at(t.options_data().start_angle + mesh_angle * i / n));
-      touching += positions.back().touching;
+      r = loaded_contact(t, positions[job % std::size_t(n)], torques[job / std::size_t(n)], lo, sp,
+                         sg);
     }
-  MeshCycleContact c;
-  c.torques = std::size_t(m), c.positions = std::size_t(n);
-  for (const TcaPosition &p : positions)
-    c.slots = std::max(c.slots, p.pairs.size());
-  for (const TcaPosition &p : positions)
-    for (std::size_t s = 0; s < c.slots; ++s)
-      c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
-  // Every (torque, position) on its own: job j on process j modulo the processes, each
-  // process's jobs on a few threads; what the tables need of each sent to every process.
-  struct Solved
-  {
-    double eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
-    double interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0, gap_band = 0;
-    std::vector<double>                pair_force;
-    std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
-    std::string                        failure;
-  };
-  const MPI_Comm           comm = lo.communicator;
-  const unsigned           size = dealii::Utilities::MPI::n_mpi_processes(comm);
-  const unsigned           rank = dealii::Utilities::MPI::this_mpi_process(comm);
-  const std::size_t        jobs = std::size_t(m * n);
-  std::vector<std::size_t> mine;
-  for (std::size_t j = rank; j < jobs; j += size)
-    mine.push_back(j);
-  std::vector<Solved> solved(jobs);
-  std::mutex          progress;
-  // a failure on any process is thrown on all (the first failed process's)
-  collectively(comm, [&] {
-    parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
-      const std::size_t job = mine[k];
-      Solved           &s   = solved[job];
-      LoadedPosition    r;
-      try
-        {
-          r = loaded_contact(t, positions[job % std::size_t(n)], torques[job / std::size_t(n)], lo,
-                             sp, sg);
-        }
-      catch (const InputError &e)
-        {
-          std::ostringstream msg;
-          msg << "position " << job % std::size_t(n) << " (pinion angle "
-              << positions[job % std::size_t(n)].pinion_angle << " rad): " << e.what();
-          s.failure = msg.str();
-          return;
-        }
-      s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
-      s.normal_force = r.normal_force, s.lever = r.lever;
-      s.pair_force = r.pair_force;
-      s.edge_force = r.edge_force, s.gap_band = r.gap_band;
-      if (r.edge_cell >= 0)
-        {
-          const Vec3 &x = r.cells[std::size_t(r.edge_cell)].position;
-          s.edge_radius = x.head<2>().norm(), s.edge_z = x.z();
-        }
-      for (std::size_t j = 0; j < r.cells.size(); ++j)
-        {
-          const ContactCell &cell     = r.cells[j];
-          const double       pressure = r.force[Eigen::Index(j)] / (cell.ds * cell.dt);
-          s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1, pressure}});
-          if (!cell.flank_edge)
-            s.interior_peak = std::max(s.interior_peak, pressure);
-        }
-      if (step)
-        {
-          const std::lock_guard<std::mutex> lock(progress);
-          step();
-        }
-    });
-  });
-  if (size > 1)
+  catch (const InputError &e)
     {
-      std::vector<std::pair<std::size_t, std::string>> failed;
-      for (const std::size_t job : mine)
-        if (!solved[job].failure.empty())
-          failed.emplace_back(job, solved[job].failure);
-      for (const auto &from : dealii::Utilities::MPI::all_gather(comm, failed))
-        for (const auto &[job, why] : from)
-          solved[job].failure = why;
-      std::vector<double> payload;
-      for (const std::size_t job : mine)
-        {
-          const Solved &s = solved[job];
-          payload.insert(payload.end(),
-                         {double(job), s.eL, s.mesh_stiffness, s.normal_force, s.lever,
-                          s.interior_peak, s.edge_force, s.edge_radius, s.edge_z, s.gap_band,
-                          double(s.pair_force.size()), double(s.cells.size())});
-          payload.insert(payload.end(), s.pair_force.begin(), s.pair_force.end());
-          for (const auto &cell : s.cells)
-            payload.insert(payload.end(), cell.begin(), cell.end());
-        }
-      for (const std::vector<double> &from : dealii::Utilities::MPI::all_gather(comm, payload))
-        for (std::size_t at = 0; at < from.size();) // (a failed job sends zeros)
-          {
-            Solved &s = solved[std::size_t(from[at])];
-            s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
-            s.normal_force = from[at + 3], s.lever = from[at + 4];
-            s.interior_peak = from[at + 5], s.edge_force = from[at + 6];
-            s.edge_radius = from[at + 7], s.edge_z = from[at + 8], s.gap_band = from[at + 9];
-            const auto slots = std::size_t(from[at + 10]), cells = std::size_t(from[at + 11]);
-            at += 12;
-            s.pair_force.assign(from.begin() + long(at), from.begin() + long(at + slots));
-            at += slots;
-            s.cells.resize(cells);
-            for (auto &cell : s.cells)
-              for (double &x : cell)
-                x = from[at++];
-          }
+      std::ostringstream msg;
+      msg << "position " << job % std::size_t(n) << " (pinion angle "
+          << positions[job % std::size_t(n)].pinion_angle << " rad): " << e.what();
+      s.failure = msg.str();
+      return false;
     }
+  s.eL = r.eL, s.mesh_stiffness = r.mesh_stiffness;
+  s.normal_force = r.normal_force, s.lever = r.lever;
+  s.pair_force = r.pair_force;
+  s.edge_force = r.edge_force, s.gap_band = r.gap_band;
+  if (r.edge_cell >= 0)
+    {
+      const Vec3 &x = r.cells[std::size_t(r.edge_cell)].position;
+      s.edge_radius = x.head<2>().norm(), s.edge_z = x.z();
+    }
+  for (std::size_t j = 0; j < r.cells.size(); ++j)
+    {
+      const ContactCell &cell     = r.cells[j];
+      const double       pressure = r.force[Eigen::Index(j)] / (cell.ds * cell.dt);
+      s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1, pressure}});
+      if (!cell.flank_edge)
+        s.interior_peak = std::max(s.interior_peak, pressure);
+    }
+  return true;
+}
+
+/// Every process's solved jobs and failures (its jobs: `mine`) to every process. Collective.
+void
+share_solved(MPI_Comm comm, const std::vector<std::size_t> &mine, std::vector<Solved> &solved)
+{
+  std::vector<std::pair<std::size_t, std::string>> failed;
+  for (const std::size_t job : mine)
+    if (!solved[job].failure.empty())
+      failed.emplace_back(job, solved[job].failure);
+  for (const auto &from : dealii::Utilities::MPI::all_gather(comm, failed))
+    for (const auto &[job, why] : from)
+      solved[job].failure = why;
+  std::vector<double> payload;
+  for (const std::size_t job : mine)
+    {
+      const Solved &s = solved[job];
+      payload.insert(payload.end(),
+                     {double(job), s.eL, s.mesh_stiffness, s.normal_force, s.lever, s.interior_peak,
+                      s.edge_force, s.edge_radius, s.edge_z, s.gap_band,
+                      double(s.pair_force.size()), double(s.cells.size())});
+      payload.insert(payload.end(), s.pair_force.begin(), s.pair_force.end());
+      for (const auto &cell : s.cells)
+        payload.insert(payload.end(), cell.begin(), cell.end());
+    }
+  for (const std::vector<double> &from : dealii::Utilities::MPI::all_gather(comm, payload))
+    for (std::size_t at = 0; at < from.size();) // (a failed job sends zeros)
+      {
+        Solved &s = solved[std::size_t(from[at])];
+        s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
+        s.normal_force = from[at + 3], s.lever = from[at + 4];
+        s.interior_peak = from[at + 5], s.edge_force = from[at + 6];
+        s.edge_radius = from[at + 7], s.edge_z = from[at + 8], s.gap_band = from[at + 9];
+        const auto slots = std::size_t(from[at + 10]), cells = std::size_t(from[at + 11]);
+        at += 12;
+        s.pair_force.assign(from.begin() + long(at), from.begin() + long(at + slots));
+        at += slots;
+        s.cells.resize(cells);
+        for (auto &cell : s.cells)
+          for (double &x : cell)
+            x = from[at++];
+      }
+}
+
+/// The mesh cycle's tables from the solved jobs (torque-major).
+void
+fill_tables(MeshCycleContact &c, const std::vector<Solved> &solved,
+            const std::vector<TcaPosition> &positions, int m, int n)
+{
+  const std::size_t jobs = std::size_t(m * n);
   c.torque_failure.assign(std::size_t(m), "");
   for (std::size_t job = 0; job < jobs; ++job)
     if (!solved[job].failure.empty() && c.torque_failure[job / std::size_t(n)].empty())
@@ -453,6 +430,61 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
       c.edge_position.insert(c.edge_position.end(), {r.edge_radius, r.edge_z});
       c.gap_band.push_back(r.gap_band);
     }
+}
+} // namespace
+
+MeshCycleContact
+loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &torques,
+                     const LoadedContactOptions &lo, const StructuralCompliance &sp,
+                     const StructuralCompliance &sg, const std::function<void()> &step)
+{
+  const int m = int(torques.size());
+  for (const double T : torques) // bad input: refused whole (a failing solve: per torque)
+    if (!(T >= 0) || !std::isfinite(T))
+      throw InputError("loaded contact: the pinion torques must be finite and >= 0 (got " +
+                       std::to_string(T) + " N m)");
+  const double             mesh_angle = 2 * pi / t.pinion_flanks().teeth();
+  std::vector<TcaPosition> positions;
+  double                   touching = 0;
+  for (int i = 0; i < n; ++i)
+    {
+      positions.push_back(t.at(t.options_data().start_angle + mesh_angle * i / n));
+      touching += positions.back().touching;
+    }
+  MeshCycleContact c;
+  c.torques = std::size_t(m), c.positions = std::size_t(n);
+  for (const TcaPosition &p : positions)
+    c.slots = std::max(c.slots, p.pairs.size());
+  for (const TcaPosition &p : positions)
+    for (std::size_t s = 0; s < c.slots; ++s)
+      c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
+  // Every (torque, position) on its own: job j on process j modulo the processes, each
+  // process's jobs on a few threads; what the tables need of each sent to every process.
+  const MPI_Comm           comm = lo.communicator;
+  const unsigned           size = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const unsigned           rank = dealii::Utilities::MPI::this_mpi_process(comm);
+  const std::size_t        jobs = std::size_t(m * n);
+  std::vector<std::size_t> mine;
+  for (std::size_t j = rank; j < jobs; j += size)
+    mine.push_back(j);
+  std::vector<Solved> solved(jobs);
+  std::mutex          progress;
+  // a failure on any process is thrown on all (the first failed process's)
+  collectively(comm, [&] {
+    parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
+      const std::size_t job = mine[k];
+      if (!solve_job(t, n, positions, torques, lo, sp, sg, job, solved[job]))
+        return;
+      if (step)
+        {
+          const std::lock_guard<std::mutex> lock(progress);
+          step();
+        }
+    });
+  });
+  if (size > 1)
+    share_solved(comm, mine, solved);
+  fill_tables(c, solved, positions, m, n);
   c.mean_pairs_in_contact = touching / n;
   return c;
 }

@@ -58,6 +58,198 @@ segment_for(const SegmentChoice &asked, const SegmentChoice &near, int min_teeth
     ++s.teeth; // the mesher checks that it fits the gear
   return s;
 }
+
+/// Refuses (InputError) a missing work directory, bad sizes and bad torques.
+void
+check_reference_input(const ReferenceContactOptions &o, const std::vector<double> &torques)
+{
+  if (o.work_directory.empty() || !std::filesystem::is_directory(o.work_directory))
+    throw InputError("reference contact: the work directory '" + o.work_directory +
+                     "' does not exist");
+  if (!(o.elements_per_cell > 0) || o.layers_per_cell < 1 || o.min_segment_teeth < 1)
+    throw InputError("reference contact: elements per cell must be > 0, layers per cell and "
+                     "segment teeth >= 1");
+  for (double T : torques)
+    if (!(T >= 0) || !std::isfinite(T))
+      throw InputError("reference contact: torques must be finite and >= 0 (got " +
+                       std::to_string(T) + " N m)");
+}
+
+/// How a member's segment is refined about the cells.
+struct Refinement
+{
+  double flank_size = 0; ///< the flank elements' size
+  double contact    = 0; ///< the elements' size at the cells
+  /// gmsh grades the segment's transverse section to straight contact lines; else deal.II
+  /// refines the body about the cells
+  bool graded_lines = false;
+};
+
+/// The member's segment mesh (`seg`; `loaded`: the segment about this position's pairs) and
+/// its refinement about the cells (mc: the cells on the member's flanks).
+SegmentMeshOptions
+segment_options(const ReferenceMember &m, bool is_pinion, const SegmentChoice &seg,
+                const SegmentChoice &loaded, FlankSide side, const ReferenceContactOptions &o,
+                const std::vector<ContactCell> &cells, const std::vector<MemberCell> &mc,
+                Refinement &r)
+{
+  const Eigen::Index n = Eigen::Index(cells.size());
+  SegmentMeshOptions mesh;
+  mesh.teeth         = seg.teeth;
+  mesh.central_tooth = seg.central;
+  mesh.whole_rim     = is_pinion ? o.pinion_whole_rim : o.gear_whole_rim;
+  mesh.flank_size    = o.flank_size;
+  mesh.far_size      = o.far_size;
+  mesh.fine_side     = side;
+  if (seg.teeth == m.flanks->teeth()) // the whole gear: fine about this position's pairs
+    {
+      mesh.central_tooth = loaded.central, mesh.fine_teeth = loaded.teeth;
+    }
+  // the cells' widths across and along: the smallest (the graded section resolves every
+  // cell) and the median (cells cut at a tip's edge are narrower)
+  double              ds = HUGE_VAL, dt = HUGE_VAL, reach = 0;
+  std::vector<double> widths;
+  for (const ContactCell &c : cells)
+    {
+      ds = std::min(ds, c.ds), dt = std::min(dt, c.dt);
+      reach = std::max(reach, std::abs(c.s) + c.ds);
+      widths.push_back(c.ds);
+    }
+  std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
+  const double median_ds = widths[widths.size() / 2];
+  // never coarser than the flank elements around it (a coarser "refinement" folds the
+  // graded quadrilaterals at the root)
+  r.flank_size   = o.flank_size > 0 ? o.flank_size : m.module / 5;
+  r.graded_lines = m.straight_lines && !o.local_refinement;
+  r.contact      = std::min((r.graded_lines ? ds : median_ds) / o.elements_per_cell, r.flank_size);
+  if (r.graded_lines)
+    {
+      // Refinement about each pair's contact line: the cell nearest the line (smallest
+      // |s|) marks it, the cells' reach across sets the radius.
+      std::map<int, std::pair<double, Vec2>> line; // pair -> (|s|, section point)
+      for (Eigen::Index i = 0; i < n; ++i)
+        {
+          auto it = line.find(cells[i].pair);
+          if (it == line.end() || std::abs(cells[i].s) < it->second.first)
+            line[cells[i].pair] = {std::abs(cells[i].s), mc[i].position.head<2>()};
+        }
+      for (const auto &[pair, l] : line)
+        mesh.refine_points.push_back(l.second);
+      mesh.refine_size   = r.contact;
+      mesh.refine_radius = reach;
+      mesh.face_layers   = std::max(2, int(std::lround(m.face_width / dt)) * o.layers_per_cell);
+    }
+  return mesh;
+}
+
+/// The boundary id of a tooth's loaded flank in the member's segment.
+int
+flank_boundary(const SegmentMeshInfo &segment, FlankSide side, int tooth)
+{
+  const auto at = std::find(segment.member_teeth.begin(), segment.member_teeth.end(), tooth);
+  return boundary::flank(int(at - segment.member_teeth.begin()), side);
+}
+
+/// The member's body on its segment: held at the bore (and the cuts if asked), refined about
+/// the cells by deal.II where gmsh has not graded the segment to them.
+ElasticSegmentOptions
+body_options(const ReferenceMember &m, bool is_pinion, FlankSide side,
+             const ReferenceContactOptions &o, const SegmentMeshInfo &segment,
+             const std::vector<MemberCell> &mc, const Refinement &r)
+{
+  const double          flank_size = r.flank_size, contact = r.contact;
+  ElasticSegmentOptions eo;
+  eo.degree       = o.degree;
+  eo.communicator = o.communicator;
+  eo.material     = is_pinion ? o.cells.pinion_material : o.cells.gear_material;
+  eo.clamped      = {boundary::bore};
+  if (o.hold_cuts && !segment.whole)
+    eo.clamped.insert({boundary::cut_start, boundary::cut_end});
+  if (!r.graded_lines)
+    {
+      // deal.II halves the elements about the cells until they are the contact size: pass j
+      // within flank_size / 2^j of the flank within the cells (and a contact element
+      // around them)
+      eo.local_refinements =
+          unsigned(std::max(1.0, std::ceil(std::log2(flank_size / contact) - 1e-9)));
+      eo.refine_distance       = flank_size;
+      eo.halve_refine_distance = true;
+      for (const MemberCell &c : mc)
+        {
+          eo.refine_boundaries.insert(flank_boundary(segment, side, c.tooth));
+          // the cell and one contact element around it, up to a flank element off the flank
+          eo.refine_boxes.push_back(
+              {c.position, Vec3(c.half_size.x() + contact, c.half_size.y() + contact, flank_size),
+               c.axes});
+        }
+      eo.surface_boundaries = eo.refine_boundaries;
+      eo.boundary_surface   = flank_surface(*m.flanks, segment.member_teeth, side);
+    }
+  return eo;
+}
+
+/// One unit patch load per cell on the member's flank, pressing into the material.
+std::vector<PatchLoad>
+patch_loads(const std::vector<MemberCell> &mc, const SegmentMeshInfo &segment, FlankSide side,
+            const Refinement &r)
+{
+  const bool             graded_lines = r.graded_lines;
+  const double           contact      = r.contact;
+  std::vector<PatchLoad> loads;
+  for (const MemberCell &c : mc)
+    {
+      PatchLoad l;
+      l.point      = c.position;
+      l.force      = -c.normal; // a unit force pressing into the material
+      l.boundaries = {flank_boundary(segment, side, c.tooth)};
+      // refined about the cells: a cell narrower than the contact elements (cut at a tip's
+      // edge) spreads its traction over one element, so that it meets the quadrature
+      l.half_size = graded_lines ? c.half_size
+                                 : c.half_size.cwiseMax(Vec3(contact / 2, contact / 2, contact));
+      l.axes      = c.axes;
+      loads.push_back(l);
+    }
+  return loads;
+}
+
+/// One member's part: its segment meshed about the cells, its body, the cells' patch loads on
+/// it (into `loads`), and their compliance (the approach of each cell = its mean normal
+/// displacement, the cells' load work) added to C.
+std::unique_ptr<ElasticSegment>
+reference_body(bool is_pinion, const ReferenceMember &m, const std::vector<ContactCell> &cells,
+               const std::pair<SegmentChoice, SegmentChoice> &near, FlankSide side,
+               const ReferenceContactOptions &o, std::vector<PatchLoad> &loads, Eigen::MatrixXd &C,
+               ReferenceContactInfo &out)
+{
+  std::vector<MemberCell> mc;
+  for (const ContactCell &c : cells)
+    mc.push_back(is_pinion ? member_cell(*m.flanks, side, c.pinion_tooth, c.u1, c.v1, c)
+                           : member_cell(*m.flanks, side, c.gear_tooth, c.u2, c.v2, c));
+  Refinement               r;
+  const SegmentMeshOptions mesh =
+      segment_options(m, is_pinion, is_pinion ? out.pinion_segment : out.gear_segment,
+                      is_pinion ? near.first : near.second, side, o, cells, mc, r);
+  const std::string file =
+      (std::filesystem::path(o.work_directory) /
+       (std::string(is_pinion ? "reference_pinion" : "reference_gear") + ".msh"))
+          .string();
+  auto                  t0      = std::chrono::steady_clock::now();
+  const SegmentMeshInfo segment = segment_mesh_on_first_process(
+      [&](const std::string &path) { return m.mesher(mesh, path); }, file, o.communicator);
+  out.mesh_seconds += seconds_since(t0);
+
+  t0                             = std::chrono::steady_clock::now();
+  const ElasticSegmentOptions eo = body_options(m, is_pinion, side, o, segment, mc, r);
+  if (!r.graded_lines)
+    out.local_refinements = eo.local_refinements;
+  auto body = std::make_unique<ElasticSegment>(file, eo);
+  out.hexahedra += body->cells();
+  out.dofs += body->dofs();
+  loads = patch_loads(mc, segment, side, r);
+  C += body->patch_response(loads, loads);
+  out.solve_seconds += seconds_since(t0);
+  return body;
+}
 } // namespace
 
 ReferenceMember
@@ -105,16 +297,7 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
   ReferenceContactInfo  local;
   ReferenceContactInfo &out = info ? *info : local;
   out                       = ReferenceContactInfo{};
-  if (o.work_directory.empty() || !std::filesystem::is_directory(o.work_directory))
-    throw InputError("reference contact: the work directory '" + o.work_directory +
-                     "' does not exist");
-  if (!(o.elements_per_cell > 0) || o.layers_per_cell < 1 || o.min_segment_teeth < 1)
-    throw InputError("reference contact: elements per cell must be > 0, layers per cell and "
-                     "segment teeth >= 1");
-  for (double T : torques)
-    if (!(T >= 0) || !std::isfinite(T))
-      throw InputError("reference contact: torques must be finite and >= 0 (got " +
-                       std::to_string(T) + " N m)");
+  check_reference_input(o, torques);
 
   const FlankSide side = tca.options_data().side;
   const int       z1 = pinion.flanks->teeth(), z2 = gear.flanks->teeth();
@@ -142,127 +325,8 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
   std::vector<std::vector<PatchLoad>>          member_loads(2);
   std::vector<std::unique_ptr<ElasticSegment>> bodies;
   for (int member = 0; member < 2; ++member)
-    {
-      const bool              is_pinion = member == 0;
-      const ReferenceMember  &m         = is_pinion ? pinion : gear;
-      std::vector<MemberCell> mc;
-      for (const ContactCell &c : cells)
-        mc.push_back(is_pinion ? member_cell(*m.flanks, side, c.pinion_tooth, c.u1, c.v1, c)
-                               : member_cell(*m.flanks, side, c.gear_tooth, c.u2, c.v2, c));
-
-      SegmentMeshOptions   mesh;
-      const SegmentChoice &seg = is_pinion ? out.pinion_segment : out.gear_segment;
-      mesh.teeth               = seg.teeth;
-      mesh.central_tooth       = seg.central;
-      mesh.whole_rim           = is_pinion ? o.pinion_whole_rim : o.gear_whole_rim;
-      mesh.flank_size          = o.flank_size;
-      mesh.far_size            = o.far_size;
-      mesh.fine_side           = side;
-      if (seg.teeth == m.flanks->teeth()) // the whole gear: fine about this position's pairs
-        {
-          const SegmentChoice &loaded = is_pinion ? near.first : near.second;
-          mesh.central_tooth = loaded.central, mesh.fine_teeth = loaded.teeth;
-        }
-      // the cells' widths across and along: the smallest (the graded section resolves every
-      // cell) and the median (cells cut at a tip's edge are narrower)
-      double              ds = HUGE_VAL, dt = HUGE_VAL, reach = 0;
-      std::vector<double> widths;
-      for (const ContactCell &c : cells)
-        {
-          ds = std::min(ds, c.ds), dt = std::min(dt, c.dt);
-          reach = std::max(reach, std::abs(c.s) + c.ds);
-          widths.push_back(c.ds);
-        }
-      std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
-      const double median_ds = widths[widths.size() / 2];
-      // never coarser than the flank elements around it (a coarser "refinement" folds the
-      // graded quadrilaterals at the root)
-      const double flank_size   = o.flank_size > 0 ? o.flank_size : m.module / 5;
-      const bool   graded_lines = m.straight_lines && !o.local_refinement;
-      const double contact =
-          std::min((graded_lines ? ds : median_ds) / o.elements_per_cell, flank_size);
-      if (graded_lines)
-        {
-          // Refinement about each pair's contact line: the cell nearest the line (smallest
-          // |s|) marks it, the cells' reach across sets the radius.
-          std::map<int, std::pair<double, Vec2>> line; // pair -> (|s|, section point)
-          for (Eigen::Index i = 0; i < n; ++i)
-            {
-              auto it = line.find(cells[i].pair);
-              if (it == line.end() || std::abs(cells[i].s) < it->second.first)
-                line[cells[i].pair] = {std::abs(cells[i].s), mc[i].position.head<2>()};
-            }
-          for (const auto &[pair, l] : line)
-            mesh.refine_points.push_back(l.second);
-          mesh.refine_size   = contact;
-          mesh.refine_radius = reach;
-          mesh.face_layers   = std::max(2, int(std::lround(m.face_width / dt)) * o.layers_per_cell);
-        }
-      const std::string file =
-          (std::filesystem::path(o.work_directory) /
-           (std::string(is_pinion ? "reference_pinion" : "reference_gear") + ".msh"))
-              .string();
-      auto                  t0      = std::chrono::steady_clock::now();
-      const SegmentMeshInfo segment = segment_mesh_on_first_process(
-          [&](const std::string &path) { return m.mesher(mesh, path); }, file, o.communicator);
-      out.mesh_seconds += seconds_since(t0);
-      auto flank_id = [&](int tooth) {
-        const auto at = std::find(segment.member_teeth.begin(), segment.member_teeth.end(), tooth);
-        return boundary::flank(int(at - segment.member_teeth.begin()), side);
-      };
-
-      t0 = std::chrono::steady_clock::now();
-      ElasticSegmentOptions eo;
-      eo.degree       = o.degree;
-      eo.communicator = o.communicator;
-      eo.material     = is_pinion ? o.cells.pinion_material : o.cells.gear_material;
-      eo.clamped      = {boundary::bore};
-      if (o.hold_cuts && !segment.whole)
-        eo.clamped.insert({boundary::cut_start, boundary::cut_end});
-      if (!graded_lines)
-        {
-          // deal.II halves the elements about the cells until they are the contact size: pass j
-          // within flank_size / 2^j of the flank within the cells (and a contact element
-          // around them)
-          eo.local_refinements =
-              unsigned(std::max(1.0, std::ceil(std::log2(flank_size / contact) - 1e-9)));
-          eo.refine_distance       = flank_size;
-          eo.halve_refine_distance = true;
-          for (const MemberCell &c : mc)
-            {
-              eo.refine_boundaries.insert(flank_id(c.tooth));
-              // the cell and one contact element around it, up to a flank element off the flank
-              eo.refine_boxes.push_back(
-                  {c.position,
-                   Vec3(c.half_size.x() + contact, c.half_size.y() + contact, flank_size), c.axes});
-            }
-          eo.surface_boundaries = eo.refine_boundaries;
-          eo.boundary_surface   = flank_surface(*m.flanks, segment.member_teeth, side);
-          out.local_refinements = eo.local_refinements;
-        }
-      bodies.push_back(std::make_unique<ElasticSegment>(file, eo));
-      out.hexahedra += bodies.back()->cells();
-      out.dofs += bodies.back()->dofs();
-
-      std::vector<PatchLoad> &loads = member_loads[member];
-      for (const MemberCell &c : mc)
-        {
-          PatchLoad l;
-          l.point      = c.position;
-          l.force      = -c.normal; // a unit force pressing into the material
-          l.boundaries = {flank_id(c.tooth)};
-          // refined about the cells: a cell narrower than the contact elements (cut at a tip's
-          // edge) spreads its traction over one element, so that it meets the quadrature
-          l.half_size = graded_lines
-                            ? c.half_size
-                            : c.half_size.cwiseMax(Vec3(contact / 2, contact / 2, contact));
-          l.axes      = c.axes;
-          loads.push_back(l);
-        }
-      // approach of each cell = its mean normal displacement (the cells' load work)
-      C += bodies.back()->patch_response(loads, loads);
-      out.solve_seconds += seconds_since(t0);
-    }
+    bodies.push_back(reference_body(member == 0, member == 0 ? pinion : gear, cells, near, side, o,
+                                    member_loads[member], C, out));
 
   const auto                  t0 = std::chrono::steady_clock::now();
   std::vector<LoadedPosition> results;

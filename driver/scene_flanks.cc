@@ -557,20 +557,8 @@ PairScene::check(std::vector<std::string> &warnings) const
   check_member_plausibility(pinion, "Flanks/" + name + "/Pinion", warnings);
   check_member_plausibility(gear, "Flanks/" + name + "/Gear", warnings);
   involute_members();
-  const InvoluteGearData &a = pinion, &b = gear;
-  auto                    fail = [&](const std::string &what) {
-    throw InputError("Flanks/" + name + ": pinion and gear " + what);
-  };
-  if (std::abs(a.normal_module - b.normal_module) > 1e-12)
-    fail("must have the same normal module (" + std::to_string(a.normal_module / mm) + " and " +
-         std::to_string(b.normal_module / mm) + " mm)");
-  if (std::abs(a.normal_pressure_angle - b.normal_pressure_angle) > 1e-12)
-    fail("must have the same normal pressure angle");
-  if (std::abs(a.helix_angle - b.helix_angle) > 1e-12)
-    fail("must have the same helix angle (external parallel-axis pair)");
-  if (a.helix_angle > 0 && a.hand == b.hand)
-    fail("must have opposite hands (external helical pair); both are " +
-         std::string(a.hand == Hand::right ? "right" : "left"));
+  if (const std::string why = external_pair_mismatch(pinion, gear); !why.empty())
+    throw InputError("Flanks/" + name + ": pinion and gear " + why);
 }
 
 std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>

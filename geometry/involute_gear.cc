@@ -630,6 +630,23 @@ active_profile_start_radius(const InvoluteGear &g, const InvoluteGear &mate, dou
   return std::hypot(g.base_radius, L_A);
 }
 
+std::string
+external_pair_mismatch(const InvoluteGearData &a, const InvoluteGearData &b)
+{
+  std::ostringstream why;
+  if (std::abs(a.normal_module - b.normal_module) > 1e-12)
+    why << "must have the same normal module (" << a.normal_module * 1e3 << " and "
+        << b.normal_module * 1e3 << " mm)";
+  else if (std::abs(a.normal_pressure_angle - b.normal_pressure_angle) > 1e-12)
+    why << "must have the same normal pressure angle";
+  else if (std::abs(a.helix_angle - b.helix_angle) > 1e-12)
+    why << "must have the same helix angle (external parallel-axis pair)";
+  else if (a.helix_angle > 0 && a.hand == b.hand)
+    why << "must have opposite hands (external helical pair); both are "
+        << (a.hand == Hand::right ? "right" : "left");
+  return why.str();
+}
+
 std::pair<std::shared_ptr<const InvoluteGear>, std::shared_ptr<const InvoluteGear>>
 create_pair(const InvoluteGearData &pinion, const InvoluteGearData &gear, double a)
 {

@@ -239,6 +239,13 @@ double
 active_profile_start_radius(const InvoluteGear &gear, const InvoluteGear &mate,
                             double centre_distance);
 
+/// Why two members cannot form an external parallel-axis pair, as the rest of a sentence
+/// ("must have the same normal module (4.5 and 5 mm)"); empty where they can: the same normal
+/// module, normal pressure angle and helix angle, and opposite hands where helical. The scene
+/// and the unloaded TCA refuse a pair by this one rule.
+std::string
+external_pair_mismatch(const InvoluteGearData &pinion, const InvoluteGearData &gear);
+
 /// Both members of an external pair, each with its start of active profile (and so its profile
 /// evaluation range) from the other at centre distance a; a <= 0: the zero-backlash working
 /// centre distance (the design mesh, kept whatever centre distance an analysis assembles them

@@ -77,14 +77,8 @@ checked_pinion(const std::shared_ptr<const InvoluteGear> &p,
                const std::shared_ptr<const InvoluteGear> &g)
 {
   const auto &d1 = p->data(), &d2 = g->data();
-  if (d1.helix_angle > 0 && d1.hand == d2.hand)
-    throw InputError("unloaded TCA: an external helical pair needs opposite hands (" + d1.name +
-                     " and " + d2.name + " have the same)");
-  if (std::abs(d1.normal_module - d2.normal_module) > 1e-12 ||
-      std::abs(d1.normal_pressure_angle - d2.normal_pressure_angle) > 1e-12 ||
-      std::abs(d1.helix_angle - d2.helix_angle) > 1e-12)
-    throw InputError("unloaded TCA: " + d1.name + " and " + d2.name +
-                     " differ in normal module, pressure angle or helix angle and cannot mesh");
+  if (const std::string why = external_pair_mismatch(d1, d2); !why.empty())
+    throw InputError("unloaded TCA: " + d1.name + " and " + d2.name + " cannot mesh: they " + why);
   return std::make_shared<InvoluteMemberFlanks>(p);
 }
 } // namespace

@@ -693,3 +693,27 @@ TEST(InvoluteGear, BacklashByTheCentreDistance)
   // evaluation of 2 a (inv alpha' - inv 20 deg) gave 0.0036717650919)
   EXPECT_NEAR(circumferential_backlash(*p, *g, 2.705 * inch) / inch, 0.0036717650919, 1e-12);
 }
+
+TEST(InvoluteGear, APairMeshesOnlyWithTheSameModulePressureAndHelixAngleAndOppositeHands)
+{
+  // One rule for the scene and the unloaded TCA (external_pair_mismatch): empty where the pair
+  // can mesh, else the first reason, naming the values where they differ.
+  EXPECT_EQ(external_pair_mismatch(spur(20), spur(40)), "");
+  EXPECT_EQ(external_pair_mismatch(helical(Hand::right), helical(Hand::left)), "");
+  InvoluteGearData other = spur(40);
+  other.normal_module    = 6e-3;
+  EXPECT_EQ(external_pair_mismatch(spur(20), other),
+            "must have the same normal module (5 and 6 mm)");
+  other                       = spur(40);
+  other.normal_pressure_angle = 25 * deg;
+  EXPECT_EQ(external_pair_mismatch(spur(20), other), "must have the same normal pressure angle");
+  EXPECT_EQ(external_pair_mismatch(helical(Hand::right), spur(40))
+                .rfind("must have the same normal module", 0),
+            0u);
+  other             = helical(Hand::left);
+  other.helix_angle = 15 * deg;
+  EXPECT_EQ(external_pair_mismatch(helical(Hand::right), other),
+            "must have the same helix angle (external parallel-axis pair)");
+  EXPECT_EQ(external_pair_mismatch(helical(Hand::left), helical(Hand::left)),
+            "must have opposite hands (external helical pair); both are left");
+}

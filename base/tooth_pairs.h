@@ -34,18 +34,13 @@
 // tooth) has an empty curve too: looked up, it never touches.
 #pragma once
 
+#include "base/types.h"
+
 #include <array>
 #include <vector>
 
 namespace gearkit
 {
-/// a mod n in [0, n) for either sign of a (n > 0): the tooth of index a counted either way round.
-inline int
-mod(int a, int n)
-{
-  return ((a % n) + n) % n;
-}
-
 /// Where a tooth pair curve changes between flank-to-flank contact and the contact of a flank
 /// edge (a tip, a face end, a chipped region) on the other flank: the touch angle is the larger
 /// of the two contacts' there, so the curve's slope jumps (a kink, located between the samples).

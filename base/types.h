@@ -10,6 +10,15 @@
 
 namespace gearkit
 {
+/// a mod n in [0, n) for either sign of a (n > 0): the tooth of index a counted either way round,
+/// a periodic sample's index. The one rule (tooth pairings, segments' teeth, periodic tables).
+template <typename Int>
+inline Int
+mod(Int a, Int n)
+{
+  return ((a % n) + n) % n;
+}
+
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 

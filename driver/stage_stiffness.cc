@@ -97,7 +97,7 @@ member_options(double module, int z, bool pinion, const FeScene &fe, FlankSide s
   // Unit loads only on the teeth that can carry load over the mesh cycle, or on the middle one
   // for all; the segment's other teeth are there for the stiffness of the surroundings.
   for (int k = -loaded_reach; k <= loaded_reach; ++k)
-    o.loaded_teeth.push_back(((segment.central + k) % z + z) % z);
+    o.loaded_teeth.push_back(mod(segment.central + k, z));
   o.cyclic_tooth = fe.cyclic ? segment.central : -1;
   o.cyclic_reach = fe.cyclic ? reach : 0;
   return o;

@@ -45,7 +45,7 @@ struct Periodic
         for (long i = -pad; i <= m + pad; ++i)
           {
             x.push_back(period * double(i) / double(m));
-            y.push_back(v[std::size_t(((i % m) + m) % m)]);
+            y.push_back(v[std::size_t(mod(i, m))]);
           }
         makima = std::make_shared<Makima>(std::move(x), std::move(y));
       }

@@ -126,7 +126,7 @@ public:
     check(blank.axial_plane(blank.mean_cone_distance - blank.face_width / 2, h_rim).y() > 0,
           "rim thickness [mm]", rim_thickness * 1e3, "a rim that stays off the axis at the toe");
     for (int i = 0; i < o.teeth; ++i)
-      member_teeth.push_back(((o.central_tooth - (o.teeth - 1) / 2 + i) % z + z) % z);
+      member_teeth.push_back(mod(o.central_tooth - (o.teeth - 1) / 2 + i, z));
     choose_counts();
   }
 

@@ -48,7 +48,7 @@ loaded_segments(const std::vector<TcaPosition> &positions, int z1, int z2, doubl
       throw InputError("member compliance: no tooth pair comes within the gap band at the "
                        "positions analysed");
     SegmentChoice s;
-    s.central = ((first + (lo + hi) / 2) % z + z) % z;
+    s.central = mod(first + (lo + hi) / 2, z);
     s.teeth   = hi - lo + 1;
     s.span    = span;
     if (s.teeth % 2 == 0)

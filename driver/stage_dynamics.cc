@@ -314,6 +314,15 @@ write_modes(const H5Group &g, const PairModel &model, const std::string &label, 
   log << "\n";
 }
 
+/// The samples a mesh cycle is recorded at, and the multiple Newmark's steps per mesh cycle
+/// come in (RunOptions::samples_per_cycle): 32, or the scene's steps where fewer. One rule for
+/// the accuracy check, the sweeps and the Floquet pass.
+int
+samples_per_cycle(const DynamicsScene &d)
+{
+  return std::min(32, d.steps_per_cycle);
+}
+
 /// Newmark with an accuracy: the steps per mesh cycle it asks for at every swept speed (the
 /// estimate for the tables' forcing, as the sweep takes them: NewmarkError::steps from the
 /// scene's least steps, to the sweep's most) must reach it; else the accuracy is refused by its
@@ -327,7 +336,7 @@ check_accuracy(const PairModel &model, double load_torque, const DynamicsScene &
   if (!(d.integrator == Integrator::newmark && d.accuracy > 0))
     return;
   const int          most     = std::max(SweepOptions().most_steps, d.steps_per_cycle);
-  const int          multiple = std::min(32, d.steps_per_cycle);
+  const int          multiple = samples_per_cycle(d);
   const NewmarkError newmark(model, load_torque);
   double             reachable = 0, worst_speed = 0, worst_error = 0;
   for (double w : sweep_speeds(d))
@@ -378,7 +387,7 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
       r.omega        = w;
       r.motor_torque = TE, r.load_torque = TL;
       r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
-      r.samples_per_cycle = std::min(32, d.steps_per_cycle);
+      r.samples_per_cycle = samples_per_cycle(d);
       if (newmark)
         r.steps_per_cycle = newmark->steps(w, d.accuracy, d.steps_per_cycle, r.samples_per_cycle,
                                            std::max(SweepOptions().most_steps, d.steps_per_cycle));
@@ -548,7 +557,7 @@ sweep_tasks(const std::vector<Excitation> &excitations, const DynamicsScene &d,
         o.run.method            = d.integrator;
         o.run.steps_per_cycle   = d.steps_per_cycle;
         o.accuracy              = d.accuracy;
-        o.run.samples_per_cycle = std::min(32, d.steps_per_cycle);
+        o.run.samples_per_cycle = samples_per_cycle(d);
         o.speeds                = sweep_speeds(d);
         if (!up)
           std::reverse(o.speeds.begin(), o.speeds.end());

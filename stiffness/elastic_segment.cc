@@ -71,6 +71,21 @@ machine_need(double need, double have, MPI_Comm comm)
   return {here, Utilities::MPI::min(fits ? 1 : 0, comm) == 1};
 }
 
+void
+require_memory(double need, double have, MPI_Comm comm, const std::string &what,
+               const std::string &advice)
+{
+  const auto [here, fits] = machine_need(need, have, comm);
+  if (fits)
+    return;
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << "elastic segment: " << what << " needs about " << Utilities::MPI::max(here, comm) / 1e9
+      << " GB on a machine with " << Utilities::MPI::min(have, comm) / 1e9 << " GB available. "
+      << advice;
+  throw MemoryRefusal(msg.str());
+}
+
 double
 matrix_bytes_per_dof(unsigned degree)
 {

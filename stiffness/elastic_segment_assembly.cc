@@ -148,19 +148,11 @@ ElasticSegment::Impl::check_assembly_fits() const
   const double need = double(owned.n_elements()) * matrix_bytes_per_dof(options.degree);
   const double have =
       options.memory_available > 0 ? options.memory_available : memory_available_now();
-  const auto [here, fits] = machine_need(need, have, comm);
-  if (!fits)
-    {
-      std::ostringstream msg;
-      msg.precision(3);
-      msg << "elastic segment: " << mesh_file << " has " << dofs.n_dofs()
-          << " degrees of freedom; assembling its stiffness matrix needs about "
-          << Utilities::MPI::max(here, comm) / 1e9 << " GB on a machine with "
-          << Utilities::MPI::min(have, comm) / 1e9
-          << " GB available. Use coarser elements (fewer refinements, larger flank elements) "
-             "or more machines under mpirun";
-      throw MemoryRefusal(msg.str());
-    }
+  require_memory(need, have, comm,
+                 mesh_file + " has " + std::to_string(dofs.n_dofs()) +
+                     " degrees of freedom; assembling its stiffness matrix",
+                 "Use coarser elements (fewer refinements, larger flank elements) or more "
+                 "machines under mpirun");
 }
 
 void

@@ -73,6 +73,12 @@ point(const Vec3 &x)
 std::pair<double, bool>
 machine_need(double need, double have, MPI_Comm comm);
 
+/// Throws MemoryRefusal "elastic segment: <what> needs about <X> GB on a machine with <Y> GB
+/// available. <advice>" unless `need` bytes per process fit (machine_need; collective).
+void
+require_memory(double need, double have, MPI_Comm comm, const std::string &what,
+               const std::string &advice);
+
 /// Bytes of the assembled system per degree of freedom (FE_Q(p) hexahedra): a node couples with
 /// the nodes of the elements around it, (2p + 1)^3 for a vertex, (2p + 1)^2 (p + 1) for an edge
 /// node, (2p + 1) (p + 1)^2 for a face node and (p + 1)^3 for an interior one; per element 1,

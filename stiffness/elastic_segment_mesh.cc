@@ -143,25 +143,17 @@ refine_near_boundaries(const Triangulation<3> &mesh, parallel::shared::Triangula
       std::size_t flagged = 0;
       for (const auto &cell : tria.active_cell_iterators())
         flagged += cell->refine_flag_set() ? 1 : 0; // (a RefinementCase: 7 for isotropic)
-      const double cells_after = double(tria.n_active_cells() + 7 * flagged);
-      const double p           = options.degree;
-      const auto [here, fits] =
-          machine_need(cells_after * 3 * p * p * p * matrix_bytes_per_dof(options.degree) /
-                           Utilities::MPI::n_mpi_processes(comm),
-                       have, comm);
-      if (!fits)
-        {
-          std::ostringstream msg;
-          msg.precision(3);
-          msg << "elastic segment: local refinement pass " << pass + 1 << " of "
-              << options.local_refinements << " would make about " << cells_after
-              << " elements, whose stiffness matrix needs about "
-              << Utilities::MPI::max(here, comm) / 1e9 << " GB on a machine with "
-              << Utilities::MPI::min(have, comm) / 1e9
-              << " GB available. Use fewer refinements (larger elements at the contact) or "
-                 "more machines under mpirun";
-          throw MemoryRefusal(msg.str());
-        }
+      const double       cells_after = double(tria.n_active_cells() + 7 * flagged);
+      const double       p           = options.degree;
+      std::ostringstream what;
+      what.precision(3);
+      what << "local refinement pass " << pass + 1 << " of " << options.local_refinements
+           << " would make about " << cells_after << " elements, whose stiffness matrix";
+      require_memory(cells_after * 3 * p * p * p * matrix_bytes_per_dof(options.degree) /
+                         Utilities::MPI::n_mpi_processes(comm),
+                     have, comm, what.str(),
+                     "Use fewer refinements (larger elements at the contact) or more machines "
+                     "under mpirun");
       tria.execute_coarsening_and_refinement();
     }
 }

@@ -1,6 +1,6 @@
 // The results schema: every dataset the stages write (their cache files, copied into
 // results.h5), named once with its group, shape, units and description. H5Group::write takes
-// the `units` and `description` attributes from here.
+// the `units` and `description` attributes from here; `gearkit --print-results` prints it.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,6 @@
 // The results schema (driver/results_schema.h): every dataset named once, well formed; writes
-// take their units and description from it and refuse a dataset it lacks.
+// take their units and description from it and refuse a dataset it lacks; --print-results.
+#include "driver/driver.h"
 #include "driver/h5_file.h"
 #include "driver/results_schema.h"
 #include "tests/driver/driver_fixture.h"
@@ -178,4 +179,43 @@ TEST_F(ResultsSchemaWrite, AttributesFromTheSchemaAndMistakesRefused)
   const H5Group pair = file.root().group("stiffness/p1");
   for (const char *name : {"K_m", "torque", "lever"})
     EXPECT_FALSE(pair.has(name)) << name;
+}
+
+class ResultsSchemaPrint : public test_data::GearkitRun
+{
+};
+
+TEST_F(ResultsSchemaPrint, TableAndJson)
+{
+  ASSERT_EQ(run({"--print-results"}), 0) << err.str();
+  const std::string  table = out.str();
+  std::istringstream lines(table);
+  std::string        line;
+  std::getline(lines, line);
+  test_data::expect_contains(line, {"group", "dataset", "shape", "units", "description"});
+  std::size_t rows = 0;
+  while (std::getline(lines, line))
+    ++rows;
+  EXPECT_EQ(rows, results_schema().size());
+  test_data::expect_contains(
+      table, {"stiffness/<pair>/error_estimate", "dynamics/<pair>/<excitation>/<sweep>",
+              "train/<train>/meshes/<mesh>", "flanks/<involute pair>/<member>/<side>",
+              "torques x positions", "K_m = F / (lambda (e_L - e_0))"});
+
+  ASSERT_EQ(run({"--print-results", "json"}), 0) << err.str();
+  const std::string json = out.str();
+  EXPECT_EQ(json.rfind("[\n", 0), 0u) << json.substr(0, 100);
+  EXPECT_EQ(json.substr(json.size() - 2), "]\n");
+  test_data::expect_contains(
+      json, {R"({"group": "stiffness/<pair>", "dataset": "mesh_stiffness", "shape": )"
+             R"("torques x positions", "units": "N/m", "description": )"
+             R"x("K_m = F / (lambda (e_L - e_0))"})x"});
+  std::size_t objects = 0;
+  for (std::size_t at = json.find("{\"group\""); at != std::string::npos;
+       at             = json.find("{\"group\"", at + 1))
+    ++objects;
+  EXPECT_EQ(objects, results_schema().size());
+
+  ASSERT_EQ(run({"--help"}), 0);
+  EXPECT_NE(out.str().find("--print-results"), std::string::npos);
 }

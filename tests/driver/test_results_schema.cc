@@ -1,5 +1,7 @@
 // The results schema (driver/results_schema.h): every dataset named once, well formed; writes
 // take their units and description from it and refuse a dataset it lacks; --print-results.
+// (That every case writes only datasets of the schema, with its units and descriptions:
+// tests/cases/check_results_schema.py on every case's results.h5.)
 #include "driver/driver.h"
 #include "driver/h5_file.h"
 #include "driver/results_schema.h"

@@ -2,6 +2,7 @@
 
 #include "base/blas_kernels.h"
 #include "driver/cache.h"
+#include "driver/results_schema.h"
 #include "driver/stages.h"
 #include "stiffness/elastic_segment.h"
 
@@ -349,6 +350,8 @@ options:
   --help                  this text
   --list-cases            the scene files that ship with gearkit, with what each computes
   --print-parameters      every scene parameter with its default, allowed values and help
+  --print-results [json]  every dataset results.h5 can hold: group, dataset, shape, units and
+                          description (a table; json: an array of objects, for scripts)
   --output-root DIR       where scene result folders go (default: out)
   --plot                  also draw the PNG pictures of the results (scripts/plot_results.py)
 
@@ -396,6 +399,12 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
       else if (a == "--print-parameters")
         {
           print_parameters(out);
+          return 0;
+        }
+      else if (a == "--print-results")
+        {
+          const bool json = i + 1 < args.size() && args[i + 1] == "json";
+          print_results_schema(out, json ? "json" : "table");
           return 0;
         }
       else if (a == "--output-root")

@@ -29,7 +29,8 @@ struct RunSummary
 RunSummary
 run_scene(const Scene &scene, const std::string &output_root, std::ostream &log);
 
-/// The command line: gearkit [--help] [--print-parameters] [--output-root DIR] [--plot] SCENE.
+/// The command line: gearkit [--help] [--list-cases] [--print-parameters] [--print-results [json]]
+/// [--output-root DIR] [--plot] SCENE.
 /// Returns the process exit code; messages go to out / err.
 int
 gearkit_main(const std::vector<std::string> &args, std::ostream &out, std::ostream &err);

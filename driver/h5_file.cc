@@ -1,5 +1,6 @@
 #include "driver/h5_file.h"
 
+#include "driver/results_schema.h"
 #include "geometry/types.h"
 
 #include <cerrno>
@@ -7,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 namespace gearkit
 {
@@ -90,12 +92,21 @@ write_string_attribute(hid_t object, const std::string &name, const std::string 
   check(H5Awrite(attr.id(), type.id(), &text), "write attribute " + name, object);
 }
 
+/// A dataset with its attributes from the results schema's entry (`schema`, `name`).
 template <typename T>
 void
-write_dataset(hid_t group, const std::string &path, const std::string &name, hid_t mem_type,
-              hid_t file_type, const std::vector<T> &values, const std::vector<hsize_t> &shape,
-              const std::string &units, const std::string &description)
+write_dataset(hid_t group, const std::string &path, const std::string &schema,
+              const std::string &name, hid_t mem_type, hid_t file_type,
+              const std::vector<T> &values, const std::vector<hsize_t> &shape, int variant)
 {
+  const ResultDataset &entry       = result_dataset(schema, name);
+  const std::string    description = result_description(entry, variant);
+  const bool           integers    = std::is_integral_v<T>;
+  if (result_rank(entry) != shape.size() || result_integers(entry) != integers)
+    throw std::logic_error("HDF5 dataset " + path + name + ": written as " +
+                           std::to_string(shape.size()) + "-dimensional " +
+                           (integers ? "integers" : "doubles") + ", but its schema entry " +
+                           schema + "/" + name + " has the shape '" + entry.shape + "'");
   hsize_t count = 1;
   for (hsize_t s : shape)
     count *= s;
@@ -112,7 +123,7 @@ write_dataset(hid_t group, const std::string &path, const std::string &name, hid
   if (count > 0)
     check(H5Dwrite(set.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
           "write dataset " + path + name, group);
-  write_string_attribute(set.id(), "units", units);
+  write_string_attribute(set.id(), "units", entry.units);
   write_string_attribute(set.id(), "description", description);
 }
 
@@ -174,9 +185,10 @@ H5Handle::close()
   return status;
 }
 
-H5Group::H5Group(H5Handle h, std::string path)
+H5Group::H5Group(H5Handle h, std::string path, std::string schema_path)
     : handle(std::move(h))
     , group_path(std::move(path))
+    , schema(std::move(schema_path))
 {
 }
 
@@ -203,35 +215,40 @@ H5Group::group(const std::string &name) const
       has(name) ? H5Gopen2(handle.id(), name.c_str(), H5P_DEFAULT)
                 : H5Gcreate2(handle.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   return H5Group(H5Handle(check(id, "group " + group_path + name, handle.id()), H5Gclose),
-                 group_path + name + "/");
+                 group_path + name + "/", schema.empty() ? name : schema + "/" + name);
+}
+
+H5Group
+H5Group::group(const std::string &name, const std::string &placeholder) const
+{
+  H5Group g = group(name);
+  g.schema  = schema.empty() ? placeholder : schema + "/" + placeholder;
+  return g;
 }
 
 void
 H5Group::write(const std::string &name, const std::vector<double> &values,
-               const std::vector<hsize_t> &shape, const std::string &units,
-               const std::string &description) const
+               const std::vector<hsize_t> &shape, int variant) const
 {
   for (double v : values)
     if (!std::isfinite(v))
       throw std::runtime_error("refusing to write a non-finite value to " + group_path + name);
-  write_dataset(handle.id(), group_path, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values, shape,
-                units, description);
+  write_dataset(handle.id(), group_path, schema, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values,
+                shape, variant);
 }
 
 void
-H5Group::write(const std::string &name, double value, const std::string &units,
-               const std::string &description) const
+H5Group::write(const std::string &name, double value) const
 {
-  write(name, std::vector<double>{value}, {}, units, description);
+  write(name, std::vector<double>{value}, {});
 }
 
 void
 H5Group::write(const std::string &name, const std::vector<int> &values,
-               const std::vector<hsize_t> &shape, const std::string &units,
-               const std::string &description) const
+               const std::vector<hsize_t> &shape, int variant) const
 {
-  write_dataset(handle.id(), group_path, name, H5T_NATIVE_INT, H5T_STD_I32LE, values, shape, units,
-                description);
+  write_dataset(handle.id(), group_path, schema, name, H5T_NATIVE_INT, H5T_STD_I32LE, values, shape,
+                variant);
 }
 
 void

@@ -1,5 +1,6 @@
 // A small RAII layer over the HDF5 C API: files, groups, datasets with `units` and
-// `description` attributes, and whole-group copies between files (stage cache -> results.h5).
+// `description` attributes (from the results schema, driver/results_schema.h), and whole-group
+// copies between files (stage cache -> results.h5).
 #pragma once
 
 #include <hdf5.h>
@@ -47,21 +48,33 @@ hdf5_error_cause();
 hid_t
 hdf5_check(hid_t id, const std::string &what, hid_t where = -1);
 
-/// A group (or the root of a file) to write to and read from.
+/// A group (or the root of a file) to write to and read from. It knows its pattern in the
+/// results schema (driver/results_schema.h): its path with placeholders for the names that vary.
 class H5Group
 {
 public:
-  explicit H5Group(H5Handle handle, std::string path = "/");
+  explicit H5Group(H5Handle handle, std::string path = "/", std::string schema_path = "");
 
-  /// Child group, created when missing.
+  /// Child group, created when missing; `name` is a literal level of its schema pattern
+  /// ("error_estimate").
   H5Group
   group(const std::string &name) const;
+  /// The same for a name that varies: `placeholder` stands for it in the schema pattern
+  /// (`out.group(pair.name, "<pair>")`).
+  H5Group
+  group(const std::string &name, const std::string &placeholder) const;
   bool
   has(const std::string &name) const;
   const std::string &
   path() const
   {
     return group_path;
+  }
+  /// The group's pattern in the results schema ("stiffness/<pair>"; "" for the root).
+  const std::string &
+  schema_path() const
+  {
+    return schema;
   }
   /// The file the group lives in.
   std::string
@@ -72,17 +85,19 @@ public:
     return handle.id();
   }
 
-  /// Dataset of doubles with the given shape (row-major); shape {} writes a scalar.
+  /// Dataset of doubles with the given shape (row-major); shape {} writes a scalar. Its `units`
+  /// and `description` attributes come from the results schema's entry (schema_path(), name);
+  /// `variant` picks the alternative of a description that offers a choice ("{a|b}": 0 or 1).
+  /// A dataset the schema lacks, or one whose rank or type differs from its entry, is a
+  /// std::logic_error.
   void
   write(const std::string &name, const std::vector<double> &values,
-        const std::vector<hsize_t> &shape, const std::string &units,
-        const std::string &description) const;
+        const std::vector<hsize_t> &shape, int variant = -1) const;
   void
-  write(const std::string &name, double value, const std::string &units,
-        const std::string &description) const;
+  write(const std::string &name, double value) const;
   void
   write(const std::string &name, const std::vector<int> &values, const std::vector<hsize_t> &shape,
-        const std::string &units, const std::string &description) const;
+        int variant = -1) const;
   /// A string attribute on this group.
   void
   attribute(const std::string &name, const std::string &value) const;
@@ -102,6 +117,7 @@ public:
 private:
   H5Handle    handle;
   std::string group_path;
+  std::string schema;
 };
 
 /// An HDF5 file. Writing goes to `<path>.tmp`; commit() closes it and renames it into place, so

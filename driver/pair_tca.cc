@@ -118,23 +118,15 @@ write_tca_tables(const TcaResult &r, const TcaScene &t, const PairMembers &membe
   std::transform(te.begin(), te.end(), te_pitch.begin(), [&](double e) { return e * r_p; });
 
   if (members.centre_distance > 0)
-    g.write("centre_distance", members.centre_distance, "m",
-            "centre distance of the analysis (with its error added and the offset: the axes' "
-            "distance in the face's middle section)");
-  g.write("pitch_radius", r_p, "m",
-          "pinion radius of transmission_error_pitch: operating pitch radius (parallel axes) or "
-          "mean pitch radius (bevel)");
-  g.write("pinion_angle", phi, {N}, "rad", "pinion rotation phi (counter-clockwise)");
-  g.write("gear_angle", psi, {N}, "rad", "gear rotation psi in its driven sense");
-  g.write("transmission_error", te, {N}, "rad",
-          "unloaded static transmission error e_0 = phi - (z2/z1) psi, pinion radians (zero for "
-          "perfect involutes at zero backlash)");
-  g.write("transmission_error_pitch", te_pitch, {N}, "m",
-          "e_0 as displacement at the pitch point, e_0 times pitch_radius");
-  g.write("peak_to_peak", te_max - te_min, "rad", "peak-to-peak of e_0");
+    g.write("centre_distance", members.centre_distance);
+  g.write("pitch_radius", r_p);
+  g.write("pinion_angle", phi, {N});
+  g.write("gear_angle", psi, {N});
+  g.write("transmission_error", te, {N});
+  g.write("transmission_error_pitch", te_pitch, {N});
+  g.write("peak_to_peak", te_max - te_min);
   const std::vector<double> h = mesh_order_amplitudes(te_pitch, t.options.mesh_cycles, t.harmonics);
-  g.write("harmonics", h, {h.size()}, "m",
-          "amplitudes of mesh orders 0..N of e_0 at the pitch point (order 0: mean)");
+  g.write("harmonics", h, {h.size()});
   if (t.hunting)
     {
       // The signal repeats after the hunting cycle: its fundamental is 1 / revolutions pinion
@@ -145,46 +137,31 @@ write_tca_tables(const TcaResult &r, const TcaScene &t, const PairMembers &membe
       std::vector<double> order(amplitude.size());
       for (std::size_t k = 0; k < order.size(); ++k)
         order[k] = double(k) / revolutions;
-      g.write("shaft_order", order, {order.size()}, "1",
-              "pinion shaft orders of shaft_order_spectrum, k / (pinion revolutions in the "
-              "hunting cycle): mesh order m is pinion order m z1, gear order n is pinion "
-              "order n z1 / z2");
-      g.write("shaft_order_spectrum", amplitude, {amplitude.size()}, "m",
-              "amplitudes of e_0 at the pitch point over the hunting cycle at the pinion shaft "
-              "orders in shaft_order (0 .. z1 x harmonics)");
+      g.write("shaft_order", order, {order.size()});
+      g.write("shaft_order_spectrum", amplitude, {amplitude.size()});
     }
-  g.write("pairs_in_contact", touching, {N}, "1", "tooth pairs within the contact tolerance");
-  g.write("mean_pairs_in_contact", pairs_sum / n, "1",
-          "mean number of touching pairs (the contact ratio for conjugate flanks)");
-  g.write("leading", leading, {N}, "1", "pair slot that carries the contact");
-  g.write("pinion_tooth", ptooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
-  g.write("gear_tooth", gtooth, {N, S}, "1", "gear tooth of each pair slot (-1: empty)");
-  g.write("edge_contact", edge, {N, S}, "1", "1 where the closest point lies on a flank edge");
-  g.write("separation", sep, {N, S}, "m",
-          "normal gap of each pair at the gear's position (0 for touching pairs)");
-  g.write("pinion_u", u1, {N, S}, "1", "pinion flank profile parameter");
-  g.write("pinion_v", v1, {N, S}, "1", "pinion flank face parameter");
-  g.write("gear_u", u2, {N, S}, "1", "gear flank profile parameter");
-  g.write("gear_v", v2, {N, S}, "1", "gear flank face parameter");
-  g.write("contact_point", X, {N, S, 3}, "m", "contact (closest) point, global frame");
-  g.write("normal_pinion", np, {N, S, 3}, "1", "n_p: pinion flank outward normal, global");
-  g.write("normal_gear", ng, {N, S, 3}, "1", "n_g: gear flank outward normal, global");
-  g.write("lambda_pinion", lp, {N, S, 3}, "m", "lambda_p = r_p x n_p about the pinion centre");
-  g.write("lambda_gear", lg, {N, S, 3}, "m", "lambda_g = r_g x n_g about the gear centre");
-  g.write("relative_curvature_min", kmin, {N, S}, "1/m",
-          "smaller principal relative curvature of the flanks at the contact (0: line contact)");
-  g.write("relative_curvature_max", kmax, {N, S}, "1/m",
-          "larger principal relative curvature of the flanks at the contact");
-  g.write("contact_ellipse_direction", major, {N, S, 3}, "1",
-          "direction of the contact ellipse's major axis (smaller relative curvature), global");
-  g.write("contact_ellipse_axes", axes, {N, S, 2}, "m",
-          "semi-axes (major, minor) of the contact ellipse at the elastic approach "
-          "elastic_approach, sqrt(2 delta / k); 1 m where the contact is a line");
-  g.write("contact_in_gear_frame", ellipse_gear, {N, S, 3, 3}, "m",
-          "contact point and the contact ellipse's major and minor semi-axis vectors in the gear "
-          "member's own frame (axis z), for the contact pattern on the gear flank");
-  g.write("elastic_approach", t.elastic_approach, "m",
-          "elastic approach delta of the contact ellipses");
+  g.write("pairs_in_contact", touching, {N});
+  g.write("mean_pairs_in_contact", pairs_sum / n);
+  g.write("leading", leading, {N});
+  g.write("pinion_tooth", ptooth, {N, S});
+  g.write("gear_tooth", gtooth, {N, S});
+  g.write("edge_contact", edge, {N, S});
+  g.write("separation", sep, {N, S});
+  g.write("pinion_u", u1, {N, S});
+  g.write("pinion_v", v1, {N, S});
+  g.write("gear_u", u2, {N, S});
+  g.write("gear_v", v2, {N, S});
+  g.write("contact_point", X, {N, S, 3});
+  g.write("normal_pinion", np, {N, S, 3});
+  g.write("normal_gear", ng, {N, S, 3});
+  g.write("lambda_pinion", lp, {N, S, 3});
+  g.write("lambda_gear", lg, {N, S, 3});
+  g.write("relative_curvature_min", kmin, {N, S});
+  g.write("relative_curvature_max", kmax, {N, S});
+  g.write("contact_ellipse_direction", major, {N, S, 3});
+  g.write("contact_ellipse_axes", axes, {N, S, 2});
+  g.write("contact_in_gear_frame", ellipse_gear, {N, S, 3, 3});
+  g.write("elastic_approach", t.elastic_approach);
   return {te_max - te_min, pairs_sum / n};
 }
 

@@ -131,41 +131,22 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
                          : x.period > 0 ? 0
                                         : 1);
   // a diverged speed has no results: zeros there, which `status` (or `diverged`) masks
-  const std::string none = " (0 where status is 2: diverged, no result)";
-  g.write("speed", rpm, {n}, "rpm", "pinion speed, in the order swept");
-  g.write("status", status, {n}, "1",
-          "per speed: 0 steady (the motion repeats: period), 1 not steady within the settle "
-          "cycles (or not checked), 2 diverged (|delta_D - E_t| past " +
-              std::to_string(int(SweepOptions().divergence_factor)) +
-              " times the static deflection, half backlash and E_t peak-to-peak together, or not "
-              "finite: the results "
-              "at that speed are 0 and no maximum or mean may take them; the next speed started "
-              "from the static equilibrium)");
-  g.write("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n}, "m",
-          "DTE delta_D peak-to-peak" + none);
-  g.write("dte_rms", column(p, &SweepPoint::dte_rms), {n}, "m",
-          "RMS of delta_D about its mean" + none);
-  g.write("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n}, "m",
-          "delta_D - E_t peak-to-peak (the mesh deflection)" + none);
-  g.write("max_mesh_force", column(p, &SweepPoint::max_force), {n}, "N", "largest F_m" + none);
-  g.write("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n}, "1",
-          "largest F_m over the static mesh force" + none);
-  g.write("contact_loss", column(p, &SweepPoint::contact_loss), {n}, "1",
-          "share of the recorded time out of contact" + none);
-  g.write("period", period, {n}, "mesh cycles",
-          "the motion repeats after (0: not steady, or diverged)");
-  g.write("settled_cycles", settled, {n}, "mesh cycles", "spent settling (diverged: until then)");
-  g.write("diverged", diverged, {n}, "1", "1: the response diverged (status 2)");
-  g.write("diverged_time", diverged_time, {n}, "s",
-          "time run at that speed (settling, records) when the response passed the divergence "
-          "bound (0: not diverged)");
+  g.write("speed", rpm, {n});
+  g.write("status", status, {n});
+  g.write("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n});
+  g.write("dte_rms", column(p, &SweepPoint::dte_rms), {n});
+  g.write("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n});
+  g.write("max_mesh_force", column(p, &SweepPoint::max_force), {n});
+  g.write("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n});
+  g.write("contact_loss", column(p, &SweepPoint::contact_loss), {n});
+  g.write("period", period, {n});
+  g.write("settled_cycles", settled, {n});
+  g.write("diverged", diverged, {n});
+  g.write("diverged_time", diverged_time, {n});
   if (p.front().steps_per_cycle > 0) // Newmark
     {
-      g.write("steps_per_cycle", steps, {n}, "1", "Newmark steps per mesh cycle");
-      g.write("error_estimate", column(p, &SweepPoint::error_estimate), {n}, "1",
-              "estimated RMS error of delta_D over its RMS (dynamics/newmark_error.h: the larger "
-              "of the tables' forcing's and the recorded harmonics')" +
-                  none);
+      g.write("steps_per_cycle", steps, {n});
+      g.write("error_estimate", column(p, &SweepPoint::error_estimate), {n});
     }
 
   // the DTE spectrum: every speed recorded the same whole periods
@@ -176,22 +157,20 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
     spectrum.insert(spectrum.end(), x.spectrum.begin(), x.spectrum.end());
   for (std::size_t k = 0; k < bins; ++k)
     order.push_back(double(k) / R);
-  g.write("spectrum_order", order, {bins}, "1",
-          "mesh orders of dte_spectrum (resolution 1 / recorded mesh cycles)");
-  g.write("dte_spectrum", spectrum, {n, bins}, "m",
-          "amplitude of delta_D at each speed and mesh order (order 0: the mean)" + none);
+  g.write("spectrum_order", order, {bins});
+  g.write("dte_spectrum", spectrum, {n, bins});
 
   int k = 0;
   for (const SweepPoint &x : p)
     if (!x.series_time.empty())
       {
-        const H5Group s = g.group("time_series").group(std::to_string(k++));
+        const H5Group s = g.group("time_series").group(std::to_string(k++), "<k>");
         const hsize_t m = x.series_time.size();
-        s.write("speed", x.speed * 60 / (2 * pi), "rpm", "pinion speed");
-        s.write("time", x.series_time, {m}, "s", "from the start of the record (mesh phase 0)");
-        s.write("dte", x.series_dte, {m}, "m", "delta_D");
-        s.write("transmission_error", x.series_transmission_error, {m}, "m", "E_t");
-        s.write("mesh_force", x.series_force, {m}, "N", "F_m");
+        s.write("speed", x.speed * 60 / (2 * pi));
+        s.write("time", x.series_time, {m});
+        s.write("dte", x.series_dte, {m});
+        s.write("transmission_error", x.series_transmission_error, {m});
+        s.write("mesh_force", x.series_force, {m});
       }
 }
 
@@ -221,17 +200,13 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
                  const H5Group &aligned, std::ostream &log, const std::string &what)
 {
   const hsize_t n = sd.change.size();
-  g.write("iterations", double(n), "1", "TCA runs at a deflected position");
-  g.write("converged", double(sd.converged), "1",
-          "1: the static motion changed by less than 1e-3 of its size in the last iteration");
-  g.write("change", sd.change, {n}, "m",
-          "per iteration, the change of the gear's motion: at its body point plus its rotation "
-          "times the largest mean moment arm");
+  g.write("iterations", double(n));
+  g.write("converged", double(sd.converged));
+  g.write("change", sd.change, {n});
   const std::vector<double> t(sd.motion.translation.data(), sd.motion.translation.data() + 3),
       w(sd.motion.rotation.data(), sd.motion.rotation.data() + 3);
-  g.write("gear_translation", t, {3}, "m",
-          "static motion of the gear relative to the pinion: of its point at the global origin");
-  g.write("gear_rotation", w, {3}, "rad", "static rotation of the gear relative to the pinion");
+  g.write("gear_translation", t, {3});
+  g.write("gear_rotation", w, {3});
   const Misalignment &s = tca.misalignment;
   Misalignment        added;
   added.offset                = m.offset - s.offset;
@@ -240,15 +215,13 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
   added.intersecting_angle    = m.intersecting_angle - s.intersecting_angle;
   added.pinion_axial_shift    = m.pinion_axial_shift - s.pinion_axial_shift;
   added.gear_axial_shift      = m.gear_axial_shift - s.gear_axial_shift;
-  for (auto [name, value, units] : {std::tuple{"offset", added.offset, "m"},
-                                    {"centre_distance_error", added.centre_distance_error, "m"},
-                                    {"crossing_angle", added.crossing_angle, "rad"},
-                                    {"intersecting_angle", added.intersecting_angle, "rad"},
-                                    {"pinion_axial_shift", added.pinion_axial_shift, "m"},
-                                    {"gear_axial_shift", added.gear_axial_shift, "m"}})
-    g.write(name, value, units,
-            "the misalignment the deflection adds to the scene's (TCA/<pair>), as assembly.h "
-            "defines it");
+  for (auto [name, value] : {std::pair{"offset", added.offset},
+                             {"centre_distance_error", added.centre_distance_error},
+                             {"crossing_angle", added.crossing_angle},
+                             {"intersecting_angle", added.intersecting_angle},
+                             {"pinion_axial_shift", added.pinion_axial_shift},
+                             {"gear_axial_shift", added.gear_axial_shift}})
+    g.write(name, value);
   const H5Group tables       = g.group("tca");
   const double  peak_to_peak = write_tca_tables(deflected, tca, moved, tables).first;
   const Vec2    shift        = pattern_centre(tables) - pattern_centre(aligned);
@@ -257,11 +230,8 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
   for (const TcaPosition &p : deflected.positions)
     mean_shift += p.transmission_error;
   mean_shift /= double(e0.size());
-  g.write("pattern_shift", std::vector<double>{shift.x(), shift.y()}, {2}, "m",
-          "shift of the mean contact point of the leading pairs on the gear flank, (radial, "
-          "axial) in the gear's frame, deflected minus as assembled");
-  g.write("transmission_error_mean_shift", mean_shift, "rad",
-          "mean e_0 deflected minus as assembled");
+  g.write("pattern_shift", std::vector<double>{shift.x(), shift.y()}, {2});
+  g.write("transmission_error_mean_shift", mean_shift);
   log << "  " << what << ": system deflection " << (sd.converged ? "converged" : "NOT converged")
       << " in " << n << " TCA runs: ";
   if (moved.centre_distance == 0) // bevel
@@ -299,14 +269,10 @@ write_modes(const H5Group &g, const PairModel &model, const std::string &label, 
     for (double f : modes.frequency)
       rpm.push_back(resonance_speed_rpm(f, z1, order));
   const hsize_t nm = modes.frequency.size();
-  g.write("mode_frequency", modes.frequency, {nm}, "Hz",
-          "linear modes of the free DOFs at the mean mesh of the " + label +
-              " excitation (a torque-driven train: the first is its rigid rotation)");
-  g.write("mode_mesh_energy", modes.mesh_energy, {nm}, "1",
-          "share of each mode's strain energy in the mesh");
-  g.write("pinion_teeth", double(z1), "1", "mesh orders: z_p per pinion turn");
-  g.write("resonance_speed", rpm, {3, nm}, "rpm",
-          "pinion speed at which mesh order 1, 2, 3 meets each mode");
+  g.write("mode_frequency", modes.frequency, {nm}, label == "theoretical" ? 0 : 1);
+  g.write("mode_mesh_energy", modes.mesh_energy, {nm});
+  g.write("pinion_teeth", double(z1));
+  g.write("resonance_speed", rpm, {3, nm});
   log << "  " << pair << ": modes with mesh energy above 5 %:";
   for (std::size_t i = 0; i < nm; ++i)
     if (modes.mesh_energy[i] > 0.05)
@@ -398,14 +364,9 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
         unstable += " " + std::to_string(int(std::lround(rpm.back())));
     }
   const hsize_t n = rpm.size();
-  g.write("speed", rpm, {n}, "rpm", "pinion speed");
-  g.write("spectral_radius", radius, {n}, "1",
-          "largest Floquet multiplier modulus of the mesh in contact over one period of the "
-          "tables (> 1: parametric resonance, vibrations grow until contact is lost)");
-  g.write("unstable", grows, {n}, "1",
-          "1: spectral radius above 1 by more than 1e-6 (undamped, the stable multipliers lie "
-          "on the unit circle, and a torque-driven train's rigid rotation gives 1: 1 to "
-          "rounding; dynamics/modes.h)");
+  g.write("speed", rpm, {n});
+  g.write("spectral_radius", radius, {n});
+  g.write("unstable", grows, {n});
   if (!unstable.empty())
     log << "  " << what << ": parametrically unstable in contact (Floquet) at [rpm]:" << unstable
         << "\n";
@@ -513,21 +474,20 @@ build_excitation(const char *label, const PairScene &pair, const DynamicsScene &
   SystemDeflection        sd = system_deflection(p, tables_at, so);
   Excitation              e{label, std::move(sd.model), sd.equilibrium, d.torque, sd.load_torque};
   const MeshCycleSamples &tables = e.model->tables();
-  const H5Group           eg     = g.group(label);
+  const H5Group           eg     = g.group(label, "<excitation>");
   if (so.max_iterations > 0)
     write_deflection(eg.group("deflection"), sd, tca, misaligned, moved, deflected, aligned, log,
                      pair.name + " " + label);
-  eg.write("static_mesh_force", e.s.mesh_force, "N", "F_m in the static equilibrium");
-  eg.write("static_deflection", e.s.deflection, "m", "delta_D - E_t - b_c, static");
-  eg.write("load_torque", e.TL, "N m", "T_L balancing the pinion torque");
-  eg.write("excitation_cycles", double(K), "mesh cycles", "period of the tables");
+  eg.write("static_mesh_force", e.s.mesh_force);
+  eg.write("static_deflection", e.s.deflection);
+  eg.write("load_torque", e.TL);
+  eg.write("excitation_cycles", double(K));
   const auto  &et   = tables.transmission_error;
   const double wrap = et.front() - et.back();
   double       step = 0;
   for (std::size_t i = 1; i < et.size(); ++i)
     step = std::max(step, std::abs(et[i] - et[i - 1]));
-  eg.write("wrap_step", wrap, "m",
-           "E_t(period start) - E_t(last sample): the step where the tables wrap");
+  eg.write("wrap_step", wrap);
   log << "  " << pair.name << " " << label << ": " << K << " mesh cycle" << (K > 1 ? "s" : "")
       << " of " << n << " samples per period";
   if (measured)
@@ -577,7 +537,7 @@ write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> 
              const std::vector<std::vector<SweepPoint>> &results, std::size_t n_tasks,
              const DynamicsScene &d, const std::string &pair, const H5Group &g, std::ostream &log)
 {
-  const H5Group eg  = g.group(e.label);
+  const H5Group eg  = g.group(e.label, "<excitation>");
   double        dlf = 0, unreached_error = 0;
   std::string   unsteady, diverged, unreached;
   for (int dir = 0; dir < 2; ++dir)
@@ -586,7 +546,7 @@ write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> 
       std::vector<SweepPoint> points;
       for (std::size_t t = first_task[j]; t < first_task[j + 1]; ++t)
         points.insert(points.end(), results[t].begin(), results[t].end());
-      write_sweep(eg.group(dir == 0 ? "up" : "down"), points);
+      write_sweep(eg.group(dir == 0 ? "up" : "down", "<sweep>"), points);
       for (const auto &pt : points)
         {
           const std::string at = " " + std::to_string(int(std::lround(pt.speed * 60 / (2 * pi)))) +
@@ -644,7 +604,7 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
 
       // 2. The excitations: models on the TCA's tables, static equilibria, the modes.
       std::vector<Excitation> excitations;
-      const H5Group           g = out.group(pair.name);
+      const H5Group           g = out.group(pair.name, "<pair>");
       for (const char *label : {"theoretical", "measured"})
         if (std::string(label) == "measured" ? d.measured : d.theoretical)
           excitations.push_back(
@@ -660,8 +620,8 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       const std::vector<SweepTask> tasks = sweep_tasks(excitations, d, first_task);
       const auto results = run_everywhere(tasks, "dynamics " + pair.name + ": speed");
       for (const Excitation &e : excitations)
-        write_stability(g.group(e.label).group("stability"), *e.model, d, e.TE, e.TL, log,
-                        pair.name + " " + e.label);
+        write_stability(g.group(e.label, "<excitation>").group("stability"), *e.model, d, e.TE,
+                        e.TL, log, pair.name + " " + e.label);
 
       // 4. The sweeps' results.
       for (std::size_t x = 0; x < excitations.size(); ++x)

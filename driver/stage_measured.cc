@@ -45,12 +45,12 @@ void
 write_measured(const MeasuredMember &m, const std::vector<std::vector<double>> &deviation,
                const H5Group &out)
 {
-  out.write("number_of_teeth", std::vector<int>{m.teeth}, {}, "1", "number of teeth z");
+  out.write("number_of_teeth", std::vector<int>{m.teeth}, {});
   for (std::size_t i = 0; i < m.flanks.size(); ++i)
     {
       const MeasuredFlank &f = m.flanks[i];
-      const H5Group        g = out.group(flank_group_name(f));
-      g.write("tooth", std::vector<int>{f.tooth}, {}, "1", "tooth index");
+      const H5Group        g = out.group(flank_group_name(f), "tooth_<k>_<side>");
+      g.write("tooth", std::vector<int>{f.tooth}, {});
       g.attribute("side", to_string(f.side));
       const std::vector<hsize_t> shape = {hsize_t(f.n_profile), hsize_t(f.n_face), 3};
       std::vector<double>        p, n;
@@ -58,16 +58,11 @@ write_measured(const MeasuredMember &m, const std::vector<std::vector<double>> &
         p.insert(p.end(), q.data(), q.data() + 3);
       for (const Vec3 &q : f.normals)
         n.insert(n.end(), q.data(), q.data() + 3);
-      g.write("points", p, shape, "m",
-              "measured points [profile][face][xyz] in the member frame (axis z; bevel: cone "
-              "apex at the origin), profile root to tip, face -z end to +z end (bevel: toe "
-              "to heel)");
+      g.write("points", p, shape);
       if (!n.empty())
-        g.write("normals", n, shape, "1", "unit outward normals (probe directions)");
+        g.write("normals", n, shape);
       if (!deviation.empty() && !deviation[i].empty())
-        g.write("deviation", deviation[i], {shape[0], shape[1]}, "m",
-                "measured minus theoretical flank along the theoretical outward normal "
-                "(positive = material added)");
+        g.write("deviation", deviation[i], {shape[0], shape[1]});
     }
 }
 
@@ -94,7 +89,7 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
   for (const PairScene &pair : scene.pairs)
     {
       const MeasuredScene &m  = scene.measured.at(pair.name);
-      const H5Group        pg = out.group(pair.name);
+      const H5Group        pg = out.group(pair.name, "<pair>");
       pg.attribute("source", source_name(m.source));
       if (m.source == MeasuredSource::none)
         continue;
@@ -155,7 +150,7 @@ run_measured_stage(const Scene &scene, const Upstream &upstream, const H5Group &
             }
           log << "  " << pair.name << " " << member.name << ": " << measured.flanks.size()
               << " flanks (" << source_name(m.source) << ")\n";
-          write_measured(measured, deviation, pg.group(member.name));
+          write_measured(measured, deviation, pg.group(member.name, "<member>"));
         }
     }
 }

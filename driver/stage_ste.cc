@@ -23,7 +23,7 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
       const TcaScene   &t = scene.tca.at(pair.name);
       const PairMembers members =
           theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
-      const H5Group g = out.group(pair.name);
+      const H5Group g = out.group(pair.name, "<pair>");
       g.attribute("method", "classical TCA on the theoretical flanks");
       // errors of the contact search (e.g. its bound on the work) name the pair's section
       const auto tca = [&](const MemberPointer &pinion, const MemberPointer &gear, bool measured,
@@ -54,11 +54,9 @@ run_ste_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, 
         {
           gm.attribute("method", "paper mode (the seed's point-cloud method) on the measured "
                                  "flanks");
-          gm.write("paper_tolerance", paper.tolerance, "m",
-                   "contact tolerance E = sqrt((a/2)^2 + (b/2)^2 + (r theta)^2)");
-          gm.write("paper_points", double(paper.points), "1", "points in all clouds");
-          gm.write("seed_ste", paper.seed_ste, {paper.seed_ste.size()}, "rad",
-                   "the seed's STE, relative to the first position");
+          gm.write("paper_tolerance", paper.tolerance);
+          gm.write("paper_points", double(paper.points));
+          gm.write("seed_ste", paper.seed_ste, {paper.seed_ste.size()});
         }
       else
         gm.attribute("method", "fast discrete-point: exact contact search on the flanks "

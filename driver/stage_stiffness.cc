@@ -135,7 +135,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             t.at(tca.options.start_angle + 2 * pi / z1 * i / tca.options.positions_per_mesh));
       const auto    segments = loaded_segments(positions, z1, members.gear->teeth(),
                                                segment_gap_per_module * member_module(pair));
-      const H5Group g        = out.group(pair.name);
+      const H5Group g        = out.group(pair.name, "<pair>");
       // The tables on the scene's mesh, and for the error estimate on one of twice its element
       // sizes at the flanks (FeScene::error_estimate).
       // Both tables are computed before either is written: a failure leaves no half group.
@@ -176,42 +176,29 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
           {
             const auto &[table, info]       = tables[is_pinion ? 0 : 1];
             const SegmentChoice    &segment = is_pinion ? segments.first : segments.second;
-            const H5Group           m       = group.group(is_pinion ? "pinion" : "gear");
-            const std::vector<int> &teeth   = table.grid_spec().teeth;
+            const H5Group           m     = group.group(is_pinion ? "pinion" : "gear", "<member>");
+            const std::vector<int> &teeth = table.grid_spec().teeth;
             const hsize_t           n = table.points().size(), loads = table.load_points().size();
             std::vector<double>     S(table.matrix().data(), table.matrix().data() + n * loads);
-            m.write("compliance", S, {loads, n}, "m/N",
-                    std::string("structural compliance S(i, j) (column-major: load j on the "
-                                "load points, response i on the grid), ") +
-                        (fe.analytic_near_field
-                             ? "the point-force half-space displacement of the same tooth removed"
-                             : "half-space part below the response depth removed"));
-            m.write("teeth", teeth, {teeth.size()}, "1", "member teeth that can carry load");
+            // the description's variant: 0 the analytic near field, 1 a response depth
+            m.write("compliance", S, {loads, n}, fe.analytic_near_field ? 0 : 1);
+            m.write("teeth", teeth, {teeth.size()});
             const std::vector<int> &grid = table.grid_teeth();
-            m.write("grid_teeth", grid, {grid.size()}, "1",
-                    "member teeth with grid points (responses; the compliance's rows)");
-            m.write("cyclic_tooth", double(table.grid_spec().cyclic_tooth), "1",
-                    "-1: unit loads on every tooth that can carry load; else the tooth that "
-                    "alone carries them, read for every tooth turned");
-            m.write("cyclic_reach", double(table.grid_teeth().size() / 2), "1",
-                    "with a cyclic tooth: the teeth either side of it with responses");
-            m.write("central_tooth", double(segment.central), "1",
-                    "tooth in the middle of the segment");
-            m.write("hexahedra", double(info.hexahedra), "1", "elements of the segment mesh");
-            m.write("dofs", double(info.dofs), "1", "degrees of freedom");
+            m.write("grid_teeth", grid, {grid.size()});
+            m.write("cyclic_tooth", double(table.grid_spec().cyclic_tooth));
+            m.write("cyclic_reach", double(table.grid_teeth().size() / 2));
+            m.write("central_tooth", double(segment.central));
+            m.write("hexahedra", double(info.hexahedra));
+            m.write("dofs", double(info.dofs));
             if (fe.analytic_near_field)
-              m.write("min_near_field_radius", info.min_near_field_radius, "m",
-                      "smallest radius within which a unit load's field is analytic");
+              m.write("min_near_field_radius", info.min_near_field_radius);
             else
               {
-                m.write("response_depth", info.depth, "m", "depth of the finite-element responses");
-                m.write("shallow_points", double(info.shallow_points), "1",
-                        "grid points read at half the chord through the tooth (thinner than "
-                        "twice the response depth there)");
-                m.write("min_response_depth", info.min_depth, "m", "smallest response depth used");
+                m.write("response_depth", info.depth);
+                m.write("shallow_points", double(info.shallow_points));
+                m.write("min_response_depth", info.min_depth);
               }
-            m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds, "s",
-                    "mesh, assembly, factorisation and unit-load solves");
+            m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds);
             log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << label << ": "
                 << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << loads
                 << " unit loads (";
@@ -247,7 +234,7 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
             const H5Group cg = g.group("coarse");
             cg.attribute("method", "the same tables on a mesh of coarser elements at the flanks, "
                                    "fillets and other flanks (error estimate)");
-            cg.write("coarsening", factor, "1", "element sizes of the coarse mesh / the scene's");
+            cg.write("coarsening", factor);
             write(tables, cg, " (coarse)");
             break;
           }
@@ -345,14 +332,13 @@ run_reference_mode(const PairScene &pair, const FeScene &fe, const LoadedScene &
   const H5Group rg = g.group("reference");
   rg.attribute("method", "reference mode: both members meshed per position, refined "
                          "about its contact cells, finite elements alone");
-  rg.write("position", lc.reference_positions, {P}, "1", "index of the position in the mesh cycle");
-  rg.write("pinion_angle", phi, {P}, "rad", "pinion rotation phi");
-  rg.write("transmission_error_loaded", by_torque(eL), {M, P}, "rad",
-           "e_L per torque and position (pinion radians, gear held)");
-  rg.write("mesh_stiffness", by_torque(K), {M, P}, "N/m", "K_m = F / (lambda (e_L - e_0))");
-  rg.write("normal_force", by_torque(F), {M, P}, "N", "total normal force F");
-  rg.write("dofs", dofs, {P}, "1", "degrees of freedom of both members");
-  rg.write("seconds", seconds, {P}, "s", "mesh, assembly, factorisation, solves");
+  rg.write("position", lc.reference_positions, {P});
+  rg.write("pinion_angle", phi, {P});
+  rg.write("transmission_error_loaded", by_torque(eL), {M, P});
+  rg.write("mesh_stiffness", by_torque(K), {M, P});
+  rg.write("normal_force", by_torque(F), {M, P});
+  rg.write("dofs", dofs, {P});
+  rg.write("seconds", seconds, {P});
 }
 
 namespace
@@ -387,39 +373,26 @@ write_mesh_cycle(const MeshCycleContact &c, const std::vector<double> &torques,
                  const std::vector<double> &refused, const H5Group &g)
 {
   const hsize_t N = c.positions, M = c.torques, S = c.slots, C = c.cells;
-  g.write("torque", torques, {M}, "N m", "pinion torques (those solved)");
+  g.write("torque", torques, {M});
   if (!refused.empty())
     {
-      g.write("refused_torque", refused, {refused.size()}, "N m",
-              "torques of the scene the loaded contact could not solve (attribute "
-              "stiffness/<pair>/warnings: why)");
+      g.write("refused_torque", refused, {refused.size()});
     }
-  g.write("pinion_angle", c.pinion_angle, {N}, "rad", "pinion rotation phi");
-  g.write("transmission_error_unloaded", c.unloaded_te, {N}, "rad", "e_0 (pinion radians)");
-  g.write("transmission_error_loaded", c.loaded_te, {M, N}, "rad",
-          "e_L per torque and position (pinion radians, gear held)");
-  g.write("mesh_stiffness", c.mesh_stiffness, {M, N}, "N/m", "K_m = F / (lambda (e_L - e_0))");
-  g.write("normal_force", c.normal_force, {M, N}, "N", "total normal force F");
-  g.write("lever", c.lever, {M, N}, "m", "lambda = torque / F (pinion base radius for spur)");
-  g.write("pair_force", c.pair_force, {M, N, S}, "N",
-          "normal force per pair slot of the unloaded TCA at the same position");
-  g.write("pinion_tooth", c.slot_tooth, {N, S}, "1", "pinion tooth of each pair slot (-1: empty)");
-  g.write("peak_pressure", c.peak_pressure, {M, N}, "Pa", "largest cell pressure");
-  g.write("interior_peak_pressure", c.interior_peak_pressure, {M, N}, "Pa",
-          "largest pressure on cells off the flanks' edges (Hertz's where the flanks are "
-          "smooth)");
-  g.write("edge_load_share", c.edge_load_share, {M, N}, "1",
-          "edge contact: force on cells at an edge of either flank (tip, face end, start "
-          "of the working flank) / F");
-  g.write("edge_position", c.edge_position, {M, N, 2}, "m",
-          "the most loaded edge cell's pinion point: radius, axial position (0: none)");
-  g.write("gap_band", c.gap_band, {M, N}, "m",
-          "the contact zone's band fitted to the load (the zone reaches where the "
-          "unloaded gap opens to this)");
-  g.write("contact_cells", c.cell_pressure, {M, N, C, 4}, "mixed",
-          "per cell: pinion tooth (-1: unused slot), pinion flank u, v, pressure [Pa]");
-  g.write("mean_pairs_in_contact", c.mean_pairs_in_contact, "1",
-          "unloaded contact ratio (eps_gamma for conjugate flanks)");
+  g.write("pinion_angle", c.pinion_angle, {N});
+  g.write("transmission_error_unloaded", c.unloaded_te, {N});
+  g.write("transmission_error_loaded", c.loaded_te, {M, N});
+  g.write("mesh_stiffness", c.mesh_stiffness, {M, N});
+  g.write("normal_force", c.normal_force, {M, N});
+  g.write("lever", c.lever, {M, N});
+  g.write("pair_force", c.pair_force, {M, N, S});
+  g.write("pinion_tooth", c.slot_tooth, {N, S});
+  g.write("peak_pressure", c.peak_pressure, {M, N});
+  g.write("interior_peak_pressure", c.interior_peak_pressure, {M, N});
+  g.write("edge_load_share", c.edge_load_share, {M, N});
+  g.write("edge_position", c.edge_position, {M, N, 2});
+  g.write("gap_band", c.gap_band, {M, N});
+  g.write("contact_cells", c.cell_pressure, {M, N, C, 4});
+  g.write("mean_pairs_in_contact", c.mean_pairs_in_contact);
 }
 
 /// The loaded contact of one pair's mesh cycle at the scene's torques, written to `g`: a torque
@@ -516,13 +489,10 @@ run_error_estimate(const PairScene &pair, const FeScene &fe, const LoadedScene &
                         "that mesh failed) plus |K(cells) - K(cells / 2)| of the contact "
                         "cells (half across and along); an upper estimate wherever the "
                         "error falls at least linearly with the size");
-  e.write("mesh_stiffness", err.mesh_stiffness, {M, n}, "N/m", "estimated error of K_m");
-  e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n}, "N/m",
-          "|K(h) - K(c h)| / (c - 1)");
-  e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n}, "N/m",
-          "|K(cells) - K(cells / 2)|");
-  e.write("transmission_error_loaded", err.loaded_te, {M, n}, "rad",
-          "estimated error of e_L (the same two changes)");
+  e.write("mesh_stiffness", err.mesh_stiffness, {M, n});
+  e.write("mesh_stiffness_elements", err.stiffness_by_elements, {M, n});
+  e.write("mesh_stiffness_cells", err.stiffness_by_cells, {M, n});
+  e.write("transmission_error_loaded", err.loaded_te, {M, n});
   for (std::size_t k = 0; k < M; ++k)
     {
       double largest = 0, mean = 0;
@@ -548,16 +518,12 @@ write_iso(const PairScene &pair, const PairMembers &members, const H5Group &g)
   if (bevel)
     g.attribute("iso_basis", "virtual cylindrical gears of the mean point (ISO 10300-1)");
   const double b = iso.face_width;
-  g.write("transverse_contact_ratio", iso.input.transverse_contact_ratio, "1",
-          "eps_alpha of the geometry");
-  g.write("overlap_ratio", iso.overlap_ratio, "1", "eps_beta of the geometry");
+  g.write("transverse_contact_ratio", iso.input.transverse_contact_ratio);
+  g.write("overlap_ratio", iso.overlap_ratio);
   const IsoMeshStiffness s = iso6336_mesh_stiffness(iso.input);
-  g.write("iso_c_prime", s.c_prime * 1e9 * b, "N/m",
-          "ISO 6336-1 method B single stiffness c' times the face width");
-  g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b, "N/m",
-          "ISO 6336-1 method B mesh stiffness c_gamma_alpha times the face width");
-  g.write("iso_c_th", s.c_th * 1e9 * b, "N/m",
-          "ISO 6336-1 theoretical single stiffness c'_th times the face width");
+  g.write("iso_c_prime", s.c_prime * 1e9 * b);
+  g.write("iso_c_gamma_alpha", s.c_gamma_alpha * 1e9 * b);
+  g.write("iso_c_th", s.c_th * 1e9 * b);
 }
 
 /// The measured flanks' loaded contact (stiffness/<pair>/measured) on the theoretical pair's
@@ -615,7 +581,7 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
       lo.covered      = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
       lo.threads      = cores_per_process();
       lo.communicator = MPI_COMM_WORLD; // the positions shared among the processes
-      const H5Group g = out.group(pair.name);
+      const H5Group g = out.group(pair.name, "<pair>");
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
       std::string       pair_warnings; // of the loaded contact: refused torques, a lost estimate
       const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);

@@ -130,19 +130,14 @@ void
 write_lines(const H5Group &g, const LineTable &t)
 {
   const hsize_t n = t.expected.size();
-  g.write("expected", t.expected, {n}, "Hz",
-          "where a line is looked for: harmonic x GMF + sideband x the shaft's frequency (harmonic "
-          "0: the shaft's own orders)");
-  g.write("frequency", t.frequency, {n}, "Hz",
-          "the largest bin's frequency within the band around it, interpolated (spectral_peak)");
-  g.write("amplitude", t.amplitude, {n}, "N", "its amplitude");
-  g.write("floor", t.floor, {n}, "N", "median amplitude within 10 band widths (the local floor)");
-  g.write("found", t.found, {n}, "1",
-          "1: a local maximum inside the band, 4 times above the floor (base/spectrum.h "
-          "spectral_line_near)");
-  g.write("harmonic", t.harmonic, {n}, "1", "GMF harmonic (0: shaft orders)");
-  g.write("sideband", t.sideband, {n}, "1", "sideband order (signed), or the shaft order");
-  g.write("shaft", t.shaft, {n}, "1", "body index of the shaft frequency (-1: none)");
+  g.write("expected", t.expected, {n});
+  g.write("frequency", t.frequency, {n});
+  g.write("amplitude", t.amplitude, {n});
+  g.write("floor", t.floor, {n});
+  g.write("found", t.found, {n});
+  g.write("harmonic", t.harmonic, {n});
+  g.write("sideband", t.sideband, {n});
+  g.write("shaft", t.shaft, {n});
 }
 
 /// Every contact of a mesh's flank sides, located by the integrator (the same at any output
@@ -158,13 +153,12 @@ write_contacts(const H5Group &g, const std::vector<TrainImpact> &contacts)
       touch.push_back(c.touch), separation.push_back(c.separation);
       peak.push_back(c.peak), peak_time.push_back(c.peak_time), impulse.push_back(c.impulse);
     }
-  g.write("side", side, {n}, "1", "+1 drive flanks, -1 coast flanks");
-  g.write("touch", touch, {n}, "s", "located first touch");
-  g.write("separation", separation, {n}, "s", "located separation (-1: touching at the end)");
-  g.write("peak", peak, {n}, "N", "the side's largest force in the contact (located)");
-  g.write("peak_time", peak_time, {n}, "s", "its time");
-  g.write("impulse", impulse, {n}, "N s",
-          "integral of the side's force over the contact (Simpson's rule on every step piece)");
+  g.write("side", side, {n});
+  g.write("touch", touch, {n});
+  g.write("separation", separation, {n});
+  g.write("peak", peak, {n});
+  g.write("peak_time", peak_time, {n});
+  g.write("impulse", impulse, {n});
 }
 /// The run's time series, the energy balance and the integrator's figures into train/<name>.
 void
@@ -189,30 +183,21 @@ write_series(const TrainModel &model, const TrainScene &train, const TrainResult
       angle.insert(angle.end(), r.angle[b].begin(), r.angle[b].end());
       speed.insert(speed.end(), r.speed[b].begin(), r.speed[b].end());
     }
-  g.write("time", r.t, {n}, "s", "sample times");
-  g.write("inertia", inertia, {nb}, "kg m^2",
-          "each body's inertia about its axis (a crank-slider's varying part not included)");
-  g.write("initial_speed", initial, {nb}, "rad/s", "each body's speed at t = 0");
-  g.write("angle", angle, {nb, n}, "rad", "body angles (in the sense the train runs forward)");
-  g.write("speed", speed, {nb, n}, "rad/s", "body speeds");
-  g.write("work", r.work, {n}, "J",
-          "work of the torques (constant-speed drives included) and of a finite-element "
-          "K_m's variation");
-  g.write("kinetic", r.kinetic, {n}, "J", "kinetic energy");
-  g.write("potential", r.potential, {n}, "J", "elastic energy stored in the contacts");
-  g.write("dissipated", r.dissipated, {n}, "J", "energy dissipated by the contact damping");
-  g.write("energy_error", r.energy_error, "1",
-          "max |work - kinetic change - potential change - dissipated| over the run, "
-          "relative to the largest of the terms");
-  g.write("steps", double(r.steps), "1", "CVODE steps");
+  g.write("time", r.t, {n});
+  g.write("inertia", inertia, {nb});
+  g.write("initial_speed", initial, {nb});
+  g.write("angle", angle, {nb, n});
+  g.write("speed", speed, {nb, n});
+  g.write("work", r.work, {n});
+  g.write("kinetic", r.kinetic, {n});
+  g.write("potential", r.potential, {n});
+  g.write("dissipated", r.dissipated, {n});
+  g.write("energy_error", r.energy_error);
+  g.write("steps", double(r.steps));
   g.attribute("integrator", r.method == TrainIntegrator::bdf ? "bdf" : "adams");
-  g.write("events", double(r.events), "1",
-          "contact changes located (a side's or a tooth pair's touch and separation)");
-  g.write("seconds", seconds, "s", "wall time of the run");
-  g.write("anti_alias", double(train.run.anti_alias), "1",
-          "1: angles, speeds, S and forces recorded without aliasing (B-spline averages "
-          "decimated through a 70 dB low-pass: flat to 0.4 x the sample rate, nothing folds "
-          "back from above half of it); 0: the solution's values at the sample times");
+  g.write("events", double(r.events));
+  g.write("seconds", seconds);
+  g.write("anti_alias", double(train.run.anti_alias));
 }
 
 /// Where the spectra's interval starts (the first sample at or after it) and the reference
@@ -235,7 +220,7 @@ write_mesh(const Scene &scene, const TrainScene &train, const TrainModel &model,
   const TrainMesh      &m   = model.meshes[i];
   const TrainMeshScene &s   = train.meshes[i];
   const MeshSeries     &ms  = r.meshes[i];
-  const H5Group         mg  = g.group("meshes").group(m.name);
+  const H5Group         mg  = g.group("meshes").group(m.name, "<mesh>");
   const double          a   = train_mesh_centre_distance(scene, s);
   const auto [pinion, gear] = scene.pair(s.pair).involute_members(
       operating_centre_distance(a, scene.tca.at(s.pair).misalignment));
@@ -243,57 +228,44 @@ write_mesh(const Scene &scene, const TrainScene &train, const TrainModel &model,
   mg.attribute("pair", s.pair);
   mg.attribute("pinion_body", s.pinion_body);
   mg.attribute("gear_body", s.gear_body);
-  mg.write("centre_distance", a, "m",
-           "nominal centre distance (the TCA's centre distance error comes on top)");
-  mg.write("circumferential_backlash", circumferential_backlash(*pinion, *gear, a), "m",
-           "of the nominal teeth on the operating pitch circles at that centre distance");
-  mg.write("band_half_width", m.gear_base_radius * (coast - drive) / 2, "m",
-           "S at drive contact of pairing 0 (minus it at coast contact): half the normal "
-           "backlash for perfect flanks");
-  mg.write("pinion_base_radius", m.pinion_base_radius, "m", "r_b1");
-  mg.write("gear_base_radius", m.gear_base_radius, "m", "r_b2");
-  mg.write("pinion_angle_0", m.pinion_angle_0, "rad", "pinion angle on its body");
-  mg.write("gear_angle_0", m.gear_angle_0, "rad", "gear angle on its body");
+  mg.write("centre_distance", a);
+  mg.write("circumferential_backlash", circumferential_backlash(*pinion, *gear, a));
+  mg.write("band_half_width", m.gear_base_radius * (coast - drive) / 2);
+  mg.write("pinion_base_radius", m.pinion_base_radius);
+  mg.write("gear_base_radius", m.gear_base_radius);
+  mg.write("pinion_angle_0", m.pinion_angle_0);
+  mg.write("gear_angle_0", m.gear_angle_0);
   if (!m.mesh_stiffness.empty())
     {
       const hsize_t       N = m.mesh_stiffness.size();
       std::vector<double> phi;
       for (hsize_t j = 0; j < N; ++j)
         phi.push_back(m.mesh_stiffness_start + 2 * pi / pinion->teeth() * double(j) / double(N));
-      mg.write("mesh_stiffness", m.mesh_stiffness, {N}, "N/m",
-               "the stiffness stage's K_m on each side's deepest pair (stiffness = finite "
-               "elements), over one mesh cycle");
-      mg.write("mesh_stiffness_pinion_angle", phi, {N}, "rad", "its pinion angles phi");
+      mg.write("mesh_stiffness", m.mesh_stiffness, {N});
+      mg.write("mesh_stiffness_pinion_angle", phi, {N});
       log << "  " << train.name << "/" << m.name << ": finite-element K_m, mean "
           << std::accumulate(m.mesh_stiffness.begin(), m.mesh_stiffness.end(), 0.0) / double(N) /
                  1e6
           << " N/um\n";
     }
-  mg.write("relative", ms.relative, {n}, "m",
-           "S = r_b2 ((z1/z2) phi + c - psi) along the line of action (> 0: pinion "
-           "ahead; drive contact at +band_half_width, coast at -band_half_width)");
-  mg.write("force", ms.force, {n}, "N", "normal force, drive flanks + and coast -");
-  mg.write("force_magnitude", ms.magnitude, {n}, "N",
-           "drive + coast flanks' force (the spectra's signal)");
-  mg.write("pairs", ms.pairs, {n}, "1", "tooth pairs touching");
-  mg.write("impacts", double(ms.impacts), "1", "first touches of a side after separation");
-  mg.write("drive_impacts", double(ms.drive_impacts), "1", "of them on the drive flanks");
-  mg.write("coast_impacts", double(ms.coast_impacts), "1", "of them on the coast flanks");
-  mg.write("first_contact", ms.first_contact, "s", "time of the first touch (-1: none)");
-  mg.write("max_force", ms.max_force, "N",
-           "largest force of a flank side over the continuous solution (at every "
-           "integrator step's end and every located root of its rate dF/dt)");
-  mg.write("max_force_time", ms.max_force_time, "s", "its time");
+  mg.write("relative", ms.relative, {n});
+  mg.write("force", ms.force, {n});
+  mg.write("force_magnitude", ms.magnitude, {n});
+  mg.write("pairs", ms.pairs, {n});
+  mg.write("impacts", double(ms.impacts));
+  mg.write("drive_impacts", double(ms.drive_impacts));
+  mg.write("coast_impacts", double(ms.coast_impacts));
+  mg.write("first_contact", ms.first_contact);
+  mg.write("max_force", ms.max_force);
+  mg.write("max_force_time", ms.max_force_time);
   write_contacts(mg.group("contacts"), ms.contacts);
-  mg.write("max_penetration", ms.max_penetration, "m",
-           "deepest penetration of a tooth pair (the curves reach tooth pair recess "
-           "beyond the conjugate touch)");
+  mg.write("max_penetration", ms.max_penetration);
   if (ms.max_penetration > 0.5 * train.curves.recess)
     log << "  WARNING " << train.name << " " << m.name << ": a tooth pair penetrates "
         << ms.max_penetration * 1e6 << " um, more than half the tooth pair curves' "
         << "recess (" << train.curves.recess * 1e6 << " um): pairs may leave their "
         << "curves still touching (raise Train/" << train.name << "/Contact/tooth pair recess)\n";
-  mg.write("gmf", f.mesh[i], "Hz", "tooth mesh frequency (kinematics)");
+  mg.write("gmf", f.mesh[i]);
 
   // the spectrum only where the train runs steadily: the highest harmonic looked for may sweep
   // at most two bins over the window (a run-up, a coast-down or a transient smears every line:
@@ -321,17 +293,12 @@ write_mesh(const Scene &scene, const TrainScene &train, const TrainModel &model,
   if (train.spectrum_max_frequency > 0)
     bins = std::min(bins, std::size_t(train.spectrum_max_frequency / spectrum.resolution) + 1);
   const H5Group sg = mg.group("spectrum");
-  sg.write("start", r.t[iv.from], "s", "the spectrum's record starts here (to the end)");
-  sg.write("resolution", spectrum.resolution, "Hz", "bin spacing");
-  sg.write("gmf_sweep", sweep, "Hz",
-           "how far the highest harmonic looked for moves over the record (at most 2 "
-           "bins: a spectrum is written only then)");
+  sg.write("start", r.t[iv.from]);
+  sg.write("resolution", spectrum.resolution);
+  sg.write("gmf_sweep", sweep);
   sg.write("amplitude",
            std::vector<double>(spectrum.amplitude.begin(), spectrum.amplitude.begin() + long(bins)),
-           {hsize_t(bins)}, "N",
-           "single-sided amplitude of the force magnitude (drive + coast flanks, recorded "
-           "as its own channel: without aliasing when anti-alias = true; Hann window, "
-           "mean removed), bins 0, resolution, 2 resolution, ...");
+           {hsize_t(bins)});
   const LineTable lines = find_lines(spectrum, f.mesh[i], f.shaft, train);
   write_lines(sg.group("lines"), lines);
   if (!lines.expected.empty() && lines.found[0])
@@ -353,11 +320,9 @@ write_spectrogram(const TrainScene &train, const TrainModel &model, const TrainR
                   train.spectrogram_overlap, Window::hamming, train.spectrogram_max_frequency);
   const H5Group sg = g.group("spectrogram");
   sg.attribute("mesh", model.meshes[0].name);
-  sg.write("time", sp.time, {hsize_t(sp.time.size())}, "s", "window centres");
-  sg.write("frequency", sp.frequency, {hsize_t(sp.frequency.size())}, "Hz", "bins");
-  sg.write("amplitude", sp.amplitude, {hsize_t(sp.time.size()), hsize_t(sp.frequency.size())}, "N",
-           "amplitude of the first mesh's force magnitude per window (Hamming) and "
-           "frequency");
+  sg.write("time", sp.time, {hsize_t(sp.time.size())});
+  sg.write("frequency", sp.frequency, {hsize_t(sp.frequency.size())});
+  sg.write("amplitude", sp.amplitude, {hsize_t(sp.time.size()), hsize_t(sp.frequency.size())});
 }
 } // namespace
 
@@ -374,7 +339,7 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
       const TrainResult r    = simulate_train(model, run);
       const double      seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const H5Group g = out.group(train.name);
+      const H5Group g = out.group(train.name, "<train>");
       write_series(model, train, r, seconds, g);
 
       // 2. Kinematic frequencies at the reference body's mean speed over the spectrum interval.
@@ -387,14 +352,10 @@ run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out
           std::accumulate(w.begin() + long(iv.from), w.end(), 0.0) / double(w.size() - iv.from);
       const TrainFrequencies f = train_frequencies(model, iv.reference, iv.mean_speed);
       const H5Group          k = g.group("kinematics");
-      k.write("reference_body", double(iv.reference), "1",
-              "index of the body whose speed sets them");
-      k.write("reference_speed", iv.mean_speed, "rad/s",
-              "its mean speed over the spectrum interval");
-      k.write("shaft_frequency", f.shaft, {hsize_t(model.bodies.size())}, "Hz",
-              "every body's rotation frequency");
-      k.write("mesh_frequency", f.mesh, {hsize_t(f.mesh.size())}, "Hz",
-              "every mesh's tooth mesh frequency (GMF): pinion teeth x its shaft frequency");
+      k.write("reference_body", double(iv.reference));
+      k.write("reference_speed", iv.mean_speed);
+      k.write("shaft_frequency", f.shaft, {hsize_t(model.bodies.size())});
+      k.write("mesh_frequency", f.mesh, {hsize_t(f.mesh.size())});
       log << "  " << train.name << ": " << (r.method == TrainIntegrator::bdf ? "BDF" : "Adams")
           << " (damping time constant " << damping_time_constant(model) * 1e6 << " us), " << r.steps
           << " steps, " << r.events << " events in " << seconds << " s; energy error "

@@ -4,6 +4,7 @@
 #include "driver/stages.h"
 
 #include "driver/cache.h"
+#include "driver/results_schema.h"
 #include "driver/source_hashes.h"
 
 #include <algorithm>
@@ -32,7 +33,9 @@ file_contents(const std::string &path)
 /// The driver files every stage runs: the scene reading (its pairs and TCA sections every stage
 /// uses), the stage graph, the cache and HDF5 files, the pairs' members and TCA set-up. Each
 /// stage adds its own stage file and section files (StageDefinition::code); driver.cc, main.cc,
-/// the notes and the other stages' files enter no other stage's key.
+/// the notes and the other stages' files enter no other stage's key. Of the results schema the
+/// interface: each stage's key holds its own entries as they are written (stage_key), so that an
+/// entry of another stage recomputes nothing.
 const std::vector<std::string> &
 driver_code_of_every_stage()
 {
@@ -42,7 +45,7 @@ driver_code_of_every_stage()
       "driver/pair_tca.cc",  "driver/pair_tca.h",      "driver/scene.cc",
       "driver/scene.h",      "driver/scene_flanks.cc", "driver/scene_parameters.h",
       "driver/scene_tca.cc", "driver/scene_text.cc",   "driver/scene_text.h",
-      "driver/stages.cc",    "driver/stages.h"};
+      "driver/stages.cc",    "driver/stages.h",        "driver/results_schema.h"};
   return files;
 }
 } // namespace
@@ -210,6 +213,15 @@ stage_key(const Scene &scene, const std::string &stage)
     text += "code " + code + " " + source_hashes().at(code) + "\n";
   for (const std::string &code : s.code)
     text += "code " + code + " " + source_hashes().at(code) + "\n";
+  // the stage's datasets in the results schema, their units and descriptions as its cache file
+  // holds them
+  for (const ResultDataset &d : results_schema())
+    if (d.group.rfind(s.name + "/", 0) == 0)
+      {
+        text += "result " + d.group + " " + d.name + " " + d.shape + " " + d.units + "\n";
+        for (const std::string &description : result_descriptions(d))
+          text += "  " + description + "\n";
+      }
   for (const std::string &section : s.sections)
     {
       const auto it = scene.sections.find(section);

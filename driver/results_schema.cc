@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <ostream>
 #include <stdexcept>
@@ -204,16 +205,13 @@ sweep()
   };
 }
 
-std::vector<ResultDataset>
-schema()
-{
-  std::vector<ResultDataset> all;
-  const auto add = [&all](const std::string &group, const std::vector<Entry> &entries) {
-    for (const Entry &e : entries)
-      all.push_back({group, e.name, e.shape, e.units, e.description});
-  };
+/// The schema gathers the groups stage by stage: add(group pattern, its datasets).
+using Add = std::function<void(const std::string &, const std::vector<Entry> &)>;
 
-  // Stage flanks (stage_flanks.cc): involute pairs
+/// Stage flanks (stage_flanks.cc): involute pairs
+void
+add_flanks(const Add &add)
+{
   add("flanks/<involute pair>",
       {
           {"working_pressure_angle", "scalar", "rad",
@@ -338,8 +336,12 @@ schema()
           {"modified_roll_2c", "scalar", "1", "2C"},
           {"modified_roll_6d", "scalar", "1", "6D"},
       });
+}
 
-  // Stage measured (stage_measured.cc)
+/// Stage measured (stage_measured.cc)
+void
+add_measured(const Add &add)
+{
   add("measured/<pair>/<member>",
       {
           {"number_of_teeth", "scalar, integer", "1", "number of teeth z"},
@@ -355,8 +357,12 @@ schema()
            "measured minus theoretical flank along the theoretical outward normal (positive = "
            "material added)"},
       });
+}
 
-  // Stage ste (stage_ste.cc, pair_tca.cc)
+/// Stage ste (stage_ste.cc, pair_tca.cc)
+void
+add_ste(const Add &add)
+{
   add("ste/<pair>", tca_tables());
   add("ste/<pair>/measured", tca_tables());
   add("ste/<pair>/measured",
@@ -366,16 +372,24 @@ schema()
           {"paper_points", "scalar", "1", "points in all clouds"},
           {"seed_ste", "positions", "rad", "the seed's STE, relative to the first position"},
       });
+}
 
-  // Stage compliance (stage_stiffness.cc)
+/// Stage compliance (stage_stiffness.cc)
+void
+add_compliance(const Add &add)
+{
   add("compliance/<pair>/<member>", compliance_table());
   add("compliance/<pair>/coarse",
       {
           {"coarsening", "scalar", "1", "element sizes of the coarse mesh / the scene's"},
       });
   add("compliance/<pair>/coarse/<member>", compliance_table());
+}
 
-  // Stage stiffness (stage_stiffness.cc)
+/// Stage stiffness (stage_stiffness.cc)
+void
+add_stiffness(const Add &add)
+{
   add("stiffness/<pair>", mesh_cycle());
   add("stiffness/<pair>",
       {
@@ -410,8 +424,12 @@ schema()
           {"seconds", "reference positions", "s", "mesh, assembly, factorisation, solves"},
       });
   add("stiffness/<pair>/measured", mesh_cycle());
+}
 
-  // Stage dynamics (stage_dynamics.cc)
+/// Stage dynamics (stage_dynamics.cc)
+void
+add_dynamics(const Add &add)
+{
   add("dynamics/<pair>",
       {
           // variant: the first excitation's
@@ -478,8 +496,12 @@ schema()
           {"transmission_error", "samples", "m", "E_t"},
           {"mesh_force", "samples", "N", "F_m"},
       });
+}
 
-  // Stage train (stage_train.cc)
+/// Stage train (stage_train.cc)
+void
+add_train(const Add &add)
+{
   add("train/<train>",
       {
           {"time", "samples", "s", "sample times"},
@@ -596,6 +618,23 @@ schema()
           {"amplitude", "windows x bins", "N",
            "amplitude of the first mesh's force magnitude per window (Hamming) and frequency"},
       });
+}
+
+std::vector<ResultDataset>
+schema()
+{
+  std::vector<ResultDataset> all;
+  const Add add = [&all](const std::string &group, const std::vector<Entry> &entries) {
+    for (const Entry &e : entries)
+      all.push_back({group, e.name, e.shape, e.units, e.description});
+  };
+  add_flanks(add);
+  add_measured(add);
+  add_ste(add);
+  add_compliance(add);
+  add_stiffness(add);
+  add_dynamics(add);
+  add_train(add);
   return all;
 }
 } // namespace

@@ -257,6 +257,14 @@ def stiffness_rows(name, g, base_radius=None):
     return rows
 
 
+def cell_pressure_spread(g, t):
+    """The loaded contact cells' pressure over all positions at torque t: median / 90th
+    percentile (where no position's peak is free of an edge)."""
+    cells = g["contact_cells"][t][..., 3]
+    loaded = cells[cells > 0]
+    return f"{number(np.median(loaded), 'Pa')} / {number(np.percentile(loaded, 90), 'Pa')}"
+
+
 def pressure_rows(label, g, t):
     """The flank interior's largest contact pressure (Hertz's) from the positions whose largest
     pressure is on no flank edge; the edge-contact positions apart, with their (singular,
@@ -271,12 +279,10 @@ def pressure_rows(label, g, t):
                      f"{number(interior[k], 'Pa')} at position {k}; "
                      f"{stats(interior[~edge], 'Pa')} over {int((~edge).sum())} of {edge.size}"])
     elif "interior_peak_pressure" in g:
-        cells = g["contact_cells"][t][..., 3]
-        loaded = cells[cells > 0]
         rows.append([label, "largest contact pressure in the flank interior: not separable "
                      "(every position's largest pressure is on a flank-edge cell); the loaded "
                      "cells' pressure over all positions, median / 90th percentile",
-                     f"{number(np.median(loaded), 'Pa')} / {number(np.percentile(loaded, 90), 'Pa')}"])
+                     cell_pressure_spread(g, t)])
     if edge.any():
         where = ", ".join(f"{k}: {g['peak_pressure'][t][k] * 1e-6:.0f}"
                           for k in np.nonzero(edge)[0][:10])
@@ -460,11 +466,8 @@ def glance_rows(f):
                 if edge.any():
                     pressure += f" ({int(edge.sum())} edge positions apart)"
             elif "interior_peak_pressure" in g:
-                cells = g["contact_cells"][t][..., 3]
-                loaded = cells[cells > 0]
-                pressure = (f"every position on an edge; cells' median / 90th percentile "
-                            f"{number(np.median(loaded), 'Pa')} / "
-                            f"{number(np.percentile(loaded, 90), 'Pa')}")
+                pressure = ("every position on an edge; cells' median / 90th percentile "
+                            + cell_pressure_spread(g, t))
             rows.append([esc(pair), eps, e0, f"{torque:g} N m",
                          f"{number(pp, 'rad')} ({', '.join(f'{a * 1e6:.3g}' for a in orders)})",
                          stats(g["mesh_stiffness"][t], "N/m"), pressure, dlf])

@@ -201,4 +201,19 @@ contact_tables(const H5Group &ste)
   t.positions = shape[0], t.slots = shape[1];
   return t;
 }
+
+Vec2
+contact_pattern_centre(const H5Group &tables)
+{
+  std::vector<hsize_t> shape;
+  const auto           X    = tables.read_doubles("contact_in_gear_frame", &shape);
+  const auto           lead = tables.read_ints("leading");
+  Vec2                 c    = Vec2::Zero();
+  for (std::size_t i = 0; i < shape[0]; ++i)
+    {
+      const std::size_t at = ((i * shape[1] + std::size_t(std::max(lead[i], 0))) * 3) * 3;
+      c += Vec2(std::hypot(X[at], X[at + 1]), X[at + 2]);
+    }
+  return c / double(shape[0]);
+}
 } // namespace gearkit

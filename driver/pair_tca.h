@@ -38,4 +38,9 @@ ContactTables
 contact_tables(const TcaResult &r);
 ContactTables
 contact_tables(const H5Group &g);
+
+/// Mean contact point of the leading pairs on the gear flank, (radius, axial) in the gear's
+/// frame [m], from the tables in `g` (write_tca_tables).
+Vec2
+contact_pattern_centre(const H5Group &g);
 } // namespace gearkit

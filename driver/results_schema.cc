@@ -124,7 +124,7 @@ compliance_table()
   };
 }
 
-/// The loaded contact over one mesh cycle (stage_stiffness.cc write_mesh_cycle):
+/// The loaded contact over one mesh cycle (results_stiffness.cc write_mesh_cycle):
 /// stiffness/<pair> and its measured/.
 std::vector<Entry>
 mesh_cycle()

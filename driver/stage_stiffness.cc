@@ -3,6 +3,8 @@
 // measured flanks), then the loaded contact over the mesh cycle for every torque: loaded TE
 // e_L, mesh stiffness K_m, load per tooth pair and the contact pressure on the cells.
 #include "driver/pair_members.h"
+#include "driver/results_compliance.h"
+#include "driver/results_stiffness.h"
 #include "driver/stages.h"
 #include "geometry/measured_flank.h"
 #include "stiffness/iso6336.h"
@@ -174,31 +176,11 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       auto write = [&](const Tables &tables, const H5Group &group, const std::string &label) {
         for (const bool is_pinion : {true, false})
           {
-            const auto &[table, info]       = tables[is_pinion ? 0 : 1];
-            const SegmentChoice    &segment = is_pinion ? segments.first : segments.second;
-            const H5Group           m     = group.group(is_pinion ? "pinion" : "gear", "<member>");
-            const std::vector<int> &teeth = table.grid_spec().teeth;
-            const hsize_t           n = table.points().size(), loads = table.load_points().size();
-            std::vector<double>     S(table.matrix().data(), table.matrix().data() + n * loads);
-            // the description's variant: 0 the analytic near field, 1 a response depth
-            m.write("compliance", S, {loads, n}, fe.analytic_near_field ? 0 : 1);
-            m.write("teeth", teeth, {teeth.size()});
-            const std::vector<int> &grid = table.grid_teeth();
-            m.write("grid_teeth", grid, {grid.size()});
-            m.write("cyclic_tooth", double(table.grid_spec().cyclic_tooth));
-            m.write("cyclic_reach", double(table.grid_teeth().size() / 2));
-            m.write("central_tooth", double(segment.central));
-            m.write("hexahedra", double(info.hexahedra));
-            m.write("dofs", double(info.dofs));
-            if (fe.analytic_near_field)
-              m.write("min_near_field_radius", info.min_near_field_radius);
-            else
-              {
-                m.write("response_depth", info.depth);
-                m.write("shallow_points", double(info.shallow_points));
-                m.write("min_response_depth", info.min_depth);
-              }
-            m.write("seconds", info.mesh_seconds + info.setup_seconds + info.solve_seconds);
+            const auto &[table, info]    = tables[is_pinion ? 0 : 1];
+            const SegmentChoice &segment = is_pinion ? segments.first : segments.second;
+            write_compliance(group.group(is_pinion ? "pinion" : "gear", "<member>"), table, info,
+                             segment.central, fe.analytic_near_field);
+            const hsize_t loads = table.load_points().size();
             log << "  " << pair.name << " " << (is_pinion ? "pinion" : "gear") << label << ": "
                 << info.hexahedra << " hexahedra, " << info.dofs << " dofs, " << loads
                 << " unit loads (";
@@ -282,12 +264,12 @@ run_reference_mode(const PairScene &pair, const FeScene &fe, const LoadedScene &
   // the segments of the fast mode (member_options): the teeth with grids, at least
   // the scene's segment teeth, or the whole gear
   auto segment = [&](const char *member, int z) {
-    const H5Group m = cg.group(member);
-    SegmentChoice s;
-    s.central = int(m.read_doubles("central_tooth").front());
+    const ComplianceRecord m = read_compliance(cg.group(member), false);
+    SegmentChoice          s;
+    s.central = m.central_tooth;
     s.teeth   = fe.whole(std::string(member) == "pinion")
                     ? z
-                    : std::max(fe.segment_teeth, int(m.read_ints("grid_teeth").size()));
+                    : std::max(fe.segment_teeth, int(m.grid_teeth.size()));
     return s;
   };
   ro.pinion_segment = segment("pinion", z1), ro.gear_segment = segment("gear", z2);
@@ -349,50 +331,12 @@ FlankCompliance
 read_table(const MemberFlanks &flanks, const H5Group &tables, const char *member, const FeScene &fe,
            const LoadedScene &lc, FlankSide side)
 {
-  const H5Group m = tables.group(member);
   FlankGridSpec spec;
-  spec.teeth        = m.read_ints("teeth");
-  spec.cyclic_tooth = int(m.read_doubles("cyclic_tooth").front());
-  spec.cyclic_reach = int(m.read_doubles("cyclic_reach").front());
-  spec.follow_load  = lc.follow_load;
-  spec.side         = side;
+  spec.follow_load = lc.follow_load;
+  spec.side        = side;
   spec.n_u = fe.n_u, spec.n_v = fe.n_v;
   spec.graded = fe.graded_grid;
-  FlankCompliance           t(flanks, spec);
-  std::vector<hsize_t>      shape;
-  const std::vector<double> S = m.read_doubles("compliance", &shape);
-  t.set(
-      Eigen::Map<const Eigen::MatrixXd>(S.data(), Eigen::Index(shape[1]), Eigen::Index(shape[0])));
-  return t;
-}
-
-/// The loaded contact's results of one mesh cycle into `g` (stiffness/<pair>, or its measured
-/// subgroup).
-void
-write_mesh_cycle(const MeshCycleContact &c, const std::vector<double> &torques,
-                 const std::vector<double> &refused, const H5Group &g)
-{
-  const hsize_t N = c.positions, M = c.torques, S = c.slots, C = c.cells;
-  g.write("torque", torques, {M});
-  if (!refused.empty())
-    {
-      g.write("refused_torque", refused, {refused.size()});
-    }
-  g.write("pinion_angle", c.pinion_angle, {N});
-  g.write("transmission_error_unloaded", c.unloaded_te, {N});
-  g.write("transmission_error_loaded", c.loaded_te, {M, N});
-  g.write("mesh_stiffness", c.mesh_stiffness, {M, N});
-  g.write("normal_force", c.normal_force, {M, N});
-  g.write("lever", c.lever, {M, N});
-  g.write("pair_force", c.pair_force, {M, N, S});
-  g.write("pinion_tooth", c.slot_tooth, {N, S});
-  g.write("peak_pressure", c.peak_pressure, {M, N});
-  g.write("interior_peak_pressure", c.interior_peak_pressure, {M, N});
-  g.write("edge_load_share", c.edge_load_share, {M, N});
-  g.write("edge_position", c.edge_position, {M, N, 2});
-  g.write("gap_band", c.gap_band, {M, N});
-  g.write("contact_cells", c.cell_pressure, {M, N, C, 4});
-  g.write("mean_pairs_in_contact", c.mean_pairs_in_contact);
+  return compliance_table(flanks, read_compliance(tables.group(member)), spec);
 }
 
 /// The loaded contact of one pair's mesh cycle at the scene's torques, written to `g`: a torque
@@ -438,7 +382,7 @@ analyse_mesh_cycle(const PairScene &pair, const LoadedScene &lc, const UnloadedT
       log << "  " << pair.name << label << ", " << torques[k] << " N m: K_m mean " << k_mean
           << " N/m, e_L - e_0 " << de_min * 1e6 << " .. " << de_max * 1e6 << " urad\n";
     }
-  write_mesh_cycle(c, torques, refused, g);
+  write_mesh_cycle(g, c, torques, refused);
   return {std::move(c), torques};
 }
 

@@ -5,6 +5,7 @@
 // found at the mesh frequencies, their harmonics and sidebands, and a spectrogram of the first
 // mesh's force.
 #include "base/spectrum.h"
+#include "driver/results_stiffness.h"
 #include "driver/stages.h"
 #include "dynamics/train.h"
 #include "tca/tooth_pairs.h"
@@ -25,13 +26,9 @@ void
 fe_mesh_stiffness(const H5Group &stiffness, const std::string &pair, double torque, int z1,
                   TrainMesh &m)
 {
-  const H5Group        g       = stiffness.group(pair);
-  const auto           torques = g.read_doubles("torque");
-  const auto           phi     = g.read_doubles("pinion_angle");
-  std::vector<hsize_t> shape;
-  const auto           K    = g.read_doubles("mesh_stiffness", &shape);
-  const std::size_t    best = nearest_torque(torques, torque);
-  const std::size_t    n    = shape.size() == 2 ? std::size_t(shape[1]) : 0;
+  const StiffnessRecord      r   = read_mesh_cycle(stiffness.group(pair));
+  const std::vector<double> &phi = r.cycle.pinion_angle;
+  const std::size_t          n   = r.cycle.positions;
   // uniform positions over one mesh cycle (the stiffness stage's), or the table is refused
   const double step = 2 * pi / z1 / double(std::max<std::size_t>(n, 1));
   for (std::size_t i = 1; i < phi.size(); ++i)
@@ -40,7 +37,7 @@ fe_mesh_stiffness(const H5Group &stiffness, const std::string &pair, double torq
                        std::to_string(n) +
                        " uniform steps over one mesh cycle are not allowed "
                        "for a train mesh's K_m (stiffness = finite elements)");
-  m.mesh_stiffness.assign(K.begin() + long(best * n), K.begin() + long((best + 1) * n));
+  m.mesh_stiffness       = r.mesh_stiffness_at(nearest_torque(r.torques, torque));
   m.mesh_stiffness_start = phi.front();
 }
 

@@ -6,6 +6,7 @@
 #include "driver/cache.h"
 #include "driver/results_schema.h"
 #include "driver/source_hashes.h"
+#include "stiffness/collective.h"
 
 #include <algorithm>
 #include <fstream>
@@ -100,7 +101,7 @@ stage_definitions()
        {"flanks"},
        {"Flanks", "TCA", "Finite elements"},
        {"base", "geometry", "tca", "meshes", "stiffness", "driver/stage_stiffness.cc",
-        "driver/scene_stiffness.cc"},
+        "driver/scene_stiffness.cc", "driver/results_compliance.cc", "driver/results_compliance.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_compliance_stage},
       {"stiffness",
@@ -108,7 +109,8 @@ stage_definitions()
        {"flanks", "measured", "compliance"},
        {"TCA", "Loaded contact"},
        {"base", "geometry", "tca", "meshes", "stiffness", "driver/stage_stiffness.cc",
-        "driver/scene_stiffness.cc"},
+        "driver/scene_stiffness.cc", "driver/results_compliance.cc", "driver/results_compliance.h",
+        "driver/results_stiffness.cc", "driver/results_stiffness.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_stiffness_stage},
       {"dynamics",
@@ -116,7 +118,8 @@ stage_definitions()
        {"flanks", "ste"},
        {"TCA", "Measured flanks", "Dynamics"},
        {"base", "geometry", "tca", "dynamics", "driver/stage_dynamics.cc",
-        "driver/scene_dynamics.cc", "driver/scene_measured.cc"},
+        "driver/scene_dynamics.cc", "driver/scene_measured.cc", "driver/results_stiffness.cc",
+        "driver/results_stiffness.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {
@@ -137,7 +140,8 @@ stage_definitions()
        "gear-train impact dynamics: tooth pair curves, IMPACT contact, CVODE run, spectra",
        {"flanks"},
        {"Flanks", "TCA", "Train"},
-       {"base", "geometry", "tca", "dynamics", "driver/stage_train.cc", "driver/scene_train.cc"},
+       {"base", "geometry", "tca", "dynamics", "driver/stage_train.cc", "driver/scene_train.cc",
+        "driver/results_stiffness.cc", "driver/results_stiffness.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_train_stage,
        [](const Scene &scene) {
@@ -241,12 +245,8 @@ cores_per_process()
 {
   // counted once (collectively: gearkit_main asks first, on every process)
   static const unsigned cores = [] {
-    MPI_Comm machine;
-    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
-    int here = 1;
-    MPI_Comm_size(machine, &here);
-    MPI_Comm_free(&machine);
-    return std::max(1u, std::thread::hardware_concurrency() / unsigned(std::max(1, here)));
+    return std::max(1u, std::thread::hardware_concurrency() /
+                            processes_on_this_machine(MPI_COMM_WORLD));
   }();
   return cores;
 }

@@ -6,6 +6,7 @@
 
 #include "base/blas_kernels.h"
 #include "meshes/gmsh_session.h"
+#include "stiffness/collective.h"
 #include "stiffness/elastic_segment_impl.h"
 
 #include <deal.II/base/mpi.h>
@@ -63,11 +64,8 @@ namespace elastic_segment_detail
 std::pair<double, bool>
 machine_need(double need, double have, MPI_Comm comm)
 {
-  MPI_Comm machine;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
-  const double here = Utilities::MPI::sum(need, machine);
-  MPI_Comm_free(&machine);
-  const bool fits = !(have > 0) || here <= have;
+  const double here = sum_on_this_machine(need, comm);
+  const bool   fits = !(have > 0) || here <= have;
   return {here, Utilities::MPI::min(fits ? 1 : 0, comm) == 1};
 }
 

@@ -364,35 +364,32 @@ share_solved(MPI_Comm comm, const std::vector<std::size_t> &mine, std::vector<So
   for (const auto &from : dealii::Utilities::MPI::all_gather(comm, failed))
     for (const auto &[job, why] : from)
       solved[job].failure = why;
-  std::vector<double> payload;
-  for (const std::size_t job : mine)
-    {
-      const Solved &s = solved[job];
-      payload.insert(payload.end(),
-                     {double(job), s.eL, s.mesh_stiffness, s.normal_force, s.lever, s.interior_peak,
-                      s.edge_force, s.edge_radius, s.edge_z, s.gap_band,
-                      double(s.pair_force.size()), double(s.cells.size())});
-      payload.insert(payload.end(), s.pair_force.begin(), s.pair_force.end());
-      for (const auto &cell : s.cells)
-        payload.insert(payload.end(), cell.begin(), cell.end());
-    }
-  for (const std::vector<double> &from : dealii::Utilities::MPI::all_gather(comm, payload))
-    for (std::size_t at = 0; at < from.size();) // (a failed job sends zeros)
-      {
-        Solved &s = solved[std::size_t(from[at])];
-        s.eL = from[at + 1], s.mesh_stiffness = from[at + 2];
-        s.normal_force = from[at + 3], s.lever = from[at + 4];
-        s.interior_peak = from[at + 5], s.edge_force = from[at + 6];
-        s.edge_radius = from[at + 7], s.edge_z = from[at + 8], s.gap_band = from[at + 9];
-        const auto slots = std::size_t(from[at + 10]), cells = std::size_t(from[at + 11]);
-        at += 12;
-        s.pair_force.assign(from.begin() + long(at), from.begin() + long(at + slots));
+  share_jobs(
+      comm, mine,
+      [&](std::size_t job, std::vector<double> &out) {
+        const Solved &s = solved[job];
+        out.insert(out.end(), {s.eL, s.mesh_stiffness, s.normal_force, s.lever, s.interior_peak,
+                               s.edge_force, s.edge_radius, s.edge_z, s.gap_band,
+                               double(s.pair_force.size()), double(s.cells.size())});
+        out.insert(out.end(), s.pair_force.begin(), s.pair_force.end());
+        for (const auto &cell : s.cells)
+          out.insert(out.end(), cell.begin(), cell.end());
+      },
+      [&](std::size_t job, const std::vector<double> &in, std::size_t &at) {
+        Solved &s = solved[job]; // (a failed job sends zeros)
+        s.eL = in[at], s.mesh_stiffness = in[at + 1];
+        s.normal_force = in[at + 2], s.lever = in[at + 3];
+        s.interior_peak = in[at + 4], s.edge_force = in[at + 5];
+        s.edge_radius = in[at + 6], s.edge_z = in[at + 7], s.gap_band = in[at + 8];
+        const auto slots = std::size_t(in[at + 9]), cells = std::size_t(in[at + 10]);
+        at += 11;
+        s.pair_force.assign(in.begin() + long(at), in.begin() + long(at + slots));
         at += slots;
         s.cells.resize(cells);
         for (auto &cell : s.cells)
           for (double &x : cell)
-            x = from[at++];
-      }
+            x = in[at++];
+      });
 }
 
 /// The mesh cycle's tables from the solved jobs (torque-major).
@@ -460,15 +457,11 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
       c.slot_tooth.push_back(s < p.pairs.size() ? p.pairs[s].pinion_tooth : -1);
   // Every (torque, position) on its own: job j on process j modulo the processes, each
   // process's jobs on a few threads; what the tables need of each sent to every process.
-  const MPI_Comm           comm = lo.communicator;
-  const unsigned           size = dealii::Utilities::MPI::n_mpi_processes(comm);
-  const unsigned           rank = dealii::Utilities::MPI::this_mpi_process(comm);
-  const std::size_t        jobs = std::size_t(m * n);
-  std::vector<std::size_t> mine;
-  for (std::size_t j = rank; j < jobs; j += size)
-    mine.push_back(j);
-  std::vector<Solved> solved(jobs);
-  std::mutex          progress;
+  const MPI_Comm                 comm = lo.communicator;
+  const std::size_t              jobs = std::size_t(m * n);
+  const std::vector<std::size_t> mine = my_jobs(jobs, comm);
+  std::vector<Solved>            solved(jobs);
+  std::mutex                     progress;
   // a failure on any process is thrown on all (the first failed process's)
   collectively(comm, [&] {
     parallel_for(mine.size(), lo.threads, [&](std::size_t k) {
@@ -482,7 +475,7 @@ loaded_contact_cycle(const UnloadedTca &t, int n, const std::vector<double> &tor
         }
     });
   });
-  if (size > 1)
+  if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1)
     share_solved(comm, mine, solved);
   fill_tables(c, solved, positions, m, n);
   c.mean_pairs_in_contact = touching / n;

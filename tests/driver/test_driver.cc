@@ -6,6 +6,7 @@
 #include "geometry/involute_gear.h"
 #include "geometry/measured_flank.h"
 #include "tests/driver/driver_fixture.h"
+#include "tests/driver/small_scenes.h"
 #include "tests/malformed_cmm.h"
 
 #include <gtest/gtest.h>
@@ -38,27 +39,9 @@ protected:
   }
 };
 
-const std::string small_scene = R"(
-subsection Scene
-  set name    = small
-  set outputs = flanks
-  set pairs   = p1
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 4
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-    end
-  end
-end
-)";
+// 19/37 teeth, m 2 mm, on a 3 x 4 grid: the flanks alone.
+const std::string small_scene = test_data::scene_section("small", "flanks", "p1") +
+                                test_data::flanks_section({test_data::SpurPair{}});
 } // namespace
 
 TEST_F(DriverTest, PublishedPairsCentreDistancesMatchTheirPublications)
@@ -1089,88 +1072,10 @@ TEST_F(DriverTest, ProfileSlopeDeviationActsOverTheEvaluationRangeInMesh)
 namespace
 {
 // A two-stage train of two spur pairs (19/37 and 20/40, m 2 mm): bodies a, b, c, meshes m1 (p1,
-// a to b) and m2 (p2, b to c), a held at 100 rad/s, the others kinematic with a small resistive
-// torque on c; 5 ms.
-const std::string train_scene = R"(
-subsection Scene
-  set name    = small
-  set outputs = train
-  set pairs   = p1, p2
-  set trains  = t
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 2
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-      set face width      = 10
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-      set face width      = 10
-    end
-  end
-  subsection p2
-    set grid profile points = 3
-    set grid face points    = 2
-    subsection Pinion
-      set number of teeth = 20
-      set normal module   = 2
-      set face width      = 10
-    end
-    subsection Gear
-      set number of teeth = 40
-      set normal module   = 2
-      set face width      = 10
-    end
-  end
-end
-subsection Train
-  subsection t
-    set bodies = a, b, c
-    set meshes = m1, m2
-    subsection Run
-      set duration    = 0.005
-      set sample rate = 20000
-    end
-    subsection Spectrum
-      set spectrogram window = 2
-    end
-    subsection Bodies
-      subsection a
-        set inertia       = 1e-4
-        set initial speed = 100
-        set drive         = constant speed
-      end
-      subsection b
-        set inertia = auto
-      end
-      subsection c
-        set inertia = 2e-3
-        set torque  = -0.5
-      end
-    end
-    subsection Meshes
-      subsection m1
-        set pair        = p1
-        set pinion body = a
-        set gear body   = b
-        set backlash    = 0.05
-      end
-      subsection m2
-        set pair        = p2
-        set pinion body = b
-        set gear body   = c
-        set backlash    = 0.05
-        set initial contact = drive
-      end
-    end
-  end
-end
-)";
+// a to b) and m2 (p2, b to c, placed at drive contact), a held at 100 rad/s, the others kinematic
+// with a small resistive torque on c; 5 ms.
+const std::string train_scene =
+    test_data::two_stage_train_scene("        set initial contact = drive\n");
 } // namespace
 
 // The train stage end to end on a small two-stage train: the kinematics, the auto inertia of
@@ -1227,32 +1132,14 @@ TEST_F(DriverTest, TrainStageRunsASmallTwoStageTrain)
 // carries F = K_m d, so the train's deflection beyond first contact at the finite-element
 // positions is the stiffness stage's lambda (e_L - e_0) there: the same loaded TE from the two
 // stages. The table written is the chosen torque's row; the stage graph reaches the stiffness.
-const std::string fe_train_scene = R"(
-subsection Scene
-  set name    = fe_train
-  set outputs = train
-  set pairs   = fzg
-  set trains  = t
-end
-subsection Flanks
-  subsection fzg
-    subsection Pinion
-      set number of teeth           = 16
-      set normal module             = 4.5
-      set profile shift coefficient = 0.1817
-      set face width                = 14
-      set bore diameter             = 30
-    end
-    subsection Gear
-      set number of teeth           = 24
-      set normal module             = 4.5
-      set profile shift coefficient = 0.1715
-      set face width                = 14
-      set bore diameter             = 40
-    end
-  end
-end
-subsection TCA
+const std::string fe_train_scene =
+    test_data::scene_section("fe_train", "train", "fzg", "t") +
+    test_data::flanks_section({{"fzg", 16, 24, 4.5, 14, 0, 0,
+                                "      set profile shift coefficient = 0.1817\n"
+                                "      set bore diameter             = 30\n",
+                                "      set profile shift coefficient = 0.1715\n"
+                                "      set bore diameter             = 40\n"}}) +
+    R"(subsection TCA
   subsection fzg
     set positions per mesh cycle = 8
   end

@@ -7,6 +7,7 @@
 #include "driver/driver.h"
 #include "driver/h5_file.h"
 #include "tests/driver/driver_fixture.h"
+#include "tests/driver/small_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -51,27 +52,9 @@ protected:
 };
 
 // flanks -> measured (synthesised: noise from a seed) -> ste: three stages, a few seconds.
-const std::string small_scene = R"(
-subsection Scene
-  set name    = small
-  set outputs = ste
-  set pairs   = p1
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 4
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-    end
-  end
-end
-subsection Measured flanks
+const std::string small_scene = test_data::scene_section("small", "ste", "p1") +
+                                test_data::flanks_section({test_data::SpurPair{}}) +
+                                R"(subsection Measured flanks
   subsection p1
     set source         = synthesised
     set profile points = 5

@@ -8,6 +8,7 @@
 #include "driver/scene.h"
 #include "driver/stages.h"
 #include "tests/driver/driver_fixture.h"
+#include "tests/driver/small_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -32,39 +33,10 @@ class SceneNotes : public test_data::GearkitRun
 {
 };
 
-const std::string two_pairs = R"(
-subsection Scene
-  set name    = small
-  set outputs = flanks
-  set pairs   = p1, p2
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 4
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-    end
-  end
-  subsection p2
-    set grid profile points = 3
-    set grid face points    = 4
-    subsection Pinion
-      set number of teeth = 21
-      set normal module   = 2
-    end
-    subsection Gear
-      set number of teeth = 40
-      set normal module   = 2
-    end
-  end
-end
-)";
+// Two spur pairs of m 2 mm, 19/37 and 21/40 teeth: their flanks alone.
+const std::string two_pairs =
+    test_data::scene_section("small", "flanks", "p1, p2") +
+    test_data::flanks_section({test_data::SpurPair{}, test_data::SpurPair{"p2", 21, 40}});
 
 // p2 before p1 in the file, a comment after a note, a note continued on the next line.
 const std::string notes = R"(

@@ -8,6 +8,7 @@
 #include "geometry/member_flanks.h"
 #include "tca/unloaded_tca.h"
 #include "tests/driver/driver_fixture.h"
+#include "tests/driver/small_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -51,33 +52,12 @@ protected:
 std::string
 issue_scene(const std::string &tca, const std::string &outputs = "ste")
 {
-  return R"(
-subsection Scene
-  set name    = op
-  set outputs = )" +
-         outputs + R"(
-  set pairs   = p
-end
-subsection Flanks
-  subsection p
-    set grid profile points = 3
-    set grid face points    = 2
-    subsection Pinion
-      set number of teeth = 29
-      set normal module   = 3
-      set face width      = 10
-    end
-    subsection Gear
-      set number of teeth = 41
-      set normal module   = 3
-      set face width      = 10
-      subsection Drive flank modifications
-        set profile slope deviation = -6
-      end
-    end
-  end
-end
-subsection TCA
+  return test_data::scene_section("op", outputs, "p") +
+         test_data::flanks_section({{"p", 29, 41, 3, 10, 3, 2, "",
+                                     "      subsection Drive flank modifications\n"
+                                     "        set profile slope deviation = -6\n"
+                                     "      end\n"}}) +
+         R"(subsection TCA
   subsection p
     set positions per mesh cycle = 40
     set mesh cycles              = 1

@@ -8,6 +8,7 @@
 #include "driver/scene.h"
 #include "geometry/measured_flank.h"
 #include "tests/driver/driver_fixture.h"
+#include "tests/driver/small_scenes.h"
 #include "tests/malformed_cmm.h"
 
 #include <gtest/gtest.h>
@@ -25,29 +26,8 @@ const std::string source_dir = GEARKIT_SOURCE_DIR;
 
 // A small flanks-only scene (m 2, z 19/37, b 20 mm) with its dynamics section; outputs and
 // sections are edited by each test.
-const std::string pair_scene = R"(
-subsection Scene
-  set name    = small
-  set outputs = flanks
-  set pairs   = p1
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 4
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-      set face width      = 20
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-      set face width      = 20
-    end
-  end
-end
-)";
+const std::string pair_scene = test_data::scene_section("small", "flanks", "p1") +
+                               test_data::flanks_section({{"p1", 19, 37, 2, 20}});
 
 // The same pair with a dynamics section whose masses and inertias are the members' own
 // (mass properties of the m 2 pinion and gear, b 20 mm, steel): the values a slip is made in.
@@ -71,85 +51,7 @@ end
 )";
 
 // Two stages on three bodies, a held at 100 rad/s (the driver test's small train).
-const std::string train_scene = R"(
-subsection Scene
-  set name    = small
-  set outputs = train
-  set pairs   = p1, p2
-  set trains  = t
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 2
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-      set face width      = 10
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-      set face width      = 10
-    end
-  end
-  subsection p2
-    set grid profile points = 3
-    set grid face points    = 2
-    subsection Pinion
-      set number of teeth = 20
-      set normal module   = 2
-      set face width      = 10
-    end
-    subsection Gear
-      set number of teeth = 40
-      set normal module   = 2
-      set face width      = 10
-    end
-  end
-end
-subsection Train
-  subsection t
-    set bodies = a, b, c
-    set meshes = m1, m2
-    subsection Run
-      set duration    = 0.005
-      set sample rate = 20000
-    end
-    subsection Spectrum
-      set spectrogram window = 2
-    end
-    subsection Bodies
-      subsection a
-        set inertia       = 1e-4
-        set initial speed = 100
-        set drive         = constant speed
-      end
-      subsection b
-        set inertia = auto
-      end
-      subsection c
-        set inertia = 2e-3
-        set torque  = -0.5
-      end
-    end
-    subsection Meshes
-      subsection m1
-        set pair        = p1
-        set pinion body = a
-        set gear body   = b
-        set backlash    = 0.05
-      end
-      subsection m2
-        set pair        = p2
-        set pinion body = b
-        set gear body   = c
-        set backlash    = 0.05
-      end
-    end
-  end
-end
-)";
+const std::string train_scene = test_data::two_stage_train_scene();
 
 /// A scene edited by one replacement, and what its refusal (or warning) must say.
 struct Slip

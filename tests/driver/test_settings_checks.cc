@@ -8,6 +8,7 @@
 #include "driver/h5_file.h"
 #include "driver/scene.h"
 #include "tests/driver/driver_fixture.h"
+#include "tests/driver/small_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -21,13 +22,8 @@ namespace fs = std::filesystem;
 namespace
 {
 // The seed's spiral bevel pair (55/47, m_et 3 mm, F 19 mm: A_m 99.02 mm), unloaded TCA only.
-const std::string bevel_scene = R"(
-subsection Scene
-  set name    = small
-  set outputs = ste
-  set pairs   = p1
-end
-subsection Flanks
+const std::string bevel_scene =
+    test_data::scene_section("small", "ste", "p1") + R"(subsection Flanks
   subsection p1
     set type                = spiral bevel
     set grid profile points = 3
@@ -54,32 +50,11 @@ end
 std::string
 spur_scene(int z1, const std::string &member_extra, int positions)
 {
-  return R"(
-subsection Scene
-  set name    = small
-  set outputs = ste
-  set pairs   = p1
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 3
-    subsection Pinion
-      set number of teeth = )" +
-         std::to_string(z1) + R"(
-      set normal module   = 2
-      set face width      = 20
-)" + member_extra +
-         R"(    end
-    subsection Gear
-      set number of teeth = 40
-      set normal module   = 2
-      set face width      = 20
-)" + std::regex_replace(member_extra, std::regex("hand = right"), "hand = left") +
-         R"(    end
-  end
-end
-subsection TCA
+  return test_data::scene_section("small", "ste", "p1") +
+         test_data::flanks_section(
+             {{"p1", z1, 40, 2, 20, 3, 3, member_extra,
+               std::regex_replace(member_extra, std::regex("hand = right"), "hand = left")}}) +
+         R"(subsection TCA
   subsection p1
     set positions per mesh cycle = )" +
          std::to_string(positions) + R"(
@@ -94,29 +69,8 @@ end
 std::string
 dynamics_scene(const std::string &accuracy)
 {
-  return R"(
-subsection Scene
-  set name    = small
-  set outputs = dynamics
-  set pairs   = p1
-end
-subsection Flanks
-  subsection p1
-    set grid profile points = 3
-    set grid face points    = 3
-    subsection Pinion
-      set number of teeth = 19
-      set normal module   = 2
-      set face width      = 20
-    end
-    subsection Gear
-      set number of teeth = 37
-      set normal module   = 2
-      set face width      = 20
-    end
-  end
-end
-subsection TCA
+  return test_data::scene_section("small", "dynamics", "p1") +
+         test_data::flanks_section({{"p1", 19, 37, 2, 20, 3, 3}}) + R"(subsection TCA
   subsection p1
     set positions per mesh cycle = 16
     set mesh cycles              = 1

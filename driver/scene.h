@@ -253,12 +253,14 @@ struct DynamicsScene
   double              torque = 0; ///< pinion (motor) torque [N m]; K_m from the nearest FE torque
   PairModelParameters model;      ///< axes, the mesh tables and the teeth come from the pair
   double              speed_from = 0, speed_to = 0; ///< [rad/s]
-  int                 speeds        = 0;
-  int                 settle_cycles = 200, record_cycles = 50;
-  double              steady_tolerance = SweepOptions().steady_tolerance; ///< its default
-  Integrator          integrator       = Integrator::newmark;
-  int                 steps_per_cycle  = 64;
-  double accuracy = SweepOptions().accuracy; ///< SweepOptions::accuracy (Newmark; 0: steps)
+  int                 speeds = 0;
+  /// The sweep as the dynamics library runs it (dynamics/sweep.h), its defaults the library's:
+  /// settle and record cycles, steady tolerance, accuracy, time series speeds [rad/s], spectrum
+  /// orders, and in `run` the integrator (the scene's default: Newmark, the fast path), the
+  /// least Newmark steps per mesh cycle and the samples recorded per mesh cycle (32, or the
+  /// steps where fewer: the multiple Newmark's steps come in). The speeds and the torques are
+  /// the stage's.
+  SweepOptions sweep = newmark_sweep();
   /// The tables from the TCA at the position the static load deflects the pair to
   /// (dynamics/deflection.h), else as assembled.
   bool system_deflection = true;
@@ -267,13 +269,14 @@ struct DynamicsScene
   bool theoretical = true, measured = false;
   /// Mesh cycles of the measured flanks' TCA that form one period of their excitation (0: all
   /// the TCA computed - the hunting cycle when it ran over it).
-  int                 excitation_cycles = 0;
-  std::vector<double> series_speeds;        ///< keep time series at these speeds [rad/s]
-  int                 spectrum_orders = 10; ///< DTE spectrum up to this mesh order
+  int excitation_cycles = 0;
   /// Each sweep in this many blocks of speeds (run in parallel on threads and MPI processes),
   /// each but the first started this many speeds early.
   int sweep_blocks = 1, warmup_speeds = 3;
 
+  /// The library's sweep options with the integrator Newmark.
+  static SweepOptions
+  newmark_sweep();
   static void
   declare(ParameterHandler &prm);
   void

@@ -10,6 +10,26 @@
 
 namespace gearkit
 {
+namespace
+{
+/// The integrator's name in the scene.
+const char *
+integrator_name(Integrator i)
+{
+  return i == Integrator::newmark     ? "newmark"
+         : i == Integrator::cvode_bdf ? "cvode bdf"
+                                      : "cvode adams";
+}
+} // namespace
+
+SweepOptions
+DynamicsScene::newmark_sweep()
+{
+  SweepOptions o;
+  o.run.method = Integrator::newmark;
+  return o;
+}
+
 void
 DynamicsScene::declare(ParameterHandler &prm)
 {
@@ -64,9 +84,11 @@ DynamicsScene::declare(ParameterHandler &prm)
   prm.declare_entry("speed to", "12000", Patterns::Double(0.001), "[rpm]");
   prm.declare_entry("speeds", "100", Patterns::Integer(1, 100000),
                     "Speeds of the sweep, swept up and then down.");
-  prm.declare_entry("settle cycles", "200", Patterns::Integer(0),
+  prm.declare_entry("settle cycles", std::to_string(SweepOptions().settle_cycles),
+                    Patterns::Integer(0),
                     "Most mesh cycles to settle at each speed (less when the motion repeats).");
-  prm.declare_entry("record cycles", "50", Patterns::Integer(1), "Mesh cycles recorded per speed.");
+  prm.declare_entry("record cycles", std::to_string(SweepOptions().record_cycles),
+                    Patterns::Integer(1), "Mesh cycles recorded per speed.");
   prm.declare_entry("steady tolerance", plausible_number(SweepOptions().steady_tolerance),
                     Patterns::Double(0),
                     "Settled when the states at whole excitation periods repeat within this, "
@@ -75,7 +97,8 @@ DynamicsScene::declare(ParameterHandler &prm)
                     "tolerance); settling goes on past settle cycles (up to five times) while "
                     "the states still converge fast enough; 0: always settle cycles.");
   prm.declare_entry(
-      "integrator", "newmark", Patterns::Selection("newmark|cvode bdf|cvode adams"),
+      "integrator", integrator_name(newmark_sweep().run.method),
+      Patterns::Selection("newmark|cvode bdf|cvode adams"),
       "newmark: fixed steps per speed, as many as the accuracy asks (the fast path); cvode: "
       "adaptive, events at the backlash.");
   prm.declare_entry("accuracy", plausible_number(SweepOptions().accuracy), Patterns::Double(0, 0.5),
@@ -89,7 +112,8 @@ DynamicsScene::declare(ParameterHandler &prm)
                     "65536 steps per mesh cycle are taken: an accuracy whose estimate asks for "
                     "more at some speed is refused, with the accuracy reachable within them; "
                     "where the recorded motion asks for more, the log names the speeds.");
-  prm.declare_entry("steps per mesh cycle", "64", Patterns::Integer(8, 100000),
+  prm.declare_entry("steps per mesh cycle", std::to_string(RunOptions().steps_per_cycle),
+                    Patterns::Integer(8, 100000),
                     "Newmark: the least steps per mesh cycle (with accuracy 0: the steps); "
                     "from 32 on a multiple of 32 (the samples recorded per mesh cycle).");
   prm.declare_entry("system deflection", "true", Patterns::Bool(),
@@ -107,8 +131,8 @@ DynamicsScene::declare(ParameterHandler &prm)
                     "all the TCA computed (the hunting cycle when it ran over it).");
   prm.declare_entry("time series speeds", "", Patterns::List(Patterns::Double(0), 0),
                     "[rpm] Keep the recorded time series at the swept speeds nearest these.");
-  prm.declare_entry("spectrum orders", "10", Patterns::Integer(1, 1000),
-                    "DTE spectrum per speed up to this mesh order.");
+  prm.declare_entry("spectrum orders", std::to_string(SweepOptions().spectrum_orders),
+                    Patterns::Integer(1, 1000), "DTE spectrum per speed up to this mesh order.");
   prm.declare_entry("sweep blocks", "1", Patterns::Integer(1, 100000),
                     "Each sweep in this many blocks of consecutive speeds, run in parallel "
                     "(threads, and MPI processes under mpirun); 1: one continuation.");
@@ -147,33 +171,35 @@ DynamicsScene::parse(ParameterHandler &prm)
       b.axial_stiffness = prm.get_double("axial stiffness") * N_per_um;
       b.axial_damping   = cb;
     }
-  mp.half_backlash        = prm.get_double("half backlash") * um;
-  mp.mesh_damping_ratio   = prm.get_double("mesh damping ratio");
-  speed_from              = from_rpm(prm.get_double("speed from"));
-  speed_to                = from_rpm(prm.get_double("speed to"));
-  speeds                  = prm.get_integer("speeds");
-  settle_cycles           = prm.get_integer("settle cycles");
-  record_cycles           = prm.get_integer("record cycles");
-  steady_tolerance        = prm.get_double("steady tolerance");
-  const std::string integ = prm.get("integrator");
-  integrator              = integ == "newmark"     ? Integrator::newmark
-                            : integ == "cvode bdf" ? Integrator::cvode_bdf
-                                                   : Integrator::cvode_adams;
-  steps_per_cycle         = prm.get_integer("steps per mesh cycle");
-  accuracy                = prm.get_double("accuracy");
-  system_deflection       = prm.get_bool("system deflection");
-  const auto excitations  = split_list(prm.get("excitations"));
-  auto       has          = [&](const char *what) {
+  mp.half_backlash       = prm.get_double("half backlash") * um;
+  mp.mesh_damping_ratio  = prm.get_double("mesh damping ratio");
+  speed_from             = from_rpm(prm.get_double("speed from"));
+  speed_to               = from_rpm(prm.get_double("speed to"));
+  speeds                 = prm.get_integer("speeds");
+  sweep.settle_cycles    = prm.get_integer("settle cycles");
+  sweep.record_cycles    = prm.get_integer("record cycles");
+  sweep.steady_tolerance = prm.get_double("steady tolerance");
+  for (const Integrator i : {Integrator::newmark, Integrator::cvode_bdf, Integrator::cvode_adams})
+    if (prm.get("integrator") == integrator_name(i))
+      sweep.run.method = i;
+  sweep.run.steps_per_cycle = prm.get_integer("steps per mesh cycle");
+  // the samples recorded per mesh cycle: 32, or the steps where fewer (Newmark's steps per mesh
+  // cycle come in multiples of them); one rule for the sweeps, the accuracy check and Floquet
+  sweep.run.samples_per_cycle = std::min(32, sweep.run.steps_per_cycle);
+  sweep.accuracy              = prm.get_double("accuracy");
+  system_deflection           = prm.get_bool("system deflection");
+  const auto excitations      = split_list(prm.get("excitations"));
+  auto       has              = [&](const char *what) {
     return std::find(excitations.begin(), excitations.end(), what) != excitations.end();
   };
   theoretical       = has("theoretical");
   measured          = has("measured");
   excitation_cycles = prm.get_integer("excitation cycles");
   for (const double x : get_doubles(prm, "time series speeds"))
-    series_speeds.push_back(from_rpm(x));
-  spectrum_orders = prm.get_integer("spectrum orders");
-  sweep_blocks    = prm.get_integer("sweep blocks");
-  warmup_speeds   = prm.get_integer("warm-up speeds");
+    sweep.series_speeds.push_back(from_rpm(x));
+  sweep.spectrum_orders = prm.get_integer("spectrum orders");
+  sweep_blocks          = prm.get_integer("sweep blocks");
+  warmup_speeds         = prm.get_integer("warm-up speeds");
 }
 
 namespace
@@ -282,11 +308,12 @@ DynamicsScene::check(const PairScene &pair, const TcaScene &tca, bool run,
   const std::string where = "Dynamics/" + pair.name + "/";
   if (!theoretical && !measured)
     throw InputError(where + "excitations: none chosen; choose theoretical, measured or both");
-  if (steps_per_cycle > 32 && steps_per_cycle % 32 != 0)
-    throw InputError(where + "steps per mesh cycle: " + std::to_string(steps_per_cycle) +
+  const int steps = sweep.run.steps_per_cycle;
+  if (steps > 32 && steps % 32 != 0)
+    throw InputError(where + "steps per mesh cycle: " + std::to_string(steps) +
                      " is not a multiple of 32 (the samples recorded per mesh cycle); use " +
-                     std::to_string(32 * (steps_per_cycle / 32)) + " or " +
-                     std::to_string(32 * (steps_per_cycle / 32 + 1)));
+                     std::to_string(32 * (steps / 32)) + " or " +
+                     std::to_string(32 * (steps / 32 + 1)));
   if (measured && !tca.measured)
     throw InputError(where + "excitations: measured needs the measured flanks' TCA (set TCA/" +
                      pair.name + "/measured flanks = true)");

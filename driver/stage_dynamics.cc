@@ -7,6 +7,7 @@
 // excitation and direction, optionally in blocks of speeds - run on threads, and spread over
 // the MPI processes under mpirun; every process gathers all results.
 #include "driver/pair_tca.h"
+#include "driver/results_stiffness.h"
 #include "driver/stages.h"
 #include "dynamics/deflection.h"
 #include "dynamics/modes.h"
@@ -72,39 +73,30 @@ unpack(const std::vector<double> &in, std::size_t &at)
 std::vector<std::vector<SweepPoint>>
 run_everywhere(const std::vector<SweepTask> &tasks, const std::string &progress)
 {
-  const unsigned size = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
-                 rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  std::vector<SweepTask>   mine;
-  std::vector<std::size_t> index;
-  for (std::size_t i = rank; i < tasks.size(); i += size)
-    mine.push_back(tasks[i]), index.push_back(i);
+  const unsigned                 size  = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const std::vector<std::size_t> index = my_jobs(tasks.size(), MPI_COMM_WORLD);
+  std::vector<SweepTask>         mine;
+  for (const std::size_t i : index)
+    mine.push_back(tasks[i]);
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency() / size);
   std::vector<std::vector<SweepPoint>> results(tasks.size());
   std::vector<std::vector<SweepPoint>> done;
   // a failure on any process is thrown on all (before the results are gathered)
   collectively(MPI_COMM_WORLD, [&] { done = run_sweeps(mine, threads, progress); });
-  if (size == 1)
-    {
-      for (std::size_t k = 0; k < mine.size(); ++k)
-        results[index[k]] = done[k];
-      return results;
-    }
-  std::vector<double> payload;
   for (std::size_t k = 0; k < mine.size(); ++k)
-    {
-      payload.push_back(double(index[k]));
-      payload.push_back(double(done[k].size()));
-      for (const SweepPoint &p : done[k])
-        pack(p, payload);
-    }
-  for (const std::vector<double> &from :
-       dealii::Utilities::MPI::all_gather(MPI_COMM_WORLD, payload))
-    for (std::size_t at = 0; at < from.size();)
-      {
-        const auto i = std::size_t(from[at++]), n = std::size_t(from[at++]);
+    results[index[k]] = done[k];
+  share_jobs(
+      MPI_COMM_WORLD, index,
+      [&](std::size_t i, std::vector<double> &out) {
+        out.push_back(double(results[i].size()));
+        for (const SweepPoint &p : results[i])
+          pack(p, out);
+      },
+      [&](std::size_t i, const std::vector<double> &in, std::size_t &at) {
+        const auto n = std::size_t(in[at++]);
         for (std::size_t k = 0; k < n; ++k)
-          results[i].push_back(unpack(from, at));
-      }
+          results[i].push_back(unpack(in, at));
+      });
   return results;
 }
 
@@ -174,23 +166,6 @@ write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
       }
 }
 
-/// Mean contact point of the leading pairs on the gear flank, (radius, axial) in the gear's
-/// frame [m], from tables write_tca_tables wrote.
-Vec2
-pattern_centre(const H5Group &tables)
-{
-  std::vector<hsize_t> shape;
-  const auto           X    = tables.read_doubles("contact_in_gear_frame", &shape);
-  const auto           lead = tables.read_ints("leading");
-  Vec2                 c    = Vec2::Zero();
-  for (std::size_t i = 0; i < shape[0]; ++i)
-    {
-      const std::size_t at = ((i * shape[1] + std::size_t(std::max(lead[i], 0))) * 3) * 3;
-      c += Vec2(std::hypot(X[at], X[at + 1]), X[at + 2]);
-    }
-  return c / double(shape[0]);
-}
-
 /// The system deflection of one excitation: iterations, the gear's motion, the misalignment it
 /// adds to the scene's (`m` less `tca`'s), the deflected TCA's tables and the shifts of the
 /// contact pattern and of e_0.
@@ -224,8 +199,8 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
     g.write(name, value);
   const H5Group tables       = g.group("tca");
   const double  peak_to_peak = write_tca_tables(deflected, tca, moved, tables).first;
-  const Vec2    shift        = pattern_centre(tables) - pattern_centre(aligned);
-  const auto    e0           = aligned.read_doubles("transmission_error");
+  const Vec2    shift        = contact_pattern_centre(tables) - contact_pattern_centre(aligned);
+  const auto    e0           = contact_tables(aligned).transmission_error;
   double        mean_shift   = -std::accumulate(e0.begin(), e0.end(), 0.0);
   for (const TcaPosition &p : deflected.positions)
     mean_shift += p.transmission_error;
@@ -244,7 +219,8 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
         << " mrad, inclination " << added.intersecting_angle * 1e3 << " mrad, gear axial "
         << added.gear_axial_shift * 1e6 << " um";
   log << "; contact pattern moves " << shift.x() * 1e3 << " mm radially, " << shift.y() * 1e3
-      << " mm axially on the gear; e_0 peak-to-peak " << aligned.read_double("peak_to_peak") * 1e6
+      << " mm axially on the gear; e_0 peak-to-peak "
+      << (*std::max_element(e0.begin(), e0.end()) - *std::min_element(e0.begin(), e0.end())) * 1e6
       << " -> " << peak_to_peak * 1e6 << " urad, mean " << mean_shift * 1e6 << " urad\n";
 }
 
@@ -280,15 +256,6 @@ write_modes(const H5Group &g, const PairModel &model, const std::string &label, 
   log << "\n";
 }
 
-/// The samples a mesh cycle is recorded at, and the multiple Newmark's steps per mesh cycle
-/// come in (RunOptions::samples_per_cycle): 32, or the scene's steps where fewer. One rule for
-/// the accuracy check, the sweeps and the Floquet pass.
-int
-samples_per_cycle(const DynamicsScene &d)
-{
-  return std::min(32, d.steps_per_cycle);
-}
-
 /// Newmark with an accuracy: the steps per mesh cycle it asks for at every swept speed (the
 /// estimate for the tables' forcing, as the sweep takes them: NewmarkError::steps from the
 /// scene's least steps, to the sweep's most) must reach it; else the accuracy is refused by its
@@ -299,29 +266,30 @@ void
 check_accuracy(const PairModel &model, double load_torque, const DynamicsScene &d,
                const std::string &pair)
 {
-  if (!(d.integrator == Integrator::newmark && d.accuracy > 0))
+  if (!(d.sweep.run.method == Integrator::newmark && d.sweep.accuracy > 0))
     return;
-  const int          most     = std::max(SweepOptions().most_steps, d.steps_per_cycle);
-  const int          multiple = samples_per_cycle(d);
+  const int          most     = std::max(d.sweep.most_steps, d.sweep.run.steps_per_cycle);
+  const int          multiple = d.sweep.run.samples_per_cycle;
   const NewmarkError newmark(model, load_torque);
   double             reachable = 0, worst_speed = 0, worst_error = 0;
   for (double w : sweep_speeds(d))
     {
       const double error = newmark.forced(w, most);
       reachable          = std::max(reachable, error);
-      const int steps    = newmark.steps(w, d.accuracy, d.steps_per_cycle, multiple, most);
-      if (newmark.forced(w, steps) > d.accuracy && error > worst_error)
+      const int steps =
+          newmark.steps(w, d.sweep.accuracy, d.sweep.run.steps_per_cycle, multiple, most);
+      if (newmark.forced(w, steps) > d.sweep.accuracy && error > worst_error)
         worst_speed = w, worst_error = error;
     }
   if (!(worst_error > 0))
     return;
   constexpr int beyond = 1 << 30;
-  const int     asked  = newmark.steps(worst_speed, d.accuracy, most, multiple, beyond);
+  const int     asked  = newmark.steps(worst_speed, d.sweep.accuracy, most, multiple, beyond);
   // the reachable accuracy to three digits, rounded up (so that the value as printed passes)
   const double       scale = std::pow(10.0, std::floor(std::log10(reachable)) - 2);
   const double       least = std::ceil(reachable / scale) * scale;
   std::ostringstream m;
-  m << "Dynamics/" << pair << "/accuracy = " << plausible_number(d.accuracy)
+  m << "Dynamics/" << pair << "/accuracy = " << plausible_number(d.sweep.accuracy)
     << " is not allowed with integrator = newmark: at "
     << plausible_number(std::round(worst_speed * 60 / (2 * pi))) << " rpm it asks for "
     << (asked >= beyond ? "more than " : "") << asked
@@ -345,18 +313,17 @@ write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d
   std::vector<int>            grows;
   std::string                 unstable;
   std::optional<NewmarkError> newmark; // the sweep's steps
-  if (d.integrator == Integrator::newmark && d.accuracy > 0)
+  if (d.sweep.run.method == Integrator::newmark && d.sweep.accuracy > 0)
     newmark.emplace(model, TL);
   for (double w : sweep_speeds(d))
     {
-      RunOptions r;
+      RunOptions r   = d.sweep.run;
       r.omega        = w;
       r.motor_torque = TE, r.load_torque = TL;
-      r.method = d.integrator, r.steps_per_cycle = d.steps_per_cycle;
-      r.samples_per_cycle = samples_per_cycle(d);
       if (newmark)
-        r.steps_per_cycle = newmark->steps(w, d.accuracy, d.steps_per_cycle, r.samples_per_cycle,
-                                           std::max(SweepOptions().most_steps, d.steps_per_cycle));
+        r.steps_per_cycle =
+            newmark->steps(w, d.sweep.accuracy, d.sweep.run.steps_per_cycle, r.samples_per_cycle,
+                           std::max(d.sweep.most_steps, d.sweep.run.steps_per_cycle));
       rpm.push_back(w * 60 / (2 * pi));
       radius.push_back(std::abs(floquet_multipliers(model, r).front()));
       grows.push_back(parametrically_unstable(radius.back()));
@@ -379,16 +346,10 @@ mesh_stiffness_table(const DynamicsScene &d, const Upstream &upstream, const Pai
 {
   if (!d.fe_stiffness)
     return varying_mesh_stiffness(d.mesh_stiffness, d.stiffness_variation, n);
-  const H5Group        all     = upstream.at("stiffness")->group(pair.name);
-  const bool           own     = measured && all.has("measured");
-  const auto           torques = all.read_doubles("torque");
-  std::vector<hsize_t> shape;
-  const auto           K    = own ? all.group("measured").read_doubles("mesh_stiffness", &shape)
-                                  : all.read_doubles("mesh_stiffness", &shape);
-  const std::size_t    best = nearest_torque(torques, d.torque);
-  return resample_periodic(std::vector<double>(K.begin() + long(best * shape[1]),
-                                               K.begin() + long((best + 1) * shape[1])),
-                           n);
+  const H5Group         all = upstream.at("stiffness")->group(pair.name);
+  const StiffnessRecord r = measured && all.has("measured") ? read_mesh_cycle(all.group("measured"))
+                                                            : read_mesh_cycle(all);
+  return resample_periodic(r.mesh_stiffness_at(nearest_torque(r.torques, d.torque)), n);
 }
 
 /// One excitation of a pair (theoretical or measured flanks): its model on the tables of the
@@ -508,17 +469,9 @@ sweep_tasks(const std::vector<Excitation> &excitations, const DynamicsScene &d,
   for (const Excitation &e : excitations)
     for (bool up : {true, false})
       {
-        SweepOptions o;
+        SweepOptions o = d.sweep;
         o.motor_torque = e.TE, o.load_torque = e.TL;
-        o.settle_cycles = d.settle_cycles, o.record_cycles = d.record_cycles;
-        o.steady_tolerance      = d.steady_tolerance;
-        o.spectrum_orders       = d.spectrum_orders;
-        o.series_speeds         = d.series_speeds;
-        o.run.method            = d.integrator;
-        o.run.steps_per_cycle   = d.steps_per_cycle;
-        o.accuracy              = d.accuracy;
-        o.run.samples_per_cycle = samples_per_cycle(d);
-        o.speeds                = sweep_speeds(d);
+        o.speeds = sweep_speeds(d);
         if (!up)
           std::reverse(o.speeds.begin(), o.speeds.end());
         first_task.push_back(tasks.size());
@@ -527,6 +480,18 @@ sweep_tasks(const std::vector<Excitation> &excitations, const DynamicsScene &d,
       }
   first_task.push_back(tasks.size());
   return tasks;
+}
+
+/// The points of excitation x's sweep up (dir 0) or down (1), gathered from its tasks.
+std::vector<SweepPoint>
+sweep_points(std::size_t x, int dir, const std::vector<std::size_t> &first_task,
+             const std::vector<std::vector<SweepPoint>> &results)
+{
+  const std::size_t       j = 2 * x + std::size_t(dir);
+  std::vector<SweepPoint> points;
+  for (std::size_t t = first_task[j]; t < first_task[j + 1]; ++t)
+    points.insert(points.end(), results[t].begin(), results[t].end());
+  return points;
 }
 
 /// One excitation's sweeps (up and down) written to <pair>/<label>/{up,down}, and the log's
@@ -542,10 +507,7 @@ write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> 
   std::string   unsteady, diverged, unreached;
   for (int dir = 0; dir < 2; ++dir)
     {
-      const std::size_t       j = 2 * x + std::size_t(dir);
-      std::vector<SweepPoint> points;
-      for (std::size_t t = first_task[j]; t < first_task[j + 1]; ++t)
-        points.insert(points.end(), results[t].begin(), results[t].end());
+      const std::vector<SweepPoint> points = sweep_points(x, dir, first_task, results);
       write_sweep(eg.group(dir == 0 ? "up" : "down", "<sweep>"), points);
       for (const auto &pt : points)
         {
@@ -559,11 +521,11 @@ write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> 
             }
           else
             dlf = std::max(dlf, pt.load_factor);
-          if (!pt.diverged && pt.period == 0 && d.steady_tolerance > 0)
+          if (!pt.diverged && pt.period == 0 && d.sweep.steady_tolerance > 0)
             unsteady += at;
           // Newmark at the sweep's most steps, its error estimate still above the accuracy
           // (the recorded motion's harmonics ask for more)
-          if (!pt.diverged && d.accuracy > 0 && pt.error_estimate > d.accuracy)
+          if (!pt.diverged && d.sweep.accuracy > 0 && pt.error_estimate > d.sweep.accuracy)
             unreached += at, unreached_error = std::max(unreached_error, pt.error_estimate);
         }
     }
@@ -571,12 +533,12 @@ write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> 
       << " tasks, largest dynamic load factor " << dlf
       << (diverged.empty() ? "" : " (of the speeds that did not diverge)") << "\n";
   if (!unsteady.empty())
-    log << "  " << pair << " " << e.label << ": not steady within " << d.settle_cycles
+    log << "  " << pair << " " << e.label << ": not steady within " << d.sweep.settle_cycles
         << " mesh cycles (growing or not periodic) at [rpm]:" << unsteady << "\n";
   if (!unreached.empty())
-    log << "  " << pair << " " << e.label << ": accuracy " << d.accuracy
+    log << "  " << pair << " " << e.label << ": accuracy " << d.sweep.accuracy
         << " not reached within the sweep's most Newmark steps ("
-        << std::max(SweepOptions().most_steps, d.steps_per_cycle)
+        << std::max(d.sweep.most_steps, d.sweep.run.steps_per_cycle)
         << " per mesh cycle; the recorded motion's harmonics asked for more), error "
            "estimates up to "
         << unreached_error << " (error_estimate) at [rpm]:" << unreached << "\n";

@@ -481,7 +481,8 @@ add_dynamics(const Add &add)
           {"speed", "speeds", "rpm", "pinion speed"},
           {"spectral_radius", "speeds", "1",
            "largest Floquet multiplier modulus of the mesh in contact over one period of the "
-           "tables (> 1: parametric resonance, vibrations grow until contact is lost)"},
+           "tables, with Newmark on the steps per mesh cycle the sweeps took at that speed (> 1: "
+           "parametric resonance, vibrations grow until contact is lost)"},
           {"unstable", "speeds, integers", "1",
            "1: spectral radius above 1 by more than 1e-6 (undamped, the stable multipliers lie on "
            "the unit circle, and a torque-driven train's rigid rotation gives 1: 1 to rounding; "

@@ -304,26 +304,26 @@ check_accuracy(const PairModel &model, double load_torque, const DynamicsScene &
   throw InputError(m.str());
 }
 
-/// Parametric stability of the mesh in contact at every swept speed (Floquet), in `g`.
+/// Parametric stability of the mesh in contact at every swept speed (Floquet), in `g`: with
+/// Newmark on the steps per mesh cycle the sweeps took at that speed (`steps`, ascending speeds:
+/// the more of up and down), so the multipliers are those of the motion the sweep computed.
 void
 write_stability(const H5Group &g, const PairModel &model, const DynamicsScene &d, double TE,
-                double TL, std::ostream &log, const std::string &what)
+                double TL, const std::vector<int> &steps, std::ostream &log,
+                const std::string &what)
 {
-  std::vector<double>         rpm, radius;
-  std::vector<int>            grows;
-  std::string                 unstable;
-  std::optional<NewmarkError> newmark; // the sweep's steps
-  if (d.sweep.run.method == Integrator::newmark && d.sweep.accuracy > 0)
-    newmark.emplace(model, TL);
-  for (double w : sweep_speeds(d))
+  std::vector<double>       rpm, radius;
+  std::vector<int>          grows;
+  std::string               unstable;
+  const std::vector<double> speeds = sweep_speeds(d);
+  for (std::size_t i = 0; i < speeds.size(); ++i)
     {
-      RunOptions r   = d.sweep.run;
+      const double w = speeds[i];
+      RunOptions   r = d.sweep.run;
       r.omega        = w;
       r.motor_torque = TE, r.load_torque = TL;
-      if (newmark)
-        r.steps_per_cycle =
-            newmark->steps(w, d.sweep.accuracy, d.sweep.run.steps_per_cycle, r.samples_per_cycle,
-                           std::max(d.sweep.most_steps, d.sweep.run.steps_per_cycle));
+      if (d.sweep.run.method == Integrator::newmark)
+        r.steps_per_cycle = steps.at(i);
       rpm.push_back(w * 60 / (2 * pi));
       radius.push_back(std::abs(floquet_multipliers(model, r).front()));
       grows.push_back(parametrically_unstable(radius.back()));
@@ -494,6 +494,22 @@ sweep_points(std::size_t x, int dir, const std::vector<std::size_t> &first_task,
   return points;
 }
 
+/// Newmark's steps per mesh cycle at each speed of excitation x's sweeps, ascending speeds: the
+/// more of the sweep up's and the sweep down's.
+std::vector<int>
+sweep_steps(std::size_t x, const std::vector<std::size_t> &first_task,
+            const std::vector<std::vector<SweepPoint>> &results)
+{
+  const std::vector<SweepPoint> up   = sweep_points(x, 0, first_task, results),
+                                down = sweep_points(x, 1, first_task, results);
+  if (up.size() != down.size())
+    throw std::logic_error("sweep_steps: the sweeps up and down differ in their speeds");
+  std::vector<int> steps;
+  for (std::size_t i = 0; i < up.size(); ++i)
+    steps.push_back(std::max(up[i].steps_per_cycle, down[up.size() - 1 - i].steps_per_cycle));
+  return steps;
+}
+
 /// One excitation's sweeps (up and down) written to <pair>/<label>/{up,down}, and the log's
 /// summary: the largest load factor, the speeds that did not settle, did not reach the accuracy
 /// or diverged.
@@ -581,9 +597,13 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       std::vector<std::size_t>     first_task; // per (excitation, direction)
       const std::vector<SweepTask> tasks = sweep_tasks(excitations, d, first_task);
       const auto results = run_everywhere(tasks, "dynamics " + pair.name + ": speed");
-      for (const Excitation &e : excitations)
-        write_stability(g.group(e.label, "<excitation>").group("stability"), *e.model, d, e.TE,
-                        e.TL, log, pair.name + " " + e.label);
+      for (std::size_t x = 0; x < excitations.size(); ++x)
+        {
+          const Excitation &e = excitations[x];
+          write_stability(g.group(e.label, "<excitation>").group("stability"), *e.model, d, e.TE,
+                          e.TL, sweep_steps(x, first_task, results), log,
+                          pair.name + " " + e.label);
+        }
 
       // 4. The sweeps' results.
       for (std::size_t x = 0; x < excitations.size(); ++x)

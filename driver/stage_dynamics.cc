@@ -7,6 +7,7 @@
 // excitation and direction, optionally in blocks of speeds - run on threads, and spread over
 // the MPI processes under mpirun; every process gathers all results.
 #include "driver/pair_tca.h"
+#include "driver/results_dynamics.h"
 #include "driver/results_stiffness.h"
 #include "driver/stages.h"
 #include "dynamics/deflection.h"
@@ -98,72 +99,6 @@ run_everywhere(const std::vector<SweepTask> &tasks, const std::string &progress)
           results[i].push_back(unpack(in, at));
       });
   return results;
-}
-
-std::vector<double>
-column(const std::vector<SweepPoint> &p, double SweepPoint::*field)
-{
-  std::vector<double> v;
-  for (const SweepPoint &x : p)
-    v.push_back(x.*field);
-  return v;
-}
-
-void
-write_sweep(const H5Group &g, const std::vector<SweepPoint> &p)
-{
-  const hsize_t       n = p.size();
-  std::vector<double> rpm, diverged_time;
-  std::vector<int>    period, settled, diverged, steps, status;
-  for (const SweepPoint &x : p)
-    rpm.push_back(x.speed * 60 / (2 * pi)), period.push_back(x.period),
-        settled.push_back(x.settled_cycles), diverged.push_back(x.diverged),
-        steps.push_back(x.steps_per_cycle), diverged_time.push_back(x.diverged_time),
-        status.push_back(x.diverged     ? 2
-                         : x.period > 0 ? 0
-                                        : 1);
-  // a diverged speed has no results: zeros there, which `status` (or `diverged`) masks
-  g.write("speed", rpm, {n});
-  g.write("status", status, {n});
-  g.write("dte_peak_to_peak", column(p, &SweepPoint::dte_pp), {n});
-  g.write("dte_rms", column(p, &SweepPoint::dte_rms), {n});
-  g.write("relative_peak_to_peak", column(p, &SweepPoint::relative_pp), {n});
-  g.write("max_mesh_force", column(p, &SweepPoint::max_force), {n});
-  g.write("dynamic_load_factor", column(p, &SweepPoint::load_factor), {n});
-  g.write("contact_loss", column(p, &SweepPoint::contact_loss), {n});
-  g.write("period", period, {n});
-  g.write("settled_cycles", settled, {n});
-  g.write("diverged", diverged, {n});
-  g.write("diverged_time", diverged_time, {n});
-  if (p.front().steps_per_cycle > 0) // Newmark
-    {
-      g.write("steps_per_cycle", steps, {n});
-      g.write("error_estimate", column(p, &SweepPoint::error_estimate), {n});
-    }
-
-  // the DTE spectrum: every speed recorded the same whole periods
-  const int           R    = p.front().record_cycles;
-  const std::size_t   bins = p.front().spectrum.size();
-  std::vector<double> spectrum, order;
-  for (const SweepPoint &x : p)
-    spectrum.insert(spectrum.end(), x.spectrum.begin(), x.spectrum.end());
-  for (std::size_t k = 0; k < bins; ++k)
-    order.push_back(double(k) / R);
-  g.write("spectrum_order", order, {bins});
-  g.write("dte_spectrum", spectrum, {n, bins});
-
-  int k = 0;
-  for (const SweepPoint &x : p)
-    if (!x.series_time.empty())
-      {
-        const H5Group s = g.group("time_series").group(std::to_string(k++), "<k>");
-        const hsize_t m = x.series_time.size();
-        s.write("speed", x.speed * 60 / (2 * pi));
-        s.write("time", x.series_time, {m});
-        s.write("dte", x.series_dte, {m});
-        s.write("transmission_error", x.series_transmission_error, {m});
-        s.write("mesh_force", x.series_force, {m});
-      }
 }
 
 /// The system deflection of one excitation: iterations, the gear's motion, the misalignment it

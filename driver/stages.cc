@@ -41,12 +41,16 @@ const std::vector<std::string> &
 driver_code_of_every_stage()
 {
   static const std::vector<std::string> files = {
-      "driver/cache.cc",     "driver/cache.h",         "driver/h5_file.cc",
-      "driver/h5_file.h",    "driver/pair_members.cc", "driver/pair_members.h",
-      "driver/pair_tca.cc",  "driver/pair_tca.h",      "driver/scene.cc",
-      "driver/scene.h",      "driver/scene_flanks.cc", "driver/scene_parameters.h",
-      "driver/scene_tca.cc", "driver/scene_text.cc",   "driver/scene_text.h",
-      "driver/stages.cc",    "driver/stages.h",        "driver/results_schema.h"};
+      "driver/cache.cc",        "driver/cache.h",
+      "driver/h5_file.cc",      "driver/h5_file.h",
+      "driver/pair_members.cc", "driver/pair_members.h",
+      "driver/pair_tca.cc",     "driver/pair_tca.h",
+      "driver/results_ste.cc",  "driver/results_ste.h",
+      "driver/scene.cc",        "driver/scene.h",
+      "driver/scene_flanks.cc", "driver/scene_parameters.h",
+      "driver/scene_tca.cc",    "driver/scene_text.cc",
+      "driver/scene_text.h",    "driver/stages.cc",
+      "driver/stages.h",        "driver/results_schema.h"};
   return files;
 }
 } // namespace
@@ -119,7 +123,7 @@ stage_definitions()
        {"TCA", "Measured flanks", "Dynamics"},
        {"base", "geometry", "tca", "dynamics", "driver/stage_dynamics.cc",
         "driver/scene_dynamics.cc", "driver/scene_measured.cc", "driver/results_stiffness.cc",
-        "driver/results_stiffness.h"},
+        "driver/results_stiffness.h", "driver/results_dynamics.cc", "driver/results_dynamics.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {

@@ -64,9 +64,39 @@ Progress::~Progress()
     std::fprintf(stderr, "\r%*s\r", int(width), "");
 }
 
+namespace
+{
+std::atomic<bool> interrupt_requested{false};
+} // namespace
+
+Interrupted::Interrupted()
+    : std::runtime_error("interrupted")
+{
+}
+
+void
+interrupt()
+{
+  interrupt_requested = true;
+}
+
+void
+clear_interrupt()
+{
+  interrupt_requested = false;
+}
+
+bool
+interrupted()
+{
+  return interrupt_requested;
+}
+
 void
 Progress::advance(std::size_t n, const std::string &doing_)
 {
+  if (interrupt_requested)
+    throw Interrupted();
   done += n;
   if (!visible)
     return;

@@ -11,11 +11,30 @@
 #include <chrono>
 #include <cstddef>
 #include <mutex>
+#include <stdexcept>
 #include <streambuf>
 #include <string>
 
 namespace gearkit
 {
+/// A long computation stopped from outside (interrupt(): the Python module's Ctrl-C) at its next
+/// progress step.
+class Interrupted : public std::runtime_error
+{
+public:
+  Interrupted();
+};
+
+/// Asks every running computation to stop: from now on every Progress::advance (and note), in
+/// whatever thread, throws Interrupted - the work unwinds as after any error, nothing
+/// half-written is kept - until clear_interrupt(). Safe from any thread.
+void
+interrupt();
+void
+clear_interrupt();
+bool
+interrupted();
+
 class Progress
 {
 public:
@@ -27,6 +46,7 @@ public:
   operator=(const Progress &) = delete;
 
   /// n more steps done; `doing` (optional) says what comes next ("gear: factorising").
+  /// Throws Interrupted once interrupt() was called.
   void
   advance(std::size_t n = 1, const std::string &doing = "");
   /// Only a new note, no step.

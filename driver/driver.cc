@@ -360,16 +360,50 @@ command line; 3 results.h5 written, but the pictures or the report failed (the m
 which).
 )";
 
-/// OpenBLAS (the dense fronts of the direct solver) on this process's share of the cores,
-/// unless OPENBLAS_NUM_THREADS says otherwise: by default it takes every core in every process
-/// and crowds itself under mpirun.
+} // namespace
+
 void
 blas_threads_per_process()
 {
   if (!std::getenv("OPENBLAS_NUM_THREADS"))
     set_blas_threads(int(cores_per_process()));
 }
-} // namespace
+
+RunSummary
+run_and_report(const Scene &scene, const std::string &output_root, bool plot, std::ostream &out,
+               std::ostream &err)
+{
+  const bool first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  // One run at a time in a scene's output folder (the first process holds the lock).
+  std::unique_ptr<FolderLock> lock;
+  together([&] {
+    if (!first)
+      return;
+    fs::create_directories(fs::path(output_root) / scene.name);
+    lock = std::make_unique<FolderLock>(fs::path(output_root) / scene.name);
+  });
+  RunSummary summary = run_scene(scene, output_root, out);
+  // The first process draws the pictures (if asked for), then the report that shows them
+  // (every run). Both from an argument vector: no shell sees the paths.
+  std::vector<std::pair<std::string, std::string>> scripts;
+  if (first && plot)
+    scripts.emplace_back("plot_results.py", "plotting");
+  if (first)
+    scripts.emplace_back("report.py", "writing the report");
+  for (const auto &[script, what] : scripts)
+    {
+      out.flush(); // the log first, then the script's lines
+      const std::string path = GEARKIT_SOURCE_DIR "/scripts/" + script;
+      if (const std::string failed = run_program({"/usr/bin/python3", path, summary.results_file});
+          !failed.empty())
+        {
+          err << "gearkit: " << what << " failed (/usr/bin/python3 " << path << ": " << failed
+              << "); the results are complete in " << summary.results_file << "\n";
+          summary.status = 3;
+        }
+    }
+  return summary;
+}
 
 int
 gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ostream &err_0)
@@ -439,38 +473,7 @@ gearkit_main(const std::vector<std::string> &args, std::ostream &out_0, std::ost
     }
   try
     {
-      const Scene scene = read_scene(scene_file);
-      // One run at a time in a scene's output folder (the first process holds the lock).
-      std::unique_ptr<FolderLock> lock;
-      together([&] {
-        if (!first)
-          return;
-        fs::create_directories(fs::path(output_root) / scene.name);
-        lock = std::make_unique<FolderLock>(fs::path(output_root) / scene.name);
-      });
-      const RunSummary summary = run_scene(scene, output_root, out);
-      // The first process draws the pictures (if asked for), then the report that shows them
-      // (every run). Both from an argument vector: no shell sees the paths.
-      std::vector<std::pair<std::string, std::string>> scripts;
-      if (first && plot)
-        scripts.emplace_back("plot_results.py", "plotting");
-      if (first)
-        scripts.emplace_back("report.py", "writing the report");
-      int status = 0;
-      for (const auto &[script, what] : scripts)
-        {
-          out.flush(); // the log first, then the script's lines
-          const std::string path = GEARKIT_SOURCE_DIR "/scripts/" + script;
-          if (const std::string failed =
-                  run_program({"/usr/bin/python3", path, summary.results_file});
-              !failed.empty())
-            {
-              err << "gearkit: " << what << " failed (/usr/bin/python3 " << path << ": " << failed
-                  << "); the results are complete in " << summary.results_file << "\n";
-              status = 3;
-            }
-        }
-      return status;
+      return run_and_report(read_scene(scene_file), output_root, plot, out, err).status;
     }
   catch (const std::exception &e) // InputError and the rest
     {

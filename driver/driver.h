@@ -22,12 +22,27 @@ struct RunSummary
 {
   std::string           results_file;
   std::vector<StageRun> stages;
+  /// run_and_report: 0, or 3 where the results are complete but a picture or the report failed.
+  int status = 0;
 };
 
 /// Runs (or reuses) every stage the scene's outputs need and writes
 /// <output_root>/<scene name>/results.h5 atomically. Logs to `log`.
 RunSummary
 run_scene(const Scene &scene, const std::string &output_root, std::ostream &log);
+
+/// What `gearkit [--plot] SCENE` does with a scene it has read: one run at a time in the scene's
+/// output folder (a lock file), run_scene, then the pictures (`plot`) and the report, each a
+/// child process started from an argument vector. Under mpirun every process calls it.
+RunSummary
+run_and_report(const Scene &scene, const std::string &output_root, bool plot, std::ostream &out,
+               std::ostream &err);
+
+/// OpenBLAS on this process's share of the machine's cores, unless OPENBLAS_NUM_THREADS says
+/// otherwise (by default it takes every core in every process and crowds itself under mpirun).
+/// Collective (cores_per_process).
+void
+blas_threads_per_process();
 
 /// The command line: gearkit [--help] [--list-cases] [--print-parameters] [--print-results [json]]
 /// [--output-root DIR] [--plot] SCENE.

@@ -252,9 +252,9 @@ read_train_names(const SceneText &text, ParameterHandler &header)
   return trains;
 }
 
-/// Step 3: each section parses itself into `scene`.
+/// Step 3: each section parses itself into `scene` (input files relative to `dir`).
 void
-parse_sections(ParameterHandler &prm, const std::string &file,
+parse_sections(ParameterHandler &prm, const std::string &file, const std::string &dir,
                const std::vector<std::string> &pairs, const std::vector<TrainNames> &trains,
                const std::vector<std::string> &train_names, const NotesNames &notes, Scene &scene)
 {
@@ -268,7 +268,6 @@ parse_sections(ParameterHandler &prm, const std::string &file,
   if (scene.outputs.empty())
     throw InputError(std::string("Scene/outputs is empty; name what to compute, from: ") +
                      output_names);
-  const std::string dir = fs::path(file).parent_path().string();
   for (const std::string &p : pairs)
     {
       PairScene pair;
@@ -380,7 +379,7 @@ nearest_torque(const std::vector<double> &torques, double wanted)
 }
 
 Scene
-read_scene(const std::string &file)
+read_scene(const std::string &file, const std::string &base_directory)
 {
   if (!fs::is_regular_file(file))
     throw InputError("scene file " + file + " does not exist or is not a file");
@@ -412,7 +411,9 @@ read_scene(const std::string &file)
       text.parse(prm);
 
       // 3. Each section parses itself; 4. and checks itself against the rest of the scene.
-      parse_sections(prm, file, pairs, trains, train_names, notes, scene);
+      const std::string dir =
+          base_directory.empty() ? fs::path(file).parent_path().string() : base_directory;
+      parse_sections(prm, file, dir, pairs, trains, train_names, notes, scene);
       check_sections(scene);
 
       // 5. The parameters as text, one block per section: the cache keys hash these.

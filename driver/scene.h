@@ -531,9 +531,11 @@ std::size_t
 nearest_torque(const std::vector<double> &torques, double wanted);
 
 /// Reads and checks a scene file. Throws InputError naming the file, line, parameter and what is
-/// allowed.
+/// allowed. Input files named relative (CMM files) are found relative to `base_directory`, by
+/// default the scene file's folder (the Python module reads a scene it rewrote in a temporary
+/// folder against the original's).
 Scene
-read_scene(const std::string &file);
+read_scene(const std::string &file, const std::string &base_directory = "");
 
 /// The fully documented parameter list (defaults, patterns, help) for a scene with the given
 /// pair names.

@@ -2,13 +2,13 @@
 # Shared set-up for ./run and ./test: install the Debian packages listed in packages.txt that are
 # missing (apt, through sudo when not root; nothing is touched when all are present), then
 # configure and build into build/ (Release unless CMAKE_BUILD_TYPE is set).
-#   scripts/setup.sh           the gearkit executable only (./run)
+#   scripts/setup.sh           the gearkit executable and the Python module (./run)
 #   scripts/setup.sh --tests   also packages-tests.txt (the report's browser check) and every
 #                              target: tests and benchmarks (./test)
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
-lists=("$top/packages.txt") targets=(--target gearkit)
+lists=("$top/packages.txt") targets=(--target gearkit --target gearkit_python)
 if [[ "${1:-}" == "--tests" ]]; then
   lists+=("$top/packages-tests.txt") targets=()
 fi

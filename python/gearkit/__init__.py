@@ -1,0 +1,53 @@
+"""gearkit from Python: scenes, the driver's stage graph and its results.
+
+    import gearkit
+    scene = gearkit.Scene("cases/default.prm")
+    scene["Loaded contact/fzg/torques"] = [100, 200, 300]
+    results = gearkit.run_scene(scene, output_root="out")
+    K = results.dataset("stiffness/fzg")["mesh_stiffness"]   # xarray, units N/m
+
+The module runs the same code as the `gearkit` executable (its results are bit for bit the
+executable's); an input error is a ValueError with the driver's message; Ctrl-C stops a run at
+its next progress step.
+"""
+import os as _os
+import warnings as _warnings
+
+from . import _core
+from .results import Results, results_schema, schema_entry
+from .scene import Scene, run_scene
+
+__all__ = ["Scene", "run_scene", "Results", "results_schema", "schema_entry", "case", "cases",
+           "blas_kernels"]
+
+
+def cases():
+    """The names of the cases that ship with gearkit (cases/<name>.prm, cases/<name>/<name>.prm)."""
+    root = _os.path.join(_core.source_dir, "cases")
+    names = [f[:-4] for f in _os.listdir(root) if f.endswith(".prm")]
+    names += [d for d in _os.listdir(root)
+              if _os.path.isfile(_os.path.join(root, d, d + ".prm"))]
+    return sorted(names)
+
+
+def case(name):
+    """The scene file of a shipped case ("default", "seed_spiral_bevel", ...)."""
+    root = _os.path.join(_core.source_dir, "cases")
+    for path in (_os.path.join(root, name + ".prm"), _os.path.join(root, name, name + ".prm")):
+        if _os.path.isfile(path):
+            return path
+    raise KeyError(f"no case '{name}'; the cases: {', '.join(cases())}")
+
+
+def blas_kernels():
+    """The kernels OpenBLAS runs on in this process, and those the executable uses on this
+    processor (it switches where OpenBLAS fell back to generic ones)."""
+    return _core.blas_kernels(), _core.fitting_blas_kernels() or _core.blas_kernels()
+
+
+_running, _fitting = blas_kernels()
+if _running != _fitting and "OPENBLAS_CORETYPE" not in _os.environ:
+    _warnings.warn(f"OpenBLAS runs its {_running} kernels here, the gearkit executable its "
+                   f"{_fitting} ones: the finite elements run slower and their results differ from "
+                   f"the executable's in the last bits. Start Python with "
+                   f"OPENBLAS_CORETYPE={_fitting} for both.", RuntimeWarning, stacklevel=2)

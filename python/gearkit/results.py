@@ -1,0 +1,111 @@
+"""Results from Python: results.h5 read as NumPy arrays and xarray Datasets, each dataset with
+the units and description of the results schema (driver/results_schema.cc, the one place they
+are named), its dimensions named by the schema's shape ("torques x positions")."""
+import functools
+import re
+
+import h5py
+import numpy as np
+
+from . import _core
+
+
+@functools.lru_cache(maxsize=1)
+def results_schema():
+    """Every dataset gearkit writes: a list of dicts with group (a pattern, <...> for the names
+    that vary), dataset, shape, units and description - what `gearkit --print-results` prints."""
+    return tuple(_core.results_schema())
+
+
+def _group_regex(pattern):
+    return re.compile("/".join(
+        "".join("[^/]+" if part.startswith("<") else re.escape(part)
+                for part in re.split(r"(<[^>]*>)", level) if part)
+        for level in pattern.split("/")) + "$")
+
+
+@functools.lru_cache(maxsize=1)
+def _patterns():
+    return [(_group_regex(e["group"]), e) for e in results_schema()]
+
+
+def schema_entry(group, dataset):
+    """The schema's entry of `dataset` in the group at path `group` ("stiffness/fzg"); a
+    KeyError naming both where the schema has none."""
+    group = group.strip("/")
+    for regex, e in _patterns():
+        if e["dataset"] == dataset and regex.match(group):
+            return e
+    raise KeyError(f"no dataset '{dataset}' in group '{group}' in the results schema "
+                   "(gearkit --print-results lists them)")
+
+
+def _dimensions(shape):
+    """The dimension names of a schema shape ("torques x positions x 2 (radius, axial)" ->
+    torques, positions, 2), scalars none."""
+    words = shape.split(",")[0].strip()
+    if words in ("scalar", "integer", "integers"):
+        return []
+    return [re.sub(r"\s*\(.*\)$", "", w).strip().replace(" ", "_") for w in words.split(" x ")]
+
+
+class Results:
+    """A results.h5: `results["stiffness/fzg/mesh_stiffness"]` a NumPy array,
+    `results.dataset("stiffness/fzg")` the group as an xarray Dataset, `results.attrs` the
+    run's attributes (scene, stages, warnings, notes, ...)."""
+
+    def __init__(self, path):
+        self.path = str(path)
+        self.stages, self.status = [], 0
+        with h5py.File(self.path, "r") as f:
+            self.attrs = {k: (v.decode() if isinstance(v, bytes) else v)
+                          for k, v in f.attrs.items()}
+
+    def __getitem__(self, path):
+        with h5py.File(self.path, "r") as f:
+            return f[path][()]
+
+    def groups(self, path="/"):
+        """The names of the groups in the group at `path`."""
+        with h5py.File(self.path, "r") as f:
+            return [k for k, v in f[path].items() if isinstance(v, h5py.Group)]
+
+    def datasets(self, path="/"):
+        """The names of the datasets in the group at `path`."""
+        with h5py.File(self.path, "r") as f:
+            return [k for k, v in f[path].items() if isinstance(v, h5py.Dataset)]
+
+    def dataset(self, path):
+        """The datasets of the group at `path` as an xarray Dataset: dimensions named by the
+        schema's shapes (a dimension whose length differs between datasets gets the dataset's
+        name as suffix), a 1-D dataset named as its dimension's singular (torque for torques,
+        speed for speeds) its coordinate, every variable with its `units` and `description`;
+        the group's attributes as the Dataset's."""
+        import xarray as xr
+
+        group = path.strip("/")
+        variables, lengths = {}, {}
+        with h5py.File(self.path, "r") as f:
+            g = f[group]
+            attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in g.attrs.items()}
+            for name, obj in g.items():
+                if not isinstance(obj, h5py.Dataset):
+                    continue
+                entry = schema_entry(group, name)
+                values = obj[()]
+                dims = _dimensions(entry["shape"])
+                if len(dims) != np.ndim(values):
+                    dims = [f"{name}_{k}" for k in range(np.ndim(values))]
+                dims = [d if lengths.setdefault(d, n) == n else f"{d}_{name}"
+                        for d, n in zip(dims, np.shape(values))]
+                variables[name] = (dims, values, {"units": entry["units"],
+                                                  "description": obj.attrs.get(
+                                                      "description", entry["description"])})
+        coords = {}
+        for name, (dims, values, var_attrs) in list(variables.items()):
+            if len(dims) == 1 and dims[0] in (name + "s", name + "es"):
+                coords[dims[0]] = (dims, values, var_attrs)
+        return xr.Dataset({k: v for k, v in variables.items()}, coords=coords, attrs=attrs)
+
+    def __repr__(self):
+        return f"<gearkit.Results {self.path}>"

@@ -8,6 +8,10 @@
 #include "base/types.h"
 #include "driver/driver.h"
 #include "driver/results_schema.h"
+#include "geometry/involute_gear.h"
+#include "geometry/member_flanks.h"
+#include "tca/assembly.h"
+#include "tca/unloaded_tca.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -15,6 +19,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <streambuf>
@@ -120,6 +125,47 @@ interruptible(const std::function<Result()> &work)
   return done.get();
 }
 
+using GearPointer = std::shared_ptr<InvoluteGear>; // pybind11 holds no pointer to const
+
+/// The unloaded TCA of an involute pair over positions_per_mesh x mesh_cycles positions from
+/// the options' start angle, as the ste stage runs it (tca/unloaded_tca.h).
+struct TcaTables
+{
+  std::vector<double> pinion_angle, gear_angle, transmission_error;
+  std::vector<int>    touching, leading;
+};
+
+TcaTables
+involute_tca(const GearPointer &pinion, const GearPointer &gear, double centre_distance,
+             const TcaOptions &o, const Misalignment &m)
+{
+  const UnloadedTca tca(std::make_shared<InvoluteMemberFlanks>(pinion),
+                        std::make_shared<InvoluteMemberFlanks>(gear),
+                        Assembly(centre_distance, gear->teeth(), m), o);
+  const double      mesh_angle = 2 * pi / pinion->teeth();
+  const int         n          = o.positions_per_mesh * o.mesh_cycles;
+  Progress          progress("unloaded TCA: position", std::size_t(std::max(n, 1)));
+  TcaTables         t;
+  for (int i = 0; i < n; ++i)
+    {
+      const TcaPosition p = tca.at(o.start_angle + mesh_angle * i / o.positions_per_mesh);
+      t.pinion_angle.push_back(p.pinion_angle);
+      t.gear_angle.push_back(p.gear_angle);
+      t.transmission_error.push_back(p.transmission_error);
+      t.touching.push_back(p.touching);
+      t.leading.push_back(p.leading);
+      progress.advance();
+    }
+  return t;
+}
+
+template <class T>
+py::array_t<T>
+array(const std::vector<T> &v)
+{
+  return py::array_t<T>(py::ssize_t(v.size()), v.data());
+}
+
 py::dict
 summary_dict(const RunSummary &s)
 {
@@ -170,6 +216,30 @@ PYBIND11_MODULE(_core, m)
                                  names.push_back(p.name);
                                return names;
                              })
+      .def(
+          "involute_pair",
+          [](const Scene &s, const std::string &name) {
+            const PairScene &pair = s.pair(name);
+            if (pair.type == PairType::spiral_bevel)
+              throw InputError("pair " + name + " is a spiral bevel pair, not an involute one");
+            const auto [p, g] = pair.involute_members(s.tca.at(name));
+            return py::make_tuple(std::const_pointer_cast<InvoluteGear>(p),
+                                  std::const_pointer_cast<InvoluteGear>(g));
+          },
+          "The pair's involute members as the stages build them (at its operating centre "
+          "distance)")
+      .def("tca_options",
+           [](const Scene &s, const std::string &name) { return s.tca.at(name).options; })
+      .def("misalignment",
+           [](const Scene &s, const std::string &name) { return s.tca.at(name).misalignment; })
+      .def("tca_centre_distance",
+           [](const Scene &s, const std::string &name) {
+             const TcaScene &t = s.tca.at(name);
+             if (t.centre_distance > 0)
+               return t.centre_distance;
+             const auto [p, g] = s.pair(name).involute_members(t);
+             return working_centre_distance(*p, *g);
+           })
       .def_property_readonly("trains", [](const Scene &s) {
         std::vector<std::string> names;
         for (const TrainScene &t : s.trains)
@@ -202,7 +272,97 @@ PYBIND11_MODULE(_core, m)
       py::arg("scene"), py::arg("output_root"), py::arg("plot") = false,
       "Runs the stages the scene's outputs need (cache, results.h5, report, pictures).");
 
-  // 4. The results schema and the machine's BLAS kernels.
+  // 4. Library level: involute gears, their pair and its unloaded TCA, on library types (SI).
+  py::class_<InvoluteGearData>(m, "InvoluteGearData",
+                               "An involute gear's data (geometry/involute_gear.h), SI units")
+      .def(py::init<>())
+      .def_readwrite("teeth", &InvoluteGearData::teeth)
+      .def_readwrite("normal_module", &InvoluteGearData::normal_module)
+      .def_readwrite("normal_pressure_angle", &InvoluteGearData::normal_pressure_angle)
+      .def_readwrite("helix_angle", &InvoluteGearData::helix_angle)
+      .def_readwrite("profile_shift", &InvoluteGearData::profile_shift)
+      .def_readwrite("face_width", &InvoluteGearData::face_width)
+      .def_readwrite("addendum_factor", &InvoluteGearData::addendum_factor)
+      .def_readwrite("dedendum_factor", &InvoluteGearData::dedendum_factor)
+      .def_readwrite("root_radius_factor", &InvoluteGearData::root_radius_factor)
+      .def_readwrite("bore_diameter", &InvoluteGearData::bore_diameter)
+      .def_readwrite("density", &InvoluteGearData::density)
+      .def_readwrite("active_profile_start_radius", &InvoluteGearData::active_profile_start_radius);
+  py::class_<InvoluteGear, GearPointer>(m, "InvoluteGear",
+                                        "An involute gear (ISO 21771 quantities), SI units")
+      .def_static(
+          "create",
+          [](const InvoluteGearData &d) {
+            return std::const_pointer_cast<InvoluteGear>(InvoluteGear::create(d));
+          },
+          "Checks the data (ValueError naming the parameter) and builds the gear")
+      .def_property_readonly("data", &InvoluteGear::data)
+      .def_property_readonly("teeth", &InvoluteGear::teeth)
+      .def_readonly("reference_radius", &InvoluteGear::reference_radius)
+      .def_readonly("base_radius", &InvoluteGear::base_radius)
+      .def_readonly("tip_radius", &InvoluteGear::tip_radius)
+      .def_readonly("root_radius", &InvoluteGear::root_radius)
+      .def_readonly("form_radius", &InvoluteGear::form_radius)
+      .def_readonly("transverse_base_pitch", &InvoluteGear::transverse_base_pitch)
+      .def("tooth_thickness", &InvoluteGear::tooth_thickness, py::arg("radius"));
+  m.def(
+      "create_pair",
+      [](const InvoluteGearData &p, const InvoluteGearData &g, double a) {
+        const auto [pinion, gear] = create_pair(p, g, a);
+        return py::make_tuple(std::const_pointer_cast<InvoluteGear>(pinion),
+                              std::const_pointer_cast<InvoluteGear>(gear));
+      },
+      py::arg("pinion"), py::arg("gear"), py::arg("centre_distance") = 0.0,
+      "Pinion and gear of an external pair, each's start of active profile from its mate");
+  m.def(
+      "working_centre_distance",
+      [](const GearPointer &p, const GearPointer &g) { return working_centre_distance(*p, *g); },
+      "The centre distance of zero backlash [m]");
+  py::class_<Misalignment>(m, "Misalignment", "Misalignments of the gear (tca/assembly.h), SI")
+      .def(py::init<>())
+      .def_readwrite("offset", &Misalignment::offset)
+      .def_readwrite("centre_distance_error", &Misalignment::centre_distance_error)
+      .def_readwrite("crossing_angle", &Misalignment::crossing_angle)
+      .def_readwrite("intersecting_angle", &Misalignment::intersecting_angle)
+      .def_readwrite("pinion_axial_shift", &Misalignment::pinion_axial_shift)
+      .def_readwrite("gear_axial_shift", &Misalignment::gear_axial_shift);
+  py::class_<TcaOptions>(m, "TcaOptions", "Options of the unloaded TCA (tca/unloaded_tca.h)")
+      .def(py::init<>())
+      .def_property(
+          "side",
+          [](const TcaOptions &o) { return o.side == FlankSide::drive ? "drive" : "coast"; },
+          [](TcaOptions &o, const std::string &s) {
+            if (s != "drive" && s != "coast")
+              throw InputError("TcaOptions.side = '" + s +
+                               "' is not allowed; expected drive or coast");
+            o.side = s == "drive" ? FlankSide::drive : FlankSide::coast;
+          })
+      .def_readwrite("positions_per_mesh", &TcaOptions::positions_per_mesh)
+      .def_readwrite("mesh_cycles", &TcaOptions::mesh_cycles)
+      .def_readwrite("start_angle", &TcaOptions::start_angle)
+      .def_readwrite("profile_samples", &TcaOptions::profile_samples)
+      .def_readwrite("face_samples", &TcaOptions::face_samples)
+      .def_readwrite("contact_tolerance", &TcaOptions::contact_tolerance)
+      .def_readwrite("robust_search", &TcaOptions::robust_search);
+  m.def(
+      "unloaded_tca",
+      [](const GearPointer &pinion, const GearPointer &gear, double centre_distance,
+         const TcaOptions &options, const Misalignment &misalignment) {
+        if (!(options.positions_per_mesh > 0 && options.mesh_cycles > 0))
+          throw InputError("TcaOptions: positions_per_mesh and mesh_cycles must be positive");
+        const TcaTables t = interruptible<TcaTables>(
+            [&] { return involute_tca(pinion, gear, centre_distance, options, misalignment); });
+        return py::dict(py::arg("pinion_angle")       = array(t.pinion_angle),
+                        py::arg("gear_angle")         = array(t.gear_angle),
+                        py::arg("transmission_error") = array(t.transmission_error),
+                        py::arg("pairs_in_contact")   = array(t.touching),
+                        py::arg("leading")            = array(t.leading));
+      },
+      py::arg("pinion"), py::arg("gear"), py::arg("centre_distance"),
+      py::arg("options") = TcaOptions(), py::arg("misalignment") = Misalignment(),
+      "The unloaded TCA of an involute pair: e_0 [rad, pinion] per position, as the ste stage");
+
+  // 5. The results schema and the machine's BLAS kernels.
   m.def("results_schema", [] {
     py::list entries;
     for (const ResultDataset &d : results_schema())

@@ -6,6 +6,11 @@
     results = gearkit.run_scene(scene, output_root="out")
     K = results.dataset("stiffness/fzg")["mesh_stiffness"]   # xarray, units N/m
 
+Library level (SI units, library types): `InvoluteGearData`, `InvoluteGear.create`,
+`create_pair`, `TcaOptions`, `Misalignment`, `unloaded_tca(pinion, gear, centre_distance,
+options)` -> e_0 per position as NumPy arrays; `scene.tca_inputs("fzg")` gives a scene's pair
+as the stages build it (`gearkit.unloaded_tca(**scene.tca_inputs("fzg"))`).
+
 The module runs the same code as the `gearkit` executable (its results are bit for bit the
 executable's); an input error is a ValueError with the driver's message; Ctrl-C stops a run at
 its next progress step.
@@ -14,11 +19,14 @@ import os as _os
 import warnings as _warnings
 
 from . import _core
+from ._core import (InvoluteGear, InvoluteGearData, Misalignment, TcaOptions, create_pair,
+                    unloaded_tca, working_centre_distance)
 from .results import Results, results_schema, schema_entry
 from .scene import Scene, run_scene
 
 __all__ = ["Scene", "run_scene", "Results", "results_schema", "schema_entry", "case", "cases",
-           "blas_kernels"]
+           "blas_kernels", "InvoluteGearData", "InvoluteGear", "create_pair",
+           "working_centre_distance", "Misalignment", "TcaOptions", "unloaded_tca"]
 
 
 def cases():

@@ -162,6 +162,14 @@ class Scene:
     def warnings(self):
         return self.check()
 
+    def tca_inputs(self, pair):
+        """An involute pair of the scene as the stages build it, for gearkit.unloaded_tca:
+        dict(pinion, gear, centre_distance, options, misalignment)."""
+        self.check()
+        pinion, gear = self._core.involute_pair(pair)
+        return dict(pinion=pinion, gear=gear, centre_distance=self._core.tca_centre_distance(pair),
+                    options=self._core.tca_options(pair), misalignment=self._core.misalignment(pair))
+
     def __repr__(self):
         return f"<gearkit.Scene {self.path}{' (changed)' if self._changed else ''}>"
 

@@ -60,3 +60,35 @@ def test_a_bad_scene_file_is_a_value_error(tmp_path):
     bad.write_text("subsection Scene\n  set outputs = nothing\nend\n")
     with pytest.raises(ValueError, match="outputs"):
         gearkit.Scene(bad)
+
+
+def test_library_tca_is_the_ste_stages(source_dir, case_out):
+    """The unloaded TCA called on library types gives the ste stage's e_0 bit for bit, on the
+    scene's pair as the stages build it."""
+    scene = gearkit.Scene(os.path.join(source_dir, "cases", "default.prm"))
+    inputs = scene.tca_inputs("fzg")
+    r = gearkit.unloaded_tca(**inputs)
+    stage = gearkit.Results(os.path.join(case_out, "default", "results.h5"))
+    for name in ("pinion_angle", "gear_angle", "transmission_error", "pairs_in_contact",
+                 "leading"):
+        assert (r[name] == stage["ste/fzg/" + name]).all(), name
+    assert inputs["pinion"].teeth == 16 and inputs["gear"].teeth == 24
+
+
+def test_library_tca_of_conjugate_involutes_is_flat():
+    """Exact solution: unmodified involute flanks transmit uniformly at any centre distance
+    (e_0 constant to round-off), and a gear's data are checked (ValueError naming the field)."""
+    p, g = gearkit.InvoluteGearData(), gearkit.InvoluteGearData()
+    p.teeth, g.teeth = 19, 37
+    p.normal_module = g.normal_module = 2e-3
+    pinion, gear = gearkit.create_pair(p, g)
+    a = gearkit.working_centre_distance(pinion, gear)
+    options = gearkit.TcaOptions()
+    options.positions_per_mesh = 12
+    for centre_distance in (a, a + 0.1e-3):
+        e0 = gearkit.unloaded_tca(pinion, gear, centre_distance, options)["transmission_error"]
+        assert e0.max() - e0.min() < 1e-10
+    bad = gearkit.InvoluteGearData()
+    bad.teeth = 2
+    with pytest.raises(ValueError, match="teeth"):
+        gearkit.InvoluteGear.create(bad)

@@ -92,3 +92,26 @@ def test_library_tca_of_conjugate_involutes_is_flat():
     bad.teeth = 2
     with pytest.raises(ValueError, match="teeth"):
         gearkit.InvoluteGear.create(bad)
+
+
+def test_a_changed_scene_finds_its_files_beside_the_original(source_dir, case_out, tmp_path):
+    """Files a scene names relatively are found beside the scene file, also once it is changed
+    in Python (the driver then reads a rewritten copy in a temporary folder): the default pair's
+    measurements exported by the executable (out/default/cmm) read back as CMM files."""
+    import shutil
+    shutil.copy(os.path.join(source_dir, "cases", "default.prm"), tmp_path / "mine.prm")
+    for member in ("pinion", "gear"):
+        shutil.copy(os.path.join(case_out, "default", "cmm", f"fzg_{member}.cmm"), tmp_path)
+    scene = gearkit.Scene(tmp_path / "mine.prm")
+    scene["Scene/outputs"] = "measured"
+    scene["Measured flanks/fzg/source"] = "cmm files"
+    scene["Measured flanks/fzg/pinion file"] = "fzg_pinion.cmm"
+    scene["Measured flanks/fzg/gear file"] = "fzg_gear.cmm"
+    scene.check()
+    results = gearkit.run_scene(scene, output_root=tmp_path / "out")
+    assert results.status == 0
+    assert len(results.groups("measured/fzg/pinion")) == 32  # every pinion flank measured
+    # a file that is not there is named as the scene names it
+    scene["Measured flanks/fzg/gear file"] = "missing.cmm"
+    with pytest.raises(ValueError, match="missing.cmm"):
+        scene.check()

@@ -41,12 +41,20 @@ def schema_entry(group, dataset):
 
 
 def _dimensions(shape):
-    """The dimension names of a schema shape ("torques x positions x 2 (radius, axial)" ->
-    torques, positions, 2), scalars none."""
-    words = shape.split(",")[0].strip()
+    """The dimension names of a schema shape: "torques x positions" -> torques, positions; a
+    fixed length by what it holds, "2 (radius, axial)" -> radius_axial, else "3" -> n3;
+    scalars none."""
+    words = re.sub(r",\s*integers?$", "", shape.strip())
     if words in ("scalar", "integer", "integers"):
         return []
-    return [re.sub(r"\s*\(.*\)$", "", w).strip().replace(" ", "_") for w in words.split(" x ")]
+    dims = []
+    for word in words.split(" x "):
+        m = re.match(r"\s*([^(]*?)\s*(?:\((.*)\))?\s*$", word)
+        name, inside = m.group(1), m.group(2)
+        if name.isdigit():
+            name = "_".join(re.findall(r"[A-Za-z0-9]+", inside)) if inside else "n" + name
+        dims.append(name.replace(" ", "_"))
+    return dims
 
 
 class Results:
@@ -101,6 +109,12 @@ class Results:
                 variables[name] = (dims, values, {"units": entry["units"],
                                                   "description": obj.attrs.get(
                                                       "description", entry["description"])})
+        # a dimension named as a variable that is not its coordinate ("iterations": a count,
+        # and the length of `change`) is renamed
+        for name, (dims, values, var_attrs) in list(variables.items()):
+            renamed = [d + "_index" if d in variables and variables[d][0] != [d] else d
+                       for d in dims]
+            variables[name] = (renamed, values, var_attrs)
         coords = {}
         for name, (dims, values, var_attrs) in list(variables.items()):
             if len(dims) == 1 and dims[0] in (name + "s", name + "es"):

@@ -1,6 +1,7 @@
 """gearkit.run_scene: the executable's stage graph from Python - results bit for bit the
 executable's (every dataset and its attributes), read back as xarray with the schema's units and
 dimensions; Ctrl-C stops a run with nothing half-written."""
+import glob
 import os
 import signal
 import threading
@@ -93,3 +94,24 @@ def test_ctrl_c_stops_a_run_with_nothing_half_written(source_dir, tmp_path):
     # and the module goes on working: the next run is complete
     results = gearkit.run_scene(scene_file(source_dir, "published_pairs"), output_root=tmp_path)
     assert results.status == 0
+
+
+def test_every_group_of_every_case_reads_as_a_dataset(case_out):
+    """Every group of every case the executable ran reads as an xarray Dataset: dimensions
+    named from the schema's shapes (fixed lengths by what they hold: radius_axial, xyz), no
+    dimension clashing with a variable, every variable with its units."""
+    files = sorted(glob.glob(os.path.join(case_out, "*", "results.h5")))
+    assert len(files) >= 4
+    groups = 0
+    for path in files:
+        results = gearkit.Results(path)
+        names = []
+        with h5py.File(path, "r") as f:
+            f.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Group) else None)
+        for name in names:
+            ds = results.dataset(name)
+            groups += 1
+            for v in ds.data_vars.values():
+                assert "units" in v.attrs, (path, name, v.name)
+                assert all(not d[:1].isdigit() and "(" not in d for d in v.dims), (name, v.dims)
+    assert groups > 100

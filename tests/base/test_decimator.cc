@@ -76,9 +76,13 @@ TEST(Decimator, SinusoidsComeOutScaledByTheResponseWithoutPhase)
         }
       EXPECT_LT(worst, 1e-9) << "f " << frequency << " response " << H;
       if (frequency > 0.5) // above Nyquist: nothing folds back above -60 dB
-        EXPECT_LT(largest, 1e-3) << "f " << frequency;
+        {
+          EXPECT_LT(largest, 1e-3) << "f " << frequency;
+        }
       else if (frequency <= f.pass) // the passband: through within the spline's droop
-        EXPECT_GT(largest, 0.98);
+        {
+          EXPECT_GT(largest, 0.98);
+        }
     }
 }
 

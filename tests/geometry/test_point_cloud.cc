@@ -55,8 +55,10 @@ check_against_brute_force(std::size_t n_points, double cluster, unsigned seed)
       EXPECT_DOUBLE_EQ(distance2, d2) << q;
       EXPECT_DOUBLE_EQ((cloud.points[index] - query).squaredNorm(), d2) << q;
       if (index != best)
-        EXPECT_EQ((cloud.points[index] - query).squaredNorm(),
-                  (cloud.points[best] - query).squaredNorm());
+        {
+          EXPECT_EQ((cloud.points[index] - query).squaredNorm(),
+                    (cloud.points[best] - query).squaredNorm());
+        }
     }
 }
 } // namespace

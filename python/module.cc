@@ -7,6 +7,7 @@
 #include "base/progress.h"
 #include "base/types.h"
 #include "driver/driver.h"
+#include "driver/pair_tca.h"
 #include "driver/results_schema.h"
 #include "geometry/involute_gear.h"
 #include "geometry/member_flanks.h"
@@ -127,8 +128,8 @@ interruptible(const std::function<Result()> &work)
 
 using GearPointer = std::shared_ptr<InvoluteGear>; // pybind11 holds no pointer to const
 
-/// The unloaded TCA of an involute pair over positions_per_mesh x mesh_cycles positions from
-/// the options' start angle, as the ste stage runs it (tca/unloaded_tca.h).
+/// The unloaded TCA of an involute pair as the ste stage runs it (pair_tca: positions_per_mesh x
+/// mesh_cycles positions from the options' start angle), as tables.
 struct TcaTables
 {
   std::vector<double> pinion_angle, gear_angle, transmission_error;
@@ -139,22 +140,21 @@ TcaTables
 involute_tca(const GearPointer &pinion, const GearPointer &gear, double centre_distance,
              const TcaOptions &o, const Misalignment &m)
 {
-  const UnloadedTca tca(std::make_shared<InvoluteMemberFlanks>(pinion),
-                        std::make_shared<InvoluteMemberFlanks>(gear),
-                        Assembly(centre_distance, gear->teeth(), m), o);
-  const double      mesh_angle = 2 * pi / pinion->teeth();
-  const int         n          = o.positions_per_mesh * o.mesh_cycles;
-  Progress          progress("unloaded TCA: position", std::size_t(std::max(n, 1)));
-  TcaTables         t;
-  for (int i = 0; i < n; ++i)
+  TcaScene scene;
+  scene.options = o;
+  Progress        progress("unloaded TCA: position",
+                           std::size_t(std::max(o.positions_per_mesh * o.mesh_cycles, 1)));
+  const TcaResult r = pair_tca(
+      std::make_shared<InvoluteMemberFlanks>(pinion), std::make_shared<InvoluteMemberFlanks>(gear),
+      Assembly(centre_distance, gear->teeth(), m), scene, false, [&] { progress.advance(); });
+  TcaTables t;
+  for (const TcaPosition &p : r.positions)
     {
-      const TcaPosition p = tca.at(o.start_angle + mesh_angle * i / o.positions_per_mesh);
       t.pinion_angle.push_back(p.pinion_angle);
       t.gear_angle.push_back(p.gear_angle);
       t.transmission_error.push_back(p.transmission_error);
       t.touching.push_back(p.touching);
       t.leading.push_back(p.leading);
-      progress.advance();
     }
   return t;
 }

@@ -163,8 +163,19 @@ stage_side_directory(const H5Group &out, const std::string &suffix)
 }
 
 RunSummary
-run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_log)
+run_stages(const Scene &scene, const std::string &output_root,
+           const std::vector<std::string> &stages, std::ostream &out_log)
 {
+  for (const std::string &name : stages)
+    if (std::none_of(stage_definitions().begin(), stage_definitions().end(),
+                     [&](const StageDefinition &d) { return d.name == name; }))
+      {
+        std::string known;
+        for (const StageDefinition &d : stage_definitions())
+          known += (known.empty() ? "" : ", ") + d.name;
+        throw InputError("no stage '" + name + "'; the stages: " + known);
+      }
+
   // Under mpirun every process runs every stage (the finite elements together, the rest
   // redundantly: they are cheap); the first process alone decides what the cache holds,
   // writes files and logs.
@@ -183,7 +194,7 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
 
   RunSummary                                     summary;
   std::map<std::string, std::unique_ptr<H5File>> files;
-  for (const std::string &name : required_stages(scene))
+  for (const std::string &name : required_stages(scene, stages))
     {
       const StageDefinition &s = stage_definition(name);
       StageRun               run;
@@ -242,7 +253,20 @@ run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_
       log.unsetf(std::ios::fixed);
       summary.stages.push_back(run);
     }
+  return summary;
+}
 
+RunSummary
+run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_log)
+{
+  const unsigned     rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  std::ostringstream quiet;
+  std::ostream      &log     = rank == 0 ? out_log : quiet;
+  const fs::path     dir     = fs::path(output_root) / scene.name;
+  RunSummary         summary = run_stages(scene, output_root, required_stages(scene), out_log);
+  std::map<std::string, std::unique_ptr<H5File>> files;
+  for (const StageRun &r : summary.stages)
+    files[r.name] = std::make_unique<H5File>(H5File::open(r.cache_file));
   summary.results_file = (dir / "results.h5").string();
   if (rank != 0)
     return summary;

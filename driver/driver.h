@@ -26,6 +26,13 @@ struct RunSummary
   int status = 0;
 };
 
+/// Runs (or reuses from the cache, verified) the stages `stages` and every stage they need,
+/// upstream first, in <output_root>/<scene name>/cache: each StageRun's cache file holds its
+/// results. No results.h5. Collective; an unknown stage name is an InputError.
+RunSummary
+run_stages(const Scene &scene, const std::string &output_root,
+           const std::vector<std::string> &stages, std::ostream &log);
+
 /// Runs (or reuses) every stage the scene's outputs need and writes
 /// <output_root>/<scene name>/results.h5 atomically. Logs to `log`.
 RunSummary

@@ -197,14 +197,23 @@ required_stages(const std::vector<std::string> &outputs)
 std::vector<std::string>
 required_stages(const Scene &scene)
 {
+  std::vector<std::string> targets;
+  for (const std::string &o : scene.outputs)
+    targets.push_back(output_stages().at(o));
+  return required_stages(scene, targets);
+}
+
+std::vector<std::string>
+required_stages(const Scene &scene, const std::vector<std::string> &targets)
+{
   std::set<std::string>                    needed;
   std::function<void(const std::string &)> add = [&](const std::string &stage) {
     if (needed.insert(stage).second)
       for (const std::string &up : upstream_of(scene, stage_definition(stage)))
         add(up);
   };
-  for (const std::string &o : scene.outputs)
-    add(output_stages().at(o));
+  for (const std::string &t : targets)
+    add(stage_definition(t).name);
   std::vector<std::string> order; // stage_definitions() is already in dependency order
   for (const StageDefinition &s : stage_definitions())
     if (needed.count(s.name))

@@ -74,6 +74,9 @@ required_stages(const std::vector<std::string> &outputs);
 /// The same for a scene (stages needed only when its parameters say so included).
 std::vector<std::string>
 required_stages(const Scene &scene);
+/// The stages `targets` need for a scene, the targets included, upstream first.
+std::vector<std::string>
+required_stages(const Scene &scene, const std::vector<std::string> &targets);
 
 /// Cache key of a stage: a hash of its code (the sources of driver/ and of the folders in
 /// `code`), its scene sections, its input files' contents and the keys of its upstream stages

@@ -1,0 +1,126 @@
+// What the compiled parts of the Python module share: the driver's log into Python's streams,
+// long calls with the GIL released and Ctrl-C, vectors as NumPy arrays, and the functions that
+// bind each library's part (one file each).
+#pragma once
+
+#include "base/progress.h"
+
+#include <chrono>
+#include <functional>
+#include <future>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <streambuf>
+#include <string>
+#include <vector>
+
+namespace gearkit::python
+{
+namespace py = pybind11;
+
+/// A stream buffer that writes each whole line to a Python stream (sys.stdout, sys.stderr),
+/// taking the GIL for it: the driver's log in a notebook's cell.
+class PythonLines : public std::streambuf
+{
+public:
+  explicit PythonLines(const char *stream)
+      : stream(stream)
+  {
+  }
+  ~PythonLines() override { flush_line(); }
+
+protected:
+  int
+  overflow(int c) override
+  {
+    if (c == traits_type::eof())
+      return 0;
+    line += char(c);
+    if (c == '\n')
+      flush_line();
+    return c;
+  }
+  int
+  sync() override
+  {
+    flush_line();
+    return 0;
+  }
+
+private:
+  void
+  flush_line()
+  {
+    if (line.empty())
+      return;
+    py::gil_scoped_acquire gil;
+    py::module_::import("sys").attr(stream).attr("write")(line);
+    line.clear();
+  }
+  const char *stream;
+  std::string line;
+};
+
+/// Runs work() on a thread of its own while Python's thread waits with the GIL released,
+/// looking for Ctrl-C ten times a second: on a KeyboardInterrupt every computation is asked to
+/// stop (gearkit::interrupt: it unwinds at its next progress step, as after any error) and,
+/// once the work has ended, the KeyboardInterrupt is raised. The work's own error is rethrown.
+template <class Result>
+Result
+interruptible(const std::function<Result()> &work)
+{
+  clear_interrupt();
+  std::future<Result> done = std::async(std::launch::async, work);
+  for (;;)
+    {
+      {
+        py::gil_scoped_release release;
+        if (done.wait_for(std::chrono::milliseconds(100)) == std::future_status::ready)
+          break;
+      }
+      if (PyErr_CheckSignals() != 0) // the KeyboardInterrupt is now set on this thread
+        {
+          interrupt();
+          {
+            py::gil_scoped_release release;
+            done.wait();
+          }
+          clear_interrupt();
+          try
+            {
+              done.get();
+            }
+          catch (...) // Interrupted, or whatever the work met on its way out
+            {
+            }
+          throw py::error_already_set();
+        }
+    }
+  clear_interrupt();
+  return done.get();
+}
+
+template <class T>
+py::array_t<T>
+array(const std::vector<T> &v)
+{
+  return py::array_t<T>(py::ssize_t(v.size()), v.data());
+}
+
+/// Runs work() with the driver's log (std::ostream out, err) going to sys.stdout and
+/// sys.stderr, interruptible.
+template <class Result>
+Result
+logged(const std::function<Result(std::ostream &out, std::ostream &err)> &work)
+{
+  return interruptible<Result>([&] {
+    PythonLines  out_lines("stdout"), err_lines("stderr");
+    std::ostream out(&out_lines), err(&err_lines);
+    return work(out, err);
+  });
+}
+
+/// Involute gears, flanks (involute, spiral bevel, measured) and the unloaded TCA.
+void
+bind_geometry_tca(py::module_ &m);
+} // namespace gearkit::python

@@ -2,7 +2,9 @@
 // (gmsh tooth segments, deal.II + PETSc; computed once, reused for every torque and for the
 // measured flanks), then the loaded contact over the mesh cycle for every torque: loaded TE
 // e_L, mesh stiffness K_m, load per tooth pair and the contact pressure on the cells.
+#include "driver/pair_contact.h"
 #include "driver/pair_members.h"
+#include "driver/pair_tca.h"
 #include "driver/results_compliance.h"
 #include "driver/results_stiffness.h"
 #include "driver/stages.h"
@@ -26,29 +28,6 @@ namespace
 /// nominal tooth load deflect in proportion to their size; tip reliefs of that size engage
 /// under load). A pair the load brings into contact outside the segments is refused.
 constexpr double segment_gap_per_module = 20e-6 / 4.5e-3;
-
-/// The module the scene's element sizes are relative to: the normal module (involute), the mean
-/// normal module (spiral bevel).
-double
-member_module(const PairScene &pair)
-{
-  return pair.type == PairType::spiral_bevel ? bevel_geometry(pair.bevel).mean_normal_module
-                                             : pair.pinion.normal_module;
-}
-
-/// The scene's finite-element section of a pair with the face grid points resolved (0: from
-/// the face width and module).
-FeScene
-pair_fe(const Scene &scene, const PairScene &pair)
-{
-  FeScene fe = scene.fe.at(pair.name);
-  if (fe.n_v == 0)
-    fe.n_v = face_grid_points(pair.type == PairType::spiral_bevel
-                                  ? pair.bevel.face_width
-                                  : std::min(pair.pinion.face_width, pair.gear.face_width),
-                              member_module(pair));
-  return fe;
-}
 
 MemberComplianceOptions
 member_options(double module, int z, bool pinion, const FeScene &fe, FlankSide side,
@@ -325,20 +304,6 @@ run_reference_mode(const PairScene &pair, const FeScene &fe, const LoadedScene &
 
 namespace
 {
-/// The compliance table of one member as the compliance stage computed it (its group in
-/// compliance/<pair>, or in its coarse subgroup).
-FlankCompliance
-read_table(const MemberFlanks &flanks, const H5Group &tables, const char *member, const FeScene &fe,
-           const LoadedScene &lc, FlankSide side)
-{
-  FlankGridSpec spec;
-  spec.follow_load = lc.follow_load;
-  spec.side        = side;
-  spec.n_u = fe.n_u, spec.n_v = fe.n_v;
-  spec.graded = fe.graded_grid;
-  return compliance_table(flanks, read_compliance(tables.group(member)), spec);
-}
-
 /// The loaded contact of one pair's mesh cycle at the scene's torques, written to `g`: a torque
 /// that fails at some position is refused alone, with a warning (into `warnings`); the others
 /// are kept. The contact at the kept torques and those torques.
@@ -471,31 +436,18 @@ write_iso(const PairScene &pair, const PairMembers &members, const H5Group &g)
 }
 
 /// The measured flanks' loaded contact (stiffness/<pair>/measured) on the theoretical pair's
-/// compliances: each cell looks up the theoretical flank at its own position
-/// (MemberFlanks::rotational_parameters).
+/// compliances (measured_contact_options).
 void
 run_measured_flanks(const PairScene &pair, const LoadedScene &lc, const TcaScene &tca,
-                    const PairMembers &members, LoadedContactOptions lo,
-                    const StructuralCompliance &sp, const StructuralCompliance &sg,
-                    const H5Group &measured, const H5Group &g, std::string &warnings,
-                    std::ostream &log)
+                    const LoadedPair &lp, const H5Group &measured, const H5Group &g,
+                    std::string &warnings, std::ostream &log)
 {
-  const FlankSide side = tca.options.side;
-  const auto      mp =
-      std::make_shared<MeasuredMemberFlanks>(read_measured(measured.group("pinion"), "pinion"));
-  const auto mgr =
-      std::make_shared<MeasuredMemberFlanks>(read_measured(measured.group("gear"), "gear"));
-  lo.table_parameters = [&](ContactCell &c) {
-    std::tie(c.table_u1, c.table_v1) = members.pinion->rotational_parameters(
-        mp->flank(c.pinion_tooth, side).evaluate(c.u1, c.v1).position);
-    std::tie(c.table_u2, c.table_v2) = members.gear->rotational_parameters(
-        mgr->flank(c.gear_tooth, side).evaluate(c.u2, c.v2).position);
-  };
-  lo.cells.zone_from_gaps = true; // the measured flanks' local curvature carries their noise
-  const H5Group gm        = g.group("measured");
+  const auto [mp, mg] = measured_members(measured);
+  const H5Group gm    = g.group("measured");
   gm.attribute("method", "fast mode on the measured flanks, theoretical compliances reused");
-  analyse_mesh_cycle(pair, lc, UnloadedTca(mp, mgr, members.assembly, tca.options), lo, sp, sg, gm,
-                     " measured", warnings, log);
+  analyse_mesh_cycle(pair, lc, UnloadedTca(mp, mg, lp.members.assembly, tca.options),
+                     measured_contact_options(lp, *mp, *mg, tca.options.side), lp.pinion_compliance,
+                     lp.gear_compliance, gm, " measured", warnings, log);
 }
 } // namespace
 
@@ -505,45 +457,36 @@ run_stiffness_stage(const Scene &scene, const Upstream &upstream, const H5Group 
 {
   for (const PairScene &pair : scene.pairs)
     {
-      // 1. The pair, its scene sections and the compliance tables as the compliance stage
-      //    computed them.
-      const FeScene      fe   = pair_fe(scene, pair);
-      const LoadedScene &lc   = scene.loaded.at(pair.name);
-      const TcaScene    &tca  = scene.tca.at(pair.name);
-      const FlankSide    side = tca.options.side;
-      const PairMembers  members =
-          theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
-      const H5Group              cg  = upstream.at("compliance")->group(pair.name);
-      const FlankCompliance      cp  = read_table(*members.pinion, cg, "pinion", fe, lc, side);
-      const FlankCompliance      cgr = read_table(*members.gear, cg, "gear", fe, lc, side);
-      const StructuralCompliance sp = table_compliance(cp, true), sg = table_compliance(cgr, false);
+      // 1. The pair on the compliance tables as the compliance stage computed them.
+      const FeScene      fe  = pair_fe(scene, pair);
+      const LoadedScene &lc  = scene.loaded.at(pair.name);
+      const TcaScene    &tca = scene.tca.at(pair.name);
+      const H5Group      cg  = upstream.at("compliance")->group(pair.name);
+      const LoadedPair   lp = loaded_pair(scene, pair, upstream.at("flanks")->group(pair.name), cg);
+      const PairMembers &members     = lp.members;
+      const UnloadedTca &theory      = *lp.theory;
+      const LoadedContactOptions &lo = lp.options;
+      const StructuralCompliance &sp = lp.pinion_compliance, &sg = lp.gear_compliance;
 
       // 2. The loaded contact over the mesh cycle at every torque (fast mode).
-      LoadedContactOptions lo;
-      lo.cells           = lc.cells;
-      lo.pinion_material = lo.gear_material = fe.material;
-      lo.covered      = [&](int p, int g) { return cp.covers(p) && cgr.covers(g); };
-      lo.threads      = cores_per_process();
-      lo.communicator = MPI_COMM_WORLD; // the positions shared among the processes
       const H5Group g = out.group(pair.name, "<pair>");
       g.attribute("method", "fast mode: FE compliance (tooth segments) + half-space contact");
-      std::string       pair_warnings; // of the loaded contact: refused torques, a lost estimate
-      const UnloadedTca theory(members.pinion, members.gear, members.assembly, tca.options);
+      std::string pair_warnings; // of the loaded contact: refused torques, a lost estimate
       const auto [fine, torques] =
           analyse_mesh_cycle(pair, lc, theory, lo, sp, sg, g, "", pair_warnings, log);
 
       // 3. Its accuracy: the discretisation error estimate, the reference mode's positions.
       if (cg.has("coarse"))
-        run_error_estimate(pair, fe, lc, side, members, theory, cg, lo, sp, sg, fine, torques, g,
-                           pair_warnings, log);
+        run_error_estimate(pair, fe, lc, tca.options.side, members, theory, cg, lo, sp, sg, fine,
+                           torques, g, pair_warnings, log);
       if (!lc.reference_positions.empty())
         run_reference_mode(pair, fe, lc, tca, members, theory, cg, lo, fine, torques, out, g, log);
 
       // 4. ISO 6336-1 beside it, and the measured flanks on the same compliances.
       write_iso(pair, members, g);
       if (lc.measured) // (a measurement source is there: LoadedScene::check)
-        run_measured_flanks(pair, lc, tca, members, lo, sp, sg,
-                            upstream.at("measured")->group(pair.name), g, pair_warnings, log);
+        run_measured_flanks(pair, lc, tca, lp, upstream.at("measured")->group(pair.name), g,
+                            pair_warnings, log);
       if (!pair_warnings.empty())
         g.attribute("warnings", pair_warnings);
     }

@@ -348,7 +348,8 @@ check_name(const std::string &path, const std::string &name)
                      "or surrounding blanks");
 }
 
-/// The checks every consumer of a MeasuredMember needs; `context` prefixes the message.
+} // namespace
+
 void
 check_member(const MeasuredMember &m, const std::string &context, bool need_normals)
 {
@@ -378,6 +379,9 @@ check_member(const MeasuredMember &m, const std::string &context, bool need_norm
                "finite points and unit normals");
     }
 }
+
+namespace
+{
 
 bool
 strictly_increasing(const std::vector<double> &v)

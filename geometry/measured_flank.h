@@ -39,6 +39,12 @@ struct MeasuredMember
   std::vector<MeasuredFlank> flanks;
 };
 
+/// The checks every consumer of a MeasuredMember needs (teeth, distinct flanks in range, points
+/// on their grid, finite, unit normals where given; `need_normals`: every point has one);
+/// throws InputError prefixed by `context`.
+void
+check_member(const MeasuredMember &member, const std::string &context, bool need_normals = false);
+
 /// A perfect CMM: `sample(tooth, side)` gives each flank's grid (FlankGrid u = profile, v = face)
 /// with normals. Measures the listed teeth (empty = all, in the order given), the drive flank and
 /// with `both_sides` also the coast flank. Throws InputError for a tooth outside [0, teeth).

@@ -178,6 +178,7 @@ virtual_cmm(const MemberFlanks &member, const std::string &name, int n_profile, 
 MeasuredMemberFlanks::MeasuredMemberFlanks(const MeasuredMember &m)
     : z(m.teeth)
 {
+  check_member(m, "measured flanks of " + (m.member.empty() ? std::string("a member") : m.member));
   // Every tooth gets a flank: its own measurement, else the nearest measured tooth's turned
   // into place (the seed measured one tooth per member).
   std::map<std::pair<int, int>, std::shared_ptr<const Flank>> measured;

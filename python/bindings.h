@@ -4,6 +4,8 @@
 #pragma once
 
 #include "base/progress.h"
+#include "base/types.h"
+#include "geometry/types.h"
 
 #include <chrono>
 #include <functional>
@@ -107,6 +109,43 @@ array(const std::vector<T> &v)
   return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
 
+/// Points as an array of the given shape, the last axis x, y, z (e.g. {n_profile, n_face}).
+inline py::array_t<double>
+vec3_array(const std::vector<Vec3> &points, std::vector<py::ssize_t> shape)
+{
+  shape.push_back(3);
+  py::array_t<double> a(shape);
+  double             *out = a.mutable_data();
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      out[3 * k + std::size_t(c)] = points[k][c];
+  return a;
+}
+
+/// An array whose last axis has length 3 as points (row-major over the other axes); `what`
+/// names it in the InputError for another shape.
+inline std::vector<Vec3>
+vec3_list(const py::array_t<double, py::array::c_style | py::array::forcecast> &a,
+          const std::string                                                    &what)
+{
+  if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
+    throw InputError(what + ": an array of shape (..., 3) expected (x, y, z in metres)");
+  std::vector<Vec3> points(std::size_t(a.size() / 3));
+  const double     *in = a.data();
+  for (std::size_t k = 0; k < points.size(); ++k)
+    points[k] = Vec3(in[3 * k], in[3 * k + 1], in[3 * k + 2]);
+  return points;
+}
+
+/// "drive" or "coast"; `what` names the parameter in the InputError for anything else.
+inline FlankSide
+flank_side(const std::string &side, const std::string &what)
+{
+  if (side != "drive" && side != "coast")
+    throw InputError(what + " = '" + side + "' is not allowed; expected drive or coast");
+  return side == "drive" ? FlankSide::drive : FlankSide::coast;
+}
+
 /// Runs work() with the driver's log (std::ostream out, err) going to sys.stdout and
 /// sys.stderr, interruptible.
 template <class Result>
@@ -123,4 +162,9 @@ logged(const std::function<Result(std::ostream &out, std::ostream &err)> &work)
 /// Involute gears, flanks (involute, spiral bevel, measured) and the unloaded TCA.
 void
 bind_geometry_tca(py::module_ &m);
+
+/// A scene's pair from its stages' results: flanks, measured flanks, the loaded contact at any
+/// torque on the compliance tables.
+void
+bind_stages(py::module_ &m);
 } // namespace gearkit::python

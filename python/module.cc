@@ -87,30 +87,8 @@ PYBIND11_MODULE(_core, m)
                                  names.push_back(p.name);
                                return names;
                              })
-      .def(
-          "involute_pair",
-          [](const Scene &s, const std::string &name) {
-            const PairScene &pair = s.pair(name);
-            if (pair.type == PairType::spiral_bevel)
-              throw InputError("pair " + name + " is a spiral bevel pair, not an involute one");
-            const auto [p, g] = pair.involute_members(s.tca.at(name));
-            return py::make_tuple(std::const_pointer_cast<InvoluteGear>(p),
-                                  std::const_pointer_cast<InvoluteGear>(g));
-          },
-          "The pair's involute members as the stages build them (at its operating centre "
-          "distance)")
       .def("tca_options",
            [](const Scene &s, const std::string &name) { return s.tca.at(name).options; })
-      .def("misalignment",
-           [](const Scene &s, const std::string &name) { return s.tca.at(name).misalignment; })
-      .def("tca_centre_distance",
-           [](const Scene &s, const std::string &name) {
-             const TcaScene &t = s.tca.at(name);
-             if (t.centre_distance > 0)
-               return t.centre_distance;
-             const auto [p, g] = s.pair(name).involute_members(t);
-             return working_centre_distance(*p, *g);
-           })
       .def_property_readonly("trains", [](const Scene &s) {
         std::vector<std::string> names;
         for (const TrainScene &t : s.trains)
@@ -143,6 +121,7 @@ PYBIND11_MODULE(_core, m)
 
   // 4. Library level, on library types (SI units).
   python::bind_geometry_tca(m);
+  python::bind_stages(m);
 
   // 5. The results schema and the machine's BLAS kernels.
   m.def("results_schema", [] {

@@ -19,14 +19,18 @@ import os as _os
 import warnings as _warnings
 
 from . import _core
-from ._core import (InvoluteGear, InvoluteGearData, Misalignment, TcaOptions, create_pair,
-                    unloaded_tca, working_centre_distance)
+from ._core import (Assembly, BevelPairDesign, Flanks, InvoluteGear, InvoluteGearData,
+                    MeasuredFlank, MeasuredMember, Misalignment, PinionMismatch, TcaOptions,
+                    bevel_pair_flanks, create_pair, read_cmm_file, unloaded_tca, virtual_cmm,
+                    working_centre_distance, write_cmm_file)
 from .results import Results, results_schema, schema_entry
 from .scene import Scene, run_scene
 
 __all__ = ["Scene", "run_scene", "Results", "results_schema", "schema_entry", "case", "cases",
            "blas_kernels", "InvoluteGearData", "InvoluteGear", "create_pair",
-           "working_centre_distance", "Misalignment", "TcaOptions", "unloaded_tca"]
+           "working_centre_distance", "Misalignment", "TcaOptions", "unloaded_tca", "Assembly",
+           "Flanks", "BevelPairDesign", "PinionMismatch", "bevel_pair_flanks", "MeasuredFlank",
+           "MeasuredMember", "read_cmm_file", "write_cmm_file", "virtual_cmm"]
 
 
 def cases():

@@ -84,42 +84,52 @@ class Results:
             return [k for k, v in f[path].items() if isinstance(v, h5py.Dataset)]
 
     def dataset(self, path):
-        """The datasets of the group at `path` as an xarray Dataset: dimensions named by the
-        schema's shapes (a dimension whose length differs between datasets gets the dataset's
-        name as suffix), a 1-D dataset named as its dimension's singular (torque for torques,
-        speed for speeds) its coordinate, every variable with its `units` and `description`;
-        the group's attributes as the Dataset's."""
-        import xarray as xr
-
+        """The datasets of the group at `path` as an xarray Dataset (as_dataset): dimensions
+        named by the schema's shapes, coordinates, every variable with its `units` and
+        `description`; the group's attributes as the Dataset's."""
         group = path.strip("/")
-        variables, lengths = {}, {}
         with h5py.File(self.path, "r") as f:
             g = f[group]
             attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in g.attrs.items()}
-            for name, obj in g.items():
-                if not isinstance(obj, h5py.Dataset):
-                    continue
-                entry = schema_entry(group, name)
-                values = obj[()]
-                dims = _dimensions(entry["shape"])
-                if len(dims) != np.ndim(values):
-                    dims = [f"{name}_{k}" for k in range(np.ndim(values))]
-                dims = [d if lengths.setdefault(d, n) == n else f"{d}_{name}"
-                        for d, n in zip(dims, np.shape(values))]
-                variables[name] = (dims, values, {"units": entry["units"],
-                                                  "description": obj.attrs.get(
-                                                      "description", entry["description"])})
-        # a dimension named as a variable that is not its coordinate ("iterations": a count,
-        # and the length of `change`) is renamed
-        for name, (dims, values, var_attrs) in list(variables.items()):
-            renamed = [d + "_index" if d in variables and variables[d][0] != [d] else d
-                       for d in dims]
-            variables[name] = (renamed, values, var_attrs)
-        coords = {}
-        for name, (dims, values, var_attrs) in list(variables.items()):
-            if len(dims) == 1 and dims[0] in (name + "s", name + "es"):
-                coords[dims[0]] = (dims, values, var_attrs)
-        return xr.Dataset({k: v for k, v in variables.items()}, coords=coords, attrs=attrs)
+            values = {name: obj[()] for name, obj in g.items() if isinstance(obj, h5py.Dataset)}
+            descriptions = {name: obj.attrs["description"] for name, obj in g.items()
+                            if isinstance(obj, h5py.Dataset) and "description" in obj.attrs}
+        return as_dataset(group, values, attrs, descriptions)
 
     def __repr__(self):
         return f"<gearkit.Results {self.path}>"
+
+
+def as_dataset(group, values, attrs=None, descriptions=None):
+    """Arrays named as the results schema names the datasets of `group` ("stiffness/fzg") as an
+    xarray Dataset: dimensions named by the schema's shapes (a dimension whose length differs
+    between datasets gets the dataset's name as suffix), a 1-D dataset named as its dimension's
+    singular (torque for torques, speed for speeds) its coordinate, every variable with its
+    `units` and `description` (the schema's, or `descriptions[name]`). A KeyError for a name
+    the schema does not have there."""
+    import xarray as xr
+
+    group = group.strip("/")
+    variables, lengths = {}, {}
+    for name, values_of in values.items():
+        entry = schema_entry(group, name)
+        dims = _dimensions(entry["shape"])
+        if len(dims) != np.ndim(values_of):
+            dims = [f"{name}_{k}" for k in range(np.ndim(values_of))]
+        dims = [d if lengths.setdefault(d, n) == n else f"{d}_{name}"
+                for d, n in zip(dims, np.shape(values_of))]
+        description = (descriptions or {}).get(name, entry["description"])
+        if isinstance(description, bytes):
+            description = description.decode()
+        variables[name] = (dims, values_of, {"units": entry["units"],
+                                             "description": description})
+    # a dimension named as a variable that is not its coordinate ("iterations": a count, and
+    # the length of `change`) is renamed
+    for name, (dims, values_of, var_attrs) in list(variables.items()):
+        renamed = [d + "_index" if d in variables and variables[d][0] != [d] else d for d in dims]
+        variables[name] = (renamed, values_of, var_attrs)
+    coords = {}
+    for name, (dims, values_of, var_attrs) in list(variables.items()):
+        if len(dims) == 1 and dims[0] in (name + "s", name + "es"):
+            coords[dims[0]] = (dims, values_of, var_attrs)
+    return xr.Dataset(dict(variables), coords=coords, attrs=dict(attrs or {}))

@@ -162,13 +162,34 @@ class Scene:
     def warnings(self):
         return self.check()
 
-    def tca_inputs(self, pair):
-        """An involute pair of the scene as the stages build it, for gearkit.unloaded_tca:
-        dict(pinion, gear, centre_distance, options, misalignment)."""
+    def _root(self, output_root):
         self.check()
-        pinion, gear = self._core.involute_pair(pair)
-        return dict(pinion=pinion, gear=gear, centre_distance=self._core.tca_centre_distance(pair),
-                    options=self._core.tca_options(pair), misalignment=self._core.misalignment(pair))
+        return os.fspath(output_root)
+
+    def members(self, pair, output_root="out"):
+        """(pinion flanks, gear flanks, assembly) of the scene's pair as the stages build them
+        (the flanks stage run or reused in output_root's cache: a spiral bevel pinion with the
+        modified roll it synthesises)."""
+        return _core.pair_members(self._core, pair, self._root(output_root))
+
+    def measured_members(self, pair, output_root="out"):
+        """(pinion, gear) measured flanks of the pair as the measured stage stores them
+        (MeasuredMember: CMM files read, or synthesised); Flanks.measured(m) interpolates one."""
+        return _core.measured_members(self._core, pair, self._root(output_root))
+
+    def tca_inputs(self, pair, output_root="out"):
+        """The scene's pair as the stages build it, for gearkit.unloaded_tca:
+        dict(pinion, gear, assembly, options)."""
+        pinion, gear, assembly = self.members(pair, output_root)
+        return dict(pinion=pinion, gear=gear, assembly=assembly,
+                    options=self._core.tca_options(pair))
+
+    def loaded_pair(self, pair, output_root="out"):
+        """The pair on the compliance tables of its compliance stage (run, or reused from
+        output_root's cache - the finite elements are computed once): a LoadedPair whose
+        loaded_contact(torques) solves as the stiffness stage does, at any torque."""
+        from .contact import LoadedPair
+        return LoadedPair(_core.loaded_pair(self._core, pair, self._root(output_root)))
 
     def __repr__(self):
         return f"<gearkit.Scene {self.path}{' (changed)' if self._changed else ''}>"

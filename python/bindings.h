@@ -123,4 +123,8 @@ logged(const std::function<Result(std::ostream &out, std::ostream &err)> &work)
 /// Involute gears, flanks (involute, spiral bevel, measured) and the unloaded TCA.
 void
 bind_geometry_tca(py::module_ &m);
+
+/// The 14-DOF pair model and its speed sweeps, gear trains (models as the stages build them).
+void
+bind_dynamics(py::module_ &m);
 } // namespace gearkit::python

@@ -11,6 +11,13 @@ Library level (SI units, library types): `InvoluteGearData`, `InvoluteGear.creat
 options)` -> e_0 per position as NumPy arrays; `scene.tca_inputs("fzg")` gives a scene's pair
 as the stages build it (`gearkit.unloaded_tca(**scene.tca_inputs("fzg"))`).
 
+Dynamics at library level (SI: speeds in rad/s, `gearkit.rpm(...)` converts):
+`scene.dynamics_model("fzg")` -> `PairExcitation` (its `PairModel`, static equilibrium,
+torques and the stage's `SweepOptions`, as the dynamics stage builds them), `sweep(excitation,
+speeds, options)` -> NumPy arrays per speed (the stage's sweep bit for bit);
+`scene.train_model("drive")` -> `TrainModel`, `simulate_train(model, scene.train_options(
+"drive"))` -> time series, mesh forces and impacts (the train stage's run bit for bit).
+
 The module runs the same code as the `gearkit` executable (its results are bit for bit the
 executable's); an input error is a ValueError with the driver's message; Ctrl-C stops a run at
 its next progress step.
@@ -21,12 +28,17 @@ import warnings as _warnings
 from . import _core
 from ._core import (InvoluteGear, InvoluteGearData, Misalignment, TcaOptions, create_pair,
                     unloaded_tca, working_centre_distance)
+from ._core import (PairExcitation, PairModel, RunOptions, StaticEquilibrium, SweepOptions,
+                    TrainModel, TrainRunOptions)
+from .dynamics import rpm, simulate_train, sweep
 from .results import Results, results_schema, schema_entry
 from .scene import Scene, run_scene
 
 __all__ = ["Scene", "run_scene", "Results", "results_schema", "schema_entry", "case", "cases",
            "blas_kernels", "InvoluteGearData", "InvoluteGear", "create_pair",
-           "working_centre_distance", "Misalignment", "TcaOptions", "unloaded_tca"]
+           "working_centre_distance", "Misalignment", "TcaOptions", "unloaded_tca",
+           "PairExcitation", "PairModel", "StaticEquilibrium", "RunOptions", "SweepOptions",
+           "sweep", "rpm", "TrainModel", "TrainRunOptions", "simulate_train"]
 
 
 def cases():

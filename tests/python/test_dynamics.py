@@ -2,7 +2,7 @@
 gearkit.sweep gives the dynamics stage's sweeps bit for bit (whole sweeps up and down, in the
 stage's blocks, theoretical and measured flanks), a train built by Scene.train_model and run by
 gearkit.simulate_train the train stage's run bit for bit; bad arguments are ValueErrors naming
-the parameter."""
+the parameter; Ctrl-C stops a sweep."""
 import math
 import os
 
@@ -163,3 +163,25 @@ def test_bad_arguments_are_value_errors_naming_them(small_dynamics):
     with pytest.raises(ValueError, match="do not run the train stage"):
         gearkit.Scene(gearkit.case("seed002_power_loss")).set(
             "Scene/outputs", "flanks").train_model("perfect", output_root=root)
+
+
+def test_ctrl_c_stops_a_sweep(small_dynamics):
+    """SIGINT during a long sweep: a KeyboardInterrupt within a second or so, and the module
+    goes on working."""
+    import signal
+    import threading
+    import time
+    scene, root, _ = small_dynamics
+    exc = scene.dynamics_model("fzg", output_root=root)
+    options = exc.sweep_options
+    options.settle_cycles, options.steady_tolerance, options.record_cycles = 2000, 0, 500
+    timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            gearkit.sweep(exc, gearkit.rpm(range(1000, 30000, 100)), options)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 10  # the whole sweep takes over a minute
+    assert gearkit.sweep(exc)["speed"].size == 7

@@ -256,6 +256,20 @@ run_stages(const Scene &scene, const std::string &output_root,
   return summary;
 }
 
+StageUpstream::StageUpstream(const Scene &scene, const std::string &stage,
+                             const std::string &output_root, std::ostream &log)
+{
+  const std::vector<std::string> ups = upstream_of(scene, stage_definition(stage));
+  runs                               = run_stages(scene, output_root, ups, log);
+  for (const StageRun &r : runs.stages)
+    files[r.name] = std::make_unique<H5File>(H5File::open(r.cache_file));
+  for (const std::string &up : ups)
+    {
+      groups.push_back(files.at(up)->root().group(up));
+      map[up] = &groups.back();
+    }
+}
+
 RunSummary
 run_scene(const Scene &scene, const std::string &output_root, std::ostream &out_log)
 {

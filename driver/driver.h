@@ -4,7 +4,10 @@
 #include "driver/scene.h"
 #include "driver/stages.h"
 
+#include <deque>
 #include <iosfwd>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +35,38 @@ struct RunSummary
 RunSummary
 run_stages(const Scene &scene, const std::string &output_root,
            const std::vector<std::string> &stages, std::ostream &log);
+
+/// What stage `stage` reads for this scene, as it reads it: its upstream stages run or reused
+/// from the cache (run_stages, logging to `log`), their cache files open, and the Upstream map
+/// its run function gets (for a library-level caller that builds what the stage builds). The
+/// stage itself is not run. Collective.
+class StageUpstream
+{
+public:
+  StageUpstream(const Scene &scene, const std::string &stage, const std::string &output_root,
+                std::ostream &log);
+  StageUpstream(const StageUpstream &) = delete;
+  StageUpstream &
+  operator=(const StageUpstream &) = delete;
+
+  const Upstream &
+  upstream() const
+  {
+    return map;
+  }
+  /// The upstream stages' runs (cache files, reused or not).
+  const RunSummary &
+  summary() const
+  {
+    return runs;
+  }
+
+private:
+  RunSummary                                     runs;
+  std::map<std::string, std::unique_ptr<H5File>> files;
+  std::deque<H5Group>                            groups;
+  Upstream                                       map;
+};
 
 /// Runs (or reuses) every stage the scene's outputs need and writes
 /// <output_root>/<scene name>/results.h5 atomically. Logs to `log`.

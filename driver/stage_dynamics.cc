@@ -5,7 +5,10 @@
 // theoretical flanks (one mesh cycle repeats) and the measured flanks (their teeth differ: the
 // excitation's period is the TCA's mesh cycles, interpolated by makima). The sweeps - per
 // excitation and direction, optionally in blocks of speeds - run on threads, and spread over
-// the MPI processes under mpirun; every process gathers all results.
+// the MPI processes under mpirun; every process gathers all results. What the stage builds
+// before it sweeps (the excitations, the sweeps' options and tasks) is declared in
+// driver/dynamics_models.h: the Python module builds the same through the same functions.
+#include "driver/dynamics_models.h"
 #include "driver/pair_tca.h"
 #include "driver/results_dynamics.h"
 #include "driver/results_stiffness.h"
@@ -159,16 +162,6 @@ write_deflection(const H5Group &g, const SystemDeflection &sd, const TcaScene &t
       << " -> " << peak_to_peak * 1e6 << " urad, mean " << mean_shift * 1e6 << " urad\n";
 }
 
-/// The sweep's speeds [rad/s], ascending.
-std::vector<double>
-sweep_speeds(const DynamicsScene &d)
-{
-  std::vector<double> w;
-  for (int i = 0; i < d.speeds; ++i)
-    w.push_back(d.speed_from + (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
-  return w;
-}
-
 /// Linear modes at the model's mean mesh and the resonance speeds of mesh orders 1 to 3.
 void
 write_modes(const H5Group &g, const PairModel &model, const std::string &label, int z1,
@@ -287,131 +280,59 @@ mesh_stiffness_table(const DynamicsScene &d, const Upstream &upstream, const Pai
   return resample_periodic(r.mesh_stiffness_at(nearest_torque(r.torques, d.torque)), n);
 }
 
-/// One excitation of a pair (theoretical or measured flanks): its model on the tables of the
-/// TCA, in the system deflection's fixed point, and its static equilibrium.
-struct Excitation
+/// One excitation's record in <pair>/<label>: the system deflection (where it iterated), the
+/// static equilibrium and the excitation's period; and its lines of the log.
+void
+write_excitation(const PairExcitation &e, const PairDynamicsInputs &in, const Upstream &upstream,
+                 const H5Group &g, std::ostream &log)
 {
-  std::string                label;
-  std::unique_ptr<PairModel> model;
-  StaticEquilibrium          s;
-  double                     TE = 0, TL = 0;
-};
-
-/// The excitation `label` of the pair: its tables (K excitation cycles of n samples), the system
-/// deflection's fixed point over them, the static equilibrium; written to <pair>/<label>.
-Excitation
-build_excitation(const char *label, const PairScene &pair, const DynamicsScene &d,
-                 const TcaScene &tca, const PairMembers &members, const Upstream &upstream,
-                 const PairModelParameters &p, const H5Group &g, std::ostream &log)
-{
-  const bool    measured    = std::string(label) == "measured";
-  const H5Group ste         = upstream.at("ste")->group(pair.name);
-  const int     n           = tca.options.positions_per_mesh;
-  const Vec3    pinion_axis = Vec3::UnitZ();
-  const Vec3    gear_axis   = -members.assembly.gear_axis(); // its driven sense
-  const int     K =
-      measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles) : 1;
-  // the tables of an analysis; the system deflection's fixed point over them
-  std::optional<H5Group> measured_ste;
-  if (measured)
-    measured_ste.emplace(ste.group("measured"));
-  const H5Group &aligned   = measured ? *measured_ste : ste;
-  const auto     tables_of = [&](const ContactTables &c) {
-    MeshCycleSamples tables = mesh_cycle_samples(
-            c, n, K, pinion_axis, mesh_stiffness_table(d, upstream, pair, measured, n));
-    if (measured) // kinks and noise: no ringing between the samples
-      tables.interpolation = MeshInterpolation::makima;
-    if (!d.tca_transmission_error)
-      for (int i = 0; i < n * K; ++i)
-        tables.transmission_error[std::size_t(i)] =
-            d.transmission_error_amplitude * std::sin(2 * pi * i / n);
-    return tables;
-  };
-  // the measured flanks, read when the deflection first needs them
-  std::pair<MemberPointer, MemberPointer> flanks;
-  PairMembers                             moved      = members;
-  Misalignment                            misaligned = tca.misalignment;
-  TcaResult                               deflected;
-  const auto                              tables_at = [&](const RigidMotion &u) {
-    DeflectedTables out;
-    if (u.translation.isZero(0) && u.rotation.isZero(0))
-      return out.tables = tables_of(contact_tables(aligned)), out;
-    TcaScene t = tca;
-    t.misalignment = misalignment_after(members.assembly, tca.misalignment, u, &out.taken);
-    misaligned = t.misalignment;
-    moved = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
-    if (measured && !flanks.first)
-      flanks = measured_members(upstream.at("measured")->group(pair.name));
-    try
-      {
-        deflected =
-            pair_tca(measured ? flanks.first : moved.pinion, measured ? flanks.second : moved.gear,
-                     moved.assembly, t, measured, [] {});
-      }
-    catch (const InputError &e)
-      {
-        std::ostringstream msg;
-        msg << "Dynamics/" << pair.name << "/system deflection: the static load moves "
-            << "the gear by " << u.translation.norm() * 1e6 << " um and " << u.rotation.norm() * 1e3
-            << " mrad relative to the pinion, and the TCA "
-            << "there fails (" << e.what() << "); stiffen the supports (bearing and "
-            << "axial stiffness), lower the torque, or set system deflection = false";
-        throw InputError(msg.str());
-      }
-    out.tables = tables_of(contact_tables(deflected));
-    return out;
-  };
-  SystemDeflectionOptions so;
-  so.motor_torque = d.torque;
-  so.pinion_axis = pinion_axis, so.gear_axis = gear_axis;
-  so.pinion_centre           = members.assembly.pinion_centre();
-  so.gear_centre             = members.assembly.gear_to_global(Vec3::Zero(), 0);
-  so.max_iterations          = d.system_deflection && d.tca_transmission_error ? 10 : 0;
-  SystemDeflection        sd = system_deflection(p, tables_at, so);
-  Excitation              e{label, std::move(sd.model), sd.equilibrium, d.torque, sd.load_torque};
-  const MeshCycleSamples &tables = e.model->tables();
-  const H5Group           eg     = g.group(label, "<excitation>");
-  if (so.max_iterations > 0)
-    write_deflection(eg.group("deflection"), sd, tca, misaligned, moved, deflected, aligned, log,
-                     pair.name + " " + label);
-  eg.write("static_mesh_force", e.s.mesh_force);
-  eg.write("static_deflection", e.s.deflection);
-  eg.write("load_torque", e.TL);
-  eg.write("excitation_cycles", double(K));
-  const auto  &et   = tables.transmission_error;
+  const PairScene &pair     = *in.pair;
+  const bool       measured = e.label == "measured";
+  const H5Group    eg       = g.group(e.label, "<excitation>");
+  if (e.iterated)
+    {
+      const H5Group ste = upstream.at("ste")->group(pair.name);
+      const H5Group aligned =
+          measured ? ste.group("measured") : upstream.at("ste")->group(pair.name);
+      write_deflection(eg.group("deflection"), e.deflection, *in.tca, e.misalignment,
+                       e.moved ? *e.moved : in.members, e.deflected, aligned, log,
+                       pair.name + " " + e.label);
+    }
+  eg.write("static_mesh_force", e.equilibrium().mesh_force);
+  eg.write("static_deflection", e.equilibrium().deflection);
+  eg.write("load_torque", e.load_torque());
+  eg.write("excitation_cycles", double(e.cycles));
+  const auto  &et   = e.model().tables().transmission_error;
   const double wrap = et.front() - et.back();
   double       step = 0;
   for (std::size_t i = 1; i < et.size(); ++i)
     step = std::max(step, std::abs(et[i] - et[i - 1]));
   eg.write("wrap_step", wrap);
-  log << "  " << pair.name << " " << label << ": " << K << " mesh cycle" << (K > 1 ? "s" : "")
-      << " of " << n << " samples per period";
+  log << "  " << pair.name << " " << e.label << ": " << e.cycles << " mesh cycle"
+      << (e.cycles > 1 ? "s" : "") << " of " << in.tca->options.positions_per_mesh
+      << " samples per period";
   if (measured)
     log << "; E_t steps " << wrap * 1e6 << " um where the period wraps (largest step "
         << "between samples " << step * 1e6 << " um)";
   log << "\n";
-  return e;
 }
 
 /// The sweeps' tasks: per excitation up and down (each from the static equilibrium at its
 /// first speed), in blocks; `first_task` gets where each (excitation, direction) begins, and the
 /// end.
 std::vector<SweepTask>
-sweep_tasks(const std::vector<Excitation> &excitations, const DynamicsScene &d,
+sweep_tasks(const std::vector<PairExcitation> &excitations, const DynamicsScene &d,
             std::vector<std::size_t> &first_task)
 {
   std::vector<SweepTask> tasks;
-  for (const Excitation &e : excitations)
+  for (const PairExcitation &e : excitations)
     for (bool up : {true, false})
       {
-        SweepOptions o = d.sweep;
-        o.motor_torque = e.TE, o.load_torque = e.TL;
-        o.speeds = sweep_speeds(d);
-        if (!up)
-          std::reverse(o.speeds.begin(), o.speeds.end());
         first_task.push_back(tasks.size());
-        for (const SweepOptions &b : split_sweep(o, d.sweep_blocks, d.warmup_speeds))
-          tasks.push_back({e.model.get(), e.s.q, PairVector::Zero(), b});
+        for (SweepTask &t :
+             sweep_block_tasks(e.model(), e.equilibrium().q, PairVector::Zero(),
+                               excitation_sweep_options(e, d, up), d.sweep_blocks, d.warmup_speeds))
+          tasks.push_back(std::move(t));
       }
   first_task.push_back(tasks.size());
   return tasks;
@@ -449,7 +370,7 @@ sweep_steps(std::size_t x, const std::vector<std::size_t> &first_task,
 /// summary: the largest load factor, the speeds that did not settle, did not reach the accuracy
 /// or diverged.
 void
-write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> &first_task,
+write_sweeps(const PairExcitation &e, std::size_t x, const std::vector<std::size_t> &first_task,
              const std::vector<std::vector<SweepPoint>> &results, std::size_t n_tasks,
              const DynamicsScene &d, const std::string &pair, const H5Group &g, std::ostream &log)
 {
@@ -500,6 +421,124 @@ write_sweeps(const Excitation &e, std::size_t x, const std::vector<std::size_t> 
 }
 } // namespace
 
+PairDynamicsInputs
+pair_dynamics_inputs(const Scene &scene, const PairScene &pair, const Upstream &upstream)
+{
+  const DynamicsScene &d   = scene.dynamics.at(pair.name);
+  const TcaScene      &tca = scene.tca.at(pair.name);
+  PairMembers members = theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
+  const PairModelParameters p = placed_in_assembly(d.model, members.pinion->teeth(), Vec3::UnitZ(),
+                                                   members.assembly.gear_axis());
+  return {&pair, &d, &tca, std::move(members), p};
+}
+
+PairExcitation
+build_excitation(const std::string &label, const PairDynamicsInputs &in, const Upstream &upstream)
+{
+  const PairScene     &pair        = *in.pair;
+  const DynamicsScene &d           = *in.dynamics;
+  const TcaScene      &tca         = *in.tca;
+  const PairMembers   &members     = in.members;
+  const bool           measured    = label == "measured";
+  const H5Group        ste         = upstream.at("ste")->group(pair.name);
+  const int            n           = tca.options.positions_per_mesh;
+  const Vec3           pinion_axis = Vec3::UnitZ();
+  const Vec3           gear_axis   = -members.assembly.gear_axis(); // its driven sense
+  PairExcitation       e;
+  e.label        = label;
+  e.motor_torque = d.torque;
+  e.cycles =
+      measured ? (d.excitation_cycles > 0 ? d.excitation_cycles : tca.options.mesh_cycles) : 1;
+  const int K = e.cycles;
+  // the tables of an analysis; the system deflection's fixed point over them
+  std::optional<H5Group> measured_ste;
+  if (measured)
+    measured_ste.emplace(ste.group("measured"));
+  const H5Group &aligned   = measured ? *measured_ste : ste;
+  const auto     tables_of = [&](const ContactTables &c) {
+    MeshCycleSamples tables = mesh_cycle_samples(
+            c, n, K, pinion_axis, mesh_stiffness_table(d, upstream, pair, measured, n));
+    if (measured) // kinks and noise: no ringing between the samples
+      tables.interpolation = MeshInterpolation::makima;
+    if (!d.tca_transmission_error)
+      for (int i = 0; i < n * K; ++i)
+        tables.transmission_error[std::size_t(i)] =
+            d.transmission_error_amplitude * std::sin(2 * pi * i / n);
+    return tables;
+  };
+  // the measured flanks, read when the deflection first needs them
+  std::pair<MemberPointer, MemberPointer> flanks;
+  e.misalignment       = tca.misalignment;
+  const auto tables_at = [&](const RigidMotion &u) {
+    DeflectedTables out;
+    if (u.translation.isZero(0) && u.rotation.isZero(0))
+      return out.tables = tables_of(contact_tables(aligned)), out;
+    TcaScene t     = tca;
+    t.misalignment = misalignment_after(members.assembly, tca.misalignment, u, &out.taken);
+    e.misalignment = t.misalignment;
+    e.moved        = theoretical_members(pair, t, upstream.at("flanks")->group(pair.name));
+    if (measured && !flanks.first)
+      flanks = measured_members(upstream.at("measured")->group(pair.name));
+    try
+      {
+        e.deflected = pair_tca(measured ? flanks.first : e.moved->pinion,
+                               measured ? flanks.second : e.moved->gear, e.moved->assembly, t,
+                               measured, [] {});
+      }
+    catch (const InputError &error)
+      {
+        std::ostringstream msg;
+        msg << "Dynamics/" << pair.name << "/system deflection: the static load moves "
+            << "the gear by " << u.translation.norm() * 1e6 << " um and " << u.rotation.norm() * 1e3
+            << " mrad relative to the pinion, and the TCA "
+            << "there fails (" << error.what() << "); stiffen the supports (bearing and "
+            << "axial stiffness), lower the torque, or set system deflection = false";
+        throw InputError(msg.str());
+      }
+    out.tables = tables_of(contact_tables(e.deflected));
+    return out;
+  };
+  SystemDeflectionOptions so;
+  so.motor_torque = d.torque;
+  so.pinion_axis = pinion_axis, so.gear_axis = gear_axis;
+  so.pinion_centre  = members.assembly.pinion_centre();
+  so.gear_centre    = members.assembly.gear_to_global(Vec3::Zero(), 0);
+  so.max_iterations = d.system_deflection && d.tca_transmission_error ? 10 : 0;
+  e.iterated        = so.max_iterations > 0;
+  e.deflection      = system_deflection(in.parameters, tables_at, so);
+  return e;
+}
+
+std::vector<double>
+sweep_speeds(const DynamicsScene &d)
+{
+  std::vector<double> w;
+  for (int i = 0; i < d.speeds; ++i)
+    w.push_back(d.speed_from + (d.speed_to - d.speed_from) * i / std::max(1, d.speeds - 1));
+  return w;
+}
+
+SweepOptions
+excitation_sweep_options(const PairExcitation &e, const DynamicsScene &d, bool up)
+{
+  SweepOptions o = d.sweep;
+  o.motor_torque = e.motor_torque, o.load_torque = e.load_torque();
+  o.speeds = sweep_speeds(d);
+  if (!up)
+    std::reverse(o.speeds.begin(), o.speeds.end());
+  return o;
+}
+
+std::vector<SweepTask>
+sweep_block_tasks(const PairModel &model, const PairVector &q, const PairVector &v,
+                  const SweepOptions &options, int blocks, int warmup)
+{
+  std::vector<SweepTask> tasks;
+  for (const SweepOptions &b : split_sweep(options, blocks, warmup))
+    tasks.push_back({&model, q, v, b});
+  return tasks;
+}
+
 void
 run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &out,
                    std::ostream &log)
@@ -507,26 +546,24 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
   for (const PairScene &pair : scene.pairs)
     {
       // 1. The pair and its model placed in the assembly.
-      const DynamicsScene &d   = scene.dynamics.at(pair.name);
-      const TcaScene      &tca = scene.tca.at(pair.name);
-      const PairMembers    members =
-          theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
-      const int                 z1 = members.pinion->teeth();
-      const PairModelParameters p =
-          placed_in_assembly(d.model, z1, Vec3::UnitZ(), members.assembly.gear_axis());
+      const DynamicsScene     &d  = scene.dynamics.at(pair.name);
+      const PairDynamicsInputs in = pair_dynamics_inputs(scene, pair, upstream);
+      const int                z1 = in.members.pinion->teeth();
 
       // 2. The excitations: models on the TCA's tables, static equilibria, the modes.
-      std::vector<Excitation> excitations;
-      const H5Group           g = out.group(pair.name, "<pair>");
+      std::vector<PairExcitation> excitations;
+      const H5Group               g = out.group(pair.name, "<pair>");
       for (const char *label : {"theoretical", "measured"})
         if (std::string(label) == "measured" ? d.measured : d.theoretical)
-          excitations.push_back(
-              build_excitation(label, pair, d, tca, members, upstream, p, g, log));
-      log << "  " << pair.name << ": static mesh force " << excitations.front().s.mesh_force
-          << " N\n";
-      write_modes(g, *excitations.front().model, excitations.front().label, z1, log, pair.name);
-      for (const Excitation &e : excitations)
-        check_accuracy(*e.model, e.TL, d, pair.name);
+          {
+            excitations.push_back(build_excitation(label, in, upstream));
+            write_excitation(excitations.back(), in, upstream, g, log);
+          }
+      log << "  " << pair.name << ": static mesh force "
+          << excitations.front().equilibrium().mesh_force << " N\n";
+      write_modes(g, excitations.front().model(), excitations.front().label, z1, log, pair.name);
+      for (const PairExcitation &e : excitations)
+        check_accuracy(e.model(), e.load_torque(), d, pair.name);
 
       // 3. The sweeps, shared among the processes and threads; the Floquet stability.
       std::vector<std::size_t>     first_task; // per (excitation, direction)
@@ -534,9 +571,9 @@ run_dynamics_stage(const Scene &scene, const Upstream &upstream, const H5Group &
       const auto results = run_everywhere(tasks, "dynamics " + pair.name + ": speed");
       for (std::size_t x = 0; x < excitations.size(); ++x)
         {
-          const Excitation &e = excitations[x];
-          write_stability(g.group(e.label, "<excitation>").group("stability"), *e.model, d, e.TE,
-                          e.TL, sweep_steps(x, first_task, results), log,
+          const PairExcitation &e = excitations[x];
+          write_stability(g.group(e.label, "<excitation>").group("stability"), e.model(), d,
+                          e.motor_torque, e.load_torque(), sweep_steps(x, first_task, results), log,
                           pair.name + " " + e.label);
         }
 

@@ -3,8 +3,10 @@
 // distance (tca/tooth_pairs.h), its gear starts in the middle of the backlash (or touching),
 // and the run is written with its kinematic frequencies, the mesh forces' spectra with the lines
 // found at the mesh frequencies, their harmonics and sidebands, and a spectrogram of the first
-// mesh's force.
+// mesh's force. The train's model (train_model, driver/dynamics_models.h) is the Python module's
+// too.
 #include "base/spectrum.h"
+#include "driver/dynamics_models.h"
 #include "driver/results_stiffness.h"
 #include "driver/stages.h"
 #include "dynamics/train.h"
@@ -19,7 +21,6 @@ namespace gearkit
 {
 namespace
 {
-/// The train model of the scene with its tooth pair tables and mesh angles.
 /// The stiffness stage's K_m of a pair over its mesh cycle at the loaded-contact torque nearest
 /// `torque` (0: the largest): the mesh's TrainMesh::mesh_stiffness and its start angle.
 void
@@ -39,37 +40,6 @@ fe_mesh_stiffness(const H5Group &stiffness, const std::string &pair, double torq
                        "for a train mesh's K_m (stiffness = finite elements)");
   m.mesh_stiffness       = r.mesh_stiffness_at(nearest_torque(r.torques, torque));
   m.mesh_stiffness_start = phi.front();
-}
-
-TrainModel
-train_model(const Scene &scene, const TrainScene &train, const Upstream &upstream)
-{
-  TrainModel model = train.model(scene);
-  for (std::size_t i = 0; i < train.meshes.size(); ++i)
-    {
-      const TrainMeshScene &s = train.meshes[i];
-      TrainMesh            &m = model.meshes[i];
-      // the flanks as this mesh runs: their active profiles at its own centre distance (the
-      // backlash opens it) with the pair's centre distance error and offset
-      const double a            = train_mesh_centre_distance(scene, s);
-      const auto [pinion, gear] = scene.pair(s.pair).involute_members(
-          operating_centre_distance(a, scene.tca.at(s.pair).misalignment));
-      m.teeth                   = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
-                                                    std::make_shared<InvoluteMemberFlanks>(gear), a,
-                                                    scene.tca.at(s.pair).misalignment, train.curves);
-      const auto [drive, coast] = band_edges(m.teeth);
-      const double offset       = s.start == MeshStart::centre  ? (drive + coast) / 2
-                                  : s.start == MeshStart::drive ? drive
-                                                                : coast;
-      const double ratio        = double(pinion->teeth()) / gear->teeth();
-      const double theta_p      = model.bodies[std::size_t(m.driver)].initial_angle;
-      const double theta_g      = model.bodies[std::size_t(m.driven)].initial_angle;
-      m.gear_angle_0            = offset + ratio * (theta_p + m.pinion_angle_0) - theta_g;
-      if (s.fe_stiffness)
-        fe_mesh_stiffness(*upstream.at("stiffness"), s.pair, s.stiffness_torque, pinion->teeth(),
-                          m);
-    }
-  return model;
 }
 
 /// The lines of a mesh's force spectrum at its GMF harmonics and their sidebands (every
@@ -322,6 +292,37 @@ write_spectrogram(const TrainScene &train, const TrainModel &model, const TrainR
   sg.write("amplitude", sp.amplitude, {hsize_t(sp.time.size()), hsize_t(sp.frequency.size())});
 }
 } // namespace
+
+TrainModel
+train_model(const Scene &scene, const TrainScene &train, const Upstream &upstream)
+{
+  TrainModel model = train.model(scene);
+  for (std::size_t i = 0; i < train.meshes.size(); ++i)
+    {
+      const TrainMeshScene &s = train.meshes[i];
+      TrainMesh            &m = model.meshes[i];
+      // the flanks as this mesh runs: their active profiles at its own centre distance (the
+      // backlash opens it) with the pair's centre distance error and offset
+      const double a            = train_mesh_centre_distance(scene, s);
+      const auto [pinion, gear] = scene.pair(s.pair).involute_members(
+          operating_centre_distance(a, scene.tca.at(s.pair).misalignment));
+      m.teeth                   = tooth_pair_tables(std::make_shared<InvoluteMemberFlanks>(pinion),
+                                                    std::make_shared<InvoluteMemberFlanks>(gear), a,
+                                                    scene.tca.at(s.pair).misalignment, train.curves);
+      const auto [drive, coast] = band_edges(m.teeth);
+      const double offset       = s.start == MeshStart::centre  ? (drive + coast) / 2
+                                  : s.start == MeshStart::drive ? drive
+                                                                : coast;
+      const double ratio        = double(pinion->teeth()) / gear->teeth();
+      const double theta_p      = model.bodies[std::size_t(m.driver)].initial_angle;
+      const double theta_g      = model.bodies[std::size_t(m.driven)].initial_angle;
+      m.gear_angle_0            = offset + ratio * (theta_p + m.pinion_angle_0) - theta_g;
+      if (s.fe_stiffness)
+        fe_mesh_stiffness(*upstream.at("stiffness"), s.pair, s.stiffness_torque, pinion->teeth(),
+                          m);
+    }
+  return model;
+}
 
 void
 run_train_stage(const Scene &scene, const Upstream &upstream, const H5Group &out, std::ostream &log)

@@ -124,8 +124,9 @@ stage_definitions()
        {"flanks", "ste"},
        {"TCA", "Measured flanks", "Dynamics"},
        {"base", "geometry", "tca", "dynamics", "driver/stage_dynamics.cc",
-        "driver/scene_dynamics.cc", "driver/scene_measured.cc", "driver/results_stiffness.cc",
-        "driver/results_stiffness.h", "driver/results_dynamics.cc", "driver/results_dynamics.h"},
+        "driver/dynamics_models.h", "driver/scene_dynamics.cc", "driver/scene_measured.cc",
+        "driver/results_stiffness.cc", "driver/results_stiffness.h", "driver/results_dynamics.cc",
+        "driver/results_dynamics.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_dynamics_stage,
        [](const Scene &scene) {
@@ -146,8 +147,8 @@ stage_definitions()
        "gear-train impact dynamics: tooth pair curves, IMPACT contact, CVODE run, spectra",
        {"flanks"},
        {"Flanks", "TCA", "Train"},
-       {"base", "geometry", "tca", "dynamics", "driver/stage_train.cc", "driver/scene_train.cc",
-        "driver/results_stiffness.cc", "driver/results_stiffness.h"},
+       {"base", "geometry", "tca", "dynamics", "driver/stage_train.cc", "driver/dynamics_models.h",
+        "driver/scene_train.cc", "driver/results_stiffness.cc", "driver/results_stiffness.h"},
        [](const Scene &) { return std::vector<std::string>{}; },
        run_train_stage,
        [](const Scene &scene) {

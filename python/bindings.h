@@ -167,4 +167,8 @@ bind_geometry_tca(py::module_ &m);
 /// torque on the compliance tables.
 void
 bind_stages(py::module_ &m);
+
+/// The 14-DOF pair model and its speed sweeps, gear trains (models as the stages build them).
+void
+bind_dynamics(py::module_ &m);
 } // namespace gearkit::python

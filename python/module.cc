@@ -122,6 +122,7 @@ PYBIND11_MODULE(_core, m)
   // 4. Library level, on library types (SI units).
   python::bind_geometry_tca(m);
   python::bind_stages(m);
+  python::bind_dynamics(m);
 
   // 5. The results schema and the machine's BLAS kernels.
   m.def("results_schema", [] {

@@ -6,10 +6,23 @@
     results = gearkit.run_scene(scene, output_root="out")
     K = results.dataset("stiffness/fzg")["mesh_stiffness"]   # xarray, units N/m
 
-Library level (SI units, library types): `InvoluteGearData`, `InvoluteGear.create`,
-`create_pair`, `TcaOptions`, `Misalignment`, `unloaded_tca(pinion, gear, centre_distance,
-options)` -> e_0 per position as NumPy arrays; `scene.tca_inputs("fzg")` gives a scene's pair
-as the stages build it (`gearkit.unloaded_tca(**scene.tca_inputs("fzg"))`).
+Library level (SI units, library types): flanks - `Flanks.involute(InvoluteGear.create(data))`,
+`bevel_pair_flanks(BevelPairDesign(), PinionMismatch())` -> (pinion, gear, Assembly),
+`Flanks.measured(read_cmm_file(path))` or from arrays (`MeasuredMember`, `MeasuredFlank`,
+`virtual_cmm`); `unloaded_tca(pinion, gear, assembly, options)` -> e_0 per position as NumPy
+arrays (classical, or discrete-point on measured flanks). A scene's pair as the stages build
+it: `scene.members("fzg")`, `scene.measured_members("fzg")`,
+`gearkit.unloaded_tca(**scene.tca_inputs("fzg"))`; on its finite-element compliance, computed
+once and cached: `loaded = scene.loaded_pair("fzg")`, `loaded.loaded_contact([50, 100, 400])`
+-> e_L, K_m, loads and pressures as an xarray Dataset (as stiffness/<pair>), also on measured
+or modified flanks (`flanks=(pinion, gear)`).
+
+Dynamics at library level (SI: speeds in rad/s, `gearkit.rpm(...)` converts):
+`scene.dynamics_model("fzg")` -> `PairExcitation` (its `PairModel`, static equilibrium,
+torques and the stage's `SweepOptions`, as the dynamics stage builds them), `sweep(excitation,
+speeds, options)` -> NumPy arrays per speed (the stage's sweep bit for bit);
+`scene.train_model("drive")` -> `TrainModel`, `simulate_train(model, scene.train_options(
+"drive"))` -> time series, mesh forces and impacts (the train stage's run bit for bit).
 
 The module runs the same code as the `gearkit` executable (its results are bit for bit the
 executable's); an input error is a ValueError with the driver's message; Ctrl-C stops a run at
@@ -23,6 +36,9 @@ from ._core import (Assembly, BevelPairDesign, Flanks, InvoluteGear, InvoluteGea
                     MeasuredFlank, MeasuredMember, Misalignment, PinionMismatch, TcaOptions,
                     bevel_pair_flanks, create_pair, read_cmm_file, unloaded_tca, virtual_cmm,
                     working_centre_distance, write_cmm_file)
+from ._core import (PairExcitation, PairModel, RunOptions, StaticEquilibrium, SweepOptions,
+                    TrainModel, TrainRunOptions)
+from .dynamics import rpm, simulate_train, sweep
 from .results import Results, results_schema, schema_entry
 from .scene import Scene, run_scene
 
@@ -30,7 +46,9 @@ __all__ = ["Scene", "run_scene", "Results", "results_schema", "schema_entry", "c
            "blas_kernels", "InvoluteGearData", "InvoluteGear", "create_pair",
            "working_centre_distance", "Misalignment", "TcaOptions", "unloaded_tca", "Assembly",
            "Flanks", "BevelPairDesign", "PinionMismatch", "bevel_pair_flanks", "MeasuredFlank",
-           "MeasuredMember", "read_cmm_file", "write_cmm_file", "virtual_cmm"]
+           "MeasuredMember", "read_cmm_file", "write_cmm_file", "virtual_cmm",
+           "PairExcitation", "PairModel", "StaticEquilibrium", "RunOptions", "SweepOptions",
+           "sweep", "rpm", "TrainModel", "TrainRunOptions", "simulate_train"]
 
 
 def cases():

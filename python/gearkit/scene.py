@@ -191,6 +191,28 @@ class Scene:
         from .contact import LoadedPair
         return LoadedPair(_core.loaded_pair(self._core, pair, self._root(output_root)))
 
+    def dynamics_model(self, pair, output_root="out", excitation="theoretical"):
+        """The excitation ("theoretical" or "measured" flanks) of a pair as the dynamics stage
+        builds it: a PairExcitation with its model (PairModel: the 14-DOF model on the TCA's
+        tables in the system deflection's fixed point), static equilibrium, torques and the
+        stage's sweep options, for gearkit.sweep. The stages it needs (flanks, ste, ...) run or
+        are reused from the cache in output_root as by run_scene (the log to sys.stdout); the
+        dynamics stage itself does not run. SI units."""
+        self.check()
+        return _core.dynamics_excitation(self._core, pair, excitation, os.fspath(output_root))
+
+    def train_model(self, name, output_root="out"):
+        """A gear train of the scene as the train stage builds it (TrainModel: bodies, meshes
+        with their tooth pair tables, shafts), for gearkit.simulate_train; the stages it needs
+        run or are reused from the cache in output_root. SI units."""
+        self.check()
+        return _core.train_model(self._core, name, os.fspath(output_root))
+
+    def train_options(self, name):
+        """The run options of a gear train as the scene sets them (TrainRunOptions, SI)."""
+        self.check()
+        return _core.train_run_options(self._core, name)
+
     def __repr__(self):
         return f"<gearkit.Scene {self.path}{' (changed)' if self._changed else ''}>"
 

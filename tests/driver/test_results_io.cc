@@ -83,7 +83,7 @@ TEST_F(ResultsIo, ComplianceTableReadBackInterpolatesAsWritten)
   reading.n_u = spec.n_u, reading.n_v = spec.n_v;
   const FlankCompliance back = compliance_table(flanks, r, reading);
   const FlankDomain     d    = flanks.flank(0, FlankSide::drive).domain();
-  for (const auto [ti, tj] : {std::pair{0, 0}, {0, 1}, {1, 0}, {15, 0}})
+  for (const auto &[ti, tj] : {std::pair{0, 0}, {0, 1}, {1, 0}, {15, 0}})
     for (const double a : {0.17, 0.5, 0.83})
       {
         const double ui = d.u_min + a * (d.u_max - d.u_min), vi = d.v_min + a * (d.v_max - d.v_min),

@@ -258,9 +258,14 @@ run_stages(const Scene &scene, const std::string &output_root,
 
 StageUpstream::StageUpstream(const Scene &scene, const std::string &stage,
                              const std::string &output_root, std::ostream &log)
+    : StageUpstream(scene, upstream_of(scene, stage_definition(stage)), output_root, log)
 {
-  const std::vector<std::string> ups = upstream_of(scene, stage_definition(stage));
-  runs                               = run_stages(scene, output_root, ups, log);
+}
+
+StageUpstream::StageUpstream(const Scene &scene, const std::vector<std::string> &ups,
+                             const std::string &output_root, std::ostream &log)
+{
+  runs = run_stages(scene, output_root, ups, log);
   for (const StageRun &r : runs.stages)
     files[r.name] = std::make_unique<H5File>(H5File::open(r.cache_file));
   for (const std::string &up : ups)

@@ -45,6 +45,9 @@ class StageUpstream
 public:
   StageUpstream(const Scene &scene, const std::string &stage, const std::string &output_root,
                 std::ostream &log);
+  /// The same for the stages `stages` themselves (and what they need, run but not mapped).
+  StageUpstream(const Scene &scene, const std::vector<std::string> &stages,
+                const std::string &output_root, std::ostream &log);
   StageUpstream(const StageUpstream &) = delete;
   StageUpstream &
   operator=(const StageUpstream &) = delete;

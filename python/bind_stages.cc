@@ -17,29 +17,23 @@ namespace gearkit::python
 {
 namespace
 {
-/// The cache files of `stages` (and of what they need), run or reused, open.
-class StageFiles
+/// The stages `stages`' results for a scene, run or reused from the cache, with the log in
+/// Python's stdout.
+std::unique_ptr<StageUpstream>
+stage_results(const Scene &scene, const std::string &output_root,
+              const std::vector<std::string> &stages)
 {
-public:
-  StageFiles(const Scene &scene, const std::string &output_root,
-             const std::vector<std::string> &stages)
-  {
-    const RunSummary s = logged<RunSummary>([&](std::ostream &out, std::ostream &) {
-      return run_stages(scene, output_root, stages, out);
-    });
-    for (const StageRun &r : s.stages)
-      files[r.name] = std::make_unique<H5File>(H5File::open(r.cache_file));
-  }
-  /// The pair's group in the stage's results.
-  H5Group
-  group(const std::string &stage, const std::string &pair) const
-  {
-    return files.at(stage)->root().group(stage).group(pair);
-  }
+  return logged<std::unique_ptr<StageUpstream>>([&](std::ostream &out, std::ostream &) {
+    return std::make_unique<StageUpstream>(scene, stages, output_root, out);
+  });
+}
 
-private:
-  std::map<std::string, std::unique_ptr<H5File>> files;
-};
+/// The pair's group in a stage's results.
+H5Group
+pair_group(const StageUpstream &results, const std::string &stage, const std::string &pair)
+{
+  return results.upstream().at(stage)->group(pair);
+}
 
 const PairScene &
 scene_pair(const Scene &scene, const std::string &name)
@@ -103,8 +97,9 @@ bind_stages(py::module_ &m)
       "pair_members",
       [](const Scene &scene, const std::string &pair, const std::string &root) {
         const PairScene &p = scene_pair(scene, pair);
-        StageFiles       f(scene, root, {"flanks"});
-        return members_tuple(theoretical_members(p, scene.tca.at(pair), f.group("flanks", pair)));
+        const auto       r = stage_results(scene, root, {"flanks"});
+        return members_tuple(
+            theoretical_members(p, scene.tca.at(pair), pair_group(*r, "flanks", pair)));
       },
       py::arg("scene"), py::arg("pair"), py::arg("output_root"),
       "(pinion flanks, gear flanks, assembly) of the scene's pair as the stages build them");
@@ -115,8 +110,8 @@ bind_stages(py::module_ &m)
         if (!scene.measured.count(pair) || scene.measured.at(pair).source == MeasuredSource::none)
           throw InputError(scene.file + ": pair " + pair +
                            " has no measured flanks (section Measured flanks/" + pair + ")");
-        StageFiles    f(scene, root, {"measured"});
-        const H5Group g = f.group("measured", pair);
+        const auto    r = stage_results(scene, root, {"measured"});
+        const H5Group g = pair_group(*r, "measured", pair);
         return py::make_tuple(read_measured(g.group("pinion"), "pinion"),
                               read_measured(g.group("gear"), "gear"));
       },
@@ -183,6 +178,15 @@ bind_stages(py::module_ &m)
                                "; expected at least 1 per mesh cycle");
             if (bool(pinion_flanks) != bool(gear_flanks))
               throw InputError("loaded_contact: pinion_flanks and gear_flanks go together");
+            if (pinion_flanks)
+              for (const auto &[flanks, theory, member] :
+                   {std::tuple{pinion_flanks.get(), p.pair.members.pinion.get(), "pinion"},
+                    std::tuple{gear_flanks.get(), p.pair.members.gear.get(), "gear"}})
+                if (flanks->teeth() != theory->teeth())
+                  throw InputError("loaded_contact: the " + std::string(member) + " flanks have " +
+                                   std::to_string(flanks->teeth()) + " teeth, the " + member +
+                                   " of pair " + p.name + " " + std::to_string(theory->teeth()) +
+                                   "; expected flanks of the same member (measured or modified)");
             return contact_dict(interruptible<MeshCycleContact>([&] {
               const LoadedPair &lp = p.pair;
               Progress          progress("loaded contact " + p.name,
@@ -208,11 +212,11 @@ bind_stages(py::module_ &m)
       "loaded_pair",
       [](const Scene &scene, const std::string &pair, const std::string &root) {
         const PairScene &p = scene_pair(scene, pair);
-        StageFiles       f(scene, root, {"compliance"});
+        const auto       r = stage_results(scene, root, {"flanks", "compliance"});
         cores_per_process();
-        return PythonLoadedPair{
-            loaded_pair(scene, p, f.group("flanks", pair), f.group("compliance", pair)),
-            scene.loaded.at(pair).positions, scene.tca.at(pair).options, pair};
+        return PythonLoadedPair{loaded_pair(scene, p, pair_group(*r, "flanks", pair),
+                                            pair_group(*r, "compliance", pair)),
+                                scene.loaded.at(pair).positions, scene.tca.at(pair).options, pair};
       },
       py::arg("scene"), py::arg("pair"), py::arg("output_root"),
       "The scene's pair on its compliance tables (the compliance stage run or reused)");

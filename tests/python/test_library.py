@@ -149,3 +149,11 @@ def test_loaded_contact_refuses_bad_arguments(source_dir, case_out):
         loaded.loaded_contact([100.0], positions=-2)
     with pytest.raises(ValueError, match="no pair 'nope'"):
         scene_of(source_dir, "default").loaded_pair("nope", output_root=case_out)
+    pinion, gear, _ = loaded.members
+    with pytest.raises(ValueError, match="the gear flanks have 16 teeth"):
+        loaded.loaded_contact([100.0], flanks=(pinion, pinion))
+    with pytest.raises(ValueError, match="go together"):
+        loaded.loaded_contact([100.0], flanks=(pinion, None))
+    with pytest.raises(ValueError, match="no measured flanks"):
+        scene_of(source_dir, "iso_helical").measured_members(
+            scene_of(source_dir, "iso_helical").pairs[0], output_root=case_out)

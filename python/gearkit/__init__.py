@@ -31,7 +31,27 @@ its next progress step.
 import os as _os
 import warnings as _warnings
 
-from . import _core
+
+
+def _built_for():
+    """The message for an import under another Python than the module is built for."""
+    import sys
+    from ._build import python, version
+    if _os.path.realpath(sys.executable) == _os.path.realpath(python):
+        return None
+    return (f"gearkit is built for {python} (Python {version}, with Debian's NumPy, h5py and "
+            f"xarray); this is {sys.executable} (Python {sys.version.split()[0]}). Start it "
+            f"with that interpreter: PYTHONPATH=build/python {python}")
+
+
+try:
+    from . import _core
+    from .results import Results, results_schema, schema_entry
+except ImportError as _error:
+    _message = _built_for()
+    if _message is None:
+        raise
+    raise ImportError(f"{_message} ({_error})") from None
 from ._core import (Assembly, BevelPairDesign, Flanks, InvoluteGear, InvoluteGearData,
                     MeasuredFlank, MeasuredMember, Misalignment, PinionMismatch, TcaOptions,
                     bevel_pair_flanks, create_pair, read_cmm_file, unloaded_tca, virtual_cmm,
@@ -39,7 +59,6 @@ from ._core import (Assembly, BevelPairDesign, Flanks, InvoluteGear, InvoluteGea
 from ._core import (PairExcitation, PairModel, RunOptions, StaticEquilibrium, SweepOptions,
                     TrainModel, TrainRunOptions)
 from .dynamics import rpm, simulate_train, sweep
-from .results import Results, results_schema, schema_entry
 from .scene import Scene, run_scene
 
 __all__ = ["Scene", "run_scene", "Results", "results_schema", "schema_entry", "case", "cases",

@@ -71,3 +71,21 @@ with tempfile.TemporaryDirectory(prefix="gearkit-bench-") as root:
         number = 1000 if "blas" in what or "Scene[" in what else 20
         per = statistics.median(timeit.repeat(call, number=number, repeat=7)) / number
         print(f"{what}: {per * 1e6:.2f} us")
+
+    # Library level on the run's cached compliance: the loaded contact at one torque (the
+    # scene's positions), the compiled call alone and with the xarray Dataset built around it;
+    # one flank point (Flanks.evaluate) as the smallest library call.
+    loaded = s.loaded_pair("fzg", output_root=root)
+    pinion = loaded.members[0]
+    u = sum(pinion.domain(0, "drive")[:2]) / 2
+    lib = {
+        "LoadedPair.loaded_contact([150]) (xarray)": lambda: loaded.loaded_contact([150.0]),
+        "_core loaded_contact([150]) (NumPy dict)":
+            lambda: loaded._core.loaded_contact([150.0], 0, None, None),
+        "Flanks.evaluate (one flank point)": lambda: pinion.evaluate(0, "drive", u, 0.0),
+    }
+    for what, call in lib.items():
+        number = 1000 if "evaluate" in what else 1
+        repeat = 7 if "evaluate" in what else 5
+        per = statistics.median(timeit.repeat(call, number=number, repeat=repeat)) / number
+        print(f"{what}: {per * 1e6:.2f} us" if per < 1e-2 else f"{what}: {per:.3f} s")

@@ -27,23 +27,6 @@ struct SceneExcitation
   int            blocks = 1, warmup = 0;
 };
 
-py::array_t<double>
-vector3(const Vec3 &v)
-{
-  return array(std::vector<double>{v.x(), v.y(), v.z()});
-}
-
-py::array_t<double>
-vectors3(const std::vector<Vec3> &v)
-{
-  py::array_t<double> a({py::ssize_t(v.size()), py::ssize_t(3)});
-  auto                r = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      r(py::ssize_t(i), k) = v[i][k];
-  return a;
-}
-
 template <class Matrix>
 py::array_t<double>
 matrix(const Matrix &m)
@@ -275,7 +258,7 @@ bind_pair_model(py::module_ &m)
       .def_readonly("mass", &BodyParameters::mass)
       .def_readonly("axial_inertia", &BodyParameters::axial_inertia)
       .def_readonly("transverse_inertia", &BodyParameters::transverse_inertia)
-      .def_property_readonly("axis", [](const BodyParameters &b) { return vector3(b.axis); })
+      .def_property_readonly("axis", [](const BodyParameters &b) { return vec3(b.axis); })
       .def_readonly("bearings", &BodyParameters::bearings)
       .def_readonly("axial_stiffness", &BodyParameters::axial_stiffness)
       .def_readonly("axial_damping", &BodyParameters::axial_damping);
@@ -324,10 +307,10 @@ bind_pair_model(py::module_ &m)
                                                            : "trigonometric",
                             py::arg("transmission_error") = array(t.transmission_error),
                             py::arg("mesh_stiffness")     = array(t.mesh_stiffness),
-                            py::arg("normal_pinion")      = vectors3(t.normal_pinion),
-                            py::arg("normal_gear")        = vectors3(t.normal_gear),
-                            py::arg("arm_pinion")         = vectors3(t.arm_pinion),
-                            py::arg("arm_gear")           = vectors3(t.arm_gear));
+                            py::arg("normal_pinion")      = vec3_array(t.normal_pinion),
+                            py::arg("normal_gear")        = vec3_array(t.normal_gear),
+                            py::arg("arm_pinion")         = vec3_array(t.arm_pinion),
+                            py::arg("arm_gear")           = vec3_array(t.arm_gear));
           },
           "The mesh tables over one period of the excitation: E_t [m], K_m [N/m], normals, "
           "moment arms [m] (samples x 3)")
@@ -337,11 +320,10 @@ bind_pair_model(py::module_ &m)
             if (!std::isfinite(phase))
               throw InputError("PairModel.mesh_at: phase is not finite; expected mesh cycles");
             const MeshState s = p.mesh().at(phase);
-            return py::dict(
-                py::arg("transmission_error") = s.et, py::arg("rate") = s.det,
-                py::arg("mesh_stiffness") = s.km, py::arg("normal_pinion") = vector3(s.np),
-                py::arg("normal_gear") = vector3(s.ng), py::arg("arm_pinion") = vector3(s.lp),
-                py::arg("arm_gear") = vector3(s.lg));
+            return py::dict(py::arg("transmission_error") = s.et, py::arg("rate") = s.det,
+                            py::arg("mesh_stiffness") = s.km, py::arg("normal_pinion") = vec3(s.np),
+                            py::arg("normal_gear") = vec3(s.ng), py::arg("arm_pinion") = vec3(s.lp),
+                            py::arg("arm_gear") = vec3(s.lg));
           },
           py::arg("phase"), "The interpolated mesh at a phase [mesh cycles]")
       .def("static_equilibrium", &PairModel::static_equilibrium, py::arg("load_torque"),
@@ -395,8 +377,8 @@ bind_excitation(py::module_ &m)
             const SystemDeflection &d = s.excitation.deflection;
             return py::dict(py::arg("iterated")  = s.excitation.iterated,
                             py::arg("converged") = d.converged, py::arg("change") = array(d.change),
-                            py::arg("gear_translation") = vector3(d.motion.translation),
-                            py::arg("gear_rotation")    = vector3(d.motion.rotation));
+                            py::arg("gear_translation") = vec3(d.motion.translation),
+                            py::arg("gear_rotation")    = vec3(d.motion.rotation));
           },
           "The fixed point: iterated (the scene's system deflection), converged, the motion's "
           "change per iteration [m], the gear's static motion relative to the pinion [m, rad]");

@@ -89,15 +89,8 @@ bind_flanks(py::module_ &m)
       .def_static("bevel", &Assembly::bevel, py::arg("shaft_angle"), py::arg("pinion_pitch_angle"),
                   py::arg("gear_teeth"), py::arg("misalignment") = Misalignment(),
                   "Intersecting axes (bevel pair), angles in radians")
-      .def_property_readonly("gear_centre",
-                             [](const Assembly &a) {
-                               return array(std::vector<double>{
-                                   a.gear_centre()[0], a.gear_centre()[1], a.gear_centre()[2]});
-                             })
-      .def_property_readonly("gear_axis", [](const Assembly &a) {
-        const Vec3 n = a.gear_axis();
-        return array(std::vector<double>{n[0], n[1], n[2]});
-      });
+      .def_property_readonly("gear_centre", [](const Assembly &a) { return vec3(a.gear_centre()); })
+      .def_property_readonly("gear_axis", [](const Assembly &a) { return vec3(a.gear_axis()); });
 
   py::class_<MemberFlanks, FlanksPointer>(
       m, "Flanks",
@@ -135,7 +128,7 @@ bind_flanks(py::module_ &m)
           "evaluate",
           [](const MemberFlanks &f, int tooth, const std::string &side, double u, double v) {
             const FlankPoint p = flank_of(f, tooth, side).evaluate(u, v);
-            return py::make_tuple(vec3_array({p.position}, {}), vec3_array({p.normal}, {}));
+            return py::make_tuple(vec3(p.position), vec3(p.normal));
           },
           py::arg("tooth"), py::arg("side"), py::arg("u"), py::arg("v"),
           "(position, unit outward normal) at the flank parameters (u, v)")

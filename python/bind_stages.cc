@@ -126,7 +126,7 @@ bind_stages(py::module_ &m)
                                std::vector<Vec3> x;
                                for (const FlankCompliance::Point &p : c.points())
                                  x.push_back(p.position);
-                               return vec3_array(x, {py::ssize_t(x.size())});
+                               return vec3_array(x);
                              })
       .def_property_readonly("teeth",
                              [](const FlankCompliance &c) {

@@ -109,10 +109,13 @@ array(const std::vector<T> &v)
   return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
 
-/// Points as an array of the given shape, the last axis x, y, z (e.g. {n_profile, n_face}).
+/// Points as an array of the given shape (default: one axis, the points), the last axis x, y, z
+/// (e.g. {n_profile, n_face}).
 inline py::array_t<double>
-vec3_array(const std::vector<Vec3> &points, std::vector<py::ssize_t> shape)
+vec3_array(const std::vector<Vec3> &points, std::vector<py::ssize_t> shape = {})
 {
+  if (shape.empty())
+    shape.push_back(py::ssize_t(points.size()));
   shape.push_back(3);
   py::array_t<double> a(shape);
   double             *out = a.mutable_data();
@@ -120,6 +123,13 @@ vec3_array(const std::vector<Vec3> &points, std::vector<py::ssize_t> shape)
     for (int c = 0; c < 3; ++c)
       out[3 * k + std::size_t(c)] = points[k][c];
   return a;
+}
+
+/// One point or vector as an array of 3.
+inline py::array_t<double>
+vec3(const Vec3 &v)
+{
+  return py::array_t<double>(3, v.data());
 }
 
 /// An array whose last axis has length 3 as points (row-major over the other axes); `what`

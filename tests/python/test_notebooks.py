@@ -1,8 +1,9 @@
 """The notebooks in examples/ run from top to bottom on an IPython kernel (nbclient), one after
 the other in one folder (as a user would: the later ones reuse the first's cached stages), and
-are kept in the repository without outputs. The folder starts with the default case's output
-as the executable left it (the case test's): its cached stages verify and are reused, as they
-would be for a user who ran ./run first."""
+are kept in the repository without outputs. Their output root (GEARKIT_OUTPUT_ROOT; for a user
+../out, where ./run writes) starts with the default case's output as the executable left it (the
+case test's): its cached stages verify and are reused, as they would be for a user who ran ./run
+first."""
 import glob
 import os
 import shutil
@@ -42,6 +43,8 @@ def folder(tmp_path_factory, case_out):
 def test_runs(path, folder, monkeypatch):
     # the kernel finds gearkit as the README says: PYTHONPATH=build/python
     monkeypatch.setenv("PYTHONPATH", PYTHON + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    # the notebooks' output root (../out beside examples/ for a user: where ./run writes)
+    monkeypatch.setenv("GEARKIT_OUTPUT_ROOT", os.path.join(folder, "out"))
     nb = nbformat.read(path, as_version=4)
     NotebookClient(nb, timeout=900, kernel_name="python3",
                    resources={"metadata": {"path": folder}}).execute()

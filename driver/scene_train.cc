@@ -383,7 +383,10 @@ Scene::pair(const std::string &p) const
   for (const PairScene &s : pairs)
     if (s.name == p)
       return s;
-  throw InputError("pair '" + p + "' is not in Scene/pairs");
+  std::string names;
+  for (const PairScene &s : pairs)
+    names += (names.empty() ? "" : ", ") + s.name;
+  throw InputError(file + ": pair '" + p + "' is not in Scene/pairs (" + names + ")");
 }
 
 double

@@ -127,7 +127,15 @@ bind_flanks(py::module_ &m)
       .def(
           "evaluate",
           [](const MemberFlanks &f, int tooth, const std::string &side, double u, double v) {
-            const FlankPoint p = flank_of(f, tooth, side).evaluate(u, v);
+            const Flank      &flank = flank_of(f, tooth, side);
+            const FlankDomain d     = flank.domain();
+            if (!(u >= d.u_min && u <= d.u_max && v >= d.v_min && v <= d.v_max))
+              throw InputError("evaluate: (u, v) = (" + std::to_string(u) + ", " +
+                               std::to_string(v) + ") lies outside the flank's domain u in [" +
+                               std::to_string(d.u_min) + ", " + std::to_string(d.u_max) +
+                               "], v in [" + std::to_string(d.v_min) + ", " +
+                               std::to_string(d.v_max) + "] (Flanks.domain)");
+            const FlankPoint p = flank.evaluate(u, v);
             return py::make_tuple(vec3(p.position), vec3(p.normal));
           },
           py::arg("tooth"), py::arg("side"), py::arg("u"), py::arg("v"),

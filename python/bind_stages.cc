@@ -35,18 +35,6 @@ pair_group(const StageUpstream &results, const std::string &stage, const std::st
   return results.upstream().at(stage)->group(pair);
 }
 
-const PairScene &
-scene_pair(const Scene &scene, const std::string &name)
-{
-  for (const PairScene &p : scene.pairs)
-    if (p.name == name)
-      return p;
-  std::string names;
-  for (const PairScene &p : scene.pairs)
-    names += (names.empty() ? "" : ", ") + p.name;
-  throw InputError(scene.file + ": no pair '" + name + "'; the scene's pairs: " + names);
-}
-
 /// A pair on its compliance tables, with the scene it came from (for its defaults).
 struct PythonLoadedPair
 {
@@ -96,7 +84,7 @@ bind_stages(py::module_ &m)
   m.def(
       "pair_members",
       [](const Scene &scene, const std::string &pair, const std::string &root) {
-        const PairScene &p = scene_pair(scene, pair);
+        const PairScene &p = scene.pair(pair);
         const auto       r = stage_results(scene, root, {"flanks"});
         return members_tuple(
             theoretical_members(p, scene.tca.at(pair), pair_group(*r, "flanks", pair)));
@@ -106,7 +94,7 @@ bind_stages(py::module_ &m)
   m.def(
       "measured_members",
       [](const Scene &scene, const std::string &pair, const std::string &root) {
-        scene_pair(scene, pair);
+        scene.pair(pair);
         if (!scene.measured.count(pair) || scene.measured.at(pair).source == MeasuredSource::none)
           throw InputError(scene.file + ": pair " + pair +
                            " has no measured flanks (section Measured flanks/" + pair + ")");
@@ -211,7 +199,7 @@ bind_stages(py::module_ &m)
   m.def(
       "loaded_pair",
       [](const Scene &scene, const std::string &pair, const std::string &root) {
-        const PairScene &p = scene_pair(scene, pair);
+        const PairScene &p = scene.pair(pair);
         const auto       r = stage_results(scene, root, {"flanks", "compliance"});
         cores_per_process();
         return PythonLoadedPair{loaded_pair(scene, p, pair_group(*r, "flanks", pair),

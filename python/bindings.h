@@ -7,9 +7,10 @@
 #include "base/types.h"
 #include "geometry/types.h"
 
-#include <chrono>
+#include <atomic>
+#include <csignal>
 #include <functional>
-#include <future>
+#include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <streambuf>
@@ -63,43 +64,58 @@ private:
   std::string line;
 };
 
-/// Runs work() on a thread of its own while Python's thread waits with the GIL released,
-/// looking for Ctrl-C ten times a second: on a KeyboardInterrupt every computation is asked to
-/// stop (gearkit::interrupt: it unwinds at its next progress step, as after any error) and,
-/// once the work has ended, the KeyboardInterrupt is raised. The work's own error is rethrown.
+/// Set by interruptible's SIGINT handler (a lock-free atomic: safe in a signal handler).
+inline std::atomic<bool> sigint_seen{false};
+
+/// Runs work() on this thread with the GIL released, Ctrl-C (SIGINT) meanwhile caught by a
+/// handler of its own: every computation is asked to stop (gearkit::interrupt: it unwinds at its
+/// next progress step, as after any error) and, once the work has ended, KeyboardInterrupt is
+/// raised. Python's handler is back in place afterwards; the work's own error is rethrown. (On
+/// the calling thread, not a thread of its own: the same thread and memory arena as the
+/// executable's run.)
 template <class Result>
 Result
 interruptible(const std::function<Result()> &work)
 {
   clear_interrupt();
-  std::future<Result> done = std::async(std::launch::async, work);
-  for (;;)
+  sigint_seen           = false;
+  struct sigaction ours = {}, previous = {};
+  ours.sa_handler = [](int) {
+    sigint_seen = true;
+    interrupt();
+  };
+  sigemptyset(&ours.sa_mask);
+  sigaction(SIGINT, &ours, &previous);
+  struct Restore
+  {
+    struct sigaction *previous;
+    ~Restore()
     {
-      {
-        py::gil_scoped_release release;
-        if (done.wait_for(std::chrono::milliseconds(100)) == std::future_status::ready)
-          break;
-      }
-      if (PyErr_CheckSignals() != 0) // the KeyboardInterrupt is now set on this thread
-        {
-          interrupt();
-          {
-            py::gil_scoped_release release;
-            done.wait();
-          }
-          clear_interrupt();
-          try
-            {
-              done.get();
-            }
-          catch (...) // Interrupted, or whatever the work met on its way out
-            {
-            }
-          throw py::error_already_set();
-        }
+      sigaction(SIGINT, previous, nullptr);
+      clear_interrupt();
     }
-  clear_interrupt();
-  return done.get();
+  } restore{&previous};
+  std::optional<Result> result;
+  std::exception_ptr    error;
+  {
+    py::gil_scoped_release release;
+    try
+      {
+        result.emplace(work());
+      }
+    catch (...) // Interrupted, or whatever the work met on its way out
+      {
+        error = std::current_exception();
+      }
+  }
+  if (sigint_seen)
+    {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw py::error_already_set();
+    }
+  if (error)
+    std::rethrow_exception(error);
+  return std::move(*result);
 }
 
 template <class T>

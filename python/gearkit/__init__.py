@@ -46,12 +46,15 @@ def _built_for():
 
 try:
     from . import _core
-    from .results import Results, results_schema, schema_entry
+    if _built_for() is not None:  # another interpreter: are Debian's packages there too?
+        import h5py as _h5py  # noqa: F401
+        import numpy as _numpy  # noqa: F401
 except ImportError as _error:
     _message = _built_for()
     if _message is None:
         raise
     raise ImportError(f"{_message} ({_error})") from None
+from .results import Results, results_schema, schema_entry
 from ._core import (Assembly, BevelPairDesign, Flanks, InvoluteGear, InvoluteGearData,
                     MeasuredFlank, MeasuredMember, Misalignment, PinionMismatch, TcaOptions,
                     bevel_pair_flanks, create_pair, read_cmm_file, unloaded_tca, virtual_cmm,

@@ -9,8 +9,6 @@ gear train, as the dynamics and train stages compute them (the same library call
 """
 import math
 
-import numpy as np
-
 from . import _core
 
 
@@ -37,6 +35,7 @@ def sweep(model, speeds=None, options=None, *, start=None, blocks=None, warmup=N
     spectrum_order; time_series: a list of dicts (speed, time, dte, transmission_error,
     mesh_force) at the options' series speeds. The log's progress line shows; Ctrl-C stops it.
     """
+    import numpy as np  # imported on first use: `import gearkit` stays light
     if isinstance(model, _core.PairExcitation):
         excitation, pair_model = model, model.model
         if options is None:
@@ -71,6 +70,7 @@ def sweep(model, speeds=None, options=None, *, start=None, blocks=None, warmup=N
 
 def rpm(speeds):
     """Speeds in rpm as rad/s (x pi / 30), what gearkit.sweep takes."""
+    import numpy as np  # imported on first use: `import gearkit` stays light
     return np.asarray(speeds, dtype=float) * (math.pi / 30)
 
 

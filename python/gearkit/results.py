@@ -4,9 +4,6 @@ are named), its dimensions named by the schema's shape ("torques x positions")."
 import functools
 import re
 
-import h5py
-import numpy as np
-
 from . import _core
 
 
@@ -65,21 +62,33 @@ class Results:
     def __init__(self, path):
         self.path = str(path)
         self.stages, self.status = [], 0
-        with h5py.File(self.path, "r") as f:
-            self.attrs = {k: (v.decode() if isinstance(v, bytes) else v)
-                          for k, v in f.attrs.items()}
+        self._attrs = None
+
+    @property
+    def attrs(self):
+        """The run's attributes (read on first use: h5py and NumPy are imported when the
+        results are read, so a run from Python starts as light as the executable)."""
+        if self._attrs is None:
+            import h5py
+            with h5py.File(self.path, "r") as f:
+                self._attrs = {k: (v.decode() if isinstance(v, bytes) else v)
+                               for k, v in f.attrs.items()}
+        return self._attrs
 
     def __getitem__(self, path):
+        import h5py
         with h5py.File(self.path, "r") as f:
             return f[path][()]
 
     def groups(self, path="/"):
         """The names of the groups in the group at `path`."""
+        import h5py
         with h5py.File(self.path, "r") as f:
             return [k for k, v in f[path].items() if isinstance(v, h5py.Group)]
 
     def datasets(self, path="/"):
         """The names of the datasets in the group at `path`."""
+        import h5py
         with h5py.File(self.path, "r") as f:
             return [k for k, v in f[path].items() if isinstance(v, h5py.Dataset)]
 
@@ -87,6 +96,7 @@ class Results:
         """The datasets of the group at `path` as an xarray Dataset (as_dataset): dimensions
         named by the schema's shapes, coordinates, every variable with its `units` and
         `description`; the group's attributes as the Dataset's."""
+        import h5py
         group = path.strip("/")
         with h5py.File(self.path, "r") as f:
             g = f[group]
@@ -107,6 +117,7 @@ def as_dataset(group, values, attrs=None, descriptions=None):
     singular (torque for torques, speed for speeds) its coordinate, every variable with its
     `units` and `description` (the schema's, or `descriptions[name]`). A KeyError for a name
     the schema does not have there."""
+    import numpy as np
     import xarray as xr
 
     group = group.strip("/")

@@ -91,6 +91,13 @@ def test_measured_flanks_from_arrays_files_and_a_virtual_cmm(tmp_path):
     assert np.abs(theory).max() < 1e-10
     assert np.abs(discrete - theory).max() < 2e-6  # rad; the grid's interpolation error
 
+    u0, u1, v0, v1 = flanks[0].domain(3, "drive")
+    x, n = flanks[0].evaluate(3, "drive", (u0 + u1) / 2, (v0 + v1) / 2)
+    assert abs(np.linalg.norm(n) - 1) < 1e-12 and np.isfinite(x).all()
+    with pytest.raises(ValueError, match="outside the flank's domain"):
+        flanks[0].evaluate(3, "drive", u0 - 0.1, v0)
+    with pytest.raises(ValueError, match="tooth = 17 is out of range"):
+        flanks[0].evaluate(17, "drive", u0, v0)
     with pytest.raises(ValueError, match=r"shape \(n_profile, n_face, 3\)"):
         gearkit.MeasuredFlank(0, "drive", np.zeros((9, 3)))
     bad = f0.points.copy()
@@ -147,7 +154,7 @@ def test_loaded_contact_refuses_bad_arguments(source_dir, case_out):
             loaded.loaded_contact(bad)
     with pytest.raises(ValueError, match="positions"):
         loaded.loaded_contact([100.0], positions=-2)
-    with pytest.raises(ValueError, match="no pair 'nope'"):
+    with pytest.raises(ValueError, match="pair 'nope' is not in Scene/pairs \\(fzg\\)"):
         scene_of(source_dir, "default").loaded_pair("nope", output_root=case_out)
     pinion, gear, _ = loaded.members
     with pytest.raises(ValueError, match="the gear flanks have 16 teeth"):

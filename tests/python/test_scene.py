@@ -62,19 +62,6 @@ def test_a_bad_scene_file_is_a_value_error(tmp_path):
         gearkit.Scene(bad)
 
 
-def test_library_tca_is_the_ste_stages(source_dir, case_out):
-    """The unloaded TCA called on library types gives the ste stage's e_0 bit for bit, on the
-    scene's pair as the stages build it."""
-    scene = gearkit.Scene(os.path.join(source_dir, "cases", "default.prm"))
-    inputs = scene.tca_inputs("fzg")
-    r = gearkit.unloaded_tca(**inputs)
-    stage = gearkit.Results(os.path.join(case_out, "default", "results.h5"))
-    for name in ("pinion_angle", "gear_angle", "transmission_error", "pairs_in_contact",
-                 "leading"):
-        assert (r[name] == stage["ste/fzg/" + name]).all(), name
-    assert inputs["pinion"].teeth == 16 and inputs["gear"].teeth == 24
-
-
 def test_library_tca_of_conjugate_involutes_is_flat():
     """Exact solution: unmodified involute flanks transmit uniformly at any centre distance
     (e_0 constant to round-off), and a gear's data are checked (ValueError naming the field)."""

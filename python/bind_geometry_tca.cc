@@ -12,6 +12,7 @@
 #include "tca/bevel_synthesis.h"
 #include "tca/unloaded_tca.h"
 
+#include <cmath>
 #include <pybind11/stl.h>
 
 namespace gearkit::python
@@ -222,6 +223,31 @@ bind_flanks(py::module_ &m)
       py::arg("margin") = 0.0, py::arg("teeth") = std::vector<int>{}, py::arg("both_sides") = true,
       "A perfect CMM of the flanks: n_profile x n_face points per flank (all teeth by default)");
 }
+/// The slips of SI fields the scene's checks (in mm and deg) cannot name as such: a length
+/// typed in millimetres into a metre field, an angle in degrees into a radian field.
+void
+check_si_units(const BevelPairDesign &d)
+{
+  const auto length = [](const char *name, double v, double largest) {
+    if (std::isfinite(v) && v >= largest)
+      throw InputError("BevelPairDesign." + std::string(name) + " = " + std::to_string(v) +
+                       " m is not allowed: the fields are SI (metres), and no bevel pair has " +
+                       std::string(name) + " >= " + std::to_string(largest) +
+                       " m; it looks like millimetres (" + std::to_string(v) +
+                       " mm = " + std::to_string(v / 1000) + " m)");
+  };
+  length("module", d.module, 0.1);
+  length("face_width", d.face_width, 2.0);
+  length("cutter_radius", d.cutter_radius, 5.0);
+  for (const auto &[name, v] : {std::pair{"shaft_angle", d.shaft_angle},
+                                {"mean_spiral_angle", d.mean_spiral_angle},
+                                {"pressure_angle", d.pressure_angle}})
+    if (std::isfinite(v) && std::abs(v) > pi)
+      throw InputError("BevelPairDesign." + std::string(name) + " = " + std::to_string(v) +
+                       " rad is not allowed: the fields are SI (radians); it looks like degrees (" +
+                       std::to_string(v) + " deg = " + std::to_string(v * pi / 180) + " rad)");
+}
+
 /// Face-milled spiral bevel pairs from their design.
 void
 bind_bevel(py::module_ &m)
@@ -275,7 +301,9 @@ bind_bevel(py::module_ &m)
       "bevel_pair_flanks",
       [](const BevelPairDesign &design, const PinionMismatch &mismatch,
          const Misalignment &misalignment) {
-        // The scene's checks of the design (unit slips named), its warnings as Python's.
+        // Unit slips of the SI fields, then the scene's checks of the design; its warnings as
+        // Python's.
+        check_si_units(design);
         PairScene pair;
         pair.name     = "python";
         pair.type     = PairType::spiral_bevel;

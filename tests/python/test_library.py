@@ -50,6 +50,15 @@ def test_conjugate_spiral_bevel_pair_has_no_transmission_error():
         "transmission_error"]
     assert e0.max() - e0.min() > 1e-6
     design.face_width = 25.4  # mm typed into an SI field
+    with pytest.raises(ValueError, match="face_width = 25.4.* m is not allowed.*looks like "
+                                         "millimetres"):
+        gearkit.bevel_pair_flanks(design)
+    design = gearkit.BevelPairDesign()
+    design.mean_spiral_angle = 35  # degrees typed into a radian field
+    with pytest.raises(ValueError, match="mean_spiral_angle = 35.* looks like degrees"):
+        gearkit.bevel_pair_flanks(design)
+    design = gearkit.BevelPairDesign()
+    design.face_width = 0.3  # SI, but far beyond the cone: the scene's own check names it
     with pytest.raises(ValueError, match="face width"):
         gearkit.bevel_pair_flanks(design)
 

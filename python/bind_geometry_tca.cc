@@ -230,11 +230,11 @@ check_si_units(const BevelPairDesign &d)
 {
   const auto length = [](const char *name, double v, double largest) {
     if (std::isfinite(v) && v >= largest)
-      throw InputError("BevelPairDesign." + std::string(name) + " = " + std::to_string(v) +
+      throw InputError("BevelPairDesign." + std::string(name) + " = " + plausible_number(v) +
                        " m is not allowed: the fields are SI (metres), and no bevel pair has " +
-                       std::string(name) + " >= " + std::to_string(largest) +
-                       " m; it looks like millimetres (" + std::to_string(v) +
-                       " mm = " + std::to_string(v / 1000) + " m)");
+                       std::string(name) + " >= " + plausible_number(largest) +
+                       " m; it looks like millimetres (" + plausible_number(v) +
+                       " mm = " + plausible_number(v / 1000) + " m)");
   };
   length("module", d.module, 0.1);
   length("face_width", d.face_width, 2.0);
@@ -243,9 +243,9 @@ check_si_units(const BevelPairDesign &d)
                                 {"mean_spiral_angle", d.mean_spiral_angle},
                                 {"pressure_angle", d.pressure_angle}})
     if (std::isfinite(v) && std::abs(v) > pi)
-      throw InputError("BevelPairDesign." + std::string(name) + " = " + std::to_string(v) +
+      throw InputError("BevelPairDesign." + std::string(name) + " = " + plausible_number(v) +
                        " rad is not allowed: the fields are SI (radians); it looks like degrees (" +
-                       std::to_string(v) + " deg = " + std::to_string(v * pi / 180) + " rad)");
+                       plausible_number(v) + " deg = " + plausible_number(v * pi / 180) + " rad)");
 }
 
 /// Face-milled spiral bevel pairs from their design.

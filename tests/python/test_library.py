@@ -19,8 +19,9 @@ def stage_results(case_out, case):
     return gearkit.Results(os.path.join(case_out, case, "results.h5"))
 
 
-@pytest.mark.parametrize("case,pair", [("default", "fzg"), ("seed_spiral_bevel", "seed")])
-def test_tca_on_the_scenes_members_is_the_ste_stages(source_dir, case_out, case, pair):
+@pytest.mark.parametrize("case,pair,teeth", [("default", "fzg", (16, 24)),
+                                             ("seed_spiral_bevel", "seed", (55, 47))])
+def test_tca_on_the_scenes_members_is_the_ste_stages(source_dir, case_out, case, pair, teeth):
     """Scene.members (the flanks stage reused from the executable's cache; the bevel pinion with
     its synthesised modified roll) and unloaded_tca on them give the ste stage's e_0 bit for
     bit."""
@@ -31,6 +32,7 @@ def test_tca_on_the_scenes_members_is_the_ste_stages(source_dir, case_out, case,
     for name in ("pinion_angle", "gear_angle", "transmission_error", "pairs_in_contact",
                  "leading"):
         assert np.array_equal(r[name], stage[f"ste/{pair}/{name}"]), name
+    assert (inputs["pinion"].teeth, inputs["gear"].teeth) == teeth
 
 
 def test_conjugate_spiral_bevel_pair_has_no_transmission_error():

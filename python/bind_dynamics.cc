@@ -9,6 +9,7 @@
 #include "python/bindings.h"
 
 #include <cmath>
+#include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 #include <sstream>
 #include <thread>
@@ -26,24 +27,6 @@ struct SceneExcitation
   SweepOptions   sweep_up;
   int            blocks = 1, warmup = 0;
 };
-
-template <class Matrix>
-py::array_t<double>
-matrix(const Matrix &m)
-{
-  py::array_t<double> a({py::ssize_t(m.rows()), py::ssize_t(m.cols())});
-  auto                r = a.template mutable_unchecked<2>();
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.cols(); ++j)
-      r(i, j) = m(i, j);
-  return a;
-}
-
-py::array_t<double>
-pair_vector(const PairVector &v)
-{
-  return array(std::vector<double>(v.data(), v.data() + pair_dofs));
-}
 
 /// A 14-vector from Python (a state q or v), refused by name unless 14 finite numbers.
 PairVector
@@ -246,7 +229,7 @@ bind_pair_model(py::module_ &m)
 {
   py::class_<StaticEquilibrium>(m, "StaticEquilibrium",
                                 "Static equilibrium of the pair model (dynamics/pair_model.h)")
-      .def_property_readonly("q", [](const StaticEquilibrium &s) { return pair_vector(s.q); })
+      .def_property_readonly("q", [](const StaticEquilibrium &s) { return PairVector(s.q); })
       .def_readonly("mesh_force", &StaticEquilibrium::mesh_force)
       .def_readonly("deflection", &StaticEquilibrium::deflection)
       .def_readonly("motor_torque", &StaticEquilibrium::motor_torque);
@@ -289,10 +272,11 @@ bind_pair_model(py::module_ &m)
                                           "theta_gy", "theta_gz", "X_p",      "Y_p",    "Z_p",
                                           "theta_px", "theta_py", "theta_pz", "theta_L"};
                                     })
-      .def_property_readonly("mass", [](const PairModel &p) { return matrix(p.mass()); })
-      .def_property_readonly("stiffness", [](const PairModel &p) { return matrix(p.stiffness()); })
-      .def_property_readonly("damping", [](const PairModel &p) { return matrix(p.damping()); })
-      .def_property_readonly("active", [](const PairModel &p) { return pair_vector(p.active()); })
+      .def_property_readonly("mass", [](const PairModel &p) { return PairMatrix(p.mass()); })
+      .def_property_readonly("stiffness",
+                             [](const PairModel &p) { return PairMatrix(p.stiffness()); })
+      .def_property_readonly("damping", [](const PairModel &p) { return PairMatrix(p.damping()); })
+      .def_property_readonly("active", [](const PairModel &p) { return PairVector(p.active()); })
       .def_property_readonly("free_dofs", &PairModel::free_dofs)
       .def_property_readonly("mesh_damping", &PairModel::mesh_damping, "c_m [N s/m]")
       .def_property_readonly("mesh_mass", &PairModel::mesh_mass, "m_e [kg]")
@@ -334,7 +318,7 @@ bind_pair_model(py::module_ &m)
             const PairModes modes = linear_modes(p);
             return py::dict(py::arg("frequency")   = array(modes.frequency),
                             py::arg("mesh_energy") = array(modes.mesh_energy),
-                            py::arg("shapes")      = matrix(modes.shapes));
+                            py::arg("shapes")      = modes.shapes);
           },
           "Linear modes at the mean mesh: frequency [Hz], mesh energy share, mass-normalised "
           "shapes (DOF x mode)");

@@ -54,6 +54,17 @@ integrator_name(Integrator i)
                                       : "cvode adams";
 }
 
+/// Refuses a scene whose outputs do not run `stage`: its parameters are checked only then.
+void
+require_stage(const Scene &scene, const std::string &stage)
+{
+  const std::vector<std::string> stages = required_stages(scene);
+  if (std::find(stages.begin(), stages.end(), stage) == stages.end())
+    throw InputError("scene " + scene.name + ": its outputs (Scene/outputs) do not run the " +
+                     stage + " stage, whose parameters are checked only then; add " + stage +
+                     " to Scene/outputs");
+}
+
 /// The excitation `label` of pair `pair` as the dynamics stage builds it; its upstream stages
 /// run or reused in the scene's cache under output_root.
 SceneExcitation
@@ -64,11 +75,7 @@ scene_excitation(const Scene &scene, const std::string &pair, const std::string 
   if (label != "theoretical" && label != "measured")
     throw InputError("excitation = '" + label +
                      "' is not allowed; expected theoretical or measured");
-  const std::vector<std::string> stages = required_stages(scene);
-  if (std::find(stages.begin(), stages.end(), "dynamics") == stages.end())
-    throw InputError("scene " + scene.name +
-                     ": its outputs (Scene/outputs) do not run the dynamics stage, whose "
-                     "parameters are checked only then; add dynamics to Scene/outputs");
+  require_stage(scene, "dynamics");
   const DynamicsScene &d = scene.dynamics.at(pair);
   if (!(label == "measured" ? d.measured : d.theoretical))
     throw InputError("excitation = '" + label + "' is not allowed for pair " + pair +
@@ -539,12 +546,8 @@ bind_train(py::module_ &m)
   m.def(
       "train_model",
       [](const Scene &scene, const std::string &name, const std::string &output_root) {
-        const TrainScene              &train  = scene_train(scene, name);
-        const std::vector<std::string> stages = required_stages(scene);
-        if (std::find(stages.begin(), stages.end(), "train") == stages.end())
-          throw InputError("scene " + scene.name +
-                           ": its outputs (Scene/outputs) do not run the train stage, whose "
-                           "parameters are checked only then; add train to Scene/outputs");
+        const TrainScene &train = scene_train(scene, name);
+        require_stage(scene, "train");
         return std::make_shared<TrainModel>(
             logged<TrainModel>([&](std::ostream &out, std::ostream &) {
               const StageUpstream upstream(scene, "train", output_root, out);

@@ -291,9 +291,9 @@ write_excitation(const PairExcitation &e, const PairDynamicsInputs &in, const Up
   const H5Group    eg       = g.group(e.label, "<excitation>");
   if (e.iterated)
     {
-      const H5Group ste = upstream.at("ste")->group(pair.name);
-      const H5Group aligned =
-          measured ? ste.group("measured") : upstream.at("ste")->group(pair.name);
+      const H5Group &ste = *upstream.at("ste");
+      const H5Group  aligned =
+          measured ? ste.group(pair.name).group("measured") : ste.group(pair.name);
       write_deflection(eg.group("deflection"), e.deflection, *in.tca, e.misalignment,
                        e.moved ? *e.moved : in.members, e.deflected, aligned, log,
                        pair.name + " " + e.label);

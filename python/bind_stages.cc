@@ -66,8 +66,7 @@ contact_dict(const MeshCycleContact &c)
                   py::arg("edge_position")               = shaped(c.edge_position, {M, N, 2}),
                   py::arg("gap_band")                    = shaped(c.gap_band, {M, N}),
                   py::arg("contact_cells")               = shaped(c.cell_pressure, {M, N, C, 4}),
-                  py::arg("mean_pairs_in_contact")       = c.mean_pairs_in_contact,
-                  py::arg("torque_failure")              = c.torque_failure);
+                  py::arg("mean_pairs_in_contact")       = c.mean_pairs_in_contact);
 }
 
 py::tuple
@@ -175,7 +174,7 @@ bind_stages(py::module_ &m)
                                    std::to_string(flanks->teeth()) + " teeth, the " + member +
                                    " of pair " + p.name + " " + std::to_string(theory->teeth()) +
                                    "; expected flanks of the same member (measured or modified)");
-            return contact_dict(interruptible<MeshCycleContact>([&] {
+            const MeshCycleContact all = interruptible<MeshCycleContact>([&] {
               const LoadedPair &lp = p.pair;
               Progress          progress("loaded contact " + p.name,
                                          torques.size() * std::size_t(positions));
@@ -189,7 +188,25 @@ bind_stages(py::module_ &m)
                   other, positions, torques,
                   measured_contact_options(lp, *pinion_flanks, *gear_flanks, p.tca.side),
                   lp.pinion_compliance, lp.gear_compliance, step);
-            }));
+            });
+            // a torque some position of which failed is refused alone, as the stage does
+            std::vector<std::size_t> keep;
+            std::vector<double>      kept, refused;
+            std::string              why;
+            for (std::size_t k = 0; k < torques.size(); ++k)
+              if (all.torque_failure[k].empty())
+                keep.push_back(k), kept.push_back(torques[k]);
+              else
+                refused.push_back(torques[k]),
+                    why += plausible_number(torques[k]) + " N m: " + all.torque_failure[k] + "\n";
+            if (keep.empty())
+              throw InputError("loaded contact of " + p.name + ": no torque could be solved; " +
+                               why);
+            py::dict d          = contact_dict(select_torques(all, keep));
+            d["torque"]         = array(kept);
+            d["refused_torque"] = array(refused);
+            d["refused"]        = why;
+            return d;
           },
           py::arg("torques"), py::arg("positions") = 0, py::arg("pinion_flanks") = nullptr,
           py::arg("gear_flanks") = nullptr,

@@ -45,21 +45,10 @@ class LoadedPair:
         a ValueError. The GIL is released; Ctrl-C stops it."""
         torques = [float(t) for t in np.atleast_1d(torques)]
         pinion, gear = flanks if flanks is not None else (None, None)
-        r = self._core.loaded_contact(torques, int(positions), pinion, gear)
-        failures = r.pop("torque_failure")
-        keep = [k for k, f in enumerate(failures) if not f]
-        refused = "".join(f"{torques[k]} N m: {f}\n" for k, f in enumerate(failures) if f)
-        if not keep:
-            raise ValueError(f"loaded contact of {self.name}: no torque could be solved; "
-                             f"{refused.strip()}")
-        by_torque = {"transmission_error_loaded", "mesh_stiffness", "normal_force", "lever",
-                     "pair_force", "peak_pressure", "interior_peak_pressure", "edge_load_share",
-                     "edge_position", "gap_band", "contact_cells"}
-        values = {k: (v[keep] if k in by_torque else v) for k, v in r.items()}
-        values["torque"] = np.array([torques[k] for k in keep])
-        if refused:
-            values["refused_torque"] = np.array([t for k, t in enumerate(torques)
-                                                 if k not in keep])
+        values = self._core.loaded_contact(torques, int(positions), pinion, gear)
+        refused = values.pop("refused")
+        if not len(values["refused_torque"]):
+            del values["refused_torque"]
         return as_dataset(f"stiffness/{self.name}", values,
                           {"refused": refused,
                            "method": "fast mode: FE compliance (tooth segments) + half-space "

@@ -72,13 +72,6 @@ grid_dict(const FlankGrid &g)
                   py::arg("normals")   = vec3_array(g.normals, {g.n_u, g.n_v}));
 }
 
-py::tuple
-flanks_tuple(const MemberPointer &pinion, const MemberPointer &gear, const Assembly &assembly)
-{
-  return py::make_tuple(std::const_pointer_cast<MemberFlanks>(pinion),
-                        std::const_pointer_cast<MemberFlanks>(gear), assembly);
-}
-
 /// The flanks, assemblies and CMM point sets.
 void
 bind_flanks(py::module_ &m)

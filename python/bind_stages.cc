@@ -72,8 +72,7 @@ contact_dict(const MeshCycleContact &c)
 py::tuple
 members_tuple(const PairMembers &m)
 {
-  return py::make_tuple(std::const_pointer_cast<MemberFlanks>(m.pinion),
-                        std::const_pointer_cast<MemberFlanks>(m.gear), m.assembly);
+  return flanks_tuple(m.pinion, m.gear, m.assembly);
 }
 } // namespace
 

@@ -5,11 +5,14 @@
 
 #include "base/progress.h"
 #include "base/types.h"
+#include "geometry/member_flanks.h"
 #include "geometry/types.h"
+#include "tca/assembly.h"
 
 #include <atomic>
 #include <csignal>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -170,6 +173,16 @@ flank_side(const std::string &side, const std::string &what)
   if (side != "drive" && side != "coast")
     throw InputError(what + " = '" + side + "' is not allowed; expected drive or coast");
   return side == "drive" ? FlankSide::drive : FlankSide::coast;
+}
+
+/// (pinion flanks, gear flanks, assembly) as Python sees a pair (pybind11 holds no pointer to
+/// const).
+inline py::tuple
+flanks_tuple(const std::shared_ptr<const MemberFlanks> &pinion,
+             const std::shared_ptr<const MemberFlanks> &gear, const Assembly &assembly)
+{
+  return py::make_tuple(std::const_pointer_cast<MemberFlanks>(pinion),
+                        std::const_pointer_cast<MemberFlanks>(gear), assembly);
 }
 
 /// Runs work() with the driver's log (std::ostream out, err) going to sys.stdout and

@@ -4,7 +4,9 @@
 
 #include <deal.II/lac/lapack_templates.h>
 
+#include <algorithm>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace gearkit
@@ -12,6 +14,19 @@ namespace gearkit
 ContactSolution
 solve_contact(const ContactProblem &p)
 {
+  return solve_contact(p.compliance, p.gap, p.lever, p.load);
+}
+
+ContactSolution
+solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
+              const Eigen::VectorXd &lever, double load, const std::vector<char> &start)
+{
+  const struct
+  {
+    const Eigen::MatrixXd &compliance;
+    const Eigen::VectorXd &gap, &lever;
+    double                 load;
+  } p{compliance, gap, lever, load};
   const Eigen::Index n = p.gap.size();
   if (n == 0 || p.compliance.rows() != n || p.compliance.cols() != n || p.lever.size() != n)
     throw InputError("contact solver: compliance, gap and lever sizes differ (or are zero)");
@@ -27,8 +42,15 @@ solve_contact(const ContactProblem &p)
   if (p.load == 0)
     return s;
 
+  if (!start.empty() && Eigen::Index(start.size()) != n)
+    throw InputError("contact solver: the warm start has " + std::to_string(start.size()) +
+                     " entries for " + std::to_string(n) + " cells");
   std::vector<char> active(n, 0);
-  active[first]      = 1;
+  if (std::any_of(start.begin(), start.end(), [](char c) { return c != 0; }))
+    for (Eigen::Index j = 0; j < n; ++j)
+      active[j] = start[j] != 0;
+  else
+    active[first] = 1;
   const double scale = std::max(p.gap.cwiseAbs().maxCoeff(), 1e-9);
   for (int it = 0; it < 4 * n + 50; ++it)
     {
@@ -76,8 +98,10 @@ solve_contact(const ContactProblem &p)
               active[A[a]] = 0;
           continue;
         }
-      // Penetrating cells join.
-      const Eigen::VectorXd h       = s.approach * p.lever - p.gap - p.compliance * s.force;
+      // Penetrating cells join: h = approach lever - gap - C F (the loaded columns of C alone).
+      Eigen::VectorXd h = s.approach * p.lever - p.gap;
+      for (Eigen::Index a = 0; a < m; ++a)
+        h.noalias() -= p.compliance.col(A[a]) * FA[a];
       Eigen::Index          deepest = -1;
       for (Eigen::Index j = 0; j < n; ++j)
         if (!active[j] && h[j] > 1e-12 * scale && (deepest < 0 || h[j] > h[deepest]))
@@ -85,6 +109,7 @@ solve_contact(const ContactProblem &p)
       if (deepest < 0)
         {
           s.active      = int(m);
+          s.active_set  = active;
           s.penetration = 0;
           for (Eigen::Index j = 0; j < n; ++j)
             if (!active[j])

@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace gearkit
 {
 struct ContactProblem
@@ -28,6 +30,7 @@ struct ContactSolution
   double          approach    = 0; ///< delta
   int             active      = 0; ///< cells in contact
   int             iterations  = 0; ///< active-set changes
+  std::vector<char> active_set;    ///< per cell: in contact (a warm start for a similar problem)
   double          penetration = 0; ///< largest violation of w >= lambda delta - g [m]
 };
 
@@ -38,4 +41,11 @@ struct ContactSolution
 /// active set does not settle.
 ContactSolution
 solve_contact(const ContactProblem &problem);
+
+/// The same problem given in parts, the compliance shared by many problems (not copied), with
+/// the cells in contact to start from: a warm start from a similar problem's active set (one
+/// entry per cell; empty: the first cell to touch). The solution does not depend on `start`.
+ContactSolution
+solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
+              const Eigen::VectorXd &lever, double load, const std::vector<char> &start = {});
 } // namespace gearkit

@@ -220,14 +220,12 @@ loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torqu
     }
 }
 
-static LoadedPosition
-loaded_contact_in_zone(const UnloadedTca &tca, const TcaPosition &position, double torque,
-                       const LoadedContactOptions &o, const StructuralCompliance &pinion,
-                       const StructuralCompliance &gear)
+Eigen::MatrixXd
+zone_compliance(const std::vector<ContactCell> &cells, const LoadedContactOptions &o,
+                const StructuralCompliance &pinion, const StructuralCompliance &gear)
 {
-  std::vector<ContactCell> cells = loaded_cells(tca, position, o);
-  const Eigen::Index       n     = Eigen::Index(cells.size());
-  Eigen::MatrixXd          C     = pinion.matrix(cells);
+  const Eigen::Index n = Eigen::Index(cells.size());
+  Eigen::MatrixXd    C = pinion.matrix(cells);
   C += gear.matrix(cells);
   const double Estar = contact_modulus(o.pinion_material, o.gear_material);
   if (o.half_space)
@@ -239,7 +237,17 @@ loaded_contact_in_zone(const UnloadedTca &tca, const TcaPosition &position, doub
             C(j, i) +=
                 rectangle_displacement(cj.s - ci.s, cj.t - ci.t, ci.ds / 2, ci.dt / 2, 1.0, Estar);
         }
-  LoadedPosition r = solve_loaded_contact(tca, position, torque, std::move(cells), C);
+  return C;
+}
+
+static LoadedPosition
+loaded_contact_in_zone(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                       const LoadedContactOptions &o, const StructuralCompliance &pinion,
+                       const StructuralCompliance &gear)
+{
+  std::vector<ContactCell> cells = loaded_cells(tca, position, o);
+  const Eigen::MatrixXd    C     = zone_compliance(cells, o, pinion, gear);
+  LoadedPosition           r     = solve_loaded_contact(tca, position, torque, std::move(cells), C);
   r.gap_band       = o.cells.gap_band;
   return r;
 }
@@ -255,46 +263,60 @@ solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double
   if (n == 0 || compliance.rows() != n || compliance.cols() != n || !compliance.allFinite())
     throw InputError("loaded contact: the compliance must be a finite square matrix, one row "
                      "per contact cell");
-  LoadedPosition out;
+  Eigen::VectorXd gap(n), lever(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    gap[i] = cells[std::size_t(i)].gap, lever[i] = cells[std::size_t(i)].lever;
+  ContactSolution s;
+  if (torque == 0) // nothing moves; the cells' first touch only samples the gap
+    s.force = Eigen::VectorXd::Zero(n);
+  else // Maxwell-Betti: the exact compliance is symmetric; interpolation is not quite.
+    s = solve_contact((compliance + compliance.transpose()) / 2, gap, lever, torque);
+  return loaded_position(tca, position, torque, std::move(cells), s, 0);
+}
+
+LoadedPosition
+loaded_position(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                std::vector<ContactCell> cells, const ContactSolution &s, double first_touch)
+{
+  const Eigen::Index n = Eigen::Index(cells.size());
+  const double       sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
+  LoadedPosition     out;
   out.pinion_angle = position.pinion_angle;
-  out.e0           = position.transmission_error;
+  out.e0           = position.transmission_error + sign * first_touch;
   out.torque       = torque;
   out.cells        = std::move(cells);
-  ContactProblem p;
-  p.gap.resize(n);
-  p.lever.resize(n);
-  p.load = torque;
-  for (Eigen::Index i = 0; i < n; ++i)
-    p.gap[i] = out.cells[i].gap, p.lever[i] = out.cells[i].lever;
-  // Maxwell-Betti: the exact compliance is symmetric; interpolation is not quite.
-  p.compliance = (compliance + compliance.transpose()) / 2;
-
+  out.pair_force.assign(position.pairs.size(), 0.0);
   if (torque == 0)
     {
-      out.eL    = out.e0; // nothing moves; the cells' first touch only samples the gap
+      out.eL    = out.e0;
       out.force = Eigen::VectorXd::Zero(n);
-      out.pair_force.assign(position.pairs.size(), 0.0);
       return out;
     }
-  const ContactSolution s = solve_contact(p);
-  out.zone_edge_cell      = most_loaded(s.force, out.cells, &ContactCell::zone_edge);
-  out.zone_edge_reached   = out.zone_edge_cell >= 0;
-  out.edge_cell           = most_loaded(s.force, out.cells, &ContactCell::flank_edge);
+  out.zone_edge_cell    = most_loaded(s.force, out.cells, &ContactCell::zone_edge);
+  out.zone_edge_reached = out.zone_edge_cell >= 0;
+  out.edge_cell         = most_loaded(s.force, out.cells, &ContactCell::flank_edge);
   for (Eigen::Index i = 0; i < n; ++i)
     if (s.force[i] > 0 && out.cells[i].flank_edge)
       out.edge_force += s.force[i];
-  const double sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
-  out.force         = s.force;
-  out.active_cells  = s.active;
-  out.iterations    = s.iterations;
-  out.eL            = out.e0 + sign * s.approach;
-  out.pair_force.assign(position.pairs.size(), 0.0);
+  out.force        = s.force;
+  out.active_cells = s.active;
+  out.iterations   = s.iterations;
+  out.eL           = position.transmission_error + sign * s.approach;
   for (Eigen::Index i = 0; i < n; ++i)
     out.pair_force[out.cells[i].pair] += s.force[i];
   out.normal_force = s.force.sum();
-  // e_L - e_0 = the approach: pinion rotation beyond the unloaded position, gear held.
+  // e_L - e_0 = the approach beyond the first touch: pinion rotation, gear held.
+  const double approach = s.approach - first_touch;
+  if (!(approach > 0))
+    {
+      std::ostringstream msg;
+      msg << "loaded contact: at pinion angle " << position.pinion_angle << " rad and " << torque
+          << " N m the loaded approach (" << approach
+          << " rad) is not positive; the unloaded TE given lies beyond the loaded one";
+      throw InputError(msg.str());
+    }
   out.lever          = torque / out.normal_force;
-  out.mesh_stiffness = out.normal_force / (out.lever * s.approach);
+  out.mesh_stiffness = out.normal_force / (out.lever * approach);
   return out;
 }
 

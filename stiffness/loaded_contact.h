@@ -6,6 +6,7 @@
 #pragma once
 
 #include "stiffness/contact_cells.h"
+#include "stiffness/contact_solver.h"
 #include "stiffness/flank_compliance.h"
 #include "stiffness/half_space.h"
 
@@ -128,11 +129,29 @@ std::vector<ContactCell>
 loaded_cells(const UnloadedTca &tca, const TcaPosition &position,
              const LoadedContactOptions &options);
 
+/// The whole compliance of the cells [m/N]: both members' structural parts and, with
+/// options.half_space, the half-space part between cells of one pair. C(j, i): the approach at
+/// cells[j] per unit normal force on cells[i].
+Eigen::MatrixXd
+zone_compliance(const std::vector<ContactCell> &cells, const LoadedContactOptions &options,
+                const StructuralCompliance &pinion, const StructuralCompliance &gear);
+
 /// The contact problem on given cells with their whole compliance (both members and the local
 /// part): compliance(j, i) is the approach at cell j per unit normal force on cell i [m/N].
 LoadedPosition
 solve_loaded_contact(const UnloadedTca &tca, const TcaPosition &position, double torque,
                      std::vector<ContactCell> cells, const Eigen::MatrixXd &compliance);
+
+/// The tables of a solved contact problem on `cells` at `position` (the gaps relative to its
+/// gear angle): `first_touch` is the pinion rotation beyond it at which the flanks the gaps
+/// belong to touch unloaded (0 for the position's own flanks), so that e_0 = the position's
+/// e_0 + first_touch and K_m = F / (lambda (approach - first_touch)) (drive side; the coast
+/// side's signs turn). Throws InputError when the loaded approach does not exceed the first
+/// touch.
+LoadedPosition
+loaded_position(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                std::vector<ContactCell> cells, const ContactSolution &solution,
+                double first_touch);
 
 /// The loaded contact over one mesh cycle: `positions` equal steps of the pinion over 2 pi / z1
 /// from the TCA's start angle, at every torque. Tables by torque (M), position (N), pair slot of

@@ -1,0 +1,82 @@
+#include "stiffness/fixed_zone.h"
+
+#include "stiffness/contact_solver.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace gearkit
+{
+FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double torque,
+                     const LoadedContactOptions &options, const StructuralCompliance &pinion,
+                     const StructuralCompliance &gear, double widening)
+    : tca(&tca)
+    , at(position)
+{
+  if (!(widening >= 1) || !std::isfinite(widening))
+    throw InputError("fixed contact zone: the widening must be finite and >= 1 (got " +
+                     std::to_string(widening) + ")");
+  // The zone fitted to the pair's own contact, then widened across (a band k^2 times as
+  // large reaches k times as far: sqrt(2 g / k_max)).
+  const LoadedPosition fitted = loaded_contact(tca, position, torque, options, pinion, gear);
+  LoadedContactOptions o      = options;
+  o.adapt_band                = false;
+  o.cells.gap_band            = fitted.gap_band * widening * widening;
+  o.cells.cells_across        = int(std::ceil(o.cells.cells_across * widening)) | 1;
+  // Pairs standing apart that the pair's own approach, `widening` times larger, would close.
+  const double approach = std::abs(fitted.eL - fitted.e0);
+  for (const PairContact &c : position.pairs)
+    if (c.found && c.separation <= widening * approach * pinion_lever(c.position, c.normal_pinion))
+      o.cells.pair_gap = std::max(o.cells.pair_gap, c.separation * (1 + 1e-9));
+  zone_cells                  = loaded_cells(tca, position, o);
+  const Eigen::MatrixXd C     = zone_compliance(zone_cells, o, pinion, gear);
+  compliance                  = (C + C.transpose()) / 2; // Maxwell-Betti, as solve_loaded_contact
+  const Eigen::Index n        = Eigen::Index(zone_cells.size());
+  gap.resize(n), lever.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    gap[i] = zone_cells[std::size_t(i)].gap, lever[i] = zone_cells[std::size_t(i)].lever;
+  own = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
+  own.gap_band = o.cells.gap_band;
+  for (Eigen::Index i = 0; i < n; ++i)
+    own_active.push_back(own.force.size() == n && own.force[i] > 0);
+  std::vector<char> has_cells(position.pairs.size(), 0);
+  for (const ContactCell &c : zone_cells)
+    has_cells[std::size_t(c.pair)] = 1;
+  for (std::size_t k = 0; k < position.pairs.size(); ++k)
+    if (position.pairs[k].found && !has_cells[k])
+      outside.push_back({position.pairs[k].separation,
+                         pinion_lever(position.pairs[k].position, position.pairs[k].normal_pinion)});
+}
+
+LoadedPosition
+FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0) const
+{
+  const Eigen::Index n = gap.size();
+  if (added.size() != n || !added.allFinite())
+    {
+      std::ostringstream msg;
+      msg << "fixed contact zone: the added material must be finite, one entry per cell (got "
+          << added.size() << " entries for " << n << " cells)";
+      throw InputError(msg.str());
+    }
+  if (!(torque >= 0) || !std::isfinite(torque))
+    throw InputError("fixed contact zone: the pinion torque must be finite and >= 0 (got " +
+                     std::to_string(torque) + " N m)");
+  const double          sign = tca->options_data().side == FlankSide::drive ? 1.0 : -1.0;
+  const Eigen::VectorXd g    = gap - added;
+  // The variant's first touch: rotation beyond this position's gear angle [rad].
+  const double first_touch = std::isnan(e0) ? g.cwiseQuotient(lever).minCoeff()
+                                            : sign * (e0 - at.transmission_error);
+  if (!std::isfinite(first_touch))
+    throw InputError("fixed contact zone: the variant's unloaded TE must be finite");
+  ContactSolution s;
+  if (torque > 0)
+    s = solve_contact(compliance, g, lever, torque, own_active);
+  LoadedPosition r = loaded_position(*tca, at, torque, zone_cells, s, first_touch);
+  r.gap_band       = own.gap_band;
+  for (const auto &[separation, arm] : outside)
+    if (s.approach * arm > separation)
+      r.zone_edge_reached = true; // a pair without cells would touch
+  return r;
+}
+} // namespace gearkit

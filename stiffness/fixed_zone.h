@@ -1,0 +1,73 @@
+// The loaded contact of one mesh position on a cell zone fixed once for many variants of a pair
+// that differ from it only by micrometre deviations along the flank normals (micro-geometry
+// designs, tolerance samples): the finite-element compliance of a member does not change with
+// them, so the cells and their compliance matrix are built once, and a variant only changes
+// the cells' unloaded gaps (first order: by the material its deviations add at each cell on
+// either flank) and solves the contact again, warm-started from the pair's own active set.
+//
+// The zone is the one loaded_contact fits to the pair at a torque, widened across the contact
+// line so that the variants' contacts (narrower or wider, shifted by the modifications' slopes)
+// stay inside it, and with cells on the pairs standing apart that a `widening` times larger
+// approach would close. A variant whose contact reaches the zone's outermost row, or whose
+// approach closes a pair without cells, says so (LoadedPosition::zone_edge_reached): then the
+// zone is too narrow for it.
+#pragma once
+
+#include "stiffness/loaded_contact.h"
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <vector>
+
+namespace gearkit
+{
+class FixedZone
+{
+public:
+  /// The zone loaded_contact fits to `torque` at `position` of `tca` (the pair the variants
+  /// deviate from, usually without modifications), `widening` (>= 1) times as wide across the
+  /// contact line: its gap band widening^2 times, as many more cells across (cells of the same
+  /// size). Throws InputError as loaded_contact does.
+  FixedZone(const UnloadedTca &tca, const TcaPosition &position, double torque,
+            const LoadedContactOptions &options, const StructuralCompliance &pinion,
+            const StructuralCompliance &gear, double widening = 2);
+
+  const std::vector<ContactCell> &
+  cells() const
+  {
+    return zone_cells;
+  }
+  /// The pair's own contact on the zone at the torque it was fitted to.
+  const LoadedPosition &
+  nominal() const
+  {
+    return own;
+  }
+  const TcaPosition &
+  position() const
+  {
+    return at;
+  }
+
+  /// A variant's loaded contact under a pinion torque: `added` is the material both members'
+  /// deviations add at each cell, along the normals [m] (> 0 closes the gap); `e0` the variant's
+  /// unloaded TE at this pinion angle [rad] (from its own TCA; NaN: the first touch of the
+  /// cells, min (gap - added) / lever, a lower estimate by up to the gap across half a cell).
+  /// Thread-safe. Throws InputError for a size other than the cells' and a non-finite entry.
+  LoadedPosition
+  solve(const Eigen::VectorXd &added, double torque,
+        double e0 = std::numeric_limits<double>::quiet_NaN()) const;
+
+private:
+  const UnloadedTca       *tca;
+  TcaPosition              at;
+  std::vector<ContactCell> zone_cells;
+  Eigen::MatrixXd          compliance; ///< symmetric [m/N]
+  Eigen::VectorXd          gap, lever;
+  LoadedPosition           own;
+  std::vector<char>        own_active; ///< the warm start
+  /// The pairs of the position without cells: separation [m] and lever [m].
+  std::vector<std::pair<double, double>> outside;
+};
+} // namespace gearkit

@@ -1,0 +1,158 @@
+#include "study/mesh_cycle_study.h"
+
+#include "base/parallel.h"
+#include "base/spectrum.h"
+#include "geometry/involute_gear.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace gearkit
+{
+namespace
+{
+const ToothModifications &
+working_side(const InvoluteGearData &d, FlankSide side)
+{
+  return side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
+}
+} // namespace
+
+MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinion_,
+                               std::shared_ptr<const InvoluteMemberFlanks> gear_,
+                               const Assembly &assembly_, const TcaOptions &tca_,
+                               const LoadedContactOptions                 &contact,
+                               const StructuralCompliance                 &pinion_compliance,
+                               const StructuralCompliance                 &gear_compliance,
+                               const MeshCycleStudyOptions                &options)
+    : pinion(std::move(pinion_))
+    , gear(std::move(gear_))
+    , assembly(assembly_)
+    , tca_options(tca_)
+    , o(options)
+{
+  if (!pinion || !gear)
+    throw InputError("mesh cycle study: both members must be involute gears");
+  if (o.positions < 4)
+    throw InputError("mesh cycle study: at least 4 positions per mesh cycle (got " +
+                     std::to_string(o.positions) + ")");
+  if (o.torques.empty())
+    throw InputError("mesh cycle study: no torque given");
+  for (const double T : o.torques)
+    if (!(T > 0) || !std::isfinite(T))
+      throw InputError("mesh cycle study: the torques must be finite and > 0 (got " +
+                       std::to_string(T) + " N m)");
+  if (o.harmonics < 1 || o.harmonics > o.positions / 2)
+    throw InputError("mesh cycle study: the mesh orders summarised must lie in [1, positions / 2]"
+                     " (got " + std::to_string(o.harmonics) + ")");
+  own.pinion = working_side(pinion->involute().data(), tca_options.side);
+  own.gear   = working_side(gear->involute().data(), tca_options.side);
+  tca        = std::make_unique<const UnloadedTca>(pinion, gear, assembly, tca_options);
+
+  const std::size_t        N = std::size_t(o.positions), M = o.torques.size();
+  const double             mesh_angle = 2 * pi / pinion->teeth();
+  std::vector<TcaPosition> at(N);
+  parallel_for(N, o.threads, [&](std::size_t i) {
+    at[i] = tca->at(tca_options.start_angle + mesh_angle * double(i) / double(N));
+  });
+  zones.resize(M * N);
+  LoadedContactOptions lo = contact;
+  lo.threads              = 1;
+  parallel_for(M * N, o.threads, [&](std::size_t k) {
+    zones[k] = std::make_unique<const FixedZone>(*tca, at[k % N], o.torques[k / N], lo,
+                                                 pinion_compliance, gear_compliance, o.widening);
+  });
+}
+
+std::pair<std::shared_ptr<const InvoluteMemberFlanks>, std::shared_ptr<const InvoluteMemberFlanks>>
+MeshCycleStudy::members(const PairVariant &v) const
+{
+  const auto with = [side = tca_options.side](const InvoluteGearData &d,
+                                              const ToothModifications &m) {
+    InvoluteGearData out = d;
+    (side == FlankSide::drive ? out.drive_modifications : out.coast_modifications) = m;
+    return std::make_shared<const InvoluteMemberFlanks>(InvoluteGear::create(out));
+  };
+  return {with(pinion->involute().data(), v.pinion), with(gear->involute().data(), v.gear)};
+}
+
+Eigen::VectorXd
+MeshCycleStudy::added_material(const std::vector<ContactCell> &cells, const PairVariant &v) const
+{
+  const InvoluteGear &p = pinion->involute(), &g = gear->involute();
+  const auto delta = [](const InvoluteGear &m, const ToothModifications &now,
+                        const ToothModifications &was, double u, double z) {
+    const double L = m.base_radius * u; // u: the roll angle
+    return evaluate_modifications(now, m.modification_frame(), L, z).value -
+           evaluate_modifications(was, m.modification_frame(), L, z).value;
+  };
+  Eigen::VectorXd added(Eigen::Index(cells.size()));
+  for (std::size_t j = 0; j < cells.size(); ++j)
+    {
+      const ContactCell &c = cells[j];
+      added[Eigen::Index(j)] =
+          delta(p, v.pinion, own.pinion, c.u1, c.v1) + delta(g, v.gear, own.gear, c.u2, c.v2);
+    }
+  return added;
+}
+
+VariantCycle
+MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
+{
+  const std::size_t N = std::size_t(o.positions), M = o.torques.size();
+  const auto [vp, vg] = members(v); // checks the modifications against the flanks
+  const UnloadedTca own_tca(vp, vg, assembly, tca_options);
+  VariantCycle      r;
+  r.torques = M, r.positions = N, r.harmonics = o.harmonics;
+  for (std::size_t i = 0; i < N; ++i)
+    r.slots = std::max(r.slots, zone(0, i).position().pairs.size());
+  r.unloaded_te.assign(N, 0.0);
+  r.loaded_te.assign(M * N, 0.0), r.mesh_stiffness.assign(M * N, 0.0);
+  r.normal_force.assign(M * N, 0.0), r.peak_pressure.assign(M * N, 0.0);
+  r.edge_load_share.assign(M * N, 0.0), r.pair_share.assign(M * N * r.slots, 0.0);
+  std::vector<char> edge(M * N, 0);
+  parallel_for(N, threads == 0 ? o.threads : threads, [&](std::size_t i) {
+    const double e0 = own_tca.at(zone(0, i).position().pinion_angle).transmission_error;
+    r.unloaded_te[i] = e0;
+    for (std::size_t m = 0; m < M; ++m)
+      {
+        const FixedZone     &z = zone(m, i);
+        const LoadedPosition p = z.solve(added_material(z.cells(), v), o.torques[m], e0);
+        const std::size_t    k = m * N + i;
+        r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;
+        r.normal_force[k] = p.normal_force;
+        for (std::size_t s = 0; s < p.pair_force.size(); ++s)
+          r.pair_share[k * r.slots + s] = p.pair_force[s] / p.normal_force;
+        for (std::size_t j = 0; j < p.cells.size(); ++j)
+          r.peak_pressure[k] =
+              std::max(r.peak_pressure[k], p.force[Eigen::Index(j)] / (p.cells[j].ds * p.cells[j].dt));
+        r.edge_load_share[k] = p.edge_force / p.normal_force;
+        edge[k]              = p.zone_edge_reached;
+      }
+  });
+  for (std::size_t m = 0; m < M; ++m)
+    {
+      const auto row = [&](const std::vector<double> &t) {
+        return std::vector<double>(t.begin() + long(m * N), t.begin() + long((m + 1) * N));
+      };
+      const std::vector<double> eL = row(r.loaded_te), K = row(r.mesh_stiffness);
+      const auto [lo, hi]          = std::minmax_element(eL.begin(), eL.end());
+      r.te_peak_to_peak.push_back(*hi - *lo);
+      const std::vector<double> h = mesh_order_amplitudes(eL, 1, o.harmonics);
+      r.te_harmonics.insert(r.te_harmonics.end(), h.begin() + 1, h.end());
+      const auto [klo, khi] = std::minmax_element(K.begin(), K.end());
+      double     mean       = 0;
+      for (const double k : K)
+        mean += k / double(N);
+      r.stiffness_mean.push_back(mean), r.stiffness_range.push_back(*khi - *klo);
+      const std::vector<double> p = row(r.peak_pressure), e = row(r.edge_load_share);
+      r.max_pressure.push_back(*std::max_element(p.begin(), p.end()));
+      r.max_edge_share.push_back(*std::max_element(e.begin(), e.end()));
+      r.zone_edge.push_back(
+          std::any_of(edge.begin() + long(m * N), edge.begin() + long((m + 1) * N),
+                      [](char c) { return c != 0; }));
+    }
+  return r;
+}
+} // namespace gearkit

@@ -1,0 +1,115 @@
+// The loaded mesh cycle of many variants of one involute pair on one compliance: variants
+// differ from the pair by their flank modifications (micro-geometry designs, tolerance samples),
+// which do not change the members' finite-element compliance. Per (torque, mesh position) the
+// cell zone and its compliance matrix are built once (stiffness/fixed_zone.h) on the pair
+// without modifications; a variant adds its modifications' material at the cells (first order
+// in the deviations along the normals) and solves the contact again; its unloaded TE comes
+// from its own TCA on the modified flanks (exact).
+#pragma once
+
+#include "geometry/member_flanks.h"
+#include "stiffness/fixed_zone.h"
+#include "tca/unloaded_tca.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gearkit
+{
+/// The modifications of each member's working flank side (the same on every tooth).
+struct PairVariant
+{
+  ToothModifications pinion, gear;
+};
+
+/// One variant's mesh cycle at every torque of the study: tables by torque (M) and position
+/// (N), pair slot (S) as MeshCycleContact, and the summaries a designer reads.
+struct VariantCycle
+{
+  std::size_t         torques = 0, positions = 0, slots = 0;
+  std::vector<double> unloaded_te;    ///< e_0 [N] [rad, pinion]
+  std::vector<double> loaded_te;      ///< e_L [M][N] [rad, pinion]
+  std::vector<double> mesh_stiffness; ///< K_m [M][N] [N/m]
+  std::vector<double> normal_force;   ///< F [M][N] [N]
+  std::vector<double> pair_share;     ///< load share of each pair slot [M][N][S]
+  std::vector<double> peak_pressure;  ///< largest cell pressure [M][N] [Pa]
+  std::vector<double> edge_load_share; ///< force on flank-edge cells / F [M][N]
+  /// Summaries per torque [M]: e_L peak-to-peak over the positions [rad]; amplitudes of mesh
+  /// orders 1..H of e_L [M][H] [rad]; K_m mean and range (max - min) [N/m]; the largest cell
+  /// pressure [Pa]; the largest edge-load share; whether a contact reached the edge of the
+  /// fixed zone at some position (the zone was too narrow: the results there are not valid).
+  std::vector<double> te_peak_to_peak, te_harmonics, stiffness_mean, stiffness_range;
+  std::vector<double> max_pressure, max_edge_share;
+  std::vector<char>   zone_edge;
+  int                 harmonics = 0;
+};
+
+struct MeshCycleStudyOptions
+{
+  int                 positions = 40; ///< per mesh cycle, from the TCA's start angle
+  std::vector<double> torques;        ///< pinion torques [N m], > 0
+  double              widening  = 2;  ///< of each zone against the pair's own (FixedZone)
+  int                 harmonics = 4;  ///< mesh orders summarised
+  /// Threads for building the zones and for one variant's positions (0: the hardware's).
+  unsigned threads = 0;
+};
+
+class MeshCycleStudy
+{
+public:
+  /// The pair's involute members (their modifications are the reference the variants replace:
+  /// usually none), assembled as `assembly`, analysed with `tca` (side, start angle), its
+  /// contact as `contact` says on the members' structural compliances. Builds every zone.
+  /// Throws InputError for members that are not involute, empty or non-positive torques, fewer
+  /// than 4 positions, and whatever FixedZone throws.
+  MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinion,
+                 std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
+                 const TcaOptions &tca, const LoadedContactOptions &contact,
+                 const StructuralCompliance &pinion_compliance,
+                 const StructuralCompliance &gear_compliance,
+                 const MeshCycleStudyOptions &options);
+
+  /// The variant's mesh cycle. `threads` for its positions (0: the study's). Thread-safe.
+  /// Throws InputError for modifications the flanks refuse (check_modifications) and when a
+  /// position's contact fails.
+  VariantCycle
+  evaluate(const PairVariant &variant, unsigned threads = 0) const;
+
+  /// The material a variant adds at each cell of a zone [m] beyond the study's members: both
+  /// members' modifications at the cell's flank parameters, less those the members have.
+  Eigen::VectorXd
+  added_material(const std::vector<ContactCell> &cells, const PairVariant &variant) const;
+
+  /// The variant's members: the study's with the variant's modifications.
+  std::pair<std::shared_ptr<const InvoluteMemberFlanks>,
+            std::shared_ptr<const InvoluteMemberFlanks>>
+  members(const PairVariant &variant) const;
+
+  const FixedZone &
+  zone(std::size_t torque, std::size_t position) const
+  {
+    return *zones[torque * std::size_t(o.positions) + position];
+  }
+  const MeshCycleStudyOptions &
+  options() const
+  {
+    return o;
+  }
+  /// The study's members without a variant: the reference every variant is measured from.
+  const PairVariant &
+  reference() const
+  {
+    return own;
+  }
+
+private:
+  std::shared_ptr<const InvoluteMemberFlanks> pinion, gear;
+  Assembly                                    assembly;
+  TcaOptions                                  tca_options;
+  MeshCycleStudyOptions                       o;
+  PairVariant                                 own;
+  std::unique_ptr<const UnloadedTca>          tca;
+  std::vector<std::unique_ptr<const FixedZone>> zones; ///< [M][N]
+};
+} // namespace gearkit

@@ -1,0 +1,131 @@
+// The mesh cycle study of the FZG C pair on one compliance: a variant equals the contact on
+// the same cells with the gaps computed exactly on its modified flanks (touch angles) and the
+// unloaded TE of its own TCA; the pair's own variant equals the zone's nominal solution; a
+// variant against the standalone loaded contact of its modified flanks (zones fitted to each
+// load); bad input refused.
+#include "study/mesh_cycle_study.h"
+#include "tests/fzg_c_pair.h"
+
+#include <gtest/gtest.h>
+
+using namespace gearkit;
+
+namespace
+{
+/// A tooth compliance of the order of the finite elements' (both members): the load spreads
+/// along the face, pairs do not interact.
+const StructuralCompliance tooth = [](const ContactCell &a, const ContactCell &b) {
+  return a.pair == b.pair ? 4e-10 * std::exp(-std::abs(a.position.z() - b.position.z()) / 5e-3)
+                          : 0.0;
+};
+
+struct Fzg
+{
+  std::shared_ptr<const InvoluteMemberFlanks> pinion, gear;
+  Assembly                                    assembly;
+  LoadedContactOptions                        contact;
+  double                                      torque = 0;
+  Fzg()
+      : assembly(1, 1)
+  {
+    const auto [pd, gd] = test_data::fzg_c_pair();
+    const auto [p, g]   = create_pair(pd, gd);
+    pinion              = std::make_shared<const InvoluteMemberFlanks>(p);
+    gear                = std::make_shared<const InvoluteMemberFlanks>(g);
+    assembly            = Assembly(working_centre_distance(*p, *g), g->teeth());
+    contact.pinion_material = contact.gear_material = {206e9, 0.3};
+    torque = 5912 * p->base_radius; // F_bt of FZG C14 on the line of action
+  }
+  MeshCycleStudy
+  study(int positions) const
+  {
+    MeshCycleStudyOptions o;
+    o.positions = positions;
+    o.torques   = {torque / 4, torque};
+    return MeshCycleStudy(pinion, gear, assembly, {}, contact, tooth, tooth, o);
+  }
+};
+
+/// A tip relief on both members and a lead crowning on the pinion: a classical design.
+PairVariant
+relieved()
+{
+  PairVariant v;
+  for (ToothModifications *m : {&v.pinion, &v.gear})
+    m->tip_relief = 15e-6, m->tip_relief_length = 3e-3;
+  v.pinion.lead_crowning = 6e-6;
+  return v;
+}
+} // namespace
+
+TEST(MeshCycleStudy, VariantEqualsExactGapsOnTheSameCells)
+{
+  const Fzg            s;
+  const MeshCycleStudy study = s.study(8);
+  const PairVariant    v     = relieved();
+  const VariantCycle   r     = study.evaluate(v);
+  const auto [vp, vg]        = study.members(v);
+  const UnloadedTca modified(vp, vg, s.assembly);
+  std::size_t       beyond = 0, cells_seen = 0;
+  for (std::size_t m = 0; m < 2; ++m)
+    for (std::size_t i = 0; i < 8; ++i)
+      {
+        const FixedZone         &z   = study.zone(m, i);
+        const TcaPosition       &pos = z.position();
+        std::vector<ContactCell> cells = z.cells();
+        const Eigen::Index       n     = Eigen::Index(cells.size());
+        cells_seen += cells.size();
+        Eigen::VectorXd          gap(n), lever(n);
+        for (Eigen::Index j = 0; j < n; ++j)
+          {
+            ContactCell &c = cells[std::size_t(j)];
+            // the modified pinion flank's point of the same flank parameters, and the gear's
+            // rotation at which the modified gear flank passes through it
+            const Vec3 X = s.assembly.pinion_to_global(
+                vp->flank(c.pinion_tooth, FlankSide::drive).evaluate(c.u1, c.v1).position,
+                pos.pinion_angle);
+            double psi, u2, v2;
+            lever[j] = c.lever;
+            if (modified.touch_angle(c.gear_tooth, X, pos.gear_angle, psi, u2, v2))
+              {
+                const Vec3 rg = X - s.assembly.gear_centre();
+                gap[j]        = (pos.gear_angle - psi) *
+                         std::abs(s.assembly.gear_axis().cross(rg).dot(c.normal));
+                continue;
+              }
+            // A relieved gear tip that no longer reaches the point: each flank's own normal
+            // displacement at the cell's flank parameters.
+            const auto moved = [](const Flank &now, const Flank &was, double u, double v) {
+              const FlankPoint a = now.evaluate(u, v), b = was.evaluate(u, v);
+              return (a.position - b.position).dot(b.normal);
+            };
+            ++beyond;
+            gap[j] = c.gap -
+                     moved(vp->flank(c.pinion_tooth, FlankSide::drive),
+                           s.pinion->flank(c.pinion_tooth, FlankSide::drive), c.u1, c.v1) -
+                     moved(vg->flank(c.gear_tooth, FlankSide::drive),
+                           s.gear->flank(c.gear_tooth, FlankSide::drive), c.u2, c.v2);
+          }
+        const std::size_t k = m * 8 + i;
+        {
+          const Eigen::VectorXd fo = Eigen::Map<const Eigen::VectorXd>(nullptr, 0);
+        }
+        Eigen::VectorXd first(n);
+        for (Eigen::Index j = 0; j < n; ++j) first[j] = cells[std::size_t(j)].gap;
+        first -= study.added_material(cells, v);
+        Eigen::Index worst; const double dg = (first - gap).cwiseAbs().maxCoeff(&worst);
+        std::printf("DBG gap %zu %zu: max |first - exact| %.3e m at cell %ld (edge %d gap %.3e)\n", m, i, dg, long(worst), int(cells[worst].flank_edge), gap[worst]);
+        const double e0 = modified.at(pos.pinion_angle).transmission_error;
+        const Eigen::MatrixXd C  = zone_compliance(cells, s.contact, tooth, tooth);
+        const ContactSolution sol =
+            solve_contact((C + C.transpose()) / 2, gap, lever, study.options().torques[m]);
+        const LoadedPosition exact = loaded_position(modified, pos, study.options().torques[m],
+                                                     cells, sol, e0 - pos.transmission_error);
+        EXPECT_NEAR(r.unloaded_te[i], e0, 1e-12);
+        std::printf("DBG %zu %zu dE %.3e dK %.3e act %d it %d\n", m, i, (r.loaded_te[k] - e0) / (exact.eL - e0) - 1, r.mesh_stiffness[k] / exact.mesh_stiffness - 1, sol.active, sol.iterations);
+        EXPECT_NEAR((r.loaded_te[k] - e0) / (exact.eL - e0), 1, 1e-3) << m << " " << i;
+        EXPECT_NEAR(r.mesh_stiffness[k] / exact.mesh_stiffness, 1, 1e-3) << m << " " << i;
+        EXPECT_FALSE(r.zone_edge[m]);
+      }
+  EXPECT_LT(beyond, cells_seen / 20); // most cells' gaps by touch angles
+}

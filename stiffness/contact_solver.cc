@@ -14,6 +14,8 @@ namespace gearkit
 ContactSolution
 solve_contact(const ContactProblem &p)
 {
+  if (!p.compliance.allFinite())
+    throw InputError("contact solver: the compliance must be finite");
   return solve_contact(p.compliance, p.gap, p.lever, p.load);
 }
 
@@ -30,8 +32,7 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
   const Eigen::Index n = p.gap.size();
   if (n == 0 || p.compliance.rows() != n || p.compliance.cols() != n || p.lever.size() != n)
     throw InputError("contact solver: compliance, gap and lever sizes differ (or are zero)");
-  if (!(p.load >= 0) || !(p.lever.minCoeff() > 0) || !p.gap.allFinite() ||
-      !p.compliance.allFinite())
+  if (!(p.load >= 0) || !(p.lever.minCoeff() > 0) || !p.gap.allFinite())
     throw InputError("contact solver: the load must be >= 0, the levers > 0 and all data finite");
 
   ContactSolution s;

@@ -42,7 +42,8 @@ struct ContactSolution
 ContactSolution
 solve_contact(const ContactProblem &problem);
 
-/// The same problem given in parts, the compliance shared by many problems (not copied), with
+/// The same problem given in parts, the compliance shared by many problems (not copied, and
+/// not checked here: its entries must be finite, which the caller checks once), with
 /// the cells in contact to start from: a warm start from a similar problem's active set (one
 /// entry per cell; empty: the first cell to touch). The solution does not depend on `start`.
 ContactSolution

@@ -30,11 +30,28 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
       o.cells.pair_gap = std::max(o.cells.pair_gap, c.separation * (1 + 1e-9));
   zone_cells                  = loaded_cells(tca, position, o);
   const Eigen::MatrixXd C     = zone_compliance(zone_cells, o, pinion, gear);
-  compliance                  = (C + C.transpose()) / 2; // Maxwell-Betti, as solve_loaded_contact
+  if (!C.allFinite())
+    throw InputError("fixed contact zone: the compliance of the cells is not finite");
+  compliance = (C + C.transpose()) / 2; // Maxwell-Betti, as solve_loaded_contact
   const Eigen::Index n        = Eigen::Index(zone_cells.size());
   gap.resize(n), lever.resize(n);
+  lever_slope.resize(n, 2);
+  const FlankSide side = tca.options_data().side;
   for (Eigen::Index i = 0; i < n; ++i)
-    gap[i] = zone_cells[std::size_t(i)].gap, lever[i] = zone_cells[std::size_t(i)].lever;
+    {
+      const ContactCell &c = zone_cells[std::size_t(i)];
+      gap[i] = c.gap, lever[i] = c.lever;
+      // lever = |a . n| with a = e_z x r; the normal tilted by the deviation's surface gradient
+      // J (J^T J)^-1 (d_u, d_v) moves it by -sign(a . n) a . J (J^T J)^-1 (d_u, d_v).
+      const FlankPoint f = tca.pinion_flanks().flank(c.pinion_tooth, side).evaluate(c.u1, c.v1);
+      Eigen::Matrix<double, 3, 2> J;
+      J.col(0)     = tca.assembly_data().pinion_vector_to_global(f.d_du, position.pinion_angle);
+      J.col(1)     = tca.assembly_data().pinion_vector_to_global(f.d_dv, position.pinion_angle);
+      const Vec3 a = Vec3::UnitZ().cross(c.position);
+      const double sign_a = a.dot(c.normal) >= 0 ? 1.0 : -1.0;
+      lever_slope.row(i) =
+          -sign_a * (J.transpose() * J).ldlt().solve(J.transpose() * a).transpose();
+    }
   own = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
   own.gap_band = o.cells.gap_band;
   for (Eigen::Index i = 0; i < n; ++i)
@@ -49,7 +66,8 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
 }
 
 LoadedPosition
-FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0) const
+FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
+                 const Eigen::MatrixX2d *pinion_slope) const
 {
   const Eigen::Index n = gap.size();
   if (added.size() != n || !added.allFinite())
@@ -62,20 +80,30 @@ FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0) const
   if (!(torque >= 0) || !std::isfinite(torque))
     throw InputError("fixed contact zone: the pinion torque must be finite and >= 0 (got " +
                      std::to_string(torque) + " N m)");
+  if (pinion_slope && (pinion_slope->rows() != n || !pinion_slope->allFinite()))
+    throw InputError("fixed contact zone: the pinion's deviation slopes must be finite, one row "
+                     "per cell");
   const double          sign = tca->options_data().side == FlankSide::drive ? 1.0 : -1.0;
   const Eigen::VectorXd g    = gap - added;
+  Eigen::VectorXd       arm  = lever;
+  if (pinion_slope)
+    arm += (lever_slope.array() * pinion_slope->array()).rowwise().sum().matrix();
+  if (!(arm.minCoeff() > 0))
+    throw InputError("fixed contact zone: a deviation's slope turns a cell's normal away from "
+                     "the pinion's rotation (a moment arm <= 0); slopes of micrometre "
+                     "deviations are far smaller");
   // The variant's first touch: rotation beyond this position's gear angle [rad].
-  const double first_touch = std::isnan(e0) ? g.cwiseQuotient(lever).minCoeff()
+  const double first_touch = std::isnan(e0) ? g.cwiseQuotient(arm).minCoeff()
                                             : sign * (e0 - at.transmission_error);
   if (!std::isfinite(first_touch))
     throw InputError("fixed contact zone: the variant's unloaded TE must be finite");
   ContactSolution s;
   if (torque > 0)
-    s = solve_contact(compliance, g, lever, torque, own_active);
+    s = solve_contact(compliance, g, arm, torque, own_active);
   LoadedPosition r = loaded_position(*tca, at, torque, zone_cells, s, first_touch);
   r.gap_band       = own.gap_band;
-  for (const auto &[separation, arm] : outside)
-    if (s.approach * arm > separation)
+  for (const auto &[separation, arm_outside] : outside)
+    if (s.approach * arm_outside > separation)
       r.zone_edge_reached = true; // a pair without cells would touch
   return r;
 }

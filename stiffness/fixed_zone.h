@@ -54,10 +54,15 @@ public:
   /// deviations add at each cell, along the normals [m] (> 0 closes the gap); `e0` the variant's
   /// unloaded TE at this pinion angle [rad] (from its own TCA; NaN: the first touch of the
   /// cells, min (gap - added) / lever, a lower estimate by up to the gap across half a cell).
-  /// Thread-safe. Throws InputError for a size other than the cells' and a non-finite entry.
+  /// `pinion_slope` (optional, one row per cell): the derivatives of the pinion's deviation by
+  /// its flank parameters (d/du1, d/dv1) [m]; they tilt the pinion's normal, the direction of
+  /// the contact force, and so change each cell's moment arm at first order (a tip relief's
+  /// slope of 1/200 by up to half a percent). Thread-safe. Throws InputError for sizes other
+  /// than the cells' and non-finite entries.
   LoadedPosition
   solve(const Eigen::VectorXd &added, double torque,
-        double e0 = std::numeric_limits<double>::quiet_NaN()) const;
+        double e0 = std::numeric_limits<double>::quiet_NaN(),
+        const Eigen::MatrixX2d *pinion_slope = nullptr) const;
 
 private:
   const UnloadedTca       *tca;
@@ -65,6 +70,9 @@ private:
   std::vector<ContactCell> zone_cells;
   Eigen::MatrixXd          compliance; ///< symmetric [m/N]
   Eigen::VectorXd          gap, lever;
+  /// d lever / d (du1, dv1) of the pinion's deviation at each cell [1]: the moment arm of the
+  /// tilted normal n - J (J^T J)^-1 grad delta, J = the flank's tangents.
+  Eigen::MatrixX2d lever_slope;
   LoadedPosition           own;
   std::vector<char>        own_active; ///< the warm start
   /// The pairs of the position without cells: separation [m] and lever [m].

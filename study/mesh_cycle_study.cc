@@ -17,6 +17,42 @@ working_side(const InvoluteGearData &d, FlankSide side)
 {
   return side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
 }
+
+/// A variant's unloaded TE at the reference pair's position `at`: the gear's rotation is the
+/// largest touch angle of the pairs that can touch (`has_cells` in a zone, or standing apart by
+/// less than the most material the variant adds anywhere in the zones), each searched on the
+/// variant's flanks (UnloadedTca::pair) also from the reference pair's contact point.
+double
+variant_unloaded_te(const UnloadedTca &variant, const TcaPosition &at,
+                    const std::vector<char> &has_cells, double most_added)
+{
+  const int    z1  = variant.pinion_flanks().teeth(), z2 = variant.gear_flanks().teeth();
+  const double s   = variant.options_data().side == FlankSide::drive ? 1.0 : -1.0;
+  const int    k0  = int(std::lround(at.pinion_angle * z1 / (2 * pi)));
+  double       psi = 0;
+  bool   any = false;
+  for (std::size_t p = 0; p < at.pairs.size(); ++p)
+    {
+      const PairContact &ref = at.pairs[p];
+      if (!ref.found || (!has_cells[p] && ref.separation > most_added))
+        continue;
+      for (int k = k0 - 3; k <= k0 + 3; ++k) // the pairing of the pair's pinion tooth
+        if (((-k % z1) + z1) % z1 == ref.pinion_tooth)
+          {
+            const PairContact c = variant.pair(k, at.pinion_angle, &ref);
+            if (c.found && (!any || s * c.touch_angle > s * psi))
+              psi = c.touch_angle, any = true;
+          }
+    }
+  if (!any)
+    {
+      std::ostringstream msg;
+      msg << "mesh cycle study: no tooth pair of the variant meets at pinion angle "
+          << at.pinion_angle << " rad";
+      throw InputError(msg.str());
+    }
+  return at.pinion_angle - psi * z2 / z1;
+}
 } // namespace
 
 MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinion_,
@@ -77,24 +113,30 @@ MeshCycleStudy::members(const PairVariant &v) const
   return {with(pinion->involute().data(), v.pinion), with(gear->involute().data(), v.gear)};
 }
 
-Eigen::VectorXd
-MeshCycleStudy::added_material(const std::vector<ContactCell> &cells, const PairVariant &v) const
+MeshCycleStudy::Deviations
+MeshCycleStudy::deviations(const std::vector<ContactCell> &cells, const PairVariant &v) const
 {
   const InvoluteGear &p = pinion->involute(), &g = gear->involute();
-  const auto delta = [](const InvoluteGear &m, const ToothModifications &now,
-                        const ToothModifications &was, double u, double z) {
-    const double L = m.base_radius * u; // u: the roll angle
-    return evaluate_modifications(now, m.modification_frame(), L, z).value -
-           evaluate_modifications(was, m.modification_frame(), L, z).value;
+  // The change of a member's deviation at roll angle u and z: value, d/du, d/dz.
+  const auto change = [](const InvoluteGear &m, const ToothModifications &now,
+                         const ToothModifications &was, double u, double z) {
+    const double          L = m.base_radius * u;
+    const NormalDeviation a = evaluate_modifications(now, m.modification_frame(), L, z);
+    const NormalDeviation b = evaluate_modifications(was, m.modification_frame(), L, z);
+    return NormalDeviation{a.value - b.value, (a.d_dL - b.d_dL) * m.base_radius, a.d_dz - b.d_dz};
   };
-  Eigen::VectorXd added(Eigen::Index(cells.size()));
+  Deviations d;
+  d.added.resize(Eigen::Index(cells.size()));
+  d.pinion_slope.resize(Eigen::Index(cells.size()), 2);
   for (std::size_t j = 0; j < cells.size(); ++j)
     {
-      const ContactCell &c = cells[j];
-      added[Eigen::Index(j)] =
-          delta(p, v.pinion, own.pinion, c.u1, c.v1) + delta(g, v.gear, own.gear, c.u2, c.v2);
+      const ContactCell    &c  = cells[j];
+      const NormalDeviation dp = change(p, v.pinion, own.pinion, c.u1, c.v1);
+      const auto            i  = Eigen::Index(j);
+      d.added[i]           = dp.value + change(g, v.gear, own.gear, c.u2, c.v2).value;
+      d.pinion_slope(i, 0) = dp.d_dL, d.pinion_slope(i, 1) = dp.d_dz;
     }
-  return added;
+  return d;
 }
 
 VariantCycle
@@ -113,12 +155,23 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
   r.edge_load_share.assign(M * N, 0.0), r.pair_share.assign(M * N * r.slots, 0.0);
   std::vector<char> edge(M * N, 0);
   parallel_for(N, threads == 0 ? o.threads : threads, [&](std::size_t i) {
-    const double e0 = own_tca.at(zone(0, i).position().pinion_angle).transmission_error;
+    const TcaPosition           &at = zone(0, i).position();
+    std::vector<Deviations> dev;
+    std::vector<char>       has_cells(at.pairs.size(), 0);
+    double                  most_added = 0;
+    for (std::size_t m = 0; m < M; ++m)
+      {
+        dev.push_back(deviations(zone(m, i).cells(), v));
+        most_added = std::max(most_added, dev.back().added.maxCoeff());
+        for (const ContactCell &c : zone(m, i).cells())
+          has_cells[std::size_t(c.pair)] = 1;
+      }
+    const double e0 = variant_unloaded_te(own_tca, at, has_cells, most_added);
     r.unloaded_te[i] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {
         const FixedZone     &z = zone(m, i);
-        const LoadedPosition p = z.solve(added_material(z.cells(), v), o.torques[m], e0);
+        const LoadedPosition p = z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope);
         const std::size_t    k = m * N + i;
         r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;
         r.normal_force[k] = p.normal_force;

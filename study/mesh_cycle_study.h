@@ -76,10 +76,17 @@ public:
   VariantCycle
   evaluate(const PairVariant &variant, unsigned threads = 0) const;
 
-  /// The material a variant adds at each cell of a zone [m] beyond the study's members: both
-  /// members' modifications at the cell's flank parameters, less those the members have.
-  Eigen::VectorXd
-  added_material(const std::vector<ContactCell> &cells, const PairVariant &variant) const;
+  /// What a variant changes at the cells of a zone beyond the study's members (their own
+  /// modifications subtracted): the material both members' modifications add at each cell's
+  /// flank parameters [m], and the derivatives of the pinion's by its flank parameters (roll
+  /// angle, z) [m] (FixedZone::solve).
+  struct Deviations
+  {
+    Eigen::VectorXd  added;
+    Eigen::MatrixX2d pinion_slope;
+  };
+  Deviations
+  deviations(const std::vector<ContactCell> &cells, const PairVariant &variant) const;
 
   /// The variant's members: the study's with the variant's modifications.
   std::pair<std::shared_ptr<const InvoluteMemberFlanks>,

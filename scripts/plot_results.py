@@ -12,6 +12,8 @@ usage: plot_results.py out/<scene>/results.h5
   ste_harmonics.md     mesh-order harmonics at the pitch point, theoretical and measured
   stiffness.png   loaded against unloaded TE, mesh stiffness over the mesh cycle (with ISO
                   6336), load sharing and the contact pressure on the pinion flank
+  study_<pair>.png  per micro-geometry map of the study stage: the Harris map (TE p-p over the
+                  torque and the modification), K_m and the TE of the best (plot_study.py)
   train_<train>.png  per gear train: the relative displacement S of every mesh with its
                   backlash band, its force, its force spectrum with the GMF harmonics and the
                   sidebands found, the body speeds and the energy balance
@@ -1150,6 +1152,9 @@ def main():
             plot_deflection(f["dynamics"], f["ste"], f["flanks"], out_dir)
         if "train" in f:
             plot_trains(f["train"], out_dir)
+        if "study" in f:
+            from plot_study import plot_study  # imports save from here: not at the top
+            plot_study(f["study"], out_dir)
 
 
 if __name__ == "__main__":

@@ -22,6 +22,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import plot_results  # noqa: E402  (captions: the docstrings of the functions that drew them)
+import plot_study  # noqa: E402
 
 CAPTIONS = {
     "profiles.png": plot_results.plot_profiles,
@@ -55,17 +56,20 @@ def shown(value, units):
     return text, ("" if label == "1" else label)
 
 
-# The pictures in the order of the work: geometry, unloaded TCA, loaded contact, dynamics, trains.
+# The pictures in the order of the work: geometry, unloaded TCA, loaded contact and the study's
+# micro-geometry maps, dynamics, trains.
 ORDER = ["profiles.png", "topography.png", "measured.png", "ste.png", "contact_pattern.png",
-         "hunting.png", "stiffness.png", "deflection.png", "dynamics.png", "dynamics_spectra.png",
-         "dynamics_time.png", "train_compare.png", "train_", "train_spectrogram.png"]
+         "hunting.png", "stiffness.png", "study_", "deflection.png", "dynamics.png",
+         "dynamics_spectra.png", "dynamics_time.png", "train_compare.png", "train_",
+         "train_spectrogram.png"]
 
 
 def workflow_order(png):
     if png in ORDER:
         return (ORDER.index(png), png)
-    if png.startswith("train_"):
-        return (ORDER.index("train_"), png)
+    for prefix in ("train_", "study_"):
+        if png.startswith(prefix):
+            return (ORDER.index(prefix), png)
     return (len(ORDER), png)
 
 
@@ -73,6 +77,8 @@ def caption(png):
     f = CAPTIONS.get(png)
     if f is None and png.startswith("train_"):
         f = plot_results.plot_train
+    if f is None and png.startswith("study_"):
+        f = plot_study.plot_study
     doc = inspect.getdoc(f) if f else ""
     return " ".join(doc.split()) if doc else png
 
@@ -89,11 +95,13 @@ class Page:
         c = f' class="{cls}"' if cls else ""
         self.parts.append(f"<p{c}>{text}</p>")
 
-    def table(self, header, rows, cls=None):
+    def table(self, header, rows, cls=None, alarm=()):
+        """rows: lists of cells (HTML); those whose index is in alarm marked class="alarm"."""
         c = f' class="{cls}"' if cls else ""
         out = [f"<table{c}><tr>" + "".join(f"<th>{esc(x)}</th>" for x in header) + "</tr>"]
-        for r in rows:
-            out.append("<tr>" + "".join(f"<td>{x}</td>" for x in r) + "</tr>")
+        for i, r in enumerate(rows):
+            out.append(("<tr class=\"alarm\">" if i in alarm else "<tr>")
+                       + "".join(f"<td>{x}</td>" for x in r) + "</tr>")
         out.append("</table>")
         self.parts.append("\n".join(out))
 
@@ -370,6 +378,67 @@ def train_rows(name, g):
     return rows
 
 
+def study_invalid(g):
+    """The zone_edge results of a micro-geometry map as text ("tip relief 40 µm at 50, 100 N m;
+    ..."), their count and the number of results; ("", 0, n) when every result is valid."""
+    edge = g["zone_edge"][()] != 0
+    torques = g["torques"][()]
+    where = [f"{plot_study.variant_label(g, v, 'µm')} at "
+             + ", ".join(f"{t:g}" for t in torques[edge[v]]) + " N m"
+             for v in np.nonzero(edge.any(axis=1))[0]]
+    listed = "; ".join(where[:8]) + (" …" if len(where) > 8 else "")
+    return listed, int(edge.sum()), edge.size
+
+
+def study_rows(name, g):
+    """A micro-geometry map's table (pair, torque, what, value): per torque the best valid
+    variant (its parameter values) and its loaded TE's peak-to-peak at the pitch circle, with the
+    unmodified variant's; at the design torque the classical relief F / (b c_gamma) (ISO 6336-1),
+    the unmodified pair's mesh deflection F / K_m and the best relief interpolated there; and
+    the warning where a contact reached the edge of the fixed zone. Returns (rows, indices of
+    the warning rows)."""
+    rows, alarm = [], []
+    label = esc(name)
+    torques = g["torques"][()]
+    pp = plot_study.te_length(g, g["te_peak_to_peak"][()])
+    best = np.atleast_1d(g["best_variant"][()]).astype(int)
+    edge = g["zone_edge"][()] != 0
+    zero = plot_study.unmodified_variant(g)
+    design = plot_study.scalar(g, "design_torque", 0.0)
+    for m, torque in enumerate(torques):
+        when = f"{torque:g} N m" + (" (design)" if np.isclose(torque, design) else "")
+        v = best[m]
+        if v < 0:
+            rows.append([label, when, "best variant: none (no valid result)", "–"])
+            continue
+        valid = int((~edge[:, m]).sum())
+        unmodified = ("" if zero is None or zero == v else
+                      f" (unmodified: {pp[zero, m]:.4g} µm" + (", not valid" if edge[zero, m]
+                                                              else "") + ")")
+        rows.append([label, when,
+                     f"best of {valid} valid variants: {esc(plot_study.variant_label(g, v, 'µm'))}",
+                     f"TE p-p {pp[v, m]:.4g} µm at the pitch circle{unmodified}"])
+    if design > 0:
+        when = f"design {design:g} N m"
+        single = len(plot_study.parameters(g)) == 1
+        for key, what, missing in (
+                ("classical_relief_iso", "classical relief F / (b c_γ) (ISO 6336-1 c_γ)",
+                 "– (not in the results)"),
+                ("mesh_deflection_design", "mesh deflection F / K_m of the unmodified pair",
+                 "– (not in the results)"),
+                ("best_relief_design", "best relief interpolated at the design torque (parabola "
+                 "through the grid's best three)",
+                 "– (a single relief axis only)" if not single else "– (not in the results)")):
+            v = plot_study.scalar(g, key)
+            rows.append([label, when, what, missing if v is None else number(v, "m")])
+    listed, count, total = study_invalid(g)
+    if count:
+        alarm.append(len(rows))
+        rows.append([label, "<b>WARNING</b>", f"<b>{esc(plot_study.INVALID)}</b>",
+                     f"<b>{count} of {total} (variant, torque) results:</b> {esc(listed)}"])
+    return rows, alarm
+
+
 def dynamics_rows(name, g):
     rows = []
     for ex in g:
@@ -560,6 +629,13 @@ def main():
                 if isinstance(f[stage][pair], h5py.Group):
                     warnings += [w for w in attr(f[stage][pair], "warnings").splitlines()
                                  if w.strip()]
+        for pair in (f["study"] if "study" in f else []):
+            g = f["study"][pair]
+            if isinstance(g, h5py.Group) and "zone_edge" in g:
+                listed, count, total = study_invalid(g)
+                if count:
+                    warnings.append(f"study {pair}: {plot_study.INVALID} ({count} of {total} "
+                                    f"results: {listed})")
         if warnings:
             page.h(2, f"Warnings ({len(warnings)})", "warnings")
             page.raw('<div class="warnings"><ul>' + "".join(f"<li>{esc(w)}</li>" for w in warnings)
@@ -636,6 +712,18 @@ def main():
                      + ("" if not bad else " — not: " + esc(", ".join(bad[:10])))])
         page.table(["stage", "what", "value"], rows, "key")
 
+        # 1b. Micro-geometry maps: the best design per torque
+        study = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
+                 if plot_study.text(f["study"][pair].attrs.get("kind", "")) == plot_study.KIND]
+        if study:
+            page.h(2, "Micro-geometry map", "study")
+            rows, alarm = [], []
+            for pair, g in study:
+                r, a = study_rows(pair, g)
+                alarm += [len(rows) + i for i in a]
+                rows += r
+            page.table(["pair", "torque", "what", "value"], rows, "study", alarm)
+
         # 2. Pictures
         pngs = sorted((p for p in os.listdir(folder)
                        if p.endswith(".png") and os.path.getmtime(os.path.join(folder, p)) >= made - 1),
@@ -679,7 +767,7 @@ h1{font-size:1.6em} h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-t
 table{border-collapse:collapse;margin:.5em 0} td,th{border:1px solid #ddd;padding:.25em .6em;
 text-align:left;vertical-align:top} th{background:#f3f3f3} table.key td:first-child{color:#666}
 figure{margin:1em 0} img{max-width:100%;border:1px solid #eee} figcaption{font-size:.9em;color:#444}
-.note{color:#7a4b00;font-style:italic} .warnings{background:#fff3cd;border:2px solid #d39e00;padding:.2em 1em;font-weight:600}
+.note{color:#7a4b00;font-style:italic} tr.alarm td{background:#f8d7da;color:#842029;border-color:#d9534f} .warnings{background:#fff3cd;border:2px solid #d39e00;padding:.2em 1em;font-weight:600}
 pre{background:#f7f7f7;padding:.6em;overflow:auto;font-size:.85em} .meta{color:#555}
 """
     # For the browser check (tests): how many pictures decoded, on the body once the page loaded.

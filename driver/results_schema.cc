@@ -1,6 +1,7 @@
 #include "driver/results_schema.h"
 
 #include "dynamics/sweep.h"
+#include "study/modification_grid.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -621,6 +622,57 @@ add_train(const Add &add)
       });
 }
 
+/// Stage study (stage_study.cc): the micro-geometry map
+void
+add_study(const Add &add)
+{
+  add("study/<pair>",
+      {
+          {"torques", "torques", "N m", "pinion torques of the map, ascending"},
+          {"design_torque", "scalar", "N m", "the torque the design is for (0: none)"},
+          {"pitch_radius", "scalar", "m",
+           "operating pitch radius of the pinion: TE [rad] times it is the TE at the pitch circle"},
+          {"shape", "parameters, integers", "1", "values of each axis of the grid, in order"},
+          {"grid", "variants x parameters", "m",
+           "each variant's parameter values (the first axis slowest)"},
+          {"te_peak_to_peak", "variants x torques", "rad",
+           "loaded TE e_L peak-to-peak over the positions (pinion radians)"},
+          {"unloaded_te_peak_to_peak", "variants", "rad", "unloaded TE e_0 peak-to-peak"},
+          {"te_harmonics", "variants x torques x harmonics", "rad",
+           "amplitudes of mesh orders 1..H of e_L"},
+          {"stiffness_mean", "variants x torques", "N/m", "K_m mean over the mesh cycle"},
+          {"stiffness_range", "variants x torques", "N/m", "K_m max - min over the mesh cycle"},
+          {"max_pressure", "variants x torques", "Pa", "largest cell pressure over the cycle"},
+          {"max_edge_share", "variants x torques", "1",
+           "largest share of the load on cells at a flank edge (edge contact)"},
+          {"zone_edge", "variants x torques, integers", "1",
+           "1 where a contact reached the edge of its fixed zone at some position (too narrow: "
+           "the variant's results at that torque are not valid)"},
+          {"pinion_angle", "positions", "rad", "pinion rotation phi of each position"},
+          {"unloaded_te", "variants x positions", "rad", "e_0 of each variant"},
+          {"loaded_te", "variants x torques x positions", "rad", "e_L of each variant"},
+          {"mesh_stiffness", "variants x torques x positions", "N/m",
+           "K_m = F / (lambda (e_L - e_0)) of each variant"},
+          {"best_variant", "torques, integers", "1",
+           "the valid variant of least TE peak-to-peak at each torque (-1: none)"},
+          {"unmodified_variant", "scalar, integer", "1",
+           "the variant without modifications on either member (-1: none in the grid)"},
+          {"iso_c_gamma_alpha", "scalar", "N/m",
+           "ISO 6336-1 method B mesh stiffness c_gamma_alpha times the face width"},
+          {"classical_relief_iso", "scalar", "m",
+           "the classical tip relief F_bt / (b c_gamma_alpha) at the design torque (ISO 6336-1)"},
+          {"mesh_deflection_design", "scalar", "m",
+           "F_bt / K_m mean of the grid's variant without modifications at the design torque"},
+          {"best_relief_design", "scalar", "m",
+           "the relief of least TE peak-to-peak at the design torque: a parabola through the "
+           "grid's best value and its neighbours"},
+      });
+  std::vector<Entry> axes;
+  for (const std::string &field : modification_field_names())
+    axes.push_back({field.c_str(), "values", "m", "the values of this axis of the grid"});
+  add("study/<pair>/axes", axes);
+}
+
 std::vector<ResultDataset>
 schema()
 {
@@ -636,6 +688,7 @@ schema()
   add_stiffness(add);
   add_dynamics(add);
   add_train(add);
+  add_study(add);
   return all;
 }
 } // namespace

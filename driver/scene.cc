@@ -78,7 +78,7 @@ check_identifier(const std::string &name, const std::string &where)
 
 namespace
 {
-const char *output_names = "flanks|measured|ste|stiffness|dynamics|train";
+const char *output_names = "flanks|measured|ste|stiffness|dynamics|train|study";
 
 // The stage sections in the order of the data flow, each with one subsection per pair.
 struct SectionDeclaration
@@ -91,7 +91,8 @@ const SectionDeclaration pair_sections[] = {{"Flanks", PairScene::declare},
                                             {"TCA", TcaScene::declare},
                                             {"Finite elements", FeScene::declare},
                                             {"Loaded contact", LoadedScene::declare},
-                                            {"Dynamics", DynamicsScene::declare}};
+                                            {"Dynamics", DynamicsScene::declare},
+                                            {"Study", StudyScene::declare}};
 
 /// A train's name with the names of its bodies and meshes (they name its subsections).
 struct TrainNames
@@ -278,6 +279,7 @@ parse_sections(ParameterHandler &prm, const std::string &file, const std::string
       in_subsection(prm, {"Finite elements", p}, [&] { scene.fe[p].parse(prm); });
       in_subsection(prm, {"Loaded contact", p}, [&] { scene.loaded[p].parse(prm); });
       in_subsection(prm, {"Dynamics", p}, [&] { scene.dynamics[p].parse(prm); });
+      in_subsection(prm, {"Study", p}, [&] { scene.study[p].parse(prm); });
       scene.pairs.push_back(pair);
     }
   for (const TrainNames &t : trains)
@@ -355,6 +357,7 @@ check_sections(Scene &scene)
       scene.fe.at(p).check(pair, runs("compliance"), scene.warnings);
       scene.loaded.at(p).check(pair, scene.measured.at(p), runs("stiffness"), scene.warnings);
       scene.dynamics.at(p).check(pair, scene.tca.at(p), runs("dynamics"), scene.warnings);
+      scene.study.at(p).check(pair, scene.loaded.at(p), runs("study"), scene.warnings);
     }
   const bool train_wanted =
       std::find(scene.outputs.begin(), scene.outputs.end(), "train") != scene.outputs.end();

@@ -17,6 +17,7 @@
 #include "geometry/involute_gear.h"
 #include "stiffness/contact_cells.h"
 #include "stiffness/half_space.h"
+#include "study/modification_grid.h"
 #include "tca/paper_mode.h"
 #include "tca/tooth_pairs.h"
 #include "tca/unloaded_tca.h"
@@ -242,6 +243,32 @@ struct LoadedScene
         std::vector<std::string> &warnings) const;
 };
 
+/// Design study of a pair on its compliance (stage "study"): a micro-geometry map, the grid
+/// of modification variants over the torques.
+struct StudyScene
+{
+  std::vector<double> torques; ///< pinion torques [N m], ascending; empty: Loaded contact's
+  double              design_torque = 0;  ///< [N m], among the torques; 0: none
+  int                 positions     = 40; ///< per mesh cycle
+  double              widening      = 2;  ///< of the fixed contact zones (FixedZone)
+  int                 harmonics     = 4;  ///< mesh orders of e_L summarised
+  GridMembers         members       = GridMembers::both;
+  std::vector<ModificationAxis> axes; ///< in the order of modification_field_names
+
+  static void
+  declare(ParameterHandler &prm);
+  void
+  parse(ParameterHandler &prm);
+  /// With `run` (the study stage runs): an involute pair, plausible torques, the design torque
+  /// among them, the grid's size.
+  void
+  check(const PairScene &pair, const LoadedScene &loaded, bool run,
+        std::vector<std::string> &warnings) const;
+  /// The torques the study runs: its own, else the Loaded contact section's; ascending.
+  std::vector<double>
+  study_torques(const LoadedScene &loaded) const;
+};
+
 /// 14-DOF pair dynamics (stage "dynamics"): the model's parameters and the speed sweep.
 struct DynamicsScene
 {
@@ -461,6 +488,7 @@ struct Scene
   std::map<std::string, FeScene>       fe;       ///< by pair name
   std::map<std::string, LoadedScene>   loaded;   ///< by pair name
   std::map<std::string, DynamicsScene> dynamics; ///< by pair name
+  std::map<std::string, StudyScene>    study;    ///< by pair name
   std::vector<TrainScene>              trains;   ///< Train/<train>, in the order of Scene/trains
   /// Notes/<name>: the pairs' notes in the order of Scene/pairs, then the trains' in the order
   /// of Scene/trains, each's in the order of note_areas(). In no stage's cache key.

@@ -158,6 +158,15 @@ stage_definitions()
                return std::vector<std::string>{"stiffness"};
          return std::vector<std::string>{};
        }},
+      {"study",
+       "design study on one compliance: micro-geometry map of loaded TE, K_m and pressure",
+       {"flanks", "compliance"},
+       {"TCA", "Loaded contact", "Study"},
+       {"base", "geometry", "tca", "meshes", "stiffness", "study", "driver/stage_study.cc",
+        "driver/scene_study.cc", "driver/results_compliance.cc", "driver/results_compliance.h",
+        "driver/pair_contact.cc", "driver/pair_contact.h"},
+       [](const Scene &) { return std::vector<std::string>{}; },
+       run_study_stage},
   };
   return stages;
 }
@@ -186,7 +195,8 @@ output_stages()
 {
   static const std::map<std::string, std::string> map = {
       {"flanks", "flanks"},       {"measured", "measured"}, {"ste", "ste"},
-      {"stiffness", "stiffness"}, {"dynamics", "dynamics"}, {"train", "train"}};
+      {"stiffness", "stiffness"}, {"dynamics", "dynamics"}, {"train", "train"},
+      {"study", "study"}};
   return map;
 }
 std::vector<std::string>

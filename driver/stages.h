@@ -103,6 +103,8 @@ void
 run_dynamics_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 void
 run_train_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
+void
+run_study_stage(const Scene &, const Upstream &, const H5Group &, std::ostream &);
 
 /// A member's measured flanks as the measured stage stored them (for later stages and exports).
 MeasuredMember

@@ -36,9 +36,9 @@ def text(value):
 
 
 def parameters(g):
-    """The grid's axis names, first axis first."""
-    names = g.attrs.get("parameters", [])
-    return [text(n) for n in np.atleast_1d(names)]
+    """The grid's axis names, first axis first (the stage writes them comma-separated)."""
+    names = [text(n) for n in np.atleast_1d(g.attrs.get("parameters", []))]
+    return [p.strip() for n in names for p in n.split(",") if p.strip()]
 
 
 def is_length(name):
@@ -62,9 +62,9 @@ def value_text(name, value, micro="um"):
 
 
 def variant_label(g, v, micro="um"):
-    """A variant by its parameter values; 'unmodified' where every value is zero."""
+    """A variant by its parameter values; 'unmodified' for the one without modifications."""
     row = g["grid"][int(v)]
-    if not np.any(row):
+    if unmodified_variant(g) == int(v):
         return "unmodified"
     return ", ".join(value_text(n, x, micro) for n, x in zip(parameters(g), row))
 
@@ -95,7 +95,11 @@ def design_index(g):
 
 
 def unmodified_variant(g):
-    """The variant without modifications (every parameter 0), else None."""
+    """The variant without modifications on either member (the stage's `unmodified_variant`,
+    which also knows the modifications outside the grid; else every parameter 0), else None."""
+    if "unmodified_variant" in g:
+        v = int(g["unmodified_variant"][()])
+        return v if v >= 0 else None
     zero = np.nonzero(~np.any(g["grid"][()] != 0, axis=1))[0]
     return int(zero[0]) if zero.size else None
 

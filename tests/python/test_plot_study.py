@@ -77,10 +77,10 @@ def write_study(path, axes, design_torque=300.0, zone_edge=((-1, 0), (-1, 1)), p
         f.attrs["scene"] = "synthetic"
         g = f.create_group(f"study/{pair}")
         g.attrs["kind"] = "microgeometry map"
-        g.attrs["parameters"] = names
+        g.attrs["parameters"] = ",".join(names)  # as the stage writes them
         g.attrs["members"] = "both"
-        g.attrs["design_torque"] = design_torque
-        g.attrs["pitch_radius"] = PITCH_RADIUS
+        g["design_torque"] = float(design_torque)  # datasets, as the stage writes them
+        g["pitch_radius"] = PITCH_RADIUS
         g["torques"] = np.asarray(torques, dtype=float)
         g["shape"] = np.array(shape, dtype=np.int64)
         for n in names:

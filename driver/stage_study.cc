@@ -1,0 +1,213 @@
+// Stage "study": a micro-geometry map of every pair on its compliance (the compliance stage's
+// tables, computed once): the grid of modification variants of Study/<pair> over the torques,
+// each variant's loaded mesh cycle on fixed contact zones (study/), the best variant per torque
+// and the classical tip relief F_bt / (b c_gamma) to compare with.
+#include "base/progress.h"
+#include "driver/pair_contact.h"
+#include "driver/stages.h"
+#include "stiffness/iso6336.h"
+#include "study/modification_grid.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ostream>
+
+namespace gearkit
+{
+namespace
+{
+/// A member as the study's zones are built on it: without modifications on either side.
+std::shared_ptr<const InvoluteMemberFlanks>
+unmodified(const MemberFlanks &m)
+{
+  InvoluteGearData d    = involute(m).data();
+  d.drive_modifications = d.coast_modifications = {};
+  return std::make_shared<const InvoluteMemberFlanks>(InvoluteGear::create(d));
+}
+
+/// The best (least TE p-p) valid variant at torque m, -1 if none.
+int
+best_variant(const std::vector<VariantCycle> &r, std::size_t m)
+{
+  int best = -1;
+  for (std::size_t g = 0; g < r.size(); ++g)
+    if (!r[g].zone_edge[m] &&
+        (best < 0 || r[g].te_peak_to_peak[m] < r[std::size_t(best)].te_peak_to_peak[m]))
+      best = int(g);
+  return best;
+}
+
+/// The relief of least TE p-p along a single axis at torque m: the vertex of the parabola
+/// through the grid's best valid value and its two neighbours (the best value itself at an end
+/// of the axis or where the three do not open upwards).
+double
+best_relief(const std::vector<VariantCycle> &r, const std::vector<double> &values, std::size_t m)
+{
+  const int b = best_variant(r, m);
+  if (b < 0)
+    return std::nan("");
+  const std::size_t i = std::size_t(b);
+  if (i == 0 || i + 1 >= values.size() || r[i - 1].zone_edge[m] || r[i + 1].zone_edge[m])
+    return values[i];
+  const double x0 = values[i - 1], x1 = values[i], x2 = values[i + 1];
+  const double y0 = r[i - 1].te_peak_to_peak[m], y1 = r[i].te_peak_to_peak[m],
+               y2 = r[i + 1].te_peak_to_peak[m];
+  // divided differences: y = y1 + d1 (x - x1) + d2 (x - x0)(x - x1) ... vertex of the parabola
+  const double d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
+  const double a   = (d12 - d01) / (x2 - x0);
+  if (!(a > 0))
+    return x1;
+  const double x = (x0 + x1) / 2 - d01 / (2 * a);
+  return std::clamp(x, x0, x2);
+}
+
+void
+write_map(const H5Group &g, const StudyScene &s, const std::vector<double> &torques,
+          const ModificationGrid &grid, const std::vector<VariantCycle> &r,
+          const std::vector<double> &pinion_angle, double pitch_radius)
+{
+  const std::size_t G = r.size(), M = torques.size(), N = pinion_angle.size(),
+                    H = std::size_t(s.harmonics), P = grid.axes().size();
+  g.attribute("kind", "microgeometry map");
+  g.attribute("members", s.members == GridMembers::both     ? "both"
+                         : s.members == GridMembers::pinion ? "pinion"
+                                                            : "gear");
+  std::string names;
+  for (const ModificationAxis &a : grid.axes())
+    names += (names.empty() ? "" : ",") + a.name;
+  g.attribute("parameters", names);
+  g.write("torques", torques, {M});
+  g.write("design_torque", s.design_torque);
+  g.write("pitch_radius", pitch_radius);
+  std::vector<int>    shape;
+  std::vector<double> values;
+  const H5Group       axes = g.group("axes");
+  for (const ModificationAxis &a : grid.axes())
+    {
+      shape.push_back(int(a.values.size()));
+      axes.write(a.name, a.values, {a.values.size()});
+    }
+  for (std::size_t v = 0; v < G; ++v)
+    {
+      const std::vector<std::size_t> at = grid.index(v);
+      for (std::size_t k = 0; k < P; ++k)
+        values.push_back(grid.axes()[k].values[at[k]]);
+    }
+  g.write("shape", shape, {P});
+  g.write("grid", values, {G, P});
+  const auto gather = [&](auto field, std::vector<hsize_t> dims, const char *name) {
+    std::vector<double> all;
+    for (const VariantCycle &c : r)
+      all.insert(all.end(), (c.*field).begin(), (c.*field).end());
+    dims.insert(dims.begin(), G);
+    g.write(name, all, dims);
+  };
+  gather(&VariantCycle::te_peak_to_peak, {M}, "te_peak_to_peak");
+  gather(&VariantCycle::te_harmonics, {M, H}, "te_harmonics");
+  gather(&VariantCycle::stiffness_mean, {M}, "stiffness_mean");
+  gather(&VariantCycle::stiffness_range, {M}, "stiffness_range");
+  gather(&VariantCycle::max_pressure, {M}, "max_pressure");
+  gather(&VariantCycle::max_edge_share, {M}, "max_edge_share");
+  gather(&VariantCycle::unloaded_te, {N}, "unloaded_te");
+  gather(&VariantCycle::loaded_te, {M, N}, "loaded_te");
+  gather(&VariantCycle::mesh_stiffness, {M, N}, "mesh_stiffness");
+  std::vector<double> e0_pp;
+  std::vector<int>    edge, best;
+  for (const VariantCycle &c : r)
+    {
+      const auto [lo, hi] = std::minmax_element(c.unloaded_te.begin(), c.unloaded_te.end());
+      e0_pp.push_back(*hi - *lo);
+      for (const char e : c.zone_edge)
+        edge.push_back(e);
+    }
+  for (std::size_t m = 0; m < M; ++m)
+    best.push_back(best_variant(r, m));
+  g.write("unloaded_te_peak_to_peak", e0_pp, {G});
+  g.write("zone_edge", edge, {G, M});
+  g.write("best_variant", best, {M});
+  g.write("pinion_angle", pinion_angle, {N});
+}
+} // namespace
+
+void
+run_study_stage(const Scene &scene, const Upstream &up, const H5Group &out, std::ostream &log)
+{
+  for (const PairScene &pair : scene.pairs)
+    {
+      const StudyScene &s   = scene.study.at(pair.name);
+      const auto        t0  = std::chrono::steady_clock::now();
+      const LoadedPair  lp  = loaded_pair(scene, pair, up.at("flanks")->group(pair.name),
+                                          up.at("compliance")->group(pair.name));
+      const TcaOptions  tca = lp.theory->options_data();
+      const auto        working = [&](const MemberFlanks &m) {
+        const InvoluteGearData &d = involute(m).data();
+        return tca.side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
+      };
+      const ModificationGrid grid(
+          PairVariant{working(*lp.members.pinion), working(*lp.members.gear)}, s.members, s.axes);
+      MeshCycleStudyOptions o;
+      o.positions = s.positions, o.widening = s.widening, o.harmonics = s.harmonics;
+      o.torques   = s.study_torques(scene.loaded.at(pair.name));
+      o.threads   = cores_per_process();
+      log << "  " << pair.name << ": " << grid.size() << " variants x " << o.torques.size()
+          << " torques x " << o.positions << " positions on one compliance" << std::endl;
+      const std::size_t processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      Progress          progress("study " + pair.name + ": variant",
+                                 (grid.size() * o.torques.size() + processes - 1) / processes);
+      const std::vector<VariantCycle> r = microgeometry_map(
+          unmodified(*lp.members.pinion), unmodified(*lp.members.gear), lp.members.assembly, tca,
+          lp.options, lp.pinion_compliance, lp.gear_compliance, o, grid, MPI_COMM_WORLD,
+          [&] { progress.advance(); });
+
+      const H5Group       g = out.group(pair.name, "<pair>");
+      std::vector<double> phi;
+      const double        mesh_angle = 2 * pi / pair.pinion.teeth;
+      for (int i = 0; i < o.positions; ++i)
+        phi.push_back(tca.start_angle + mesh_angle * i / o.positions);
+      write_map(g, s, o.torques, grid, r, phi, lp.members.pitch_radius);
+      int unmodified = -1;
+      for (std::size_t v = 0; v < grid.size() && unmodified < 0; ++v)
+        if (const PairVariant w = grid.variant(v); !w.pinion.any() && !w.gear.any())
+          unmodified = int(v);
+      g.write("unmodified_variant", std::vector<int>{unmodified}, {});
+
+      // The classical tip relief at the design torque: the mesh deflection F_bt / (b c_gamma)
+      // with ISO 6336-1's c_gamma_alpha, and with the FE K_m of the unmodified variant.
+      const InvoluteGear &p = involute(*lp.members.pinion), &q = involute(*lp.members.gear);
+      const IsoPair       iso = iso_pair(p, q, lp.members.centre_distance);
+      const double b_c = iso6336_mesh_stiffness(iso.input).c_gamma_alpha * 1e9 * iso.face_width;
+      g.write("iso_c_gamma_alpha", b_c);
+      const auto design = std::find(o.torques.begin(), o.torques.end(), s.design_torque);
+      if (design == o.torques.end())
+        continue;
+      const std::size_t m   = std::size_t(design - o.torques.begin());
+      const double      F_b = s.design_torque / p.base_radius;
+      g.write("classical_relief_iso", F_b / b_c);
+      if (unmodified >= 0 && !r[std::size_t(unmodified)].zone_edge[m])
+        g.write("mesh_deflection_design", F_b / r[std::size_t(unmodified)].stiffness_mean[m]);
+      // One axis of several values, a relief amount (the others single values): its best.
+      std::vector<const ModificationAxis *> varied;
+      for (const ModificationAxis &a : grid.axes())
+        if (a.values.size() > 1)
+          varied.push_back(&a);
+      if (varied.size() == 1 && varied[0]->name.find("relief") != std::string::npos &&
+          varied[0]->name.find("length") == std::string::npos)
+        {
+          const double x = best_relief(r, varied[0]->values, m);
+          if (std::isfinite(x))
+            {
+              g.write("best_relief_design", x);
+              log << "  " << pair.name << ": least TE p-p at " << s.design_torque << " N m with "
+                  << varied[0]->name << " " << x * 1e6 << " um; classical F_bt / (b c_gamma) "
+                  << F_b / b_c * 1e6 << " um" << std::endl;
+            }
+        }
+      log << "  " << pair.name << ": map in "
+          << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s"
+          << std::endl;
+    }
+}
+} // namespace gearkit

@@ -1,0 +1,212 @@
+#include "study/modification_grid.h"
+
+#include "base/parallel.h"
+#include "stiffness/collective.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <utility>
+
+namespace gearkit
+{
+namespace
+{
+const std::vector<std::pair<std::string, double ToothModifications::*>> &
+fields()
+{
+  static const std::vector<std::pair<std::string, double ToothModifications::*>> f = {
+      {"tip_relief", &ToothModifications::tip_relief},
+      {"tip_relief_length", &ToothModifications::tip_relief_length},
+      {"root_relief", &ToothModifications::root_relief},
+      {"root_relief_length", &ToothModifications::root_relief_length},
+      {"lead_crowning", &ToothModifications::lead_crowning},
+      {"end_relief", &ToothModifications::end_relief},
+      {"end_relief_length", &ToothModifications::end_relief_length},
+      {"profile_crowning", &ToothModifications::profile_crowning},
+      {"profile_slope", &ToothModifications::profile_slope},
+      {"helix_slope", &ToothModifications::helix_slope}};
+  return f;
+}
+
+/// The vectors of a VariantCycle, in one order (packing and appending a torque).
+std::vector<std::vector<double> *>
+per_torque(VariantCycle &c)
+{
+  return {&c.loaded_te,       &c.mesh_stiffness,  &c.normal_force,    &c.pair_share,
+          &c.peak_pressure,   &c.edge_load_share, &c.te_peak_to_peak, &c.te_harmonics,
+          &c.stiffness_mean,  &c.stiffness_range, &c.max_pressure,    &c.max_edge_share};
+}
+
+/// Appends the torques of `more` (the same variant, positions and slots) to `all`.
+void
+append_torques(VariantCycle &all, VariantCycle more)
+{
+  if (all.torques == 0)
+    {
+      all = std::move(more);
+      return;
+    }
+  const std::vector<std::vector<double> *> to = per_torque(all), from = per_torque(more);
+  for (std::size_t k = 0; k < to.size(); ++k)
+    to[k]->insert(to[k]->end(), from[k]->begin(), from[k]->end());
+  all.zone_edge.insert(all.zone_edge.end(), more.zone_edge.begin(), more.zone_edge.end());
+  all.torques += more.torques;
+}
+} // namespace
+
+const std::vector<std::string> &
+modification_field_names()
+{
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto &f : fields())
+      n.push_back(f.first);
+    return n;
+  }();
+  return names;
+}
+
+double ToothModifications::*
+modification_field(const std::string &name)
+{
+  for (const auto &[n, field] : fields())
+    if (n == name)
+      return field;
+  std::string known;
+  for (const std::string &n : modification_field_names())
+    known += (known.empty() ? "" : ", ") + n;
+  throw InputError("modification grid: '" + name + "' is not a modification parameter; known: " +
+                   known);
+}
+
+ModificationGrid::ModificationGrid(PairVariant base_, GridMembers members,
+                                   std::vector<ModificationAxis> axes, std::size_t most)
+    : base(std::move(base_))
+    , on(members)
+    , grid_axes(std::move(axes))
+{
+  double variants = 1;
+  for (std::size_t k = 0; k < grid_axes.size(); ++k)
+    {
+      const ModificationAxis &a = grid_axes[k];
+      modification_field(a.name); // known
+      for (std::size_t j = 0; j < k; ++j)
+        if (grid_axes[j].name == a.name)
+          throw InputError("modification grid: the axis " + a.name + " is given twice");
+      if (a.values.empty())
+        throw InputError("modification grid: the axis " + a.name + " has no values");
+      for (const double v : a.values)
+        if (!std::isfinite(v))
+          throw InputError("modification grid: the axis " + a.name + " has a non-finite value");
+      variants *= double(a.values.size());
+    }
+  if (variants > double(most))
+    throw InputError("modification grid: " + std::to_string(std::llround(variants)) +
+                     " variants exceed the most allowed (" + std::to_string(most) +
+                     "); use fewer values per axis");
+}
+
+std::size_t
+ModificationGrid::size() const
+{
+  std::size_t n = 1;
+  for (const ModificationAxis &a : grid_axes)
+    n *= a.values.size();
+  return n;
+}
+
+std::vector<std::size_t>
+ModificationGrid::index(std::size_t g) const
+{
+  std::vector<std::size_t> at(grid_axes.size());
+  for (std::size_t k = grid_axes.size(); k-- > 0;)
+    at[k] = g % grid_axes[k].values.size(), g /= grid_axes[k].values.size();
+  return at;
+}
+
+PairVariant
+ModificationGrid::variant(std::size_t g) const
+{
+  PairVariant                    v  = base;
+  const std::vector<std::size_t> at = index(g);
+  for (std::size_t k = 0; k < grid_axes.size(); ++k)
+    {
+      const auto   field = modification_field(grid_axes[k].name);
+      const double value = grid_axes[k].values[at[k]];
+      if (on != GridMembers::gear)
+        v.pinion.*field = value;
+      if (on != GridMembers::pinion)
+        v.gear.*field = value;
+    }
+  return v;
+}
+
+std::vector<VariantCycle>
+microgeometry_map(std::shared_ptr<const InvoluteMemberFlanks> pinion,
+                  std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
+                  const TcaOptions &tca, const LoadedContactOptions &contact,
+                  const StructuralCompliance &pinion_compliance,
+                  const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
+                  const ModificationGrid &grid, MPI_Comm comm, const std::function<void()> &step)
+{
+  const std::size_t              G    = grid.size();
+  const std::vector<std::size_t> mine = my_jobs(G, comm);
+  std::vector<VariantCycle>      out(G);
+  std::mutex                     progress;
+  for (const double torque : options.torques)
+    {
+      MeshCycleStudyOptions o = options;
+      o.torques               = {torque};
+      std::vector<VariantCycle> at(G);
+      collectively(comm, [&] {
+        const MeshCycleStudy study(pinion, gear, assembly, tca, contact, pinion_compliance,
+                                   gear_compliance, o);
+        parallel_for(mine.size(), o.threads, [&](std::size_t k) {
+          at[mine[k]] = study.evaluate(grid.variant(mine[k]), 1);
+          if (step)
+            {
+              const std::lock_guard<std::mutex> lock(progress);
+              step();
+            }
+        });
+      });
+      for (const std::size_t g : mine)
+        append_torques(out[g], std::move(at[g]));
+    }
+  // Every process's variants to every process: the tables of all torques as numbers.
+  share_jobs(
+      comm, mine,
+      [&](std::size_t g, std::vector<double> &data) {
+        VariantCycle &c = out[g];
+        data.insert(data.end(), {double(c.torques), double(c.positions), double(c.slots),
+                                 double(c.harmonics)});
+        data.insert(data.end(), c.unloaded_te.begin(), c.unloaded_te.end());
+        for (const std::vector<double> *v : per_torque(c))
+          data.insert(data.end(), v->begin(), v->end());
+        for (const char e : c.zone_edge)
+          data.push_back(e);
+      },
+      [&](std::size_t g, const std::vector<double> &data, std::size_t &at) {
+        VariantCycle &c = out[g];
+        c.torques = std::size_t(data[at]), c.positions = std::size_t(data[at + 1]);
+        c.slots = std::size_t(data[at + 2]), c.harmonics = int(data[at + 3]);
+        at += 4;
+        const std::size_t M = c.torques, N = c.positions;
+        const auto        take = [&](std::vector<double> &v, std::size_t n) {
+          v.assign(data.begin() + long(at), data.begin() + long(at + n));
+          at += n;
+        };
+        take(c.unloaded_te, N);
+        const std::size_t H     = std::size_t(c.harmonics);
+        const std::size_t sizes[] = {M * N, M * N, M * N, M * N * c.slots, M * N, M * N,
+                                     M,     M * H, M,     M,               M,     M};
+        const std::vector<std::vector<double> *> v = per_torque(c);
+        for (std::size_t k = 0; k < v.size(); ++k)
+          take(*v[k], sizes[k]);
+        for (std::size_t m = 0; m < M; ++m)
+          c.zone_edge.push_back(char(data[at++]));
+      });
+  return out;
+}
+} // namespace gearkit

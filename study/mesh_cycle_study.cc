@@ -51,7 +51,7 @@ variant_unloaded_te(const UnloadedTca &variant, const TcaPosition &at,
           << at.pinion_angle << " rad";
       throw InputError(msg.str());
     }
-  return at.pinion_angle - psi * z2 / z1;
+  return at.pinion_angle - psi / (double(z1) / z2); // as UnloadedTca::at
 }
 } // namespace
 

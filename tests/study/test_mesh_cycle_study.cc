@@ -3,7 +3,7 @@
 // unloaded TE of its own TCA; the pair's own variant equals the zone's nominal solution; a
 // variant against the standalone loaded contact of its modified flanks (zones fitted to each
 // load); bad input refused.
-#include "study/mesh_cycle_study.h"
+#include "study/modification_grid.h"
 #include "tests/fzg_c_pair.h"
 
 #include <gtest/gtest.h>
@@ -42,6 +42,7 @@ struct Fzg
     MeshCycleStudyOptions o;
     o.positions = positions;
     o.torques   = {torque / 4, torque};
+    o.harmonics = std::min(4, positions / 2);
     return MeshCycleStudy(pinion, gear, assembly, {}, contact, tooth, tooth, o);
   }
 };
@@ -124,4 +125,80 @@ TEST(MeshCycleStudy, VariantEqualsExactGeometryOnTheSameCells)
   EXPECT_FALSE(r.zone_edge[0] || r.zone_edge[1]);
   EXPECT_LT(beyond, cells_seen / 20); // most cells' gaps by touch angles
   std::printf("first-order deviations against the exact geometry: K_m within %.2e\n", worst);
+}
+
+TEST(MeshCycleStudy, OwnVariantIsTheZonesNominalSolution)
+{
+  const Fzg            s;
+  const MeshCycleStudy study = s.study(4);
+  const VariantCycle   r     = study.evaluate(study.reference());
+  for (std::size_t m = 0; m < 2; ++m)
+    for (std::size_t i = 0; i < 4; ++i)
+      {
+        const LoadedPosition &own = study.zone(m, i).nominal();
+        EXPECT_EQ(r.loaded_te[m * 4 + i], own.eL);
+        EXPECT_EQ(r.mesh_stiffness[m * 4 + i], own.mesh_stiffness);
+        EXPECT_EQ(r.unloaded_te[i], study.zone(m, i).position().transmission_error);
+      }
+  // the warm start does not change the solution: a cold start from the first touch
+  const FixedZone      &z = study.zone(1, 2);
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(Eigen::Index(z.cells().size()));
+  const LoadedPosition  a    = z.solve(none, study.options().torques[1]);
+  EXPECT_NEAR(a.eL, z.nominal().eL, 1e-12 * std::abs(z.nominal().eL));
+}
+
+TEST(MeshCycleStudy, BadInputIsRefused)
+{
+  const Fzg             s;
+  MeshCycleStudyOptions o;
+  o.positions = 8;
+  const auto refused  = [&](const MeshCycleStudyOptions &bad) {
+    EXPECT_THROW(MeshCycleStudy(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, bad),
+                 InputError);
+  };
+  refused(o); // no torque
+  o.torques = {-1};
+  refused(o);
+  o.torques   = {s.torque};
+  o.positions = 3;
+  refused(o);
+  o.positions = 8, o.harmonics = 5;
+  refused(o);
+  o.harmonics = 4, o.widening = 0.5;
+  refused(o);
+  o.widening = 2;
+  const MeshCycleStudy study(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o);
+  const FixedZone     &z = study.zone(0, 0);
+  EXPECT_THROW(z.solve(Eigen::VectorXd::Zero(3), s.torque), InputError);
+  Eigen::VectorXd nan = Eigen::VectorXd::Zero(Eigen::Index(z.cells().size()));
+  nan[0]              = std::nan("");
+  EXPECT_THROW(z.solve(nan, s.torque), InputError);
+  PairVariant v;
+  v.pinion.tip_relief = 1e-3; // a millimetre: no micro-geometry (check_modifications)
+  EXPECT_THROW(study.evaluate(v), InputError);
+}
+
+TEST(ModificationGrid, VariantsInOrderOnTheNamedMembers)
+{
+  PairVariant base;
+  base.gear.lead_crowning = 3e-6;
+  const ModificationGrid grid(base, GridMembers::pinion,
+                              {{"tip_relief", {0, 1e-5, 2e-5}}, {"lead_crowning", {0, 4e-6}}});
+  ASSERT_EQ(grid.size(), 6u);
+  EXPECT_EQ(grid.index(3), (std::vector<std::size_t>{1, 1})); // the first axis slowest
+  const PairVariant v = grid.variant(3);
+  EXPECT_EQ(v.pinion.tip_relief, 1e-5);
+  EXPECT_EQ(v.pinion.lead_crowning, 4e-6);
+  EXPECT_EQ(v.gear.tip_relief, 0);         // the gear keeps the base
+  EXPECT_EQ(v.gear.lead_crowning, 3e-6);
+  const ModificationGrid both(base, GridMembers::both, {{"tip_relief", {7e-6}}});
+  EXPECT_EQ(both.variant(0).gear.tip_relief, 7e-6);
+  EXPECT_THROW(ModificationGrid(base, GridMembers::both, {{"tip_reliefs", {0}}}), InputError);
+  EXPECT_THROW(ModificationGrid(base, GridMembers::both, {{"tip_relief", {0}}, {"tip_relief", {1}}}),
+               InputError);
+  EXPECT_THROW(ModificationGrid(base, GridMembers::both, {{"end_relief", {}}}), InputError);
+  EXPECT_THROW(ModificationGrid(base, GridMembers::both,
+                                {{"tip_relief", std::vector<double>(1000, 0)},
+                                 {"lead_crowning", std::vector<double>(1000, 0)}}),
+               InputError);
 }

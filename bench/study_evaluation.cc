@@ -93,7 +93,7 @@ main(int argc, char **argv)
           for (int i = 0; i < positions; ++i)
             {
               const FixedZone &z = study.zone(0, std::size_t(i));
-              const MeshCycleStudy::Deviations d = study.deviations(z.cells(), v);
+              const MeshCycleStudy::Deviations d = study.deviations(0, std::size_t(i), 0, v);
               z.solve(d.added, torque, z.position().transmission_error, &d.pinion_slope);
             }
         });
@@ -101,7 +101,7 @@ main(int argc, char **argv)
         for (int i = 0; i < positions; ++i)
           {
             const FixedZone     &z = study.zone(0, std::size_t(i));
-            const MeshCycleStudy::Deviations d = study.deviations(z.cells(), v);
+            const MeshCycleStudy::Deviations d = study.deviations(0, std::size_t(i), 0, v);
             const LoadedPosition p =
                 z.solve(d.added, torque, z.position().transmission_error, &d.pinion_slope);
             iterations += p.iterations, active += p.active_cells;

@@ -298,6 +298,16 @@ InvoluteGear::set_modification_frame()
         std::max(base_radius * roll_angle(d.active_profile_start_radius), frame.roll_length_form);
   check_modifications(d.drive_modifications, frame, d.name + " drive flank");
   check_modifications(d.coast_modifications, frame, d.name + " coast flank");
+  for (const auto &[own, side] : {std::pair{&d.drive_tooth_deviations, " drive flank"},
+                                  {&d.coast_tooth_deviations, " coast flank"}})
+    {
+      if (!own->empty() && own->size() != std::size_t(d.teeth))
+        throw InputError(d.name + side + ": " + std::to_string(own->size()) +
+                         " tooth deviations for " + std::to_string(d.teeth) +
+                         " teeth; expected none or one per tooth");
+      for (std::size_t k = 0; k < own->size(); ++k)
+        check_modifications((*own)[k], frame, d.name + side + " of tooth " + std::to_string(k));
+    }
 }
 
 double
@@ -486,6 +496,10 @@ InvoluteFlank::InvoluteFlank(std::shared_ptr<const InvoluteGear> g, int k, Flank
   for (const EccentricTooth &e : gear->d.eccentric_teeth)
     if (e.tooth == k && e.side == s)
       offset += e.offset;
+  const std::vector<ToothModifications> &own =
+      s == FlankSide::drive ? gear->d.drive_tooth_deviations : gear->d.coast_tooth_deviations;
+  if (!own.empty() && own[std::size_t(k)].any())
+    deviations = &own[std::size_t(k)];
 }
 
 FlankDomain
@@ -542,7 +556,7 @@ InvoluteFlank::evaluate(double xi, double z) const
   const InvoluteGear       &g = *gear;
   const ToothModifications &m =
       side == FlankSide::drive ? g.d.drive_modifications : g.d.coast_modifications;
-  if (!m.any() && offset == 0)
+  if (!m.any() && offset == 0 && !deviations)
     return f;
 
   // Superpose delta(L, z) along the nominal normal: P~ = P + delta n. The tangents of the
@@ -551,6 +565,11 @@ InvoluteFlank::evaluate(double xi, double z) const
   const double    rb  = g.base_radius;
   NormalDeviation dev = evaluate_modifications(m, g.frame, rb * xi, z);
   dev.value += offset;
+  if (deviations)
+    {
+      const NormalDeviation own = evaluate_modifications(*deviations, g.frame, rb * xi, z);
+      dev.value += own.value, dev.d_dL += own.d_dL, dev.d_dz += own.d_dz;
+    }
 
   const double s    = side == FlankSide::drive ? 1.0 : -1.0;
   const double dphi = g.helix_sign * std::tan(g.d.helix_angle) / g.reference_radius;

@@ -64,6 +64,9 @@ struct InvoluteGearData
 
   ToothModifications drive_modifications;
   ToothModifications coast_modifications;
+  /// Deviations of each tooth's flank on top of its side's modifications (tolerance samples:
+  /// profile and helix slope and form per tooth): empty, or one entry per tooth.
+  std::vector<ToothModifications> drive_tooth_deviations, coast_tooth_deviations;
   /// Single pitch deviations f_p per tooth [m], along the reference circle: entry k is the
   /// deviation of the pitch from tooth k-1 to tooth k. Empty, or z entries summing to zero.
   std::vector<double>         single_pitch_deviations;
@@ -105,6 +108,7 @@ private:
   FlankSide                           side;
   double                              angle;  ///< tooth angle incl. pitch deviations [rad]
   double                              offset; ///< eccentric-tooth normal offset [m]
+  const ToothModifications *deviations = nullptr; ///< this tooth's own, if any
 };
 
 class InvoluteGear : public std::enable_shared_from_this<InvoluteGear>

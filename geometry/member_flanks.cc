@@ -119,6 +119,11 @@ InvoluteMemberFlanks::InvoluteMemberFlanks(std::shared_ptr<const InvoluteGear> g
       nominal[e.tooth] = false;
   for (const ChippedTooth &c : d.chipped_teeth)
     nominal[c.tooth] = false;
+  for (const std::vector<ToothModifications> *own :
+       {&d.drive_tooth_deviations, &d.coast_tooth_deviations})
+    for (std::size_t k = 0; k < own->size(); ++k)
+      if ((*own)[k].any())
+        nominal[k] = false;
   const bool any_nominal = std::find(nominal.begin(), nominal.end(), true) != nominal.end();
   int        next        = any_nominal ? 1 : 0;
   for (int k = 0; k < gear->teeth(); ++k)

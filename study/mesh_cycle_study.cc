@@ -82,6 +82,15 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
   if (o.harmonics < 1 || o.harmonics > o.positions / 2)
     throw InputError("mesh cycle study: the mesh orders summarised must lie in [1, positions / 2]"
                      " (got " + std::to_string(o.harmonics) + ")");
+  if (o.cycles < 1)
+    throw InputError("mesh cycle study: at least one mesh cycle (got " +
+                     std::to_string(o.cycles) + ")");
+  for (const InvoluteMemberFlanks *m : {pinion.get(), gear.get()})
+    for (int k = 0; k < m->teeth(); ++k)
+      if (m->flank_class(k) != 0)
+        throw InputError("mesh cycle study: the members' teeth must be alike (no pitch "
+                         "deviations, runout, per-tooth deviations, eccentric or chipped teeth "
+                         "on " + m->involute().data().name + "): the variants carry those");
   own.pinion = working_side(pinion->involute().data(), tca_options.side);
   own.gear   = working_side(gear->involute().data(), tca_options.side);
   tca        = std::make_unique<const UnloadedTca>(pinion, gear, assembly, tca_options);
@@ -95,9 +104,18 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
   zones.resize(M * N);
   LoadedContactOptions lo = contact;
   lo.threads              = 1;
+  points.resize(M * N);
   parallel_for(M * N, o.threads, [&](std::size_t k) {
     zones[k] = std::make_unique<const FixedZone>(*tca, at[k % N], o.torques[k / N], lo,
                                                  pinion_compliance, gear_compliance, o.widening);
+    MemberPoints &q = points[k];
+    for (const ContactCell &c : zones[k]->cells())
+      {
+        const FlankPoint a = pinion->flank(c.pinion_tooth, tca_options.side).evaluate(c.u1, c.v1);
+        const FlankPoint b = gear->flank(c.gear_tooth, tca_options.side).evaluate(c.u2, c.v2);
+        q.pinion_point.push_back(a.position), q.pinion_normal.push_back(a.normal);
+        q.gear_point.push_back(b.position), q.gear_normal.push_back(b.normal);
+      }
   });
 }
 
@@ -105,25 +123,61 @@ std::pair<std::shared_ptr<const InvoluteMemberFlanks>, std::shared_ptr<const Inv
 MeshCycleStudy::members(const PairVariant &v) const
 {
   const auto with = [side = tca_options.side](const InvoluteGearData &d,
-                                              const ToothModifications &m) {
+                                              const ToothModifications &m,
+                                              const std::vector<ToothModifications> &teeth,
+                                              const std::vector<double> &pitch, Runout runout) {
     InvoluteGearData out = d;
     (side == FlankSide::drive ? out.drive_modifications : out.coast_modifications) = m;
+    (side == FlankSide::drive ? out.drive_tooth_deviations : out.coast_tooth_deviations) = teeth;
+    out.single_pitch_deviations = pitch;
+    out.runout                  = runout;
     return std::make_shared<const InvoluteMemberFlanks>(InvoluteGear::create(out));
   };
-  return {with(pinion->involute().data(), v.pinion), with(gear->involute().data(), v.gear)};
+  return {with(pinion->involute().data(), v.pinion, v.pinion_teeth, v.pinion_pitch,
+               v.pinion_runout),
+          with(gear->involute().data(), v.gear, v.gear_teeth, v.gear_pitch, v.gear_runout)};
 }
 
 MeshCycleStudy::Deviations
-MeshCycleStudy::deviations(const std::vector<ContactCell> &cells, const PairVariant &v) const
+MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
+                           const PairVariant &v) const
 {
-  const InvoluteGear &p = pinion->involute(), &g = gear->involute();
-  // The change of a member's deviation at roll angle u and z: value, d/du, d/dz.
+  const FixedZone                &zn    = zone(torque, position);
+  const MemberPoints             &q     = points[torque * std::size_t(o.positions) + position];
+  const std::vector<ContactCell> &cells = zn.cells();
+  const InvoluteGear             &p = pinion->involute(), &g = gear->involute();
+  const int                       z1 = p.teeth(), z2 = g.teeth();
+  // The change of a member's deviations at roll angle u and z on its tooth k: value, d/du,
+  // d/dz.
   const auto change = [](const InvoluteGear &m, const ToothModifications &now,
+                         const std::vector<ToothModifications> &teeth, int k,
                          const ToothModifications &was, double u, double z) {
-    const double          L = m.base_radius * u;
-    const NormalDeviation a = evaluate_modifications(now, m.modification_frame(), L, z);
+    const double    L = m.base_radius * u;
+    NormalDeviation a = evaluate_modifications(now, m.modification_frame(), L, z);
+    if (!teeth.empty())
+      {
+        const NormalDeviation t =
+            evaluate_modifications(teeth[std::size_t(k)], m.modification_frame(), L, z);
+        a.value += t.value, a.d_dL += t.d_dL, a.d_dz += t.d_dz;
+      }
     const NormalDeviation b = evaluate_modifications(was, m.modification_frame(), L, z);
     return NormalDeviation{a.value - b.value, (a.d_dL - b.d_dL) * m.base_radius, a.d_dz - b.d_dz};
+  };
+  // A tooth's turn by its cumulative pitch deviation (InvoluteGear's tooth angles) and the
+  // toothing's runout, along the normal of the zone's tooth's point turned to tooth k.
+  const auto rigid = [](const InvoluteGear &m, const std::vector<double> &pitch,
+                        const Runout &runout, int k, int zone_tooth, const Vec3 &point,
+                        const Vec3 &normal) {
+    double cumulative = 0;
+    for (int j = 1; j <= k && !pitch.empty(); ++j)
+      cumulative += pitch[std::size_t(j)];
+    const double turn = cumulative / m.reference_radius; // about the member's axis
+    const double a    = 2 * pi * (k - zone_tooth) / m.teeth();
+    const Vec3   n(std::cos(a) * normal.x() - std::sin(a) * normal.y(),
+                   std::sin(a) * normal.x() + std::cos(a) * normal.y(), normal.z());
+    const Vec3   e(runout.eccentricity * std::cos(runout.phase),
+                   runout.eccentricity * std::sin(runout.phase), 0);
+    return turn * Vec3::UnitZ().cross(point).dot(normal) + e.dot(n);
   };
   Deviations d;
   d.added.resize(Eigen::Index(cells.size()));
@@ -131,9 +185,16 @@ MeshCycleStudy::deviations(const std::vector<ContactCell> &cells, const PairVari
   for (std::size_t j = 0; j < cells.size(); ++j)
     {
       const ContactCell    &c  = cells[j];
-      const NormalDeviation dp = change(p, v.pinion, own.pinion, c.u1, c.v1);
+      const int             tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1;
+      const int             tg = (c.gear_tooth + cycle) % z2;
+      const NormalDeviation dp = change(p, v.pinion, v.pinion_teeth, tp, own.pinion, c.u1, c.v1);
+      const NormalDeviation dg = change(g, v.gear, v.gear_teeth, tg, own.gear, c.u2, c.v2);
       const auto            i  = Eigen::Index(j);
-      d.added[i]           = dp.value + change(g, v.gear, own.gear, c.u2, c.v2).value;
+      d.added[i] =
+          dp.value + dg.value +
+          rigid(p, v.pinion_pitch, v.pinion_runout, tp, c.pinion_tooth, q.pinion_point[j],
+                q.pinion_normal[j]) +
+          rigid(g, v.gear_pitch, v.gear_runout, tg, c.gear_tooth, q.gear_point[j], q.gear_normal[j]);
       d.pinion_slope(i, 0) = dp.d_dL, d.pinion_slope(i, 1) = dp.d_dz;
     }
   return d;
@@ -143,43 +204,52 @@ VariantCycle
 MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
 {
   const std::size_t N = std::size_t(o.positions), M = o.torques.size();
-  const auto [vp, vg] = members(v); // checks the modifications against the flanks
+  const std::size_t C  = std::size_t(o.cycles), CN = C * N;
+  const auto [vp, vg]  = members(v); // checks the modifications against the flanks
   const UnloadedTca own_tca(vp, vg, assembly, tca_options);
+  const int         z1 = pinion->teeth(), z2 = gear->teeth();
   VariantCycle      r;
-  r.torques = M, r.positions = N, r.harmonics = o.harmonics;
+  r.torques = M, r.positions = CN, r.harmonics = o.harmonics;
   for (std::size_t i = 0; i < N; ++i)
     r.slots = std::max(r.slots, zone(0, i).position().pairs.size());
-  r.unloaded_te.assign(N, 0.0);
-  r.loaded_te.assign(M * N, 0.0), r.mesh_stiffness.assign(M * N, 0.0);
-  r.normal_force.assign(M * N, 0.0), r.peak_pressure.assign(M * N, 0.0);
-  r.edge_load_share.assign(M * N, 0.0), r.pair_share.assign(M * N * r.slots, 0.0);
-  std::vector<char> edge(M * N, 0);
-  parallel_for(N, threads == 0 ? o.threads : threads, [&](std::size_t i) {
-    const TcaPosition           &at = zone(0, i).position();
+  r.unloaded_te.assign(CN, 0.0);
+  r.loaded_te.assign(M * CN, 0.0), r.mesh_stiffness.assign(M * CN, 0.0);
+  r.normal_force.assign(M * CN, 0.0), r.peak_pressure.assign(M * CN, 0.0);
+  r.edge_load_share.assign(M * CN, 0.0), r.pair_share.assign(M * CN * r.slots, 0.0);
+  std::vector<char> edge(M * CN, 0);
+  parallel_for(CN, threads == 0 ? o.threads : threads, [&](std::size_t job) {
+    const std::size_t i = job % N;
+    const int         cycle = int(job / N);
+    // The zone's position one mesh cycle on per cycle: the next teeth in the same place.
+    TcaPosition at = zone(0, i).position();
+    at.pinion_angle += 2 * pi * cycle / z1, at.gear_angle += 2 * pi * cycle / z2;
+    for (PairContact &c : at.pairs)
+      c.pinion_tooth = ((c.pinion_tooth - cycle) % z1 + z1) % z1,
+      c.gear_tooth   = (c.gear_tooth + cycle) % z2;
     std::vector<Deviations> dev;
     std::vector<char>       has_cells(at.pairs.size(), 0);
     double                  most_added = 0;
     for (std::size_t m = 0; m < M; ++m)
       {
-        dev.push_back(deviations(zone(m, i).cells(), v));
+        dev.push_back(deviations(m, i, cycle, v));
         most_added = std::max(most_added, dev.back().added.maxCoeff());
         for (const ContactCell &c : zone(m, i).cells())
           has_cells[std::size_t(c.pair)] = 1;
       }
-    const double e0 = variant_unloaded_te(own_tca, at, has_cells, most_added);
-    r.unloaded_te[i] = e0;
+    const double e0    = variant_unloaded_te(own_tca, at, has_cells, most_added);
+    r.unloaded_te[job] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {
         const FixedZone     &z = zone(m, i);
         const LoadedPosition p = z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope);
-        const std::size_t    k = m * N + i;
+        const std::size_t    k = m * CN + job;
         r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;
         r.normal_force[k] = p.normal_force;
         for (std::size_t s = 0; s < p.pair_force.size(); ++s)
           r.pair_share[k * r.slots + s] = p.pair_force[s] / p.normal_force;
         for (std::size_t j = 0; j < p.cells.size(); ++j)
-          r.peak_pressure[k] =
-              std::max(r.peak_pressure[k], p.force[Eigen::Index(j)] / (p.cells[j].ds * p.cells[j].dt));
+          r.peak_pressure[k] = std::max(r.peak_pressure[k], p.force[Eigen::Index(j)] /
+                                                                (p.cells[j].ds * p.cells[j].dt));
         r.edge_load_share[k] = p.edge_force / p.normal_force;
         edge[k]              = p.zone_edge_reached;
       }
@@ -187,23 +257,23 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
   for (std::size_t m = 0; m < M; ++m)
     {
       const auto row = [&](const std::vector<double> &t) {
-        return std::vector<double>(t.begin() + long(m * N), t.begin() + long((m + 1) * N));
+        return std::vector<double>(t.begin() + long(m * CN), t.begin() + long((m + 1) * CN));
       };
       const std::vector<double> eL = row(r.loaded_te), K = row(r.mesh_stiffness);
       const auto [lo, hi]          = std::minmax_element(eL.begin(), eL.end());
       r.te_peak_to_peak.push_back(*hi - *lo);
-      const std::vector<double> h = mesh_order_amplitudes(eL, 1, o.harmonics);
+      const std::vector<double> h = mesh_order_amplitudes(eL, int(C), o.harmonics);
       r.te_harmonics.insert(r.te_harmonics.end(), h.begin() + 1, h.end());
       const auto [klo, khi] = std::minmax_element(K.begin(), K.end());
       double     mean       = 0;
       for (const double k : K)
-        mean += k / double(N);
+        mean += k / double(CN);
       r.stiffness_mean.push_back(mean), r.stiffness_range.push_back(*khi - *klo);
       const std::vector<double> p = row(r.peak_pressure), e = row(r.edge_load_share);
       r.max_pressure.push_back(*std::max_element(p.begin(), p.end()));
       r.max_edge_share.push_back(*std::max_element(e.begin(), e.end()));
       r.zone_edge.push_back(
-          std::any_of(edge.begin() + long(m * N), edge.begin() + long((m + 1) * N),
+          std::any_of(edge.begin() + long(m * CN), edge.begin() + long((m + 1) * CN),
                       [](char c) { return c != 0; }));
     }
   return r;

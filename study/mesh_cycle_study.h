@@ -17,14 +17,20 @@
 
 namespace gearkit
 {
-/// The modifications of each member's working flank side (the same on every tooth).
+/// A variant of the pair: the modifications of each member's working flank side (the same on
+/// every tooth) and, for tolerance samples, each tooth's own deviations on top of them, the
+/// toothings' single pitch deviations and runout (InvoluteGearData's fields of these names).
 struct PairVariant
 {
-  ToothModifications pinion, gear;
+  ToothModifications              pinion, gear;
+  std::vector<ToothModifications> pinion_teeth, gear_teeth; ///< empty, or one per tooth
+  std::vector<double>             pinion_pitch, gear_pitch; ///< f_p per tooth [m], or empty
+  Runout                          pinion_runout, gear_runout;
 };
 
-/// One variant's mesh cycle at every torque of the study: tables by torque (M) and position
-/// (N), pair slot (S) as MeshCycleContact, and the summaries a designer reads.
+/// One variant's mesh cycles at every torque of the study: tables by torque (M) and position
+/// (N: the positions of all the cycles run, in order), pair slot (S) as MeshCycleContact, and
+/// the summaries a designer reads.
 struct VariantCycle
 {
   std::size_t         torques = 0, positions = 0, slots = 0;
@@ -51,6 +57,10 @@ struct MeshCycleStudyOptions
   std::vector<double> torques;        ///< pinion torques [N m], > 0
   double              widening  = 2;  ///< of each zone against the pair's own (FixedZone)
   int                 harmonics = 4;  ///< mesh orders summarised
+  /// Mesh cycles each variant runs over (the zones of one cycle serve every cycle, the teeth
+  /// renumbered): 1 for variants alike on every tooth; a pinion revolution (z1) or the
+  /// hunting cycle for per-tooth deviations.
+  int cycles = 1;
   /// Threads for building the zones and for one variant's positions (0: the hardware's).
   unsigned threads = 0;
 };
@@ -59,10 +69,11 @@ class MeshCycleStudy
 {
 public:
   /// The pair's involute members (their modifications are the reference the variants replace:
-  /// usually none), assembled as `assembly`, analysed with `tca` (side, start angle), its
-  /// contact as `contact` says on the members' structural compliances. Builds every zone.
-  /// Throws InputError for members that are not involute, empty or non-positive torques, fewer
-  /// than 4 positions, and whatever FixedZone throws.
+  /// usually none; no per-tooth deviations, pitch deviations or runout: every tooth alike),
+  /// assembled as `assembly`, analysed with `tca` (side, start angle), its contact as
+  /// `contact` says on the members' structural compliances. Builds every zone. Throws
+  /// InputError for members that are not involute or whose teeth differ, empty or non-positive
+  /// torques, fewer than 4 positions, no cycle, and whatever FixedZone throws.
   MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                  std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
                  const TcaOptions &tca, const LoadedContactOptions &contact,
@@ -76,17 +87,21 @@ public:
   VariantCycle
   evaluate(const PairVariant &variant, unsigned threads = 0) const;
 
-  /// What a variant changes at the cells of a zone beyond the study's members (their own
-  /// modifications subtracted): the material both members' modifications add at each cell's
-  /// flank parameters [m], and the derivatives of the pinion's by its flank parameters (roll
-  /// angle, z) [m] (FixedZone::solve).
+  /// What a variant changes at the cells of zone (torque, position) in mesh cycle `cycle`
+  /// (its teeth renumbered: pinion tooth - cycle, gear tooth + cycle) beyond the study's
+  /// members (their own modifications subtracted): the material both members' deviations add
+  /// at each cell's flank parameters [m] (modifications and the tooth's own deviations; the
+  /// tooth's turn by its cumulative pitch deviation and the toothing's runout, each to first
+  /// order along the flank's normal), and the derivatives of the pinion's modifications by its
+  /// flank parameters (roll angle, z) [m] (FixedZone::solve).
   struct Deviations
   {
     Eigen::VectorXd  added;
     Eigen::MatrixX2d pinion_slope;
   };
   Deviations
-  deviations(const std::vector<ContactCell> &cells, const PairVariant &variant) const;
+  deviations(std::size_t torque, std::size_t position, int cycle,
+             const PairVariant &variant) const;
 
   /// The variant's members: the study's with the variant's modifications.
   std::pair<std::shared_ptr<const InvoluteMemberFlanks>,
@@ -118,5 +133,12 @@ private:
   PairVariant                                 own;
   std::unique_ptr<const UnloadedTca>          tca;
   std::vector<std::unique_ptr<const FixedZone>> zones; ///< [M][N]
+  /// Per zone and cell, each member's flank point and outward normal in its own frame at the
+  /// cell's flank parameters on the zone's tooth (the runout and pitch terms), [M][N].
+  struct MemberPoints
+  {
+    std::vector<Vec3> pinion_point, pinion_normal, gear_point, gear_normal;
+  };
+  std::vector<MemberPoints> points;
 };
 } // namespace gearkit

@@ -150,7 +150,20 @@ microgeometry_map(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                   const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
                   const ModificationGrid &grid, MPI_Comm comm, const std::function<void()> &step)
 {
-  const std::size_t              G    = grid.size();
+  return evaluate_variants(std::move(pinion), std::move(gear), assembly, tca, contact,
+                           pinion_compliance, gear_compliance, options, grid.size(),
+                           [&grid](std::size_t g) { return grid.variant(g); }, comm, step);
+}
+
+std::vector<VariantCycle>
+evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
+                  std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
+                  const TcaOptions &tca, const LoadedContactOptions &contact,
+                  const StructuralCompliance &pinion_compliance,
+                  const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
+                  std::size_t G, const std::function<PairVariant(std::size_t)> &variant,
+                  MPI_Comm comm, const std::function<void()> &step)
+{
   const std::vector<std::size_t> mine = my_jobs(G, comm);
   std::vector<VariantCycle>      out(G);
   std::mutex                     progress;
@@ -163,7 +176,7 @@ microgeometry_map(std::shared_ptr<const InvoluteMemberFlanks> pinion,
         const MeshCycleStudy study(pinion, gear, assembly, tca, contact, pinion_compliance,
                                    gear_compliance, o);
         parallel_for(mine.size(), o.threads, [&](std::size_t k) {
-          at[mine[k]] = study.evaluate(grid.variant(mine[k]), 1);
+          at[mine[k]] = study.evaluate(variant(mine[k]), 1);
           if (step)
             {
               const std::lock_guard<std::mutex> lock(progress);

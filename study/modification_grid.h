@@ -70,12 +70,22 @@ private:
   std::vector<ModificationAxis> grid_axes;
 };
 
-/// Every variant's mesh cycle at every torque of `options` (one VariantCycle per variant, all
-/// torques): one MeshCycleStudy per torque, built while that torque runs (its zones' compliance
-/// matrices are the memory: about cells^2 8 bytes per position), the variants dealt round the
-/// processes of `communicator` (every process receives all) and each process's round its
-/// threads (options.threads). `step` (optional) is called after each variant and torque.
-/// Collective.
+/// Variants 0 .. count - 1 (variant(g): deterministic, thread-safe) at every torque of
+/// `options` (one VariantCycle per variant, all torques): one MeshCycleStudy per torque, built
+/// while that torque runs (its zones' compliance matrices are the memory: about cells^2 8 bytes
+/// per position), the variants dealt round the processes of `communicator` (every process
+/// receives all) and each process's round its threads (options.threads). `step` (optional) is
+/// called after each variant and torque. Collective.
+std::vector<VariantCycle>
+evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
+                  std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
+                  const TcaOptions &tca, const LoadedContactOptions &contact,
+                  const StructuralCompliance &pinion_compliance,
+                  const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
+                  std::size_t count, const std::function<PairVariant(std::size_t)> &variant,
+                  MPI_Comm communicator, const std::function<void()> &step = {});
+
+/// The grid's variants (evaluate_variants).
 std::vector<VariantCycle>
 microgeometry_map(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                   std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,

@@ -667,6 +667,40 @@ add_study(const Add &add)
            "the relief of least TE peak-to-peak at the design torque: a parabola through the "
            "grid's best value and its neighbours"},
       });
+  // the tolerance Monte Carlo (kind tolerances): its variants are the samples
+  add("study/<pair>",
+      {
+          {"features", "variants x features", "m",
+           "each sample's deviations summed up per member (attribute features: their names)"},
+          {"percentile_levels", "levels", "%", "the percentiles reported (5, 50, 95)"},
+          {"convergence_samples", "counts", "1",
+           "the sample counts the percentiles' convergence is shown at (the first n samples)"},
+      });
+  std::vector<Entry> nominal, percentiles, convergence;
+  for (const auto &[name, units] : {std::pair{"te_peak_to_peak", "rad"},
+                                     {"stiffness_mean", "N/m"},
+                                     {"stiffness_range", "N/m"},
+                                     {"max_pressure", "Pa"},
+                                     {"max_edge_share", "1"}})
+    {
+      nominal.push_back(
+          {name, "torques", units, std::string(name) + " of the design without deviations"});
+      percentiles.push_back({name, "torques x levels", units,
+                             std::string("the samples' percentiles of ") + name});
+      convergence.push_back({name, "torques x counts x levels", units,
+                             std::string("the percentiles of the first n samples of ") + name});
+    }
+  add("study/<pair>/nominal", nominal);
+  add("study/<pair>/percentiles", percentiles);
+  add("study/<pair>/convergence", convergence);
+  add("study/<pair>/sensitivity/<output>",
+      {
+          {"coefficient", "torques x features", "1",
+           "standardized regression coefficient of the output on each feature"},
+          {"low", "torques x features", "1", "its 95 % bootstrap interval's lower end"},
+          {"high", "torques x features", "1", "its 95 % bootstrap interval's upper end"},
+          {"r2", "torques", "1", "the linear model's coefficient of determination"},
+      });
   std::vector<Entry> axes;
   for (const std::string &field : modification_field_names())
     axes.push_back({field.c_str(), "values", "m", "the values of this axis of the grid"});

@@ -18,6 +18,7 @@
 #include "stiffness/contact_cells.h"
 #include "stiffness/half_space.h"
 #include "study/modification_grid.h"
+#include "study/tolerance_study.h"
 #include "tca/paper_mode.h"
 #include "tca/tooth_pairs.h"
 #include "tca/unloaded_tca.h"
@@ -243,10 +244,17 @@ struct LoadedScene
         std::vector<std::string> &warnings) const;
 };
 
-/// Design study of a pair on its compliance (stage "study"): a micro-geometry map, the grid
-/// of modification variants over the torques.
+/// Design study of a pair on its compliance (stage "study"): a micro-geometry map (the grid of
+/// modification variants over the torques) or a tolerance Monte Carlo (samples of the design
+/// within ISO 1328-1 classes).
 struct StudyScene
 {
+  enum class Kind
+  {
+    microgeometry_map,
+    tolerances
+  };
+  Kind                kind = Kind::microgeometry_map;
   std::vector<double> torques; ///< pinion torques [N m], ascending; empty: Loaded contact's
   double              design_torque = 0;  ///< [N m], among the torques; 0: none
   int                 positions     = 40; ///< per mesh cycle
@@ -254,6 +262,11 @@ struct StudyScene
   int                 harmonics     = 4;  ///< mesh orders of e_L summarised
   GridMembers         members       = GridMembers::both;
   std::vector<ModificationAxis> axes; ///< in the order of modification_field_names
+  /// Tolerances: the sampling (ISO 1328-1 classes, distribution, seed), the samples, the mesh
+  /// cycles each runs over (0: a pinion revolution).
+  ToleranceSampling sampling;
+  int               samples     = 200;
+  int               mesh_cycles = 0;
 
   static void
   declare(ParameterHandler &prm);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace gearkit
 {
@@ -33,6 +34,27 @@ is_slope(const std::string &field)
 void
 StudyScene::declare(ParameterHandler &prm)
 {
+  prm.declare_entry("kind", "microgeometry map", Patterns::Selection("microgeometry map|tolerances"),
+                    "microgeometry map: every combination of the modification values below at "
+                    "every torque. tolerances: samples of the design (the Flanks section's "
+                    "modifications with single values below) whose teeth, pitches and runout "
+                    "are drawn within ISO 1328-1:2013 flank tolerance classes: percentiles of "
+                    "the loaded TE peak-to-peak, K_m and pressure, and which deviation drives "
+                    "them.");
+  prm.declare_entry("pinion class", "6", Patterns::Integer(0, 11),
+                    "Tolerances: the pinion's ISO 1328-1 flank tolerance class (0: perfect).");
+  prm.declare_entry("gear class", "6", Patterns::Integer(0, 11),
+                    "Tolerances: the gear's ISO 1328-1 flank tolerance class (0: perfect).");
+  prm.declare_entry("distribution", "normal", Patterns::Selection("normal|uniform"),
+                    "Tolerances: normal (the tolerance is 3 sigma, values beyond drawn again) "
+                    "or uniform within the tolerance.");
+  prm.declare_entry("samples", "200", Patterns::Integer(1, 1000000),
+                    "Tolerances: the samples drawn (each its own random stream from the seed "
+                    "and its number: the same on any number of processes).");
+  prm.declare_entry("seed", "1", Patterns::Integer(0), "Tolerances: the random seed.");
+  prm.declare_entry("mesh cycles", "0", Patterns::Integer(0, 100000),
+                    "Tolerances: the mesh cycles each sample runs over (0: a pinion "
+                    "revolution, z1 cycles: every pinion tooth meshes once).");
   prm.declare_entry("torques", "", Patterns::List(Patterns::Double(0), 0, 1000),
                     "[N m] Pinion torques of the map (empty: the Loaded contact section's); "
                     "run in ascending order, the design torque added where missing.");
@@ -66,6 +88,14 @@ StudyScene::declare(ParameterHandler &prm)
 void
 StudyScene::parse(ParameterHandler &prm)
 {
+  kind = prm.get("kind") == "tolerances" ? Kind::tolerances : Kind::microgeometry_map;
+  sampling.pinion_class = prm.get_integer("pinion class");
+  sampling.gear_class   = prm.get_integer("gear class");
+  sampling.distribution = prm.get("distribution") == "uniform" ? ToleranceDistribution::uniform
+                                                               : ToleranceDistribution::normal;
+  sampling.seed         = std::uint64_t(prm.get_integer("seed"));
+  samples               = prm.get_integer("samples");
+  mesh_cycles           = prm.get_integer("mesh cycles");
   torques       = get_doubles(prm, "torques");
   design_torque = prm.get_double("design torque");
   positions     = prm.get_integer("positions per mesh cycle");
@@ -117,11 +147,18 @@ StudyScene::check(const PairScene &pair, const LoadedScene &loaded, bool run,
                      " exceeds half the positions per mesh cycle (" + std::to_string(positions) +
                      "): orders above the Nyquist limit are not resolved");
   const ModificationGrid grid(PairVariant{}, members, axes); // the grid's size and names
-  const std::size_t      variants = grid.size() * t.size() * std::size_t(positions);
+  if (kind == Kind::tolerances && grid.size() > 1)
+    throw InputError(where + "kind = tolerances samples one design: give the modifications single "
+                             "values (a list of " + std::to_string(grid.size()) +
+                     " combinations was given)");
+  const std::size_t cycles   = kind == Kind::tolerances
+                                   ? std::size_t(mesh_cycles > 0 ? mesh_cycles : pair.pinion.teeth)
+                                   : 1;
+  const std::size_t variants = (kind == Kind::tolerances ? std::size_t(samples) : grid.size()) *
+                               t.size() * std::size_t(positions) * cycles;
   if (variants > 2000000)
-    warnings.push_back(where + ": " + std::to_string(grid.size()) + " variants x " +
-                       std::to_string(t.size()) + " torques x " + std::to_string(positions) +
-                       " positions = " + std::to_string(variants) +
-                       " contact solves (about 2 ms each per core)");
+    warnings.push_back(where + ": " + std::to_string(variants) +
+                       " contact solves (variants or samples x torques x positions x cycles; "
+                       "about 2 ms each per core)");
 }
 } // namespace gearkit

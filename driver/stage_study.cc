@@ -130,6 +130,234 @@ write_map(const H5Group &g, const StudyScene &s, const std::vector<double> &torq
   g.write("best_variant", best, {M});
   g.write("pinion_angle", pinion_angle, {N});
 }
+
+/// What both kinds of study start from: the pair on its compliance, the zones' members (without
+/// modifications), the design (the scene's modifications with the study's single values).
+struct StudyInputs
+{
+  LoadedPair                                  lp;
+  TcaOptions                                  tca;
+  std::shared_ptr<const InvoluteMemberFlanks> pinion, gear;
+  MeshCycleStudyOptions                       options;
+};
+
+StudyInputs
+study_inputs(const Scene &scene, const PairScene &pair, const Upstream &up)
+{
+  const StudyScene &s  = scene.study.at(pair.name);
+  LoadedPair        lp = loaded_pair(scene, pair, up.at("flanks")->group(pair.name),
+                                     up.at("compliance")->group(pair.name));
+  const TcaOptions  tca = lp.theory->options_data();
+  MeshCycleStudyOptions o;
+  o.positions = s.positions, o.widening = s.widening, o.harmonics = s.harmonics;
+  o.torques   = s.study_torques(scene.loaded.at(pair.name));
+  o.threads   = cores_per_process();
+  auto p = unmodified(*lp.members.pinion), g = unmodified(*lp.members.gear);
+  return {std::move(lp), tca, std::move(p), std::move(g), o};
+}
+
+PairVariant
+scene_design(const StudyInputs &in)
+{
+  const auto working = [&](const MemberFlanks &m) {
+    const InvoluteGearData &d = involute(m).data();
+    return in.tca.side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
+  };
+  return {working(*in.lp.members.pinion), working(*in.lp.members.gear)};
+}
+
+void
+run_map(const PairScene &pair, const StudyScene &s, const StudyInputs &in, const H5Group &g,
+        std::ostream &log)
+{
+  const ModificationGrid       grid(scene_design(in), s.members, s.axes);
+  const MeshCycleStudyOptions &o  = in.options;
+  const LoadedPair            &lp = in.lp;
+  log << "  " << pair.name << ": " << grid.size() << " variants x " << o.torques.size()
+      << " torques x " << o.positions << " positions on one compliance" << std::endl;
+  const std::size_t processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  Progress          progress("study " + pair.name + ": variant",
+                             (grid.size() * o.torques.size() + processes - 1) / processes);
+  const std::vector<VariantCycle> r = microgeometry_map(
+      in.pinion, in.gear, lp.members.assembly, in.tca, lp.options, lp.pinion_compliance,
+      lp.gear_compliance, o, grid, MPI_COMM_WORLD, [&] { progress.advance(); });
+
+  std::vector<double> phi;
+  const double        mesh_angle = 2 * pi / pair.pinion.teeth;
+  for (int i = 0; i < o.positions; ++i)
+    phi.push_back(in.tca.start_angle + mesh_angle * i / o.positions);
+  write_map(g, s, o.torques, grid, r, phi, lp.members.pitch_radius);
+  int unmodified = -1;
+  for (std::size_t v = 0; v < grid.size() && unmodified < 0; ++v)
+    if (const PairVariant w = grid.variant(v); !w.pinion.any() && !w.gear.any())
+      unmodified = int(v);
+  g.write("unmodified_variant", std::vector<int>{unmodified}, {});
+
+  // The classical tip relief at the design torque: the mesh deflection F_bt / (b c_gamma)
+  // with ISO 6336-1's c_gamma_alpha, and with the FE K_m of the unmodified variant.
+  const InvoluteGear &p = involute(*lp.members.pinion), &q = involute(*lp.members.gear);
+  const IsoPair       iso = iso_pair(p, q, lp.members.centre_distance);
+  const double b_c = iso6336_mesh_stiffness(iso.input).c_gamma_alpha * 1e9 * iso.face_width;
+  g.write("iso_c_gamma_alpha", b_c);
+  const auto design = std::find(o.torques.begin(), o.torques.end(), s.design_torque);
+  if (design == o.torques.end())
+    return;
+  const std::size_t m   = std::size_t(design - o.torques.begin());
+  const double      F_b = s.design_torque / p.base_radius;
+  g.write("classical_relief_iso", F_b / b_c);
+  if (unmodified >= 0 && !r[std::size_t(unmodified)].zone_edge[m])
+    g.write("mesh_deflection_design", F_b / r[std::size_t(unmodified)].stiffness_mean[m]);
+  // One axis of several values, a relief amount (the others single values): its best.
+  std::vector<const ModificationAxis *> varied;
+  for (const ModificationAxis &a : grid.axes())
+    if (a.values.size() > 1)
+      varied.push_back(&a);
+  if (varied.size() == 1 && varied[0]->name.find("relief") != std::string::npos &&
+      varied[0]->name.find("length") == std::string::npos)
+    {
+      const double x = best_relief(r, varied[0]->values, m);
+      if (std::isfinite(x))
+        {
+          g.write("best_relief_design", x);
+          log << "  " << pair.name << ": least TE p-p at " << s.design_torque << " N m with "
+              << varied[0]->name << " " << x * 1e6 << " um; classical F_bt / (b c_gamma) "
+              << F_b / b_c * 1e6 << " um" << std::endl;
+        }
+    }
+}
+
+/// The outputs the tolerance study summarises: [sample][torque] tables of VariantCycle.
+const std::vector<std::pair<const char *, std::vector<double> VariantCycle::*>> &
+tolerance_outputs()
+{
+  static const std::vector<std::pair<const char *, std::vector<double> VariantCycle::*>> o = {
+      {"te_peak_to_peak", &VariantCycle::te_peak_to_peak},
+      {"stiffness_mean", &VariantCycle::stiffness_mean},
+      {"stiffness_range", &VariantCycle::stiffness_range},
+      {"max_pressure", &VariantCycle::max_pressure},
+      {"max_edge_share", &VariantCycle::max_edge_share}};
+  return o;
+}
+
+void
+run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const H5Group &g,
+               std::ostream &log)
+{
+  const ModificationGrid design_grid(scene_design(in), s.members, s.axes);
+  const PairVariant      design = design_grid.variant(0);
+  MeshCycleStudyOptions &o      = in.options;
+  o.cycles = s.mesh_cycles > 0 ? s.mesh_cycles : pair.pinion.teeth;
+  const std::size_t S = std::size_t(s.samples), M = o.torques.size();
+  const auto        draw = [&](std::size_t k) {
+    return draw_tolerance_sample(in.pinion->involute(), in.gear->involute(), in.tca.side,
+                                        s.sampling, design, k);
+  };
+  log << "  " << pair.name << ": " << S << " samples (ISO 1328-1 classes " << s.sampling.pinion_class
+      << " / " << s.sampling.gear_class << ") x " << M << " torques x " << o.cycles
+      << " mesh cycles x " << o.positions << " positions on one compliance" << std::endl;
+  const std::size_t processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  Progress          progress("study " + pair.name + ": sample",
+                             ((S + 1) * M + processes - 1) / processes);
+  const LoadedPair &lp = in.lp;
+  // the samples, then the design itself (the nominal run)
+  const std::vector<VariantCycle> r = evaluate_variants(
+      in.pinion, in.gear, lp.members.assembly, in.tca, lp.options, lp.pinion_compliance,
+      lp.gear_compliance, o, S + 1,
+      [&](std::size_t k) { return k < S ? draw(k).variant : design; }, MPI_COMM_WORLD,
+      [&] { progress.advance(); });
+
+  g.attribute("kind", "tolerances");
+  g.attribute("distribution",
+              s.sampling.distribution == ToleranceDistribution::normal ? "normal" : "uniform");
+  g.attribute("classes", std::to_string(s.sampling.pinion_class) + "," +
+                             std::to_string(s.sampling.gear_class));
+  std::string names;
+  for (const std::string &f : tolerance_feature_names())
+    names += (names.empty() ? "" : ",") + f;
+  g.attribute("features", names);
+  g.write("torques", o.torques, {M});
+  g.write("design_torque", s.design_torque);
+  g.write("pitch_radius", lp.members.pitch_radius);
+  std::vector<std::vector<double>> features;
+  std::vector<double>              flat;
+  for (std::size_t k = 0; k < S; ++k)
+    {
+      features.push_back(draw(k).features);
+      flat.insert(flat.end(), features.back().begin(), features.back().end());
+    }
+  const std::size_t F = tolerance_feature_names().size();
+  g.write("features", flat, {S, F});
+  std::vector<int> edge;
+  for (std::size_t k = 0; k < S; ++k)
+    for (const char e : r[k].zone_edge)
+      edge.push_back(e);
+  g.write("zone_edge", edge, {S, M});
+  const std::vector<double> levels = {5, 50, 95};
+  g.write("percentile_levels", levels, {levels.size()});
+  // Convergence: the percentiles of the first n samples, n doubling up to all.
+  std::vector<double> counts;
+  for (std::size_t n = std::min<std::size_t>(S, 25); n < S; n *= 2)
+    counts.push_back(double(n));
+  counts.push_back(double(S));
+  g.write("convergence_samples", counts, {counts.size()});
+  const H5Group nominal = g.group("nominal");
+  for (const auto &[name, field] : tolerance_outputs())
+    {
+      std::vector<double> table, pct, conv;
+      for (std::size_t k = 0; k < S; ++k)
+        table.insert(table.end(), (r[k].*field).begin(), (r[k].*field).end());
+      g.write(name, table, {S, M});
+      nominal.write(name, r[S].*field, {M});
+      for (std::size_t m = 0; m < M; ++m)
+        {
+          std::vector<double> x;
+          for (std::size_t k = 0; k < S; ++k)
+            x.push_back(table[k * M + m]);
+          for (const double p : levels)
+            pct.push_back(percentile(x, p));
+          for (const double n : counts)
+            for (const double p : levels)
+              conv.push_back(percentile(std::vector<double>(x.begin(), x.begin() + long(n)), p));
+        }
+      const H5Group q = g.group("percentiles");
+      q.write(name, pct, {M, levels.size()});
+      g.group("convergence").write(name, conv, {M, counts.size(), levels.size()});
+    }
+  // Which deviation drives the TE peak-to-peak and K_m's range: standardized regression.
+  if (S >= 3)
+    for (const char *name : {"te_peak_to_peak", "stiffness_range"})
+      {
+        std::vector<double> c, lo, hi, r2;
+        for (std::size_t m = 0; m < M; ++m)
+          {
+            std::vector<double> y;
+            for (std::size_t k = 0; k < S; ++k)
+              y.push_back(name == std::string("te_peak_to_peak") ? r[k].te_peak_to_peak[m]
+                                                                 : r[k].stiffness_range[m]);
+            const Sensitivity sens = standardized_regression(features, y, 200, s.sampling.seed);
+            c.insert(c.end(), sens.coefficient.begin(), sens.coefficient.end());
+            lo.insert(lo.end(), sens.low.begin(), sens.low.end());
+            hi.insert(hi.end(), sens.high.begin(), sens.high.end());
+            r2.push_back(sens.r2);
+          }
+        const H5Group q = g.group("sensitivity").group(name, "<output>");
+        q.write("coefficient", c, {M, F});
+        q.write("low", lo, {M, F});
+        q.write("high", hi, {M, F});
+        q.write("r2", r2, {M});
+      }
+  const double rp = lp.members.pitch_radius * 1e6;
+  for (std::size_t m = 0; m < M; ++m)
+    {
+      std::vector<double> x;
+      for (std::size_t k = 0; k < S; ++k)
+        x.push_back(r[k].te_peak_to_peak[m]);
+      log << "  " << pair.name << " at " << o.torques[m] << " N m: TE p-p " << percentile(x, 5) * rp
+          << " / " << percentile(x, 50) * rp << " / " << percentile(x, 95) * rp
+          << " um (5 / 50 / 95 %), the design alone " << r[S].te_peak_to_peak[m] * rp << " um"
+          << std::endl;
+    }
+}
 } // namespace
 
 void
@@ -137,75 +365,14 @@ run_study_stage(const Scene &scene, const Upstream &up, const H5Group &out, std:
 {
   for (const PairScene &pair : scene.pairs)
     {
-      const StudyScene &s   = scene.study.at(pair.name);
-      const auto        t0  = std::chrono::steady_clock::now();
-      const LoadedPair  lp  = loaded_pair(scene, pair, up.at("flanks")->group(pair.name),
-                                          up.at("compliance")->group(pair.name));
-      const TcaOptions  tca = lp.theory->options_data();
-      const auto        working = [&](const MemberFlanks &m) {
-        const InvoluteGearData &d = involute(m).data();
-        return tca.side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
-      };
-      const ModificationGrid grid(
-          PairVariant{working(*lp.members.pinion), working(*lp.members.gear)}, s.members, s.axes);
-      MeshCycleStudyOptions o;
-      o.positions = s.positions, o.widening = s.widening, o.harmonics = s.harmonics;
-      o.torques   = s.study_torques(scene.loaded.at(pair.name));
-      o.threads   = cores_per_process();
-      log << "  " << pair.name << ": " << grid.size() << " variants x " << o.torques.size()
-          << " torques x " << o.positions << " positions on one compliance" << std::endl;
-      const std::size_t processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-      Progress          progress("study " + pair.name + ": variant",
-                                 (grid.size() * o.torques.size() + processes - 1) / processes);
-      const std::vector<VariantCycle> r = microgeometry_map(
-          unmodified(*lp.members.pinion), unmodified(*lp.members.gear), lp.members.assembly, tca,
-          lp.options, lp.pinion_compliance, lp.gear_compliance, o, grid, MPI_COMM_WORLD,
-          [&] { progress.advance(); });
-
-      const H5Group       g = out.group(pair.name, "<pair>");
-      std::vector<double> phi;
-      const double        mesh_angle = 2 * pi / pair.pinion.teeth;
-      for (int i = 0; i < o.positions; ++i)
-        phi.push_back(tca.start_angle + mesh_angle * i / o.positions);
-      write_map(g, s, o.torques, grid, r, phi, lp.members.pitch_radius);
-      int unmodified = -1;
-      for (std::size_t v = 0; v < grid.size() && unmodified < 0; ++v)
-        if (const PairVariant w = grid.variant(v); !w.pinion.any() && !w.gear.any())
-          unmodified = int(v);
-      g.write("unmodified_variant", std::vector<int>{unmodified}, {});
-
-      // The classical tip relief at the design torque: the mesh deflection F_bt / (b c_gamma)
-      // with ISO 6336-1's c_gamma_alpha, and with the FE K_m of the unmodified variant.
-      const InvoluteGear &p = involute(*lp.members.pinion), &q = involute(*lp.members.gear);
-      const IsoPair       iso = iso_pair(p, q, lp.members.centre_distance);
-      const double b_c = iso6336_mesh_stiffness(iso.input).c_gamma_alpha * 1e9 * iso.face_width;
-      g.write("iso_c_gamma_alpha", b_c);
-      const auto design = std::find(o.torques.begin(), o.torques.end(), s.design_torque);
-      if (design == o.torques.end())
-        continue;
-      const std::size_t m   = std::size_t(design - o.torques.begin());
-      const double      F_b = s.design_torque / p.base_radius;
-      g.write("classical_relief_iso", F_b / b_c);
-      if (unmodified >= 0 && !r[std::size_t(unmodified)].zone_edge[m])
-        g.write("mesh_deflection_design", F_b / r[std::size_t(unmodified)].stiffness_mean[m]);
-      // One axis of several values, a relief amount (the others single values): its best.
-      std::vector<const ModificationAxis *> varied;
-      for (const ModificationAxis &a : grid.axes())
-        if (a.values.size() > 1)
-          varied.push_back(&a);
-      if (varied.size() == 1 && varied[0]->name.find("relief") != std::string::npos &&
-          varied[0]->name.find("length") == std::string::npos)
-        {
-          const double x = best_relief(r, varied[0]->values, m);
-          if (std::isfinite(x))
-            {
-              g.write("best_relief_design", x);
-              log << "  " << pair.name << ": least TE p-p at " << s.design_torque << " N m with "
-                  << varied[0]->name << " " << x * 1e6 << " um; classical F_bt / (b c_gamma) "
-                  << F_b / b_c * 1e6 << " um" << std::endl;
-            }
-        }
-      log << "  " << pair.name << ": map in "
+      const StudyScene &s  = scene.study.at(pair.name);
+      const auto        t0 = std::chrono::steady_clock::now();
+      const H5Group     g  = out.group(pair.name, "<pair>");
+      if (s.kind == StudyScene::Kind::tolerances)
+        run_tolerances(pair, s, study_inputs(scene, pair, up), g, log);
+      else
+        run_map(pair, s, study_inputs(scene, pair, up), g, log);
+      log << "  " << pair.name << ": study in "
           << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s"
           << std::endl;
     }

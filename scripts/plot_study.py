@@ -27,6 +27,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_results import legend_below, save  # noqa: E402  (the same atomic writes)
 
 KIND = "microgeometry map"
+TOLERANCES = "tolerances"
 INVALID = "the fixed contact zone was too narrow for some variants: their results are not valid"
 
 
@@ -157,6 +158,85 @@ def plot_study(study, out_dir):
         g = study[name]
         if isinstance(g, h5py.Group) and text(g.attrs.get("kind", "")) == KIND:
             plot_study_pair(name, g, out_dir)
+        elif isinstance(g, h5py.Group) and text(g.attrs.get("kind", "")) == TOLERANCES:
+            plot_tolerances(name, g, out_dir)
+
+
+def feature_label(name):
+    """pinion_cumulative_pitch -> "pinion F_p"."""
+    member, _, what = name.partition("_")
+    short = {"cumulative_pitch": "F_p", "runout": "runout e", "profile_slope_rms": "f_Hα rms",
+             "profile_form_rms": "f_fα rms", "helix_slope_rms": "f_Hβ rms",
+             "helix_form_rms": "f_fβ rms"}
+    return f"{member} {short.get(what, what)}"
+
+
+def plot_tolerances(name, g, out_dir):
+    """tolerances_<name>.png of a tolerance Monte Carlo: per torque (the design torque, else the
+    largest) the distribution of the samples' loaded TE peak-to-peak at the pitch circle
+    (histogram and empirical CDF, the 5/50/95 % percentiles, the design without deviations);
+    their K_m mean likewise; the percentiles' convergence with the sample count; and which
+    deviation drives the TE peak-to-peak: standardized regression coefficients with their 95 %
+    bootstrap intervals. Samples whose contact reached the edge of a fixed zone are left out of
+    the histograms and counted in the title."""
+    torques = g["torques"][()]
+    at, design = design_index(g)
+    valid = g["zone_edge"][()][:, at] == 0
+    pp = te_length(g, g["te_peak_to_peak"][()][:, at])
+    km = g["stiffness_mean"][()][:, at] / 1e6
+    levels = g["percentile_levels"][()]
+    fig, ax = plt.subplots(2, 2, figsize=(13.5, 10))
+    classes = text(g.attrs.get("classes", "")).replace(",", " / ")
+    fig.suptitle(f"{name}: tolerance Monte Carlo at {torques[at]:g} N m, ISO 1328-1 classes "
+                 f"{classes} ({text(g.attrs.get('distribution', ''))}), {valid.sum()} samples"
+                 + ("" if valid.all() else f" ({(~valid).sum()} invalid, left out)"))
+    for a, x, nominal, label in ((ax[0, 0], pp, te_length(g, g["nominal/te_peak_to_peak"][at]),
+                                  "loaded TE peak-to-peak [um at the pitch circle]"),
+                                 (ax[0, 1], km, g["nominal/stiffness_mean"][at] / 1e6,
+                                  "mean mesh stiffness K_m [N/um]")):
+        x = x[valid]
+        a.hist(x, bins=max(8, int(np.sqrt(x.size))), color="#9ecae1", edgecolor="#3182bd",
+               density=True, label="samples")
+        b = a.twinx()
+        b.plot(np.sort(x), np.arange(1, x.size + 1) / x.size, color="#08519c", label="CDF")
+        b.set_ylim(0, 1.02)
+        b.set_ylabel("cumulative share")
+        for level, style in zip(levels, (":", "--", ":")):
+            v = np.percentile(x, level)
+            a.axvline(v, color="#08519c", linestyle=style)
+            a.annotate(f"{level:g} %: {v:.3g}", (v, a.get_ylim()[1] * 0.95), rotation=90,
+                       ha="right", va="top", fontsize=8)
+        a.axvline(nominal, color="#d62728", linewidth=2, label=f"design alone: {nominal:.3g}")
+        a.set_xlabel(label)
+        a.set_ylabel("density")
+        a.legend(loc="center right", fontsize=8)
+        a.grid(alpha=0.3)
+    counts = g["convergence_samples"][()]
+    conv = te_length(g, g["convergence/te_peak_to_peak"][()][at])
+    c = ax[1, 0]
+    for j, level in enumerate(levels):
+        c.plot(counts, conv[:, j], marker="o", label=f"{level:g} %")
+    c.set_xscale("log")
+    c.set_xlabel("samples (the first n)")
+    c.set_ylabel("TE peak-to-peak percentile [um]")
+    c.set_title("convergence of the percentiles with the sample count")
+    c.legend(fontsize=8)
+    c.grid(alpha=0.3, which="both")
+    names = [feature_label(n) for n in text(g.attrs.get("features", "")).split(",")]
+    sens = g["sensitivity/te_peak_to_peak"]
+    coef, low, high = sens["coefficient"][at], sens["low"][at], sens["high"][at]
+    y = np.arange(len(names))
+    d = ax[1, 1]
+    d.barh(y, coef, xerr=[coef - low, high - coef], color=np.where(coef >= 0, "#fb6a4a", "#6baed6"),
+           capsize=3)
+    d.set_yticks(y, names, fontsize=8)
+    d.invert_yaxis()
+    d.axvline(0, color="k", linewidth=0.8)
+    d.set_xlabel("standardized regression coefficient (95 % bootstrap interval)")
+    d.set_title(f"what drives the TE peak-to-peak (linear model R² = {sens['r2'][at]:.2f})")
+    d.grid(alpha=0.3, axis="x")
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, f"tolerances_{name}.png"))
 
 
 def plot_study_pair(name, g, out_dir):

@@ -59,7 +59,7 @@ def shown(value, units):
 # The pictures in the order of the work: geometry, unloaded TCA, loaded contact and the study's
 # micro-geometry maps, dynamics, trains.
 ORDER = ["profiles.png", "topography.png", "measured.png", "ste.png", "contact_pattern.png",
-         "hunting.png", "stiffness.png", "study_", "deflection.png", "dynamics.png",
+         "hunting.png", "stiffness.png", "study_", "tolerances_", "deflection.png", "dynamics.png",
          "dynamics_spectra.png", "dynamics_time.png", "train_compare.png", "train_",
          "train_spectrogram.png"]
 
@@ -67,7 +67,7 @@ ORDER = ["profiles.png", "topography.png", "measured.png", "ste.png", "contact_p
 def workflow_order(png):
     if png in ORDER:
         return (ORDER.index(png), png)
-    for prefix in ("train_", "study_"):
+    for prefix in ("train_", "study_", "tolerances_"):
         if png.startswith(prefix):
             return (ORDER.index(prefix), png)
     return (len(ORDER), png)
@@ -79,6 +79,8 @@ def caption(png):
         f = plot_results.plot_train
     if f is None and png.startswith("study_"):
         f = plot_study.plot_study
+    if f is None and png.startswith("tolerances_"):
+        f = plot_study.plot_tolerances
     doc = inspect.getdoc(f) if f else ""
     return " ".join(doc.split()) if doc else png
 
@@ -380,14 +382,47 @@ def train_rows(name, g):
 
 def study_invalid(g):
     """The zone_edge results of a micro-geometry map as text ("tip relief 40 µm at 50, 100 N m;
-    ..."), their count and the number of results; ("", 0, n) when every result is valid."""
+    ..."; a tolerance study's as sample numbers), their count and the number of results;
+    ("", 0, n) when every result is valid."""
     edge = g["zone_edge"][()] != 0
     torques = g["torques"][()]
+    if plot_study.text(g.attrs.get("kind", "")) == plot_study.TOLERANCES:
+        bad = np.nonzero(edge.any(axis=1))[0]
+        listed = "samples " + ", ".join(str(v) for v in bad[:12]) + (" …" if bad.size > 12 else "")
+        return listed, int(edge.sum()), edge.size
     where = [f"{plot_study.variant_label(g, v, 'µm')} at "
              + ", ".join(f"{t:g}" for t in torques[edge[v]]) + " N m"
              for v in np.nonzero(edge.any(axis=1))[0]]
     listed = "; ".join(where[:8]) + (" …" if len(where) > 8 else "")
     return listed, int(edge.sum()), edge.size
+
+
+def tolerance_rows(name, g):
+    """A tolerance Monte Carlo's table: per torque the percentiles of the loaded TE peak-to-peak
+    (at the pitch circle) and of K_m's mean against the design without deviations, and the
+    deviation that drives the TE peak-to-peak most (its standardized regression coefficient)."""
+    rows = []
+    levels = g["percentile_levels"][()]
+    names = plot_study.text(g.attrs.get("features", "")).split(",")
+    classes = plot_study.text(g.attrs.get("classes", "")).replace(",", " / ")
+    for m, t in enumerate(g["torques"][()]):
+        pp = plot_study.te_length(g, g["percentiles/te_peak_to_peak"][m])
+        nominal = plot_study.te_length(g, g["nominal/te_peak_to_peak"][m])
+        rows.append([name, f"{t:g} N m", f"TE p-p, classes {classes}: "
+                     + " / ".join(f"{x:g} %" for x in levels),
+                     " / ".join(f"{x:.3g}" for x in pp) + f" µm (design alone {nominal:.3g} µm)"])
+        km = g["percentiles/stiffness_mean"][m] / 1e6
+        rows.append([name, f"{t:g} N m", "K_m mean: " + " / ".join(f"{x:g} %" for x in levels),
+                     " / ".join(f"{x:.4g}" for x in km)
+                     + f" N/µm (design alone {g['nominal/stiffness_mean'][m] / 1e6:.4g})"])
+        if "sensitivity" in g:
+            c = g["sensitivity/te_peak_to_peak/coefficient"][m]
+            k = int(np.argmax(np.abs(c)))
+            rows.append([name, f"{t:g} N m", "drives the TE p-p most",
+                         f"{plot_study.feature_label(names[k])}: SRC {c[k]:+.2f} "
+                         f"[{g['sensitivity/te_peak_to_peak/low'][m][k]:+.2f}, "
+                         f"{g['sensitivity/te_peak_to_peak/high'][m][k]:+.2f}]"])
+    return rows
 
 
 def study_rows(name, g):
@@ -723,6 +758,15 @@ def main():
                 alarm += [len(rows) + i for i in a]
                 rows += r
             page.table(["pair", "torque", "what", "value"], rows, "study", alarm)
+        tolerances = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
+                      if plot_study.text(f["study"][pair].attrs.get("kind", ""))
+                      == plot_study.TOLERANCES]
+        if tolerances:
+            page.h(2, "Tolerance Monte Carlo", "tolerances")
+            rows = []
+            for pair, g in tolerances:
+                rows += tolerance_rows(pair, g)
+            page.table(["pair", "torque", "what", "value"], rows, "tolerances")
 
         # 2. Pictures
         pngs = sorted((p for p in os.listdir(folder)

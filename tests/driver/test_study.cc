@@ -187,3 +187,69 @@ TEST_F(StudyStage, BadSectionsAreRefusedByName)
                              "set tip relief               = 0, -20"),
           {"tip relief"});
 }
+
+TEST_F(StudyStage, ToleranceSamplesWithoutDeviationsAreTheDesignAndWithThemSpreadAboveIt)
+{
+  const std::string tolerances = R"(subsection Study
+  subsection fzg
+    set kind                     = tolerances
+    set torques                  = 150
+    set positions per mesh cycle = 4
+    set harmonics                = 2
+    set mesh cycles              = 3
+    set tip relief               = 20
+    set tip relief length        = 5.5
+    set pinion class             = CLASS
+    set gear class               = CLASS
+    set samples                  = 6
+  end
+end
+)";
+  const auto run_classes = [&](const std::string &name, int c) {
+    const std::string rest =
+        std::regex_replace(tolerances, std::regex("CLASS"), std::to_string(c));
+    ASSERT_EQ(run({file(name + ".prm", fzg_scene(name, "study", "", "", rest))}), 0) << err.str();
+  };
+  run_classes("perfect", 0);
+  {
+    const H5File  f = H5File::open((dir / "out/perfect/results.h5").string());
+    const H5Group g = f.root().group("study/fzg");
+    EXPECT_EQ(g.read_attribute("kind"), "tolerances");
+    const auto pp      = g.read_doubles("te_peak_to_peak");
+    const auto nominal = g.group("nominal").read_doubles("te_peak_to_peak");
+    ASSERT_EQ(pp.size(), 6u);
+    for (const double x : pp)
+      EXPECT_EQ(x, nominal[0]); // a point: the design itself
+    for (const double x : g.group("percentiles").read_doubles("te_peak_to_peak"))
+      EXPECT_EQ(x, nominal[0]);
+    for (const double x : g.read_doubles("features"))
+      EXPECT_EQ(x, 0);
+  }
+  run_classes("class8", 8);
+  const H5File  f = H5File::open((dir / "out/class8/results.h5").string());
+  const H5Group g = f.root().group("study/fzg");
+  const auto    pp      = g.read_doubles("te_peak_to_peak");
+  const auto    nominal = g.group("nominal").read_doubles("te_peak_to_peak");
+  const auto    pct     = g.group("percentiles").read_doubles("te_peak_to_peak");
+  ASSERT_EQ(pct.size(), 3u);
+  EXPECT_LE(pct[0], pct[1]);
+  EXPECT_LE(pct[1], pct[2]);
+  // class 8 pitch deviations and runout (F_p about 40 um) outweigh the design's own TE p-p
+  EXPECT_GT(pct[0], nominal[0]);
+  std::vector<double> sorted = pp;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_DOUBLE_EQ(pct[1], (sorted[2] + sorted[3]) / 2); // the median of six
+  // the features are those of the samples drawn again
+  const Scene scene = read_scene((dir / "class8.prm").string());
+  const auto [p, q] = scene.pair("fzg").involute_members();
+  const auto feats  = g.read_doubles("features");
+  for (std::size_t k = 0; k < 6; ++k)
+    {
+      const ToleranceSample s = draw_tolerance_sample(*p, *q, FlankSide::drive,
+                                                      scene.study.at("fzg").sampling, {}, k);
+      for (std::size_t j = 0; j < s.features.size(); ++j)
+        EXPECT_DOUBLE_EQ(feats[k * 12 + j], s.features[j]);
+    }
+  EXPECT_EQ(g.group("sensitivity").group("te_peak_to_peak").read_doubles("coefficient").size(),
+            12u);
+}

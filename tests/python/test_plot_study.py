@@ -233,3 +233,76 @@ def test_plot_results_draws_the_study(tmp_path):
     subprocess.run([sys.executable, os.path.join(SCRIPTS, "plot_results.py"), results],
                    check=True, capture_output=True)
     picture(str(tmp_path))
+
+
+def write_tolerances(path, samples=60, pair="pair", zone_edge=(3,)):
+    """A synthetic tolerance Monte Carlo to the schema of /study/<pair> (kind tolerances): the
+    TE peak-to-peak of each sample = the design's + 0.8 x its pinion cumulative pitch, K_m 2 %
+    below the design's; sample `zone_edge` flagged."""
+    rng = np.random.default_rng(5)
+    F = 12
+    features = rng.uniform(0, 1, (samples, F)) * 1e-5
+    design_pp = 1.5e-6 / PITCH_RADIUS  # rad
+    pp = design_pp + 0.8 * features[:, 0] / PITCH_RADIUS + 1e-8 * rng.normal(size=samples)
+    km = 2e8 * (0.98 + 0.005 * rng.normal(size=samples))
+    edge = np.zeros((samples, 1), dtype=np.int32)
+    for k in zone_edge:
+        edge[k, 0] = 1
+    levels = np.array([5.0, 50.0, 95.0])
+    counts = np.array([25.0, 50.0, float(samples)])
+    names = ["pinion_cumulative_pitch", "pinion_runout", "pinion_profile_slope_rms",
+             "pinion_profile_form_rms", "pinion_helix_slope_rms", "pinion_helix_form_rms",
+             "gear_cumulative_pitch", "gear_runout", "gear_profile_slope_rms",
+             "gear_profile_form_rms", "gear_helix_slope_rms", "gear_helix_form_rms"]
+    coef = np.zeros((1, F))
+    coef[0, 0] = 0.99
+    with h5py.File(path, "w") as f:
+        g = f.create_group(f"study/{pair}")
+        g.attrs["kind"] = "tolerances"
+        g.attrs["classes"] = "6,6"
+        g.attrs["distribution"] = "normal"
+        g.attrs["features"] = ",".join(names)
+        g["torques"] = np.array([200.0])
+        g["design_torque"] = 200.0
+        g["pitch_radius"] = PITCH_RADIUS
+        g["features"] = features
+        g["zone_edge"] = edge
+        g["percentile_levels"] = levels
+        g["convergence_samples"] = counts
+        outputs = {"te_peak_to_peak": pp, "stiffness_mean": km, "stiffness_range": 0.3 * km,
+                   "max_pressure": np.full(samples, 1.2e9), "max_edge_share": np.zeros(samples)}
+        nominal = {"te_peak_to_peak": design_pp, "stiffness_mean": 2e8, "stiffness_range": 6e7,
+                   "max_pressure": 1.1e9, "max_edge_share": 0.0}
+        for name, x in outputs.items():
+            g[name] = x[:, None]
+            g[f"nominal/{name}"] = np.array([nominal[name]])
+            g[f"percentiles/{name}"] = np.percentile(x, levels)[None, :]
+            g[f"convergence/{name}"] = np.array(
+                [[np.percentile(x[:int(n)], levels) for n in counts]])
+        for name in ("te_peak_to_peak", "stiffness_range"):
+            s = g.create_group(f"sensitivity/{name}")
+            s["coefficient"], s["low"], s["high"] = coef, coef - 0.05, coef + 0.05
+            s["r2"] = np.array([0.98])
+    return path, pp
+
+
+def test_tolerance_picture_and_report(tmp_path):
+    results, pp = write_tolerances(str(tmp_path / "results.h5"))
+    with h5py.File(results, "r") as f:
+        plot_study.plot_study(f["study"], str(tmp_path))
+    path = os.path.join(str(tmp_path), "tolerances_pair.png")
+    width, height = is_png(path)
+    assert 1000 < width < 3000 and 800 < height < 3000 and os.path.getsize(path) > 50_000
+    subprocess.run([sys.executable, os.path.join(SCRIPTS, "report.py"), results], check=True,
+                   capture_output=True)
+    with open(tmp_path / "report.html", encoding="utf-8") as fh:
+        page = fh.read()
+    assert 'alt="tolerances_pair.png"' in page
+    rows = table_rows(page, "tolerances")
+    te = next(r for r in rows if r[2].startswith("TE p-p"))
+    expected = " / ".join(f"{x:.3g}" for x in np.percentile(pp, [5, 50, 95]) * PITCH_RADIUS * 1e6)
+    assert te[3].startswith(expected) and "design alone 1.5 µm" in te[3], te
+    drives = next(r for r in rows if r[2] == "drives the TE p-p most")
+    assert drives[3].startswith("pinion F_p: SRC +0.99"), drives
+    # the flagged sample is in the page's warnings
+    assert 'id="warnings"' in page and "samples 3" in page

@@ -264,7 +264,7 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
       in.pinion, in.gear, lp.members.assembly, in.tca, lp.options, lp.pinion_compliance,
       lp.gear_compliance, o, S + 1,
       [&](std::size_t k) { return k < S ? draw(k).variant : design; }, MPI_COMM_WORLD,
-      [&] { progress.advance(); });
+      [&] { progress.advance(); }, &design);
 
   g.attribute("kind", "tolerances");
   g.attribute("distribution",

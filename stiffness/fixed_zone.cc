@@ -67,7 +67,7 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
 
 LoadedPosition
 FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
-                 const Eigen::MatrixX2d *pinion_slope) const
+                 const Eigen::MatrixX2d *pinion_slope, const std::vector<char> *start) const
 {
   const Eigen::Index n = gap.size();
   if (added.size() != n || !added.allFinite())
@@ -99,7 +99,7 @@ FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
     throw InputError("fixed contact zone: the variant's unloaded TE must be finite");
   ContactSolution s;
   if (torque > 0)
-    s = solve_contact(compliance, g, arm, torque, own_active);
+    s = solve_contact(compliance, g, arm, torque, start ? *start : own_active);
   LoadedPosition r = loaded_position(*tca, at, torque, zone_cells, s, first_touch);
   r.gap_band       = own.gap_band;
   for (const auto &[separation, arm_outside] : outside)

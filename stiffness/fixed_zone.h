@@ -59,10 +59,14 @@ public:
   /// the contact force, and so change each cell's moment arm at first order (a tip relief's
   /// slope of 1/200 by up to half a percent). Thread-safe. Throws InputError for sizes other
   /// than the cells' and non-finite entries.
+  /// `start` (optional, one entry per cell): the cells in contact to start the active set
+  /// from, e.g. a similar variant's (force > 0); by default the pair's own. The solution does not
+  /// depend on it.
   LoadedPosition
   solve(const Eigen::VectorXd &added, double torque,
         double e0 = std::numeric_limits<double>::quiet_NaN(),
-        const Eigen::MatrixX2d *pinion_slope = nullptr) const;
+        const Eigen::MatrixX2d *pinion_slope = nullptr,
+        const std::vector<char> *start = nullptr) const;
 
 private:
   const UnloadedTca       *tca;

@@ -200,6 +200,27 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   return d;
 }
 
+void
+MeshCycleStudy::warm_start_from(const PairVariant &v)
+{
+  const std::size_t N = std::size_t(o.positions), M = o.torques.size();
+  const int         cycles = o.cycles;
+  o.cycles                 = 1; // the variant's active sets in the zones' own cycle
+  warm.clear();
+  const VariantCycle r = evaluate(v);
+  o.cycles             = cycles;
+  std::vector<std::vector<char>> sets(M * N);
+  parallel_for(M * N, o.threads, [&](std::size_t k) {
+    const std::size_t   m = k / N, i = k % N;
+    const Deviations    d = deviations(m, i, 0, v);
+    const LoadedPosition p =
+        zone(m, i).solve(d.added, o.torques[m], r.unloaded_te[i], &d.pinion_slope);
+    for (Eigen::Index j = 0; j < p.force.size(); ++j)
+      sets[k].push_back(p.force[j] > 0);
+  });
+  warm = std::move(sets);
+}
+
 VariantCycle
 MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
 {
@@ -246,7 +267,8 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
     for (std::size_t m = 0; m < M; ++m)
       {
         const FixedZone     &z = zone(m, i);
-        const LoadedPosition p = z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope);
+        const std::vector<char> *start = warm.empty() ? nullptr : &warm[m * N + i];
+        const LoadedPosition p = z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope, start);
         const std::size_t    k = m * CN + job;
         r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;
         r.normal_force[k] = p.normal_force;

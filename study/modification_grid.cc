@@ -162,7 +162,7 @@ evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                   const StructuralCompliance &pinion_compliance,
                   const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
                   std::size_t G, const std::function<PairVariant(std::size_t)> &variant,
-                  MPI_Comm comm, const std::function<void()> &step)
+                  MPI_Comm comm, const std::function<void()> &step, const PairVariant *warm_from)
 {
   const std::vector<std::size_t> mine = my_jobs(G, comm);
   std::vector<VariantCycle>      out(G);
@@ -173,8 +173,10 @@ evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
       o.torques               = {torque};
       std::vector<VariantCycle> at(G);
       collectively(comm, [&] {
-        const MeshCycleStudy study(pinion, gear, assembly, tca, contact, pinion_compliance,
-                                   gear_compliance, o);
+        MeshCycleStudy study(pinion, gear, assembly, tca, contact, pinion_compliance,
+                             gear_compliance, o);
+        if (warm_from)
+          study.warm_start_from(*warm_from);
         parallel_for(mine.size(), o.threads, [&](std::size_t k) {
           at[mine[k]] = study.evaluate(variant(mine[k]), 1);
           if (step)

@@ -75,7 +75,8 @@ private:
 /// while that torque runs (its zones' compliance matrices are the memory: about cells^2 8 bytes
 /// per position), the variants dealt round the processes of `communicator` (every process
 /// receives all) and each process's round its threads (options.threads). `step` (optional) is
-/// called after each variant and torque. Collective.
+/// called after each variant and torque. `warm_from` (optional): the contact solves start from
+/// this variant's active sets (MeshCycleStudy::warm_start_from). Collective.
 std::vector<VariantCycle>
 evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                   std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
@@ -83,7 +84,8 @@ evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                   const StructuralCompliance &pinion_compliance,
                   const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
                   std::size_t count, const std::function<PairVariant(std::size_t)> &variant,
-                  MPI_Comm communicator, const std::function<void()> &step = {});
+                  MPI_Comm communicator, const std::function<void()> &step = {},
+                  const PairVariant *warm_from = nullptr);
 
 /// The grid's variants (evaluate_variants).
 std::vector<VariantCycle>

@@ -164,20 +164,36 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
     return NormalDeviation{a.value - b.value, (a.d_dL - b.d_dL) * m.base_radius, a.d_dz - b.d_dz};
   };
   // A tooth's turn by its cumulative pitch deviation (InvoluteGear's tooth angles) and the
-  // toothing's runout, along the normal of the zone's tooth's point turned to tooth k.
-  const auto rigid = [](const InvoluteGear &m, const std::vector<double> &pitch,
-                        const Runout &runout, int k, int zone_tooth, const Vec3 &point,
+  // toothing's runout e along the normal of the zone's tooth's point turned to tooth k:
+  // e . Rz(2 pi j / z) n = (Rz(-2 pi j / z) e) . n, j = k - zone tooth; per member and tooth
+  // once, not per cell.
+  struct Rigid
+  {
+    std::vector<double> turn; ///< [tooth] [rad]
+    std::vector<Vec3>   runout; ///< [j] Rz(-2 pi j / z) e
+  };
+  const auto rigid_terms = [](const InvoluteGear &m, const std::vector<double> &pitch,
+                              const Runout &runout) {
+    Rigid        r;
+    const int    z = m.teeth();
+    double       cumulative = 0;
+    for (int k = 0; k < z; ++k)
+      {
+        if (!pitch.empty() && k > 0)
+          cumulative += pitch[std::size_t(k)];
+        r.turn.push_back(cumulative / m.reference_radius);
+        const double a = runout.phase - 2 * pi * k / z;
+        r.runout.emplace_back(runout.eccentricity * std::cos(a),
+                              runout.eccentricity * std::sin(a), 0);
+      }
+    return r;
+  };
+  const Rigid rp = rigid_terms(p, v.pinion_pitch, v.pinion_runout);
+  const Rigid rg = rigid_terms(g, v.gear_pitch, v.gear_runout);
+  const auto  rigid = [](const Rigid &r, int z, int k, int zone_tooth, const Vec3 &point,
                         const Vec3 &normal) {
-    double cumulative = 0;
-    for (int j = 1; j <= k && !pitch.empty(); ++j)
-      cumulative += pitch[std::size_t(j)];
-    const double turn = cumulative / m.reference_radius; // about the member's axis
-    const double a    = 2 * pi * (k - zone_tooth) / m.teeth();
-    const Vec3   n(std::cos(a) * normal.x() - std::sin(a) * normal.y(),
-                   std::sin(a) * normal.x() + std::cos(a) * normal.y(), normal.z());
-    const Vec3   e(runout.eccentricity * std::cos(runout.phase),
-                   runout.eccentricity * std::sin(runout.phase), 0);
-    return turn * Vec3::UnitZ().cross(point).dot(normal) + e.dot(n);
+    return r.turn[std::size_t(k)] * Vec3::UnitZ().cross(point).dot(normal) +
+           r.runout[std::size_t(((k - zone_tooth) % z + z) % z)].dot(normal);
   };
   Deviations d;
   d.added.resize(Eigen::Index(cells.size()));
@@ -192,9 +208,8 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const auto            i  = Eigen::Index(j);
       d.added[i] =
           dp.value + dg.value +
-          rigid(p, v.pinion_pitch, v.pinion_runout, tp, c.pinion_tooth, q.pinion_point[j],
-                q.pinion_normal[j]) +
-          rigid(g, v.gear_pitch, v.gear_runout, tg, c.gear_tooth, q.gear_point[j], q.gear_normal[j]);
+          rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j], q.pinion_normal[j]) +
+          rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j], q.gear_normal[j]);
       d.pinion_slope(i, 0) = dp.d_dL, d.pinion_slope(i, 1) = dp.d_dz;
     }
   return d;

@@ -43,26 +43,26 @@ main(int argc, char **argv)
     }
   try
     {
-      const Scene       scene     = read_scene(argv[1]);
-      const std::string pair_name = argc > 2 ? argv[2] : scene.pairs.front().name;
-      const int         positions = argc > 3 ? std::atoi(argv[3]) : 40;
-      const double      torque    = argc > 4 ? std::atof(argv[4]) : 200;
-      const std::string root      = argc > 5 ? argv[5] : "/tmp/gearkit-bench-study";
+      const Scene         scene     = read_scene(argv[1]);
+      const std::string   pair_name = argc > 2 ? argv[2] : scene.pairs.front().name;
+      const int           positions = argc > 3 ? std::atoi(argv[3]) : 40;
+      const double        torque    = argc > 4 ? std::atof(argv[4]) : 200;
+      const std::string   root      = argc > 5 ? argv[5] : "/tmp/gearkit-bench-study";
       const StageUpstream up(scene, std::vector<std::string>{"flanks", "compliance"}, root,
                              std::cerr);
-      const PairScene &pair = scene.pair(pair_name);
-      const LoadedPair lp   = loaded_pair(scene, pair, up.upstream().at("flanks")->group(pair_name),
-                                          up.upstream().at("compliance")->group(pair_name));
-      const auto       bp   = without_modifications(*lp.members.pinion);
-      const auto       bg   = without_modifications(*lp.members.gear);
-      const TcaOptions tca  = lp.theory->options_data();
+      const PairScene    &pair = scene.pair(pair_name);
+      const LoadedPair lp  = loaded_pair(scene, pair, up.upstream().at("flanks")->group(pair_name),
+                                         up.upstream().at("compliance")->group(pair_name));
+      const auto       bp  = without_modifications(*lp.members.pinion);
+      const auto       bg  = without_modifications(*lp.members.gear);
+      const TcaOptions tca = lp.theory->options_data();
 
       MeshCycleStudyOptions o;
       o.positions = positions, o.torques = {torque};
-      const auto t0 = std::chrono::steady_clock::now();
-      const MeshCycleStudy study(bp, bg, lp.members.assembly, tca, lp.options,
-                                 lp.pinion_compliance, lp.gear_compliance, o);
-      const double setup =
+      const auto           t0 = std::chrono::steady_clock::now();
+      const MeshCycleStudy study(bp, bg, lp.members.assembly, tca, lp.options, lp.pinion_compliance,
+                                 lp.gear_compliance, o);
+      const double         setup =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::size_t cells = 0, most = 0;
       for (int i = 0; i < positions; ++i)
@@ -85,24 +85,24 @@ main(int argc, char **argv)
       {
         const auto [mp, mg] = study.members(v);
         const UnloadedTca own(mp, mg, lp.members.assembly, tca);
-        const double t_tca = bench::median_seconds([&] {
+        const double      t_tca      = bench::median_seconds([&] {
           for (int i = 0; i < positions; ++i)
             own.at(study.zone(0, std::size_t(i)).position().pinion_angle);
         });
-        const double t_solve = bench::median_seconds([&] {
+        const double      t_solve    = bench::median_seconds([&] {
           for (int i = 0; i < positions; ++i)
             {
-              const FixedZone &z = study.zone(0, std::size_t(i));
+              const FixedZone                 &z = study.zone(0, std::size_t(i));
               const MeshCycleStudy::Deviations d = study.deviations(0, std::size_t(i), 0, v);
               z.solve(d.added, torque, z.position().transmission_error, &d.pinion_slope);
             }
         });
-        int iterations = 0, active = 0;
+        int               iterations = 0, active = 0;
         for (int i = 0; i < positions; ++i)
           {
-            const FixedZone     &z = study.zone(0, std::size_t(i));
+            const FixedZone                 &z = study.zone(0, std::size_t(i));
             const MeshCycleStudy::Deviations d = study.deviations(0, std::size_t(i), 0, v);
-            const LoadedPosition p =
+            const LoadedPosition             p =
                 z.solve(d.added, torque, z.position().transmission_error, &d.pinion_slope);
             iterations += p.iterations, active += p.active_cells;
           }
@@ -120,9 +120,9 @@ main(int argc, char **argv)
       // The standalone loaded contact of the variant's flanks on the same compliance.
       const auto [vp, vg] = study.members(v);
       const UnloadedTca      variant(vp, vg, lp.members.assembly, tca);
-      const MeshCycleContact c = loaded_contact_cycle(variant, positions, {torque}, lp.options,
-                                                      lp.pinion_compliance, lp.gear_compliance);
-      double dK = 0, dE = 0, lo = HUGE_VAL, hi = -HUGE_VAL;
+      const MeshCycleContact c  = loaded_contact_cycle(variant, positions, {torque}, lp.options,
+                                                       lp.pinion_compliance, lp.gear_compliance);
+      double                 dK = 0, dE = 0, lo = HUGE_VAL, hi = -HUGE_VAL;
       for (int i = 0; i < positions; ++i)
         {
           dK = std::max(dK, std::abs(r.mesh_stiffness[i] / c.mesh_stiffness[i] - 1));

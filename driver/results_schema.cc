@@ -678,15 +678,15 @@ add_study(const Add &add)
       });
   std::vector<Entry> nominal, percentiles, convergence;
   for (const auto &[name, units] : {std::pair{"te_peak_to_peak", "rad"},
-                                     {"stiffness_mean", "N/m"},
-                                     {"stiffness_range", "N/m"},
-                                     {"max_pressure", "Pa"},
-                                     {"max_edge_share", "1"}})
+                                    {"stiffness_mean", "N/m"},
+                                    {"stiffness_range", "N/m"},
+                                    {"max_pressure", "Pa"},
+                                    {"max_edge_share", "1"}})
     {
       nominal.push_back(
           {name, "torques", units, std::string(name) + " of the design without deviations"});
-      percentiles.push_back({name, "torques x levels", units,
-                             std::string("the samples' percentiles of ") + name});
+      percentiles.push_back(
+          {name, "torques x levels", units, std::string("the samples' percentiles of ") + name});
       convergence.push_back({name, "torques x counts x levels", units,
                              std::string("the percentiles of the first n samples of ") + name});
     }

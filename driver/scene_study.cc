@@ -34,7 +34,8 @@ is_slope(const std::string &field)
 void
 StudyScene::declare(ParameterHandler &prm)
 {
-  prm.declare_entry("kind", "microgeometry map", Patterns::Selection("microgeometry map|tolerances"),
+  prm.declare_entry("kind", "microgeometry map",
+                    Patterns::Selection("microgeometry map|tolerances"),
                     "microgeometry map: every combination of the modification values below at "
                     "every torque. tolerances: samples of the design (the Flanks section's "
                     "modifications with single values below) whose teeth, pitches and runout "
@@ -96,13 +97,15 @@ StudyScene::parse(ParameterHandler &prm)
   sampling.seed         = std::uint64_t(prm.get_integer("seed"));
   samples               = prm.get_integer("samples");
   mesh_cycles           = prm.get_integer("mesh cycles");
-  torques       = get_doubles(prm, "torques");
-  design_torque = prm.get_double("design torque");
-  positions     = prm.get_integer("positions per mesh cycle");
-  widening      = prm.get_double("zone widening");
-  harmonics     = prm.get_integer("harmonics");
-  const std::string m = prm.get("members");
-  members = m == "both" ? GridMembers::both : m == "pinion" ? GridMembers::pinion : GridMembers::gear;
+  torques               = get_doubles(prm, "torques");
+  design_torque         = prm.get_double("design torque");
+  positions             = prm.get_integer("positions per mesh cycle");
+  widening              = prm.get_double("zone widening");
+  harmonics             = prm.get_integer("harmonics");
+  const std::string m   = prm.get("members");
+  members               = m == "both"     ? GridMembers::both
+                          : m == "pinion" ? GridMembers::pinion
+                                          : GridMembers::gear;
   axes.clear();
   for (const std::string &field : modification_field_names())
     {
@@ -148,12 +151,12 @@ StudyScene::check(const PairScene &pair, const LoadedScene &loaded, bool run,
                      "): orders above the Nyquist limit are not resolved");
   const ModificationGrid grid(PairVariant{}, members, axes); // the grid's size and names
   if (kind == Kind::tolerances && grid.size() > 1)
-    throw InputError(where + "kind = tolerances samples one design: give the modifications single "
-                             "values (a list of " + std::to_string(grid.size()) +
-                     " combinations was given)");
-  const std::size_t cycles   = kind == Kind::tolerances
-                                   ? std::size_t(mesh_cycles > 0 ? mesh_cycles : pair.pinion.teeth)
-                                   : 1;
+    throw InputError(where +
+                     "kind = tolerances samples one design: give the modifications single "
+                     "values (a list of " +
+                     std::to_string(grid.size()) + " combinations was given)");
+  const std::size_t cycles =
+      kind == Kind::tolerances ? std::size_t(mesh_cycles > 0 ? mesh_cycles : pair.pinion.teeth) : 1;
   const std::size_t variants = (kind == Kind::tolerances ? std::size_t(samples) : grid.size()) *
                                t.size() * std::size_t(positions) * cycles;
   if (variants > 2000000)

@@ -57,7 +57,7 @@ best_relief(const std::vector<VariantCycle> &r, const std::vector<double> &value
                y2 = r[i + 1].te_peak_to_peak[m];
   // divided differences: y = y1 + d1 (x - x1) + d2 (x - x0)(x - x1) ... vertex of the parabola
   const double d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
-  const double a   = (d12 - d01) / (x2 - x0);
+  const double a = (d12 - d01) / (x2 - x0);
   if (!(a > 0))
     return x1;
   const double x = (x0 + x1) / 2 - d01 / (2 * a);
@@ -144,14 +144,14 @@ struct StudyInputs
 StudyInputs
 study_inputs(const Scene &scene, const PairScene &pair, const Upstream &up)
 {
-  const StudyScene &s  = scene.study.at(pair.name);
-  LoadedPair        lp = loaded_pair(scene, pair, up.at("flanks")->group(pair.name),
-                                     up.at("compliance")->group(pair.name));
-  const TcaOptions  tca = lp.theory->options_data();
+  const StudyScene     &s   = scene.study.at(pair.name);
+  LoadedPair            lp  = loaded_pair(scene, pair, up.at("flanks")->group(pair.name),
+                                          up.at("compliance")->group(pair.name));
+  const TcaOptions      tca = lp.theory->options_data();
   MeshCycleStudyOptions o;
   o.positions = s.positions, o.widening = s.widening, o.harmonics = s.harmonics;
-  o.torques   = s.study_torques(scene.loaded.at(pair.name));
-  o.threads   = cores_per_process();
+  o.torques = s.study_torques(scene.loaded.at(pair.name));
+  o.threads = cores_per_process();
   auto p = unmodified(*lp.members.pinion), g = unmodified(*lp.members.gear);
   return {std::move(lp), tca, std::move(p), std::move(g), o};
 }
@@ -197,7 +197,7 @@ run_map(const PairScene &pair, const StudyScene &s, const StudyInputs &in, const
   // with ISO 6336-1's c_gamma_alpha, and with the FE K_m of the unmodified variant.
   const InvoluteGear &p = involute(*lp.members.pinion), &q = involute(*lp.members.gear);
   const IsoPair       iso = iso_pair(p, q, lp.members.centre_distance);
-  const double b_c = iso6336_mesh_stiffness(iso.input).c_gamma_alpha * 1e9 * iso.face_width;
+  const double        b_c = iso6336_mesh_stiffness(iso.input).c_gamma_alpha * 1e9 * iso.face_width;
   g.write("iso_c_gamma_alpha", b_c);
   const auto design = std::find(o.torques.begin(), o.torques.end(), s.design_torque);
   if (design == o.torques.end())
@@ -246,25 +246,24 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
   const ModificationGrid design_grid(scene_design(in), s.members, s.axes);
   const PairVariant      design = design_grid.variant(0);
   MeshCycleStudyOptions &o      = in.options;
-  o.cycles = s.mesh_cycles > 0 ? s.mesh_cycles : pair.pinion.teeth;
+  o.cycles                      = s.mesh_cycles > 0 ? s.mesh_cycles : pair.pinion.teeth;
   const std::size_t S = std::size_t(s.samples), M = o.torques.size();
   const auto        draw = [&](std::size_t k) {
     return draw_tolerance_sample(in.pinion->involute(), in.gear->involute(), in.tca.side,
                                         s.sampling, design, k);
   };
-  log << "  " << pair.name << ": " << S << " samples (ISO 1328-1 classes " << s.sampling.pinion_class
-      << " / " << s.sampling.gear_class << ") x " << M << " torques x " << o.cycles
-      << " mesh cycles x " << o.positions << " positions on one compliance" << std::endl;
+  log << "  " << pair.name << ": " << S << " samples (ISO 1328-1 classes "
+      << s.sampling.pinion_class << " / " << s.sampling.gear_class << ") x " << M << " torques x "
+      << o.cycles << " mesh cycles x " << o.positions << " positions on one compliance"
+      << std::endl;
   const std::size_t processes = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-  Progress          progress("study " + pair.name + ": sample",
-                             ((S + 1) * M + processes - 1) / processes);
+  Progress progress("study " + pair.name + ": sample", ((S + 1) * M + processes - 1) / processes);
   const LoadedPair &lp = in.lp;
   // the samples, then the design itself (the nominal run)
   const std::vector<VariantCycle> r = evaluate_variants(
       in.pinion, in.gear, lp.members.assembly, in.tca, lp.options, lp.pinion_compliance,
-      lp.gear_compliance, o, S + 1,
-      [&](std::size_t k) { return k < S ? draw(k).variant : design; }, MPI_COMM_WORLD,
-      [&] { progress.advance(); }, &design);
+      lp.gear_compliance, o, S + 1, [&](std::size_t k) { return k < S ? draw(k).variant : design; },
+      MPI_COMM_WORLD, [&] { progress.advance(); }, &design);
 
   g.attribute("kind", "tolerances");
   g.attribute("distribution",

@@ -108,7 +108,7 @@ private:
   FlankSide                           side;
   double                              angle;  ///< tooth angle incl. pitch deviations [rad]
   double                              offset; ///< eccentric-tooth normal offset [m]
-  const ToothModifications *deviations = nullptr; ///< this tooth's own, if any
+  const ToothModifications           *deviations = nullptr; ///< this tooth's own, if any
 };
 
 class InvoluteGear : public std::enable_shared_from_this<InvoluteGear>

@@ -103,7 +103,7 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
       Eigen::VectorXd h = s.approach * p.lever - p.gap;
       for (Eigen::Index a = 0; a < m; ++a)
         h.noalias() -= p.compliance.col(A[a]) * FA[a];
-      Eigen::Index          deepest = -1;
+      Eigen::Index deepest = -1;
       for (Eigen::Index j = 0; j < n; ++j)
         if (!active[j] && h[j] > 1e-12 * scale && (deepest < 0 || h[j] > h[deepest]))
           deepest = j;

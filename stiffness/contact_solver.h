@@ -26,12 +26,12 @@ struct ContactProblem
 
 struct ContactSolution
 {
-  Eigen::VectorXd force;           ///< F [N]
-  double          approach    = 0; ///< delta
-  int             active      = 0; ///< cells in contact
-  int             iterations  = 0; ///< active-set changes
-  std::vector<char> active_set;    ///< per cell: in contact (a warm start for a similar problem)
-  double          penetration = 0; ///< largest violation of w >= lambda delta - g [m]
+  Eigen::VectorXd   force;           ///< F [N]
+  double            approach   = 0;  ///< delta
+  int               active     = 0;  ///< cells in contact
+  int               iterations = 0;  ///< active-set changes
+  std::vector<char> active_set;      ///< per cell: in contact (a warm start for a similar problem)
+  double            penetration = 0; ///< largest violation of w >= lambda delta - g [m]
 };
 
 /// Active-set solution (Cholesky of the active block, the approach from the load balance);

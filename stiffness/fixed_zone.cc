@@ -28,12 +28,12 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
   for (const PairContact &c : position.pairs)
     if (c.found && c.separation <= widening * approach * pinion_lever(c.position, c.normal_pinion))
       o.cells.pair_gap = std::max(o.cells.pair_gap, c.separation * (1 + 1e-9));
-  zone_cells                  = loaded_cells(tca, position, o);
-  const Eigen::MatrixXd C     = zone_compliance(zone_cells, o, pinion, gear);
+  zone_cells              = loaded_cells(tca, position, o);
+  const Eigen::MatrixXd C = zone_compliance(zone_cells, o, pinion, gear);
   if (!C.allFinite())
     throw InputError("fixed contact zone: the compliance of the cells is not finite");
-  compliance = (C + C.transpose()) / 2; // Maxwell-Betti, as solve_loaded_contact
-  const Eigen::Index n        = Eigen::Index(zone_cells.size());
+  compliance           = (C + C.transpose()) / 2; // Maxwell-Betti, as solve_loaded_contact
+  const Eigen::Index n = Eigen::Index(zone_cells.size());
   gap.resize(n), lever.resize(n);
   lever_slope.resize(n, 2);
   const FlankSide side = tca.options_data().side;
@@ -45,14 +45,14 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
       // J (J^T J)^-1 (d_u, d_v) moves it by -sign(a . n) a . J (J^T J)^-1 (d_u, d_v).
       const FlankPoint f = tca.pinion_flanks().flank(c.pinion_tooth, side).evaluate(c.u1, c.v1);
       Eigen::Matrix<double, 3, 2> J;
-      J.col(0)     = tca.assembly_data().pinion_vector_to_global(f.d_du, position.pinion_angle);
-      J.col(1)     = tca.assembly_data().pinion_vector_to_global(f.d_dv, position.pinion_angle);
-      const Vec3 a = Vec3::UnitZ().cross(c.position);
+      J.col(0)       = tca.assembly_data().pinion_vector_to_global(f.d_du, position.pinion_angle);
+      J.col(1)       = tca.assembly_data().pinion_vector_to_global(f.d_dv, position.pinion_angle);
+      const Vec3   a = Vec3::UnitZ().cross(c.position);
       const double sign_a = a.dot(c.normal) >= 0 ? 1.0 : -1.0;
       lever_slope.row(i) =
           -sign_a * (J.transpose() * J).ldlt().solve(J.transpose() * a).transpose();
     }
-  own = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
+  own          = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
   own.gap_band = o.cells.gap_band;
   for (Eigen::Index i = 0; i < n; ++i)
     own_active.push_back(own.force.size() == n && own.force[i] > 0);
@@ -61,8 +61,9 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
     has_cells[std::size_t(c.pair)] = 1;
   for (std::size_t k = 0; k < position.pairs.size(); ++k)
     if (position.pairs[k].found && !has_cells[k])
-      outside.push_back({position.pairs[k].separation,
-                         pinion_lever(position.pairs[k].position, position.pairs[k].normal_pinion)});
+      outside.push_back(
+          {position.pairs[k].separation,
+           pinion_lever(position.pairs[k].position, position.pairs[k].normal_pinion)});
 }
 
 LoadedPosition
@@ -93,8 +94,8 @@ FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
                      "the pinion's rotation (a moment arm <= 0); slopes of micrometre "
                      "deviations are far smaller");
   // The variant's first touch: rotation beyond this position's gear angle [rad].
-  const double first_touch = std::isnan(e0) ? g.cwiseQuotient(arm).minCoeff()
-                                            : sign * (e0 - at.transmission_error);
+  const double first_touch =
+      std::isnan(e0) ? g.cwiseQuotient(arm).minCoeff() : sign * (e0 - at.transmission_error);
   if (!std::isfinite(first_touch))
     throw InputError("fixed contact zone: the variant's unloaded TE must be finite");
   ContactSolution s;

@@ -64,9 +64,9 @@ public:
   /// depend on it.
   LoadedPosition
   solve(const Eigen::VectorXd &added, double torque,
-        double e0 = std::numeric_limits<double>::quiet_NaN(),
-        const Eigen::MatrixX2d *pinion_slope = nullptr,
-        const std::vector<char> *start = nullptr) const;
+        double                   e0           = std::numeric_limits<double>::quiet_NaN(),
+        const Eigen::MatrixX2d  *pinion_slope = nullptr,
+        const std::vector<char> *start        = nullptr) const;
 
 private:
   const UnloadedTca       *tca;
@@ -76,9 +76,9 @@ private:
   Eigen::VectorXd          gap, lever;
   /// d lever / d (du1, dv1) of the pinion's deviation at each cell [1]: the moment arm of the
   /// tilted normal n - J (J^T J)^-1 grad delta, J = the flank's tangents.
-  Eigen::MatrixX2d lever_slope;
-  LoadedPosition           own;
-  std::vector<char>        own_active; ///< the warm start
+  Eigen::MatrixX2d  lever_slope;
+  LoadedPosition    own;
+  std::vector<char> own_active; ///< the warm start
   /// The pairs of the position without cells: separation [m] and lever [m].
   std::vector<std::pair<double, double>> outside;
 };

@@ -248,7 +248,7 @@ loaded_contact_in_zone(const UnloadedTca &tca, const TcaPosition &position, doub
   std::vector<ContactCell> cells = loaded_cells(tca, position, o);
   const Eigen::MatrixXd    C     = zone_compliance(cells, o, pinion, gear);
   LoadedPosition           r     = solve_loaded_contact(tca, position, torque, std::move(cells), C);
-  r.gap_band       = o.cells.gap_band;
+  r.gap_band                     = o.cells.gap_band;
   return r;
 }
 
@@ -278,7 +278,7 @@ LoadedPosition
 loaded_position(const UnloadedTca &tca, const TcaPosition &position, double torque,
                 std::vector<ContactCell> cells, const ContactSolution &s, double first_touch)
 {
-  const Eigen::Index n = Eigen::Index(cells.size());
+  const Eigen::Index n    = Eigen::Index(cells.size());
   const double       sign = tca.options_data().side == FlankSide::drive ? 1.0 : -1.0;
   LoadedPosition     out;
   out.pinion_angle = position.pinion_angle;

@@ -26,11 +26,11 @@ double
 variant_unloaded_te(const UnloadedTca &variant, const TcaPosition &at,
                     const std::vector<char> &has_cells, double most_added)
 {
-  const int    z1  = variant.pinion_flanks().teeth(), z2 = variant.gear_flanks().teeth();
+  const int    z1 = variant.pinion_flanks().teeth(), z2 = variant.gear_flanks().teeth();
   const double s   = variant.options_data().side == FlankSide::drive ? 1.0 : -1.0;
   const int    k0  = int(std::lround(at.pinion_angle * z1 / (2 * pi)));
   double       psi = 0;
-  bool   any = false;
+  bool         any = false;
   for (std::size_t p = 0; p < at.pairs.size(); ++p)
     {
       const PairContact &ref = at.pairs[p];
@@ -58,10 +58,10 @@ variant_unloaded_te(const UnloadedTca &variant, const TcaPosition &at,
 MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinion_,
                                std::shared_ptr<const InvoluteMemberFlanks> gear_,
                                const Assembly &assembly_, const TcaOptions &tca_,
-                               const LoadedContactOptions                 &contact,
-                               const StructuralCompliance                 &pinion_compliance,
-                               const StructuralCompliance                 &gear_compliance,
-                               const MeshCycleStudyOptions                &options)
+                               const LoadedContactOptions  &contact,
+                               const StructuralCompliance  &pinion_compliance,
+                               const StructuralCompliance  &gear_compliance,
+                               const MeshCycleStudyOptions &options)
     : pinion(std::move(pinion_))
     , gear(std::move(gear_))
     , assembly(assembly_)
@@ -81,16 +81,18 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
                        std::to_string(T) + " N m)");
   if (o.harmonics < 1 || o.harmonics > o.positions / 2)
     throw InputError("mesh cycle study: the mesh orders summarised must lie in [1, positions / 2]"
-                     " (got " + std::to_string(o.harmonics) + ")");
+                     " (got " +
+                     std::to_string(o.harmonics) + ")");
   if (o.cycles < 1)
-    throw InputError("mesh cycle study: at least one mesh cycle (got " +
-                     std::to_string(o.cycles) + ")");
+    throw InputError("mesh cycle study: at least one mesh cycle (got " + std::to_string(o.cycles) +
+                     ")");
   for (const InvoluteMemberFlanks *m : {pinion.get(), gear.get()})
     for (int k = 0; k < m->teeth(); ++k)
       if (m->flank_class(k) != 0)
         throw InputError("mesh cycle study: the members' teeth must be alike (no pitch "
                          "deviations, runout, per-tooth deviations, eccentric or chipped teeth "
-                         "on " + m->involute().data().name + "): the variants carry those");
+                         "on " +
+                         m->involute().data().name + "): the variants carry those");
   own.pinion = working_side(pinion->involute().data(), tca_options.side);
   own.gear   = working_side(gear->involute().data(), tca_options.side);
   tca        = std::make_unique<const UnloadedTca>(pinion, gear, assembly, tca_options);
@@ -106,7 +108,7 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
   lo.threads              = 1;
   points.resize(M * N);
   parallel_for(M * N, o.threads, [&](std::size_t k) {
-    zones[k] = std::make_unique<const FixedZone>(*tca, at[k % N], o.torques[k / N], lo,
+    zones[k]        = std::make_unique<const FixedZone>(*tca, at[k % N], o.torques[k / N], lo,
                                                  pinion_compliance, gear_compliance, o.widening);
     MemberPoints &q = points[k];
     for (const ContactCell &c : zones[k]->cells())
@@ -122,20 +124,20 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
 std::pair<std::shared_ptr<const InvoluteMemberFlanks>, std::shared_ptr<const InvoluteMemberFlanks>>
 MeshCycleStudy::members(const PairVariant &v) const
 {
-  const auto with = [side = tca_options.side](const InvoluteGearData &d,
-                                              const ToothModifications &m,
+  const auto with = [side = tca_options.side](const InvoluteGearData                &d,
+                                              const ToothModifications              &m,
                                               const std::vector<ToothModifications> &teeth,
                                               const std::vector<double> &pitch, Runout runout) {
-    InvoluteGearData out = d;
-    (side == FlankSide::drive ? out.drive_modifications : out.coast_modifications) = m;
+    InvoluteGearData out                                                                 = d;
+    (side == FlankSide::drive ? out.drive_modifications : out.coast_modifications)       = m;
     (side == FlankSide::drive ? out.drive_tooth_deviations : out.coast_tooth_deviations) = teeth;
-    out.single_pitch_deviations = pitch;
-    out.runout                  = runout;
+    out.single_pitch_deviations                                                          = pitch;
+    out.runout                                                                           = runout;
     return std::make_shared<const InvoluteMemberFlanks>(InvoluteGear::create(out));
   };
-  return {with(pinion->involute().data(), v.pinion, v.pinion_teeth, v.pinion_pitch,
-               v.pinion_runout),
-          with(gear->involute().data(), v.gear, v.gear_teeth, v.gear_pitch, v.gear_runout)};
+  return {
+      with(pinion->involute().data(), v.pinion, v.pinion_teeth, v.pinion_pitch, v.pinion_runout),
+      with(gear->involute().data(), v.gear, v.gear_teeth, v.gear_pitch, v.gear_runout)};
 }
 
 MeshCycleStudy::Deviations
@@ -169,27 +171,27 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   // once, not per cell.
   struct Rigid
   {
-    std::vector<double> turn; ///< [tooth] [rad]
+    std::vector<double> turn;   ///< [tooth] [rad]
     std::vector<Vec3>   runout; ///< [j] Rz(-2 pi j / z) e
   };
   const auto rigid_terms = [](const InvoluteGear &m, const std::vector<double> &pitch,
                               const Runout &runout) {
-    Rigid        r;
-    const int    z = m.teeth();
-    double       cumulative = 0;
+    Rigid     r;
+    const int z          = m.teeth();
+    double    cumulative = 0;
     for (int k = 0; k < z; ++k)
       {
         if (!pitch.empty() && k > 0)
           cumulative += pitch[std::size_t(k)];
         r.turn.push_back(cumulative / m.reference_radius);
         const double a = runout.phase - 2 * pi * k / z;
-        r.runout.emplace_back(runout.eccentricity * std::cos(a),
-                              runout.eccentricity * std::sin(a), 0);
+        r.runout.emplace_back(runout.eccentricity * std::cos(a), runout.eccentricity * std::sin(a),
+                              0);
       }
     return r;
   };
-  const Rigid rp = rigid_terms(p, v.pinion_pitch, v.pinion_runout);
-  const Rigid rg = rigid_terms(g, v.gear_pitch, v.gear_runout);
+  const Rigid rp    = rigid_terms(p, v.pinion_pitch, v.pinion_runout);
+  const Rigid rg    = rigid_terms(g, v.gear_pitch, v.gear_runout);
   const auto  rigid = [](const Rigid &r, int z, int k, int zone_tooth, const Vec3 &point,
                         const Vec3 &normal) {
     return r.turn[std::size_t(k)] * Vec3::UnitZ().cross(point).dot(normal) +
@@ -206,10 +208,9 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const NormalDeviation dp = change(p, v.pinion, v.pinion_teeth, tp, own.pinion, c.u1, c.v1);
       const NormalDeviation dg = change(g, v.gear, v.gear_teeth, tg, own.gear, c.u2, c.v2);
       const auto            i  = Eigen::Index(j);
-      d.added[i] =
-          dp.value + dg.value +
-          rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j], q.pinion_normal[j]) +
-          rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j], q.gear_normal[j]);
+      d.added[i]               = dp.value + dg.value +
+                   rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j], q.pinion_normal[j]) +
+                   rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j], q.gear_normal[j]);
       d.pinion_slope(i, 0) = dp.d_dL, d.pinion_slope(i, 1) = dp.d_dz;
     }
   return d;
@@ -226,8 +227,8 @@ MeshCycleStudy::warm_start_from(const PairVariant &v)
   o.cycles             = cycles;
   std::vector<std::vector<char>> sets(M * N);
   parallel_for(M * N, o.threads, [&](std::size_t k) {
-    const std::size_t   m = k / N, i = k % N;
-    const Deviations    d = deviations(m, i, 0, v);
+    const std::size_t    m = k / N, i = k % N;
+    const Deviations     d = deviations(m, i, 0, v);
     const LoadedPosition p =
         zone(m, i).solve(d.added, o.torques[m], r.unloaded_te[i], &d.pinion_slope);
     for (Eigen::Index j = 0; j < p.force.size(); ++j)
@@ -240,8 +241,8 @@ VariantCycle
 MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
 {
   const std::size_t N = std::size_t(o.positions), M = o.torques.size();
-  const std::size_t C  = std::size_t(o.cycles), CN = C * N;
-  const auto [vp, vg]  = members(v); // checks the modifications against the flanks
+  const std::size_t C = std::size_t(o.cycles), CN = C * N;
+  const auto [vp, vg] = members(v); // checks the modifications against the flanks
   // The variant's TCA searches each pair from the reference pair's contact point (the
   // variant's lies near it): a coarse grid besides it suffices.
   TcaOptions search      = tca_options;
@@ -259,7 +260,7 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
   r.edge_load_share.assign(M * CN, 0.0), r.pair_share.assign(M * CN * r.slots, 0.0);
   std::vector<char> edge(M * CN, 0);
   parallel_for(CN, threads == 0 ? o.threads : threads, [&](std::size_t job) {
-    const std::size_t i = job % N;
+    const std::size_t i     = job % N;
     const int         cycle = int(job / N);
     // The zone's position one mesh cycle on per cycle: the next teeth in the same place.
     TcaPosition at = zone(0, i).position();
@@ -281,17 +282,18 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
     r.unloaded_te[job] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {
-        const FixedZone     &z = zone(m, i);
+        const FixedZone         &z     = zone(m, i);
         const std::vector<char> *start = warm.empty() ? nullptr : &warm[m * N + i];
-        const LoadedPosition p = z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope, start);
-        const std::size_t    k = m * CN + job;
+        const LoadedPosition     p =
+            z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope, start);
+        const std::size_t k = m * CN + job;
         r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;
         r.normal_force[k] = p.normal_force;
         for (std::size_t s = 0; s < p.pair_force.size(); ++s)
           r.pair_share[k * r.slots + s] = p.pair_force[s] / p.normal_force;
         for (std::size_t j = 0; j < p.cells.size(); ++j)
-          r.peak_pressure[k] = std::max(r.peak_pressure[k], p.force[Eigen::Index(j)] /
-                                                                (p.cells[j].ds * p.cells[j].dt));
+          r.peak_pressure[k] = std::max(r.peak_pressure[k],
+                                        p.force[Eigen::Index(j)] / (p.cells[j].ds * p.cells[j].dt));
         r.edge_load_share[k] = p.edge_force / p.normal_force;
         edge[k]              = p.zone_edge_reached;
       }
@@ -302,21 +304,21 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
         return std::vector<double>(t.begin() + long(m * CN), t.begin() + long((m + 1) * CN));
       };
       const std::vector<double> eL = row(r.loaded_te), K = row(r.mesh_stiffness);
-      const auto [lo, hi]          = std::minmax_element(eL.begin(), eL.end());
+      const auto [lo, hi] = std::minmax_element(eL.begin(), eL.end());
       r.te_peak_to_peak.push_back(*hi - *lo);
       const std::vector<double> h = mesh_order_amplitudes(eL, int(C), o.harmonics);
       r.te_harmonics.insert(r.te_harmonics.end(), h.begin() + 1, h.end());
       const auto [klo, khi] = std::minmax_element(K.begin(), K.end());
-      double     mean       = 0;
+      double mean           = 0;
       for (const double k : K)
         mean += k / double(CN);
       r.stiffness_mean.push_back(mean), r.stiffness_range.push_back(*khi - *klo);
       const std::vector<double> p = row(r.peak_pressure), e = row(r.edge_load_share);
       r.max_pressure.push_back(*std::max_element(p.begin(), p.end()));
       r.max_edge_share.push_back(*std::max_element(e.begin(), e.end()));
-      r.zone_edge.push_back(
-          std::any_of(edge.begin() + long(m * CN), edge.begin() + long((m + 1) * CN),
-                      [](char c) { return c != 0; }));
+      r.zone_edge.push_back(std::any_of(edge.begin() + long(m * CN),
+                                        edge.begin() + long((m + 1) * CN),
+                                        [](char c) { return c != 0; }));
     }
   return r;
 }

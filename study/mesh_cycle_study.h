@@ -34,12 +34,12 @@ struct PairVariant
 struct VariantCycle
 {
   std::size_t         torques = 0, positions = 0, slots = 0;
-  std::vector<double> unloaded_te;    ///< e_0 [N] [rad, pinion]
-  std::vector<double> loaded_te;      ///< e_L [M][N] [rad, pinion]
-  std::vector<double> mesh_stiffness; ///< K_m [M][N] [N/m]
-  std::vector<double> normal_force;   ///< F [M][N] [N]
-  std::vector<double> pair_share;     ///< load share of each pair slot [M][N][S]
-  std::vector<double> peak_pressure;  ///< largest cell pressure [M][N] [Pa]
+  std::vector<double> unloaded_te;     ///< e_0 [N] [rad, pinion]
+  std::vector<double> loaded_te;       ///< e_L [M][N] [rad, pinion]
+  std::vector<double> mesh_stiffness;  ///< K_m [M][N] [N/m]
+  std::vector<double> normal_force;    ///< F [M][N] [N]
+  std::vector<double> pair_share;      ///< load share of each pair slot [M][N][S]
+  std::vector<double> peak_pressure;   ///< largest cell pressure [M][N] [Pa]
   std::vector<double> edge_load_share; ///< force on flank-edge cells / F [M][N]
   /// Summaries per torque [M]: e_L peak-to-peak over the positions [rad]; amplitudes of mesh
   /// orders 1..H of e_L [M][H] [rad]; K_m mean and range (max - min) [N/m]; the largest cell
@@ -78,8 +78,7 @@ public:
                  std::shared_ptr<const InvoluteMemberFlanks> gear, const Assembly &assembly,
                  const TcaOptions &tca, const LoadedContactOptions &contact,
                  const StructuralCompliance &pinion_compliance,
-                 const StructuralCompliance &gear_compliance,
-                 const MeshCycleStudyOptions &options);
+                 const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options);
 
   /// Starts every later evaluation's contact solves from this variant's active sets (a
   /// design the variants lie near: the samples of a tolerance study); by default the
@@ -106,8 +105,7 @@ public:
     Eigen::MatrixX2d pinion_slope;
   };
   Deviations
-  deviations(std::size_t torque, std::size_t position, int cycle,
-             const PairVariant &variant) const;
+  deviations(std::size_t torque, std::size_t position, int cycle, const PairVariant &variant) const;
 
   /// The variant's members: the study's with the variant's modifications.
   std::pair<std::shared_ptr<const InvoluteMemberFlanks>,
@@ -132,12 +130,12 @@ public:
   }
 
 private:
-  std::shared_ptr<const InvoluteMemberFlanks> pinion, gear;
-  Assembly                                    assembly;
-  TcaOptions                                  tca_options;
-  MeshCycleStudyOptions                       o;
-  PairVariant                                 own;
-  std::unique_ptr<const UnloadedTca>          tca;
+  std::shared_ptr<const InvoluteMemberFlanks>   pinion, gear;
+  Assembly                                      assembly;
+  TcaOptions                                    tca_options;
+  MeshCycleStudyOptions                         o;
+  PairVariant                                   own;
+  std::unique_ptr<const UnloadedTca>            tca;
   std::vector<std::unique_ptr<const FixedZone>> zones; ///< [M][N]
   /// Per zone and cell, each member's flank point and outward normal in its own frame at the
   /// cell's flank parameters on the zone's tooth (the runout and pitch terms), [M][N].
@@ -145,7 +143,7 @@ private:
   {
     std::vector<Vec3> pinion_point, pinion_normal, gear_point, gear_normal;
   };
-  std::vector<MemberPoints> points;
+  std::vector<MemberPoints>      points;
   std::vector<std::vector<char>> warm; ///< [M][N] the active sets to start from (empty: own)
 };
 } // namespace gearkit

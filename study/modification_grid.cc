@@ -33,9 +33,9 @@ fields()
 std::vector<std::vector<double> *>
 per_torque(VariantCycle &c)
 {
-  return {&c.loaded_te,       &c.mesh_stiffness,  &c.normal_force,    &c.pair_share,
-          &c.peak_pressure,   &c.edge_load_share, &c.te_peak_to_peak, &c.te_harmonics,
-          &c.stiffness_mean,  &c.stiffness_range, &c.max_pressure,    &c.max_edge_share};
+  return {&c.loaded_te,      &c.mesh_stiffness,  &c.normal_force,    &c.pair_share,
+          &c.peak_pressure,  &c.edge_load_share, &c.te_peak_to_peak, &c.te_harmonics,
+          &c.stiffness_mean, &c.stiffness_range, &c.max_pressure,    &c.max_edge_share};
 }
 
 /// Appends the torques of `more` (the same variant, positions and slots) to `all`.
@@ -67,7 +67,7 @@ modification_field_names()
   return names;
 }
 
-double ToothModifications::*
+double ToothModifications::       *
 modification_field(const std::string &name)
 {
   for (const auto &[n, field] : fields())
@@ -76,8 +76,8 @@ modification_field(const std::string &name)
   std::string known;
   for (const std::string &n : modification_field_names())
     known += (known.empty() ? "" : ", ") + n;
-  throw InputError("modification grid: '" + name + "' is not a modification parameter; known: " +
-                   known);
+  throw InputError("modification grid: '" + name +
+                   "' is not a modification parameter; known: " + known);
 }
 
 ModificationGrid::ModificationGrid(PairVariant base_, GridMembers members,
@@ -150,9 +150,10 @@ microgeometry_map(std::shared_ptr<const InvoluteMemberFlanks> pinion,
                   const StructuralCompliance &gear_compliance, const MeshCycleStudyOptions &options,
                   const ModificationGrid &grid, MPI_Comm comm, const std::function<void()> &step)
 {
-  return evaluate_variants(std::move(pinion), std::move(gear), assembly, tca, contact,
-                           pinion_compliance, gear_compliance, options, grid.size(),
-                           [&grid](std::size_t g) { return grid.variant(g); }, comm, step);
+  return evaluate_variants(
+      std::move(pinion), std::move(gear), assembly, tca, contact, pinion_compliance,
+      gear_compliance, options, grid.size(), [&grid](std::size_t g) { return grid.variant(g); },
+      comm, step);
 }
 
 std::vector<VariantCycle>
@@ -194,8 +195,8 @@ evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
       comm, mine,
       [&](std::size_t g, std::vector<double> &data) {
         VariantCycle &c = out[g];
-        data.insert(data.end(), {double(c.torques), double(c.positions), double(c.slots),
-                                 double(c.harmonics)});
+        data.insert(data.end(),
+                    {double(c.torques), double(c.positions), double(c.slots), double(c.harmonics)});
         data.insert(data.end(), c.unloaded_te.begin(), c.unloaded_te.end());
         for (const std::vector<double> *v : per_torque(c))
           data.insert(data.end(), v->begin(), v->end());
@@ -213,9 +214,9 @@ evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
           at += n;
         };
         take(c.unloaded_te, N);
-        const std::size_t H     = std::size_t(c.harmonics);
-        const std::size_t sizes[] = {M * N, M * N, M * N, M * N * c.slots, M * N, M * N,
-                                     M,     M * H, M,     M,               M,     M};
+        const std::size_t H       = std::size_t(c.harmonics);
+        const std::size_t sizes[] = {
+            M * N, M * N, M * N, M * N * c.slots, M * N, M * N, M, M * H, M, M, M, M};
         const std::vector<std::vector<double> *> v = per_torque(c);
         for (std::size_t k = 0; k < v.size(); ++k)
           take(*v[k], sizes[k]);

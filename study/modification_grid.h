@@ -7,9 +7,8 @@
 
 #include "study/mesh_cycle_study.h"
 
-#include <mpi.h>
-
 #include <functional>
+#include <mpi.h>
 #include <string>
 #include <vector>
 
@@ -22,7 +21,7 @@ const std::vector<std::string> &
 modification_field_names();
 
 /// The field of a name (modification_field_names); throws InputError naming the known ones.
-double ToothModifications::*
+double ToothModifications::       *
 modification_field(const std::string &name);
 
 struct ModificationAxis

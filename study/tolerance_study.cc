@@ -41,7 +41,8 @@ draw_member(const InvoluteGear &gear, FlankSide side, int flank_class,
     }
   if (flank_class < 0 || flank_class > 11)
     throw InputError("tolerance sample: " + gear.data().name + " flank tolerance class " +
-                     std::to_string(flank_class) + " is not allowed; ISO 1328-1 classes are 1 "
+                     std::to_string(flank_class) +
+                     " is not allowed; ISO 1328-1 classes are 1 "
                      "to 11 (0: no deviations)");
   const InvoluteGearData &d = gear.data();
   const double            b = d.face_width, m_n = d.normal_module, r = gear.reference_radius;
@@ -66,12 +67,12 @@ draw_member(const InvoluteGear &gear, FlankSide side, int flank_class,
       helix_form += 4 * k.helix_form_amplitude * k.helix_form_amplitude;
       lo = std::min(lo, k.pitch_position), hi = std::max(hi, k.pitch_position);
     }
-  pitch  = single_pitch_deviations(g, gear, side);
-  runout = {g.runout_eccentricity, g.runout_phase};
+  pitch          = single_pitch_deviations(g, gear, side);
+  runout         = {g.runout_eccentricity, g.runout_phase};
   const double n = double(g.teeth.size());
-  features.insert(features.end(),
-                  {hi - lo, g.runout_eccentricity, std::sqrt(profile_slope / n),
-                   std::sqrt(profile_form / n), std::sqrt(helix_slope / n), std::sqrt(helix_form / n)});
+  features.insert(features.end(), {hi - lo, g.runout_eccentricity, std::sqrt(profile_slope / n),
+                                   std::sqrt(profile_form / n), std::sqrt(helix_slope / n),
+                                   std::sqrt(helix_form / n)});
 }
 } // namespace
 
@@ -127,8 +128,8 @@ src(const Eigen::MatrixXd &X, const Eigen::VectorXd &y, const std::vector<Eigen:
       const Eigen::VectorXd c = X.col(used[k]);
       const double          m = c.mean();
       const double          s = std::sqrt((c.array() - m).square().sum() / double(n - 1));
-      Z.col(Eigen::Index(k))  = s > 0 ? Eigen::VectorXd((c.array() - m) / s)
-                                      : Eigen::VectorXd::Zero(n);
+      Z.col(Eigen::Index(k)) =
+          s > 0 ? Eigen::VectorXd((c.array() - m) / s) : Eigen::VectorXd::Zero(n);
     }
   const Eigen::VectorXd v = (y.array() - my) / sy;
   const Eigen::VectorXd b = Z.colPivHouseholderQr().solve(v);
@@ -164,8 +165,8 @@ standardized_regression(const std::vector<std::vector<double>> &features,
       used.push_back(k);
   Sensitivity s;
   s.coefficient = src(X, y, used, &s.r2);
-  std::vector<std::vector<double>> draws(F);
-  std::mt19937_64                  rng(seed);
+  std::vector<std::vector<double>>           draws(F);
+  std::mt19937_64                            rng(seed);
   std::uniform_int_distribution<std::size_t> pick(0, n - 1);
   for (int b = 0; b < bootstrap; ++b)
     {

@@ -95,7 +95,7 @@ TEST(ResultsSchema, EveryDatasetOnceAndWellFormed)
       EXPECT_EQ(&result_dataset(d.group, d.name), &d);
     }
   EXPECT_EQ(stages, (std::set<std::string>{"flanks", "measured", "ste", "compliance", "stiffness",
-                                           "dynamics", "train"}));
+                                           "dynamics", "train", "study"}));
   // shapes: words between " x ", "scalar" for one value, integers marked
   const ResultDataset &k = result_dataset("stiffness/<pair>", "mesh_stiffness");
   EXPECT_EQ(k.shape, "torques x positions");

@@ -88,9 +88,9 @@ TEST_F(StudyStage, MapVariantEqualsTheStandaloneModifiedScene)
   std::vector<hsize_t> shape;
   const auto           pp = g.read_doubles("te_peak_to_peak", &shape);
   ASSERT_EQ(shape, (std::vector<hsize_t>{3, 2}));
-  const auto grid  = g.read_doubles("grid", &shape);
+  const auto grid = g.read_doubles("grid", &shape);
   ASSERT_EQ(shape, (std::vector<hsize_t>{3, 2})); // tip relief, tip relief length
-  const auto eL    = g.read_doubles("loaded_te", &shape);
+  const auto eL = g.read_doubles("loaded_te", &shape);
   ASSERT_EQ(shape, (std::vector<hsize_t>{3, 2, 8}));
   const auto K     = g.read_doubles("mesh_stiffness");
   const auto K_bar = g.read_doubles("stiffness_mean");
@@ -132,10 +132,10 @@ TEST_F(StudyStage, MapVariantEqualsTheStandaloneModifiedScene)
   const StageUpstream up(scene, std::vector<std::string>{"flanks", "compliance"},
                          (dir / "out").string(), log);
   test_data::expect_contains(log.str(), {"stage compliance: reused"}); // the map's
-  const LoadedPair lp       = loaded_pair(scene, scene.pair("fzg"),
-                                          up.upstream().at("flanks")->group("fzg"),
-                                          up.upstream().at("compliance")->group("fzg"));
-  const auto       relieved = [](const MemberFlanks &m) {
+  const LoadedPair lp =
+      loaded_pair(scene, scene.pair("fzg"), up.upstream().at("flanks")->group("fzg"),
+                  up.upstream().at("compliance")->group("fzg"));
+  const auto relieved = [](const MemberFlanks &m) {
     InvoluteGearData d                      = involute(m).data();
     d.drive_modifications.tip_relief        = 20e-6;
     d.drive_modifications.tip_relief_length = 5.5e-3;
@@ -152,7 +152,7 @@ TEST_F(StudyStage, MapVariantEqualsTheStandaloneModifiedScene)
   // at the position where they differ most: 636.60 and 637.03 against 636.42 urad).
   const std::size_t         k0 = (1 * 2 + 1) * 8; // variant 1 (20 um), torque 150 N m
   const std::vector<double> e(eL.begin() + long(k0), eL.begin() + long(k0 + 8));
-  const auto                e0 = g.read_doubles("unloaded_te");
+  const auto                e0      = g.read_doubles("unloaded_te");
   double                    worst_K = 0, worst_e = 0, bound = 0;
   for (std::size_t i = 0; i < 8; ++i)
     {
@@ -190,7 +190,7 @@ TEST_F(StudyStage, BadSectionsAreRefusedByName)
 
 TEST_F(StudyStage, ToleranceSamplesWithoutDeviationsAreTheDesignAndWithThemSpreadAboveIt)
 {
-  const std::string tolerances = R"(subsection Study
+  const std::string tolerances  = R"(subsection Study
   subsection fzg
     set kind                     = tolerances
     set torques                  = 150
@@ -205,9 +205,8 @@ TEST_F(StudyStage, ToleranceSamplesWithoutDeviationsAreTheDesignAndWithThemSprea
   end
 end
 )";
-  const auto run_classes = [&](const std::string &name, int c) {
-    const std::string rest =
-        std::regex_replace(tolerances, std::regex("CLASS"), std::to_string(c));
+  const auto        run_classes = [&](const std::string &name, int c) {
+    const std::string rest = std::regex_replace(tolerances, std::regex("CLASS"), std::to_string(c));
     ASSERT_EQ(run({file(name + ".prm", fzg_scene(name, "study", "", "", rest))}), 0) << err.str();
   };
   run_classes("perfect", 0);
@@ -226,8 +225,8 @@ end
       EXPECT_EQ(x, 0);
   }
   run_classes("class8", 8);
-  const H5File  f = H5File::open((dir / "out/class8/results.h5").string());
-  const H5Group g = f.root().group("study/fzg");
+  const H5File  f       = H5File::open((dir / "out/class8/results.h5").string());
+  const H5Group g       = f.root().group("study/fzg");
   const auto    pp      = g.read_doubles("te_peak_to_peak");
   const auto    nominal = g.group("nominal").read_doubles("te_peak_to_peak");
   const auto    pct     = g.group("percentiles").read_doubles("te_peak_to_peak");
@@ -245,8 +244,8 @@ end
   const auto feats  = g.read_doubles("features");
   for (std::size_t k = 0; k < 6; ++k)
     {
-      const ToleranceSample s = draw_tolerance_sample(*p, *q, FlankSide::drive,
-                                                      scene.study.at("fzg").sampling, {}, k);
+      const ToleranceSample s =
+          draw_tolerance_sample(*p, *q, FlankSide::drive, scene.study.at("fzg").sampling, {}, k);
       for (std::size_t j = 0; j < s.features.size(); ++j)
         EXPECT_DOUBLE_EQ(feats[k * 12 + j], s.features[j]);
     }

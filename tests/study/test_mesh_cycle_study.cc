@@ -4,7 +4,7 @@
 // variant against the standalone loaded contact of its modified flanks (zones fitted to each
 // load); bad input refused.
 #include "study/modification_grid.h"
-#include "tests/fzg_c_pair.h"
+#include "tests/study/fzg_study.h"
 
 #include <gtest/gtest.h>
 
@@ -14,30 +14,10 @@ using namespace gearkit;
 
 namespace
 {
-/// A tooth compliance of the order of the finite elements' (both members): the load spreads
-/// along the face, pairs do not interact.
-const StructuralCompliance tooth = [](const ContactCell &a, const ContactCell &b) {
-  return a.pair == b.pair ? 4e-10 * std::exp(-std::abs(a.position.z() - b.position.z()) / 5e-3)
-                          : 0.0;
-};
+const StructuralCompliance &tooth = test_data::tooth_compliance;
 
-struct Fzg
+struct Fzg : test_data::FzgStudyPair
 {
-  std::shared_ptr<const InvoluteMemberFlanks> pinion, gear;
-  Assembly                                    assembly;
-  LoadedContactOptions                        contact;
-  double                                      torque = 0;
-  Fzg()
-      : assembly(1, 1)
-  {
-    const auto [pd, gd] = test_data::fzg_c_pair();
-    const auto [p, g]   = create_pair(pd, gd);
-    pinion              = std::make_shared<const InvoluteMemberFlanks>(p);
-    gear                = std::make_shared<const InvoluteMemberFlanks>(g);
-    assembly            = Assembly(working_centre_distance(*p, *g), g->teeth());
-    contact.pinion_material = contact.gear_material = {206e9, 0.3};
-    torque = 5912 * p->base_radius; // F_bt of FZG C14 on the line of action
-  }
   MeshCycleStudy
   study(int positions) const
   {
@@ -74,18 +54,18 @@ LoadedPosition
 exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, std::size_t m,
              std::size_t i, int cycle, std::size_t &beyond)
 {
-  const auto [vp, vg]                   = study.members(v);
-  const UnloadedTca              modified(vp, vg, s.assembly);
-  const FixedZone               &z     = study.zone(m, i);
-  TcaPosition                    pos   = z.position();
-  std::vector<ContactCell>       cells = z.cells();
-  const int                      z1 = 16, z2 = 24;
+  const auto [vp, vg] = study.members(v);
+  const UnloadedTca        modified(vp, vg, s.assembly);
+  const FixedZone         &z     = study.zone(m, i);
+  TcaPosition              pos   = z.position();
+  std::vector<ContactCell> cells = z.cells();
+  const int                z1 = 16, z2 = 24;
   pos.pinion_angle += 2 * pi * cycle / z1, pos.gear_angle += 2 * pi * cycle / z2;
   const Eigen::Index n = Eigen::Index(cells.size());
   Eigen::VectorXd    gap(n), lever(n);
   for (Eigen::Index j = 0; j < n; ++j)
     {
-      ContactCell &c = cells[std::size_t(j)];
+      ContactCell &c  = cells[std::size_t(j)];
       const int    tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1, tg = (c.gear_tooth + cycle) % z2;
       const FlankPoint f      = vp->flank(tp, FlankSide::drive).evaluate(c.u1, c.v1);
       const Vec3       X      = s.assembly.pinion_to_global(f.position, pos.pinion_angle);
@@ -103,11 +83,11 @@ exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, st
         return (a.position - b.position).dot(b.normal);
       };
       ++beyond;
-      gap[j] = c.gap -
-               moved(vp->flank(tp, FlankSide::drive), s.pinion->flank(tp, FlankSide::drive), c.u1,
-                     c.v1) -
-               moved(vg->flank(tg, FlankSide::drive), s.gear->flank(tg, FlankSide::drive), c.u2,
-                     c.v2);
+      gap[j] =
+          c.gap -
+          moved(vp->flank(tp, FlankSide::drive), s.pinion->flank(tp, FlankSide::drive), c.u1,
+                c.v1) -
+          moved(vg->flank(tg, FlankSide::drive), s.gear->flank(tg, FlankSide::drive), c.u2, c.v2);
     }
   const double          e0  = modified.at(pos.pinion_angle).transmission_error;
   const double          T   = study.options().torques[m];
@@ -120,11 +100,11 @@ exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, st
 TEST(MeshCycleStudy, VariantEqualsExactGeometryOnTheSameCells)
 {
   const Fzg            s;
-  const MeshCycleStudy study = s.study(8);
-  const PairVariant    v     = relieved();
-  const VariantCycle   r     = study.evaluate(v);
+  const MeshCycleStudy study  = s.study(8);
+  const PairVariant    v      = relieved();
+  const VariantCycle   r      = study.evaluate(v);
   std::size_t          beyond = 0, cells_seen = 0;
-  double               worst  = 0;
+  double               worst = 0;
   for (std::size_t m = 0; m < 2; ++m)
     for (std::size_t i = 0; i < 8; ++i)
       {
@@ -150,7 +130,7 @@ TEST(MeshCycleStudy, PerToothDeviationsOverSeveralCyclesEqualTheExactGeometry)
   const Fzg             s;
   MeshCycleStudyOptions o;
   o.positions = 4, o.cycles = 3, o.harmonics = 2;
-  o.torques   = {s.torque};
+  o.torques = {s.torque};
   const MeshCycleStudy study(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o);
   PairVariant          v = relieved();
   std::mt19937_64      rng(7);
@@ -215,7 +195,7 @@ TEST(MeshCycleStudy, OwnVariantIsTheZonesNominalSolution)
         EXPECT_EQ(r.unloaded_te[i], study.zone(m, i).position().transmission_error);
       }
   // the warm start does not change the solution: a cold start from the first touch
-  const FixedZone      &z = study.zone(1, 2);
+  const FixedZone      &z    = study.zone(1, 2);
   const Eigen::VectorXd none = Eigen::VectorXd::Zero(Eigen::Index(z.cells().size()));
   const LoadedPosition  a    = z.solve(none, study.options().torques[1]);
   EXPECT_NEAR(a.eL, z.nominal().eL, 1e-12 * std::abs(z.nominal().eL));
@@ -225,8 +205,8 @@ TEST(MeshCycleStudy, BadInputIsRefused)
 {
   const Fzg             s;
   MeshCycleStudyOptions o;
-  o.positions = 8;
-  const auto refused  = [&](const MeshCycleStudyOptions &bad) {
+  o.positions        = 8;
+  const auto refused = [&](const MeshCycleStudyOptions &bad) {
     EXPECT_THROW(MeshCycleStudy(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, bad),
                  InputError);
   };
@@ -263,13 +243,14 @@ TEST(ModificationGrid, VariantsInOrderOnTheNamedMembers)
   const PairVariant v = grid.variant(3);
   EXPECT_EQ(v.pinion.tip_relief, 1e-5);
   EXPECT_EQ(v.pinion.lead_crowning, 4e-6);
-  EXPECT_EQ(v.gear.tip_relief, 0);         // the gear keeps the base
+  EXPECT_EQ(v.gear.tip_relief, 0); // the gear keeps the base
   EXPECT_EQ(v.gear.lead_crowning, 3e-6);
   const ModificationGrid both(base, GridMembers::both, {{"tip_relief", {7e-6}}});
   EXPECT_EQ(both.variant(0).gear.tip_relief, 7e-6);
   EXPECT_THROW(ModificationGrid(base, GridMembers::both, {{"tip_reliefs", {0}}}), InputError);
-  EXPECT_THROW(ModificationGrid(base, GridMembers::both, {{"tip_relief", {0}}, {"tip_relief", {1}}}),
-               InputError);
+  EXPECT_THROW(
+      ModificationGrid(base, GridMembers::both, {{"tip_relief", {0}}, {"tip_relief", {1}}}),
+      InputError);
   EXPECT_THROW(ModificationGrid(base, GridMembers::both, {{"end_relief", {}}}), InputError);
   EXPECT_THROW(ModificationGrid(base, GridMembers::both,
                                 {{"tip_relief", std::vector<double>(1000, 0)},

@@ -4,7 +4,7 @@
 // the variants' results do not depend on the threads.
 #include "study/modification_grid.h"
 #include "study/tolerance_study.h"
-#include "tests/fzg_c_pair.h"
+#include "tests/study/fzg_study.h"
 
 #include <gtest/gtest.h>
 
@@ -14,26 +14,8 @@ using namespace gearkit;
 
 namespace
 {
-const StructuralCompliance tooth = [](const ContactCell &a, const ContactCell &b) {
-  return a.pair == b.pair ? 4e-10 * std::exp(-std::abs(a.position.z() - b.position.z()) / 5e-3)
-                          : 0.0;
-};
-
-struct Fzg
-{
-  std::shared_ptr<const InvoluteMemberFlanks> pinion, gear;
-  Assembly                                    assembly{1, 1};
-  LoadedContactOptions                        contact;
-  Fzg()
-  {
-    const auto [pd, gd] = test_data::fzg_c_pair();
-    const auto [p, g]   = create_pair(pd, gd);
-    pinion              = std::make_shared<const InvoluteMemberFlanks>(p);
-    gear                = std::make_shared<const InvoluteMemberFlanks>(g);
-    assembly            = Assembly(working_centre_distance(*p, *g), g->teeth());
-    contact.pinion_material = contact.gear_material = {206e9, 0.3};
-  }
-};
+const StructuralCompliance &tooth = test_data::tooth_compliance;
+using Fzg                         = test_data::FzgStudyPair;
 
 PairVariant
 design()
@@ -53,16 +35,15 @@ TEST(ToleranceStudy, ZeroTolerancesGiveTheNominalRun)
   ToleranceSampling zero; // classes 0
   const auto        variant = [&](std::size_t k) {
     return draw_tolerance_sample(s.pinion->involute(), s.gear->involute(), FlankSide::drive, zero,
-                                 design(), k)
+                                        design(), k)
         .variant;
   };
   const ToleranceSample t = draw_tolerance_sample(s.pinion->involute(), s.gear->involute(),
                                                   FlankSide::drive, zero, design(), 3);
   EXPECT_TRUE(t.variant.pinion_teeth.empty() && t.variant.gear_pitch.empty());
   EXPECT_EQ(t.features, std::vector<double>(12, 0.0));
-  const std::vector<VariantCycle> r =
-      evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o, 3, variant,
-                        MPI_COMM_SELF);
+  const std::vector<VariantCycle> r = evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact,
+                                                        tooth, tooth, o, 3, variant, MPI_COMM_SELF);
   const MeshCycleStudy study(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o);
   const VariantCycle   nominal = study.evaluate(design());
   for (const VariantCycle &c : r)
@@ -81,7 +62,7 @@ TEST(ToleranceStudy, SamplesAreDeterministicAndWithinTheirClass)
   const Fzg         s;
   ToleranceSampling o;
   o.pinion_class = 6, o.gear_class = 5, o.seed = 42;
-  const InvoluteGear &p = s.pinion->involute(), &g = s.gear->involute();
+  const InvoluteGear   &p = s.pinion->involute(), &g = s.gear->involute();
   const ToleranceSample a = draw_tolerance_sample(p, g, FlankSide::drive, o, design(), 17);
   const ToleranceSample b = draw_tolerance_sample(p, g, FlankSide::drive, o, design(), 17);
   const ToleranceSample c = draw_tolerance_sample(p, g, FlankSide::drive, o, design(), 18);
@@ -184,10 +165,10 @@ TEST(ToleranceStudy, SamplesDoNotDependOnTheThreads)
                                  classes, design(), k)
         .variant;
   };
-  o.threads = 1;
+  o.threads      = 1;
   const auto one = evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o,
                                      3, variant, MPI_COMM_SELF);
-  o.threads = 2;
+  o.threads      = 2;
   const auto two = evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o,
                                      3, variant, MPI_COMM_SELF);
   // equal to rounding (OpenBLAS's own threads, where more than one, round differently)

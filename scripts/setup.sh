@@ -4,7 +4,7 @@
 # configure and build into build/ (Release unless CMAKE_BUILD_TYPE is set).
 #   scripts/setup.sh           the gearkit executable and the Python module (./run)
 #   scripts/setup.sh --tests   also packages-tests.txt (the report's browser check) and every
-#                              target: tests and benchmarks (./test)
+#                              target of `all`: the tests (./test; not the benchmarks)
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 

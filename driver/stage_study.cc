@@ -1,7 +1,9 @@
-// Stage "study": a micro-geometry map of every pair on its compliance (the compliance stage's
-// tables, computed once): the grid of modification variants of Study/<pair> over the torques,
-// each variant's loaded mesh cycle on fixed contact zones (study/), the best variant per torque
-// and the classical tip relief F_bt / (b c_gamma) to compare with.
+// Stage "study": design studies of every pair on its compliance (the compliance stage's tables,
+// computed once), each variant's loaded mesh cycles on fixed contact zones (study/). A
+// micro-geometry map: the grid of modification variants of Study/<pair> over the torques, the
+// best variant per torque and the classical tip relief F_bt / (b c_gamma) to compare with. A
+// tolerance Monte Carlo: samples of the design within ISO 1328-1 classes over a pinion
+// revolution, the design alone, percentiles, their convergence and the sensitivities.
 #include "base/progress.h"
 #include "driver/pair_contact.h"
 #include "driver/stages.h"

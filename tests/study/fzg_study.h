@@ -33,7 +33,7 @@ struct FzgStudyPair
     gear                    = std::make_shared<const InvoluteMemberFlanks>(g);
     assembly                = Assembly(working_centre_distance(*p, *g), g->teeth());
     contact.pinion_material = contact.gear_material = {206e9, 0.3};
-    torque                  = 5912 * p->base_radius; // on the line of action
+    torque = 5912 * p->base_radius; // on the line of action
   }
 };
 } // namespace gearkit::test_data

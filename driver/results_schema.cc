@@ -1,6 +1,7 @@
 #include "driver/results_schema.h"
 
 #include "dynamics/sweep.h"
+#include "study/misalignment_study.h"
 #include "study/modification_grid.h"
 
 #include <algorithm>
@@ -634,7 +635,8 @@ add_study(const Add &add)
            "operating pitch radius of the pinion: TE [rad] times it is the TE at the pitch circle"},
           {"shape", "parameters, integers", "1", "values of each axis of the grid, in order"},
           {"grid", "variants x parameters", "m",
-           "each variant's parameter values (the first axis slowest)"},
+           "each variant's parameter values (the first axis slowest; misalignment angles in "
+           "rad)"},
           {"te_peak_to_peak", "variants x torques", "rad",
            "loaded TE e_L peak-to-peak over the positions (pinion radians)"},
           {"unloaded_te_peak_to_peak", "variants", "rad", "unloaded TE e_0 peak-to-peak"},
@@ -701,9 +703,33 @@ add_study(const Add &add)
           {"high", "torques x features", "1", "its 95 % bootstrap interval's upper end"},
           {"r2", "torques", "1", "the linear model's coefficient of determination"},
       });
+  // the misalignment (V-H) check (kind misalignments): its variants are the grid's assemblies
+  add("study/<pair>",
+      {
+          {"tca_pinion_angle", "tca positions", "rad",
+           "pinion rotation of the unloaded TCA's positions (the TCA section's)"},
+          {"tca_unloaded_te", "variants x tca positions", "rad", "e_0 at the TCA's positions"},
+          {"contact_path", "variants x tca positions x 2", "m",
+           "the leading pair's unloaded contact point on the gear flank: (profile, face) lengths "
+           "(spiral bevel: height above the pitch cone, cone distance - A_m; involute: roll "
+           "length, z)"},
+          {"path_centre", "variants x 2", "m", "the contact path's mean point (profile, face)"},
+          {"pattern", "variants x torques x profile bins x face bins", "Pa",
+           "the loaded contact pattern: the largest cell pressure over the mesh cycle in each bin "
+           "of the gear flank"},
+          {"pattern_profile_range", "2", "m", "the raster's extent along the profile"},
+          {"pattern_face_range", "2", "m", "the raster's extent along the face"},
+          {"pattern_centre", "variants x torques x 2", "m",
+           "the pressure-weighted centre of the loaded cells (profile, face)"},
+          {"pattern_extent", "variants x torques x 4", "m",
+           "the loaded cells' extent: profile min, max, face min, max"},
+      });
   std::vector<Entry> axes;
   for (const std::string &field : modification_field_names())
     axes.push_back({field.c_str(), "values", "m", "the values of this axis of the grid"});
+  for (const std::string &field : misalignment_field_names())
+    axes.push_back({field.c_str(), "values", field.find("angle") != std::string::npos ? "rad" : "m",
+                    "the values of this misalignment axis of the grid"});
   add("study/<pair>/axes", axes);
 }
 

@@ -17,6 +17,7 @@
 #include "geometry/involute_gear.h"
 #include "stiffness/contact_cells.h"
 #include "stiffness/half_space.h"
+#include "study/misalignment_study.h"
 #include "study/modification_grid.h"
 #include "study/tolerance_study.h"
 #include "tca/paper_mode.h"
@@ -252,7 +253,8 @@ struct StudyScene
   enum class Kind
   {
     microgeometry_map,
-    tolerances
+    tolerances,
+    misalignments
   };
   Kind                kind = Kind::microgeometry_map;
   std::vector<double> torques; ///< pinion torques [N m], ascending; empty: Loaded contact's
@@ -262,6 +264,10 @@ struct StudyScene
   int                 harmonics     = 4;  ///< mesh orders of e_L summarised
   GridMembers         members       = GridMembers::both;
   std::vector<ModificationAxis> axes; ///< in the order of modification_field_names
+  /// Misalignments: the grid's axes over Misalignment fields (misalignment_field_names), each
+  /// replacing the TCA section's value; the contact pattern's raster on the gear flank.
+  std::vector<GridAxis> misalignment_axes;
+  int                   profile_bins = 16, face_bins = 40;
   /// Tolerances: the sampling (ISO 1328-1 classes, distribution, seed), the samples, the mesh
   /// cycles each runs over (0: a pinion revolution).
   ToleranceSampling sampling;
@@ -272,11 +278,16 @@ struct StudyScene
   declare(ParameterHandler &prm);
   void
   parse(ParameterHandler &prm);
-  /// With `run` (the study stage runs): an involute pair, plausible torques, the design torque
-  /// among them, the grid's size.
+  /// With `run` (the study stage runs): an involute pair (maps and tolerances), plausible
+  /// torques, the design torque among them, the grid's size.
   void
   check(const PairScene &pair, const LoadedScene &loaded, bool run,
         std::vector<std::string> &warnings) const;
+  /// kind = misalignments: a known grid, no modification values, misalignments within the
+  /// face width (else a unit slip), plausible torques.
+  void
+  check_misalignments(const PairScene &pair, const LoadedScene &loaded,
+                      std::vector<std::string> &warnings) const;
   /// The torques the study runs: its own, else the Loaded contact section's; ascending.
   std::vector<double>
   study_torques(const LoadedScene &loaded) const;

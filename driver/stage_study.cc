@@ -8,6 +8,7 @@
 #include "driver/pair_contact.h"
 #include "driver/stages.h"
 #include "stiffness/iso6336.h"
+#include "study/misalignment_study.h"
 #include "study/modification_grid.h"
 
 #include <deal.II/base/mpi.h>
@@ -66,40 +67,41 @@ best_relief(const std::vector<VariantCycle> &r, const std::vector<double> &value
   return std::clamp(x, x0, x2);
 }
 
+/// The grid's axes (axes/<name>, attribute parameters), the values per axis (shape) and each
+/// point's (grid).
+void
+write_grid(const H5Group &g, const ParameterGrid &grid)
+{
+  std::string      names;
+  std::vector<int> shape;
+  const H5Group    axes = g.group("axes");
+  for (const GridAxis &a : grid.axes())
+    {
+      names += (names.empty() ? "" : ",") + a.name;
+      shape.push_back(int(a.values.size()));
+      axes.write(a.name, a.values, {a.values.size()});
+    }
+  g.attribute("parameters", names);
+  const hsize_t P = grid.axes().size();
+  g.write("shape", shape, {P});
+  g.write("grid", grid.points(), {hsize_t(grid.size()), P});
+}
+
 void
 write_map(const H5Group &g, const StudyScene &s, const std::vector<double> &torques,
           const ModificationGrid &grid, const std::vector<VariantCycle> &r,
           const std::vector<double> &pinion_angle, double pitch_radius)
 {
   const std::size_t G = r.size(), M = torques.size(), N = pinion_angle.size(),
-                    H = std::size_t(s.harmonics), P = grid.axes().size();
+                    H = std::size_t(s.harmonics);
   g.attribute("kind", "microgeometry map");
   g.attribute("members", s.members == GridMembers::both     ? "both"
                          : s.members == GridMembers::pinion ? "pinion"
                                                             : "gear");
-  std::string names;
-  for (const ModificationAxis &a : grid.axes())
-    names += (names.empty() ? "" : ",") + a.name;
-  g.attribute("parameters", names);
+  write_grid(g, grid.parameters());
   g.write("torques", torques, {M});
   g.write("design_torque", s.design_torque);
   g.write("pitch_radius", pitch_radius);
-  std::vector<int>    shape;
-  std::vector<double> values;
-  const H5Group       axes = g.group("axes");
-  for (const ModificationAxis &a : grid.axes())
-    {
-      shape.push_back(int(a.values.size()));
-      axes.write(a.name, a.values, {a.values.size()});
-    }
-  for (std::size_t v = 0; v < G; ++v)
-    {
-      const std::vector<std::size_t> at = grid.index(v);
-      for (std::size_t k = 0; k < P; ++k)
-        values.push_back(grid.axes()[k].values[at[k]]);
-    }
-  g.write("shape", shape, {P});
-  g.write("grid", values, {G, P});
   const auto gather = [&](auto field, std::vector<hsize_t> dims, const char *name) {
     std::vector<double> all;
     for (const VariantCycle &c : r)
@@ -165,7 +167,9 @@ scene_design(const StudyInputs &in)
     const InvoluteGearData &d = involute(m).data();
     return in.tca.side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
   };
-  return {working(*in.lp.members.pinion), working(*in.lp.members.gear)};
+  PairVariant v;
+  v.pinion = working(*in.lp.members.pinion), v.gear = working(*in.lp.members.gear);
+  return v;
 }
 
 void
@@ -359,6 +363,113 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
           << std::endl;
     }
 }
+/// The misalignment (V-H) check: every grid point's assembly of the theoretical members on the
+/// compliance tables; e_0, e_L, K_m and the contact pattern on the gear flank.
+void
+run_misalignments(const Scene &scene, const PairScene &pair, const StudyScene &s,
+                  const Upstream &up, const H5Group &g, std::ostream &log)
+{
+  const H5Group       flanks = up.at("flanks")->group(pair.name);
+  const LoadedPair    lp = loaded_pair(scene, pair, flanks, up.at("compliance")->group(pair.name));
+  const ParameterGrid grid(s.misalignment_axes, misalignment_field_names(),
+                           "Study/" + pair.name + "/misalignments", 10000);
+  TcaScene            tca = scene.tca.at(pair.name);
+  MisalignmentStudyOptions o;
+  o.torques      = s.study_torques(scene.loaded.at(pair.name));
+  o.positions    = s.positions;
+  o.profile_bins = s.profile_bins, o.face_bins = s.face_bins;
+  const std::size_t G = grid.size(), M = o.torques.size();
+  log << "  " << pair.name << ": " << G << " misaligned assemblies x " << M << " torques x "
+      << o.positions << " positions on one compliance" << std::endl;
+  Progress                    progress("study " + pair.name + ": assembly", G);
+  std::vector<MisalignedMesh> r;
+  for (std::size_t k = 0; k < G; ++k)
+    {
+      tca.misalignment     = grid_misalignment(grid, k, scene.tca.at(pair.name).misalignment);
+      const PairMembers pm = theoretical_members(pair, tca, flanks);
+      try
+        {
+          r.push_back(misaligned_mesh(pm.pinion, pm.gear, pm.assembly, tca.options, lp.options,
+                                      lp.pinion_compliance, lp.gear_compliance, o));
+        }
+      catch (const InputError &e)
+        {
+          std::string at;
+          for (std::size_t j = 0; j < grid.axes().size(); ++j)
+            at += (at.empty() ? "" : ", ") + grid.axes()[j].name + " " +
+                  std::to_string(grid.axes()[j].values[grid.index(k)[j]]);
+          throw InputError("Study/" + pair.name + " (" + at + " [m, rad]): " + e.what());
+        }
+      progress.advance();
+    }
+
+  g.attribute("kind", "misalignments");
+  write_grid(g, grid);
+  g.write("torques", o.torques, {M});
+  g.write("design_torque", s.design_torque);
+  g.write("pitch_radius", lp.members.pitch_radius);
+  const MemberFlanks &gear = *lp.members.gear;
+  const FlankDomain   d    = gear.flank(0, tca.options.side).domain();
+  const auto [u0, v0]      = flank_lengths(gear, d.u_min, d.v_min);
+  const auto [u1, v1]      = flank_lengths(gear, d.u_max, d.v_max);
+  g.write("pattern_profile_range", std::vector<double>{u0, u1}, {2});
+  g.write("pattern_face_range", std::vector<double>{v0, v1}, {2});
+  const std::size_t T = r[0].unloaded_te.size(), N = std::size_t(o.positions),
+                    U = std::size_t(o.profile_bins), V = std::size_t(o.face_bins);
+  std::vector<double> e0, e0_tca, e0_pp, eL, K, eL_pp, K_mean, p_max, edge, path, path_centre,
+      pattern, centre, extent;
+  const auto lengths = [&](double u, double v, std::vector<double> &to) {
+    const auto [a, b] = flank_lengths(gear, u, v);
+    to.insert(to.end(), {a, b});
+  };
+  for (const MisalignedMesh &m : r)
+    {
+      e0.insert(e0.end(), m.loaded.unloaded_te.begin(), m.loaded.unloaded_te.end());
+      e0_tca.insert(e0_tca.end(), m.unloaded_te.begin(), m.unloaded_te.end());
+      e0_pp.push_back(m.unloaded_peak_to_peak);
+      eL.insert(eL.end(), m.loaded.loaded_te.begin(), m.loaded.loaded_te.end());
+      K.insert(K.end(), m.loaded.mesh_stiffness.begin(), m.loaded.mesh_stiffness.end());
+      for (auto [from, to] : {std::pair{&m.loaded_peak_to_peak, &eL_pp},
+                              {&m.stiffness_mean, &K_mean},
+                              {&m.max_pressure, &p_max},
+                              {&m.max_edge_share, &edge},
+                              {&m.pattern, &pattern}})
+        to->insert(to->end(), from->begin(), from->end());
+      for (std::size_t i = 0; i < T; ++i)
+        lengths(m.path[2 * i], m.path[2 * i + 1], path);
+      lengths(m.path_centre[0], m.path_centre[1], path_centre);
+      for (std::size_t j = 0; j < M; ++j)
+        {
+          lengths(m.pattern_centre[2 * j], m.pattern_centre[2 * j + 1], centre);
+          const double *x     = &m.pattern_extent[4 * j];
+          const auto [a0, b0] = flank_lengths(gear, x[0], x[2]);
+          const auto [a1, b1] = flank_lengths(gear, x[1], x[3]);
+          extent.insert(extent.end(), {a0, a1, b0, b1});
+        }
+    }
+  g.write("pinion_angle", r[0].loaded.pinion_angle, {N});
+  g.write("tca_pinion_angle", r[0].tca_pinion_angle, {T});
+  g.write("unloaded_te", e0, {G, N});
+  g.write("tca_unloaded_te", e0_tca, {G, T});
+  g.write("unloaded_te_peak_to_peak", e0_pp, {G});
+  g.write("loaded_te", eL, {G, M, N});
+  g.write("mesh_stiffness", K, {G, M, N});
+  g.write("te_peak_to_peak", eL_pp, {G, M});
+  g.write("stiffness_mean", K_mean, {G, M});
+  g.write("max_pressure", p_max, {G, M});
+  g.write("max_edge_share", edge, {G, M});
+  g.write("contact_path", path, {G, T, 2});
+  g.write("path_centre", path_centre, {G, 2});
+  g.write("pattern", pattern, {G, M, U, V});
+  g.write("pattern_centre", centre, {G, M, 2});
+  g.write("pattern_extent", extent, {G, M, 4});
+  const double rp = lp.members.pitch_radius * 1e6;
+  for (std::size_t k = 0; k < G; ++k)
+    log << "  " << pair.name << " assembly " << k << ": e_0 p-p " << r[k].unloaded_peak_to_peak * rp
+        << " um, e_L p-p " << r[k].loaded_peak_to_peak.back() * rp << " um at " << o.torques.back()
+        << " N m, pattern centre (profile, face) (" << centre[(k * M + M - 1) * 2] * 1e3 << ", "
+        << centre[(k * M + M - 1) * 2 + 1] * 1e3 << ") mm" << std::endl;
+}
 } // namespace
 
 void
@@ -369,7 +480,9 @@ run_study_stage(const Scene &scene, const Upstream &up, const H5Group &out, std:
       const StudyScene &s  = scene.study.at(pair.name);
       const auto        t0 = std::chrono::steady_clock::now();
       const H5Group     g  = out.group(pair.name, "<pair>");
-      if (s.kind == StudyScene::Kind::tolerances)
+      if (s.kind == StudyScene::Kind::misalignments)
+        run_misalignments(scene, pair, s, up, g, log);
+      else if (s.kind == StudyScene::Kind::tolerances)
         run_tolerances(pair, s, study_inputs(scene, pair, up), g, log);
       else
         run_map(pair, s, study_inputs(scene, pair, up), g, log);

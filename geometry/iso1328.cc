@@ -203,6 +203,13 @@ iso1328_tolerances(int flank_class, double reference_diameter, double normal_mod
               [](double um) { return iso1328_round_um(um) * 1e-6; });
 }
 
+double
+draw_within(double tolerance, ToleranceDistribution dist, std::mt19937_64 &rng)
+{
+  Draw draw(rng, dist);
+  return tolerance * draw.unit();
+}
+
 GearDeviations
 draw_gear_deviations(const Iso1328Tolerances &t, int teeth, ToleranceDistribution dist,
                      std::mt19937_64 &rng)

@@ -157,6 +157,11 @@ enum class ToleranceDistribution
 /// the engine's 53 high bits, normal ones by Box-Muller; no std:: distributions). Throws
 /// InputError for teeth outside [5, 1000] or tolerances that are not positive and finite, or whose
 /// totals are below their slope or form tolerance (not a set from iso1328_tolerances).
+/// A value within +-tolerance: uniform, or normal with the tolerance 3 sigma (drawn again
+/// beyond it), from `rng` (the draws draw_gear_deviations makes).
+double
+draw_within(double tolerance, ToleranceDistribution dist, std::mt19937_64 &rng);
+
 GearDeviations
 draw_gear_deviations(const Iso1328Tolerances &t, int teeth, ToleranceDistribution dist,
                      std::mt19937_64 &rng);

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Pictures of the study stage: the micro-geometry design map ("Harris map") of a gear pair.
+"""Pictures of the study stage: the micro-geometry design map ("Harris map") of a gear pair, the
+tolerance Monte Carlo and the misalignment (V-H) check.
 
 usage: plot_study.py out/<scene>/results.h5
 
@@ -7,6 +8,9 @@ usage: plot_study.py out/<scene>/results.h5
                     amount of the grid's first modification (curves and filled contours), the
                     mesh stiffness of a few variants and the loaded TE over the mesh cycle of the
                     unmodified and the best variant at the design torque
+  tolerances_<pair>.png  the tolerance Monte Carlo (plot_tolerances)
+  vh_<pair>.png     the misalignment (V-H) check: the contact pattern per grid point and the
+                    V-H chart (plot_misalignments)
 
 plot_results.py draws them too (its main() calls plot_study when results.h5 has /study); the
 helpers below (variant labels, the TE as a length) are the report's as well (report.py).
@@ -28,6 +32,7 @@ from plot_results import legend_below, save  # noqa: E402  (the same atomic writ
 
 KIND = "microgeometry map"
 TOLERANCES = "tolerances"
+MISALIGNMENTS = "misalignments"
 INVALID = "the fixed contact zone was too narrow for some variants: their results are not valid"
 
 
@@ -160,6 +165,116 @@ def plot_study(study, out_dir):
             plot_study_pair(name, g, out_dir)
         elif isinstance(g, h5py.Group) and text(g.attrs.get("kind", "")) == TOLERANCES:
             plot_tolerances(name, g, out_dir)
+        elif isinstance(g, h5py.Group) and text(g.attrs.get("kind", "")) == MISALIGNMENTS:
+            plot_misalignments(name, g, out_dir)
+
+
+def misalignment_text(name, value):
+    """A misalignment by its value in the display unit: 'offset +0.2 mm', 'intersecting angle
+    -1 mrad'."""
+    if "angle" in name:
+        return f"{pretty(name)} {value * 1e3:+.3g} mrad"
+    return f"{pretty(name)} {value * 1e3:+.3g} mm"
+
+
+def point_label(g, k):
+    """Grid point k of a misalignment check by its values ('nominal' where all are 0)."""
+    row = np.atleast_1d(g["grid"][int(k)])
+    if not np.any(row):
+        return "nominal"
+    return ", ".join(misalignment_text(n, x) for n, x in zip(parameters(g), row))
+
+
+def panel_layout(g):
+    """(rows, columns) of a misalignment check's panels: the last axis across, the others
+    (first slowest) down."""
+    shape = [int(n) for n in np.atleast_1d(g["shape"][()])] or [1]
+    return int(np.prod(shape[:-1])), shape[-1]
+
+
+def plot_misalignments(name, g, out_dir):
+    """vh_<name>.png of a misalignment (V-H) check: one panel per grid point (the last axis
+    across, the others down), each the gear flank (profile up, face toe to heel across) with
+    the loaded contact pattern at the lightest torque (the largest pressure over the mesh
+    cycle: a marking-compound print; the colours stop at the 98th percentile, edge-contact
+    peaks beyond it are clipped), the outline of the pattern at the design torque (else the
+    largest; cyan), the unloaded contact path (black dots) and the pattern's centre at the
+    design torque (cyan cross), titled with e_0, e_L peak-to-peak and the edge-load share; on
+    the right the V-H chart proper: every grid point's pattern centre at the design torque on
+    one flank outline, joined along each axis, and e_0, e_L peak-to-peak per grid point."""
+    m, torque = design_index(g)
+    light = int(np.argmin(g["torques"][()]))
+    rows, cols = panel_layout(g)
+    pattern = g["pattern"][:, light] / 1e6  # MPa
+    loaded = g["pattern"][:, m] > 0
+    pu, pf = g["pattern_profile_range"][()] * 1e3, g["pattern_face_range"][()] * 1e3
+    path = g["contact_path"][()] * 1e3
+    centre = g["pattern_centre"][:, m] * 1e3
+    e0 = te_length(g, g["unloaded_te_peak_to_peak"][()])
+    eL = te_length(g, g["te_peak_to_peak"][:, m])
+    edge = g["max_edge_share"][:, m]
+    lit = pattern[pattern > 0]
+    vmax = float(np.percentile(lit, 98)) if lit.size else 1.0
+    nu, nf = pattern.shape[1:]
+    fu = pu[0] + (np.arange(nu) + 0.5) * (pu[1] - pu[0]) / nu
+    ff = pf[0] + (np.arange(nf) + 0.5) * (pf[1] - pf[0]) / nf
+    fig = plt.figure(figsize=(3.3 * cols + 6, 2.4 * rows + 1.4))
+    grid = fig.add_gridspec(rows, cols + 2, width_ratios=[1] * cols + [0.06, 1.6])
+    image = None
+    for k in range(rows * cols):
+        ax = fig.add_subplot(grid[k // cols, k % cols])
+        image = ax.imshow(pattern[k], origin="lower", aspect="auto", cmap="magma_r", vmin=0,
+                          vmax=vmax, extent=(pf[0], pf[1], pu[0], pu[1]))
+        if loaded[k].any() and not loaded[k].all():
+            ax.contour(ff, fu, loaded[k].astype(float), levels=[0.5], colors="tab:cyan",
+                       linewidths=1)
+        ax.plot(path[k, :, 1], path[k, :, 0], "k.", ms=1.5)
+        ax.plot(*centre[k, ::-1], "x", color="tab:cyan", ms=8, mew=2)
+        ax.set_xlim(pf), ax.set_ylim(pu)
+        warn = f", edge {edge[k]:.0%}" if edge[k] > 0.005 else ""
+        ax.set_title(f"{point_label(g, k)}\ne0 {e0[k]:.2f}, eL {eL[k]:.2f} um{warn}",
+                     fontsize=8, color="firebrick" if warn else "k")
+        ax.tick_params(labelsize=7)
+        if k // cols == rows - 1:
+            ax.set_xlabel("face [mm] (toe to heel)", fontsize=8)
+        if k % cols == 0:
+            ax.set_ylabel("profile [mm] (root to tip)", fontsize=8)
+    bar = fig.colorbar(image, cax=fig.add_subplot(grid[:, cols]), extend="max")
+    bar.set_label(f"largest pressure over the mesh cycle at {g['torques'][light]:.4g} N m [MPa]")
+    top = max(1, (rows + 1) // 2)
+    chart = fig.add_subplot(grid[:top, cols + 1])
+    chart.add_patch(plt.Rectangle((pf[0], pu[0]), pf[1] - pf[0], pu[1] - pu[0], fill=False,
+                                  color="k", lw=0.8))
+    shape = [int(n) for n in np.atleast_1d(g["shape"][()])] or [1]
+    index = np.arange(int(np.prod(shape))).reshape(shape)
+    for axis, axis_name in enumerate(parameters(g)):
+        for j, line in enumerate(np.moveaxis(index, axis, -1).reshape(-1, shape[axis])):
+            chart.plot(centre[line, 1], centre[line, 0], "-", lw=0.8, color=f"C{axis}",
+                       label=f"along {pretty(axis_name)}" if j == 0 else None)
+    chart.plot(centre[:, 1], centre[:, 0], "k.", ms=4)
+    nominal = [k for k in range(len(centre)) if point_label(g, k) == "nominal"]
+    if nominal:
+        chart.plot(*centre[nominal[0], ::-1], "o", mfc="none", mec="k", ms=9, label="nominal")
+    chart.set_xlim(pf), chart.set_ylim(pu)
+    chart.set_title(f"V-H chart: pattern centres at {g['torques'][m]:.4g} N m", fontsize=9)
+    chart.set_xlabel("face [mm] (toe to heel)", fontsize=8)
+    chart.set_ylabel("profile [mm]", fontsize=8)
+    chart.legend(fontsize=7, loc="best")
+    if rows > 1:
+        bars = fig.add_subplot(grid[top:, cols + 1])
+        x = np.arange(len(e0))
+        bars.bar(x - 0.2, e0, 0.4, label="e0 p-p (unloaded)", color="tab:gray")
+        bars.bar(x + 0.2, eL, 0.4, label=f"eL p-p at {g['torques'][m]:.4g} N m",
+                 color="tab:blue")
+        bars.set_xticks(x)
+        bars.set_xlabel("grid point (the panels in reading order)", fontsize=8)
+        bars.set_ylabel("TE peak-to-peak at the pitch cone [um]", fontsize=8)
+        bars.legend(fontsize=7)
+    fig.suptitle(f"{name}: misalignment (V-H) check - contact pattern on the gear flank at "
+                 f"{g['torques'][light]:.4g} N m, cyan: outline and centre at "
+                 f"{g['torques'][m]:.4g} N m" + (" (design torque)" if torque > 0 else ""))
+    fig.tight_layout()
+    save(fig, os.path.join(out_dir, f"vh_{name}.png"))
 
 
 def feature_label(name):

@@ -59,7 +59,8 @@ def shown(value, units):
 # The pictures in the order of the work: geometry, unloaded TCA, loaded contact and the study's
 # micro-geometry maps, dynamics, trains.
 ORDER = ["profiles.png", "topography.png", "measured.png", "ste.png", "contact_pattern.png",
-         "hunting.png", "stiffness.png", "study_", "tolerances_", "deflection.png", "dynamics.png",
+         "hunting.png", "stiffness.png", "study_", "tolerances_", "vh_", "deflection.png",
+         "dynamics.png",
          "dynamics_spectra.png", "dynamics_time.png", "train_compare.png", "train_",
          "train_spectrogram.png"]
 
@@ -67,7 +68,7 @@ ORDER = ["profiles.png", "topography.png", "measured.png", "ste.png", "contact_p
 def workflow_order(png):
     if png in ORDER:
         return (ORDER.index(png), png)
-    for prefix in ("train_", "study_", "tolerances_"):
+    for prefix in ("train_", "study_", "tolerances_", "vh_"):
         if png.startswith(prefix):
             return (ORDER.index(prefix), png)
     return (len(ORDER), png)
@@ -81,6 +82,8 @@ def caption(png):
         f = plot_study.plot_study
     if f is None and png.startswith("tolerances_"):
         f = plot_study.plot_tolerances
+    if f is None and png.startswith("vh_"):
+        f = plot_study.plot_misalignments
     doc = inspect.getdoc(f) if f else ""
     return " ".join(doc.split()) if doc else png
 
@@ -395,6 +398,29 @@ def study_invalid(g):
              for v in np.nonzero(edge.any(axis=1))[0]]
     listed = "; ".join(where[:8]) + (" …" if len(where) > 8 else "")
     return listed, int(edge.sum()), edge.size
+
+
+def misalignment_rows(name, g):
+    """A misalignment (V-H) check's table: per grid point e_0 and e_L peak-to-peak, the pattern's
+    centre and extent on the gear flank at the design torque (else the largest) and its
+    edge-load share (alarm above 10 %: a tenth of the load on an edge)."""
+    m, _ = plot_study.design_index(g)
+    torque = g["torques"][m]
+    e0 = plot_study.te_length(g, g["unloaded_te_peak_to_peak"][()])
+    eL = plot_study.te_length(g, g["te_peak_to_peak"][:, m])
+    centre = g["pattern_centre"][:, m] * 1e3
+    extent = g["pattern_extent"][:, m] * 1e3
+    edge = g["max_edge_share"][:, m]
+    rows, alarm = [], []
+    for k in range(len(e0)):
+        if edge[k] > 0.1:
+            alarm.append(len(rows))
+        rows.append([name, esc(plot_study.point_label(g, k)), f"{torque:g} N m",
+                     f"{e0[k]:.3g} / {eL[k]:.3g} µm",
+                     f"({centre[k, 1]:+.2f}, {centre[k, 0]:+.2f}) mm",
+                     f"{extent[k, 2]:+.1f} … {extent[k, 3]:+.1f} × {extent[k, 0]:+.1f} … "
+                     f"{extent[k, 1]:+.1f} mm", f"{edge[k]:.1%}"])
+    return rows, alarm
 
 
 def tolerance_rows(name, g):
@@ -767,6 +793,20 @@ def main():
             for pair, g in tolerances:
                 rows += tolerance_rows(pair, g)
             page.table(["pair", "torque", "what", "value"], rows, "tolerances")
+
+        vh_checks = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
+                  if plot_study.text(f["study"][pair].attrs.get("kind", ""))
+                  == plot_study.MISALIGNMENTS]
+        if vh_checks:
+            page.h(2, "Misalignment (V-H) check", "misalignments")
+            rows, alarm = [], []
+            for pair, g in vh_checks:
+                r, a = misalignment_rows(pair, g)
+                alarm += [len(rows) + i for i in a]
+                rows += r
+            page.table(["pair", "assembly", "torque", "e0 / eL p-p",
+                        "pattern centre (face, profile)", "pattern face × profile",
+                        "edge load (alarm > 10 %)"], rows, "misalignments", alarm)
 
         # 2. Pictures
         pngs = sorted((p for p in os.listdir(folder)

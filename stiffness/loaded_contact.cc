@@ -329,7 +329,7 @@ struct Solved
   double              eL = 0, mesh_stiffness = 0, normal_force = 0, lever = 0;
   double              interior_peak = 0, edge_force = 0, edge_radius = 0, edge_z = 0, gap_band = 0;
   std::vector<double> pair_force;
-  std::vector<std::array<double, 4>> cells; ///< pinion tooth, u1, v1, pressure
+  std::vector<std::array<double, 6>> cells; ///< pinion tooth, u1, v1, pressure, u2, v2
   std::string                        failure;
 };
 
@@ -368,7 +368,8 @@ solve_job(const UnloadedTca &t, int n, const std::vector<TcaPosition> &positions
     {
       const ContactCell &cell     = r.cells[j];
       const double       pressure = r.force[Eigen::Index(j)] / (cell.ds * cell.dt);
-      s.cells.push_back({{double(cell.pinion_tooth), cell.u1, cell.v1, pressure}});
+      s.cells.push_back(
+          {{double(cell.pinion_tooth), cell.u1, cell.v1, pressure, cell.u2, cell.v2}});
       if (!cell.flank_edge)
         s.interior_peak = std::max(s.interior_peak, pressure);
     }
@@ -438,10 +439,11 @@ fill_tables(MeshCycleContact &c, const std::vector<Solved> &solved,
       double p_max = 0;
       for (std::size_t j = 0; j < c.cells; ++j)
         {
-          const std::array<double, 4>  unused{{-1.0, 0.0, 0.0, 0.0}};
-          const std::array<double, 4> &cell = j < r.cells.size() ? r.cells[j] : unused;
+          const std::array<double, 6>  unused{{-1.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
+          const std::array<double, 6> &cell = j < r.cells.size() ? r.cells[j] : unused;
           p_max                             = std::max(p_max, cell[3]);
-          c.cell_pressure.insert(c.cell_pressure.end(), cell.begin(), cell.end());
+          c.cell_pressure.insert(c.cell_pressure.end(), cell.begin(), cell.begin() + 4);
+          c.cell_gear.insert(c.cell_gear.end(), cell.begin() + 4, cell.end());
         }
       c.peak_pressure.push_back(p_max);
       c.interior_peak_pressure.push_back(r.interior_peak);
@@ -522,7 +524,7 @@ select_torques(const MeshCycleContact &c, const std::vector<std::size_t> &keep)
   pick(out.loaded_te, c.loaded_te, N), pick(out.mesh_stiffness, c.mesh_stiffness, N);
   pick(out.normal_force, c.normal_force, N), pick(out.lever, c.lever, N);
   pick(out.pair_force, c.pair_force, N * S), pick(out.peak_pressure, c.peak_pressure, N);
-  pick(out.cell_pressure, c.cell_pressure, N * C * 4);
+  pick(out.cell_pressure, c.cell_pressure, N * C * 4), pick(out.cell_gear, c.cell_gear, N * C * 2);
   pick(out.interior_peak_pressure, c.interior_peak_pressure, N);
   pick(out.edge_load_share, c.edge_load_share, N), pick(out.edge_position, c.edge_position, 2 * N);
   pick(out.gap_band, c.gap_band, N);

@@ -175,6 +175,7 @@ struct MeshCycleContact
   std::vector<double> edge_position;
   std::vector<double> gap_band;      ///< of the cell zone fitted to the load [M][N] [m]
   std::vector<double> cell_pressure; ///< pinion tooth (-1 unused), u1, v1, p [M][N][C][4]
+  std::vector<double> cell_gear;     ///< the cells' gear flank parameters u2, v2 [M][N][C][2]
   double              mean_pairs_in_contact = 0; ///< of the unloaded TCA (eps_gamma, conjugate)
   /// Per torque [M]: empty when every position was solved, else why the first position that
   /// failed did (its rows of the tables hold zeros; the other torques are unaffected).

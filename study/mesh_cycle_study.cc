@@ -116,7 +116,9 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
         const FlankPoint a = pinion->flank(c.pinion_tooth, tca_options.side).evaluate(c.u1, c.v1);
         const FlankPoint b = gear->flank(c.gear_tooth, tca_options.side).evaluate(c.u2, c.v2);
         q.pinion_point.push_back(a.position), q.pinion_normal.push_back(a.normal);
+        q.pinion_du.push_back(a.d_du), q.pinion_dv.push_back(a.d_dv);
         q.gear_point.push_back(b.position), q.gear_normal.push_back(b.normal);
+        q.gear_du.push_back(b.d_du), q.gear_dv.push_back(b.d_dv);
       }
   });
 }
@@ -149,8 +151,13 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   const std::vector<ContactCell> &cells = zn.cells();
   const InvoluteGear             &p = pinion->involute(), &g = gear->involute();
   const int                       z1 = p.teeth(), z2 = g.teeth();
-  // The change of a member's deviations at roll angle u and z on its tooth k: value, d/du,
-  // d/dz.
+  // The change of a member's deviations at roll angle u and z on its tooth k (value, d/du,
+  // d/dz) and the derivatives of the variant's whole deviation there.
+  struct Change
+  {
+    NormalDeviation change;
+    double          du = 0, dz = 0;
+  };
   const auto change = [](const InvoluteGear &m, const ToothModifications &now,
                          const std::vector<ToothModifications> &teeth, int k,
                          const ToothModifications &was, double u, double z) {
@@ -163,12 +170,14 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
         a.value += t.value, a.d_dL += t.d_dL, a.d_dz += t.d_dz;
       }
     const NormalDeviation b = evaluate_modifications(was, m.modification_frame(), L, z);
-    return NormalDeviation{a.value - b.value, (a.d_dL - b.d_dL) * m.base_radius, a.d_dz - b.d_dz};
+    return Change{{a.value - b.value, (a.d_dL - b.d_dL) * m.base_radius, a.d_dz - b.d_dz},
+                  a.d_dL * m.base_radius,
+                  a.d_dz};
   };
   // A tooth's turn by its cumulative pitch deviation (InvoluteGear's tooth angles) and the
-  // toothing's runout e along the normal of the zone's tooth's point turned to tooth k:
-  // e . Rz(2 pi j / z) n = (Rz(-2 pi j / z) e) . n, j = k - zone tooth; per member and tooth
-  // once, not per cell.
+  // toothing's runout e, in the member's frame at the zone's tooth's point: turn (e_z x P) and
+  // Rz(-2 pi j / z) e (the runout seen from the zone's tooth, j = k - zone tooth); per member
+  // and tooth once, not per cell.
   struct Rigid
   {
     std::vector<double> turn;   ///< [tooth] [rad]
@@ -192,26 +201,56 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   };
   const Rigid rp    = rigid_terms(p, v.pinion_pitch, v.pinion_runout);
   const Rigid rg    = rigid_terms(g, v.gear_pitch, v.gear_runout);
-  const auto  rigid = [](const Rigid &r, int z, int k, int zone_tooth, const Vec3 &point,
-                        const Vec3 &normal) {
-    return r.turn[std::size_t(k)] * Vec3::UnitZ().cross(point).dot(normal) +
-           r.runout[std::size_t(((k - zone_tooth) % z + z) % z)].dot(normal);
+  const auto  rigid = [](const Rigid &r, int z, int k, int zone_tooth, const Vec3 &point) {
+    return Vec3(r.turn[std::size_t(k)] * Vec3::UnitZ().cross(point) +
+                 r.runout[std::size_t(((k - zone_tooth) % z + z) % z)]);
   };
-  Deviations d;
+  // A member's material moved by w (its frame) at a flank point with normal n and tangents
+  // P_u, P_v: the normal part moves the flank (w . n of material where n points out of it);
+  // the tangential part brings the material of the flank parameters (u, v) - (du, dv) to the
+  // point, and with it the deviation there, to first order value - (d/du du + d/dv dv).
+  const auto moved = [](const Vec3 &w, const Vec3 &n, const Vec3 &Pu, const Vec3 &Pv,
+                        const Change &c) {
+    const Vec3   t = w - w.dot(n) * n;
+    const double a = Pu.dot(Pu), b = Pu.dot(Pv), e = Pv.dot(Pv);
+    const double det = a * e - b * b, ru = Pu.dot(t), rv = Pv.dot(t);
+    const double du = (e * ru - b * rv) / det, dv = (a * rv - b * ru) / det;
+    return w.dot(n) - c.du * du - c.dz * dv;
+  };
+  // The gear axis's tilt: the rotation R = Ry(intersecting) Rx(crossing) about the gear centre
+  // (Assembly::tilted) brings to X the gear's material from C + R^T (X - C): it moved by
+  // (I - R^T)(X - C) (global; exact: its second-order part, 2e-8 m for 1 mrad at a 50 mm
+  // radius, is a fifth of a percent of a light load's approach), in the gear's frame at the
+  // zone's gear angle Rz(psi) (global_to_gear_unrotated).
+  const Eigen::Matrix3d tilt =
+      Eigen::Matrix3d::Identity() - (Eigen::AngleAxisd(v.intersecting_angle, Vec3::UnitY()) *
+                                     Eigen::AngleAxisd(v.crossing_angle, Vec3::UnitX()))
+                                        .toRotationMatrix()
+                                        .transpose();
+  const Vec3   centre = assembly.gear_centre();
+  const bool   tilted = v.crossing_angle != 0 || v.intersecting_angle != 0;
+  const double psi    = zn.position().gear_angle;
+  Deviations   d;
   d.added.resize(Eigen::Index(cells.size()));
   d.pinion_slope.resize(Eigen::Index(cells.size()), 2);
   for (std::size_t j = 0; j < cells.size(); ++j)
     {
-      const ContactCell    &c  = cells[j];
-      const int             tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1;
-      const int             tg = (c.gear_tooth + cycle) % z2;
-      const NormalDeviation dp = change(p, v.pinion, v.pinion_teeth, tp, own.pinion, c.u1, c.v1);
-      const NormalDeviation dg = change(g, v.gear, v.gear_teeth, tg, own.gear, c.u2, c.v2);
-      const auto            i  = Eigen::Index(j);
-      d.added[i]               = dp.value + dg.value +
-                   rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j], q.pinion_normal[j]) +
-                   rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j], q.gear_normal[j]);
-      d.pinion_slope(i, 0) = dp.d_dL, d.pinion_slope(i, 1) = dp.d_dz;
+      const ContactCell &c  = cells[j];
+      const int          tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1;
+      const int          tg = (c.gear_tooth + cycle) % z2;
+      const Change       dp = change(p, v.pinion, v.pinion_teeth, tp, own.pinion, c.u1, c.v1);
+      const Change       dg = change(g, v.gear, v.gear_teeth, tg, own.gear, c.u2, c.v2);
+      Vec3               wg = rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j]);
+      if (tilted)
+        wg += Eigen::AngleAxisd(psi, Vec3::UnitZ()) *
+              assembly.global_to_gear_unrotated_vector(tilt * (c.position - centre));
+      const Vec3 wp = rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j]);
+      // (the gear's material moving along its outward normal opens the gap: - w . n)
+      const auto i = Eigen::Index(j);
+      d.added[i]   = dp.change.value + dg.change.value +
+                   moved(wp, q.pinion_normal[j], q.pinion_du[j], q.pinion_dv[j], dp) +
+                   moved(wg, q.gear_normal[j], q.gear_du[j], q.gear_dv[j], dg);
+      d.pinion_slope(i, 0) = dp.change.d_dL, d.pinion_slope(i, 1) = dp.change.d_dz;
     }
   return d;
 }
@@ -248,7 +287,8 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
   TcaOptions search      = tca_options;
   search.profile_samples = std::min(search.profile_samples, 5);
   search.face_samples    = std::min(search.face_samples, 3);
-  const UnloadedTca own_tca(vp, vg, assembly, search);
+  const UnloadedTca own_tca(vp, vg, assembly.tilted(v.crossing_angle, v.intersecting_angle),
+                            search);
   const int         z1 = pinion->teeth(), z2 = gear->teeth();
   VariantCycle      r;
   r.torques = M, r.positions = CN, r.harmonics = o.harmonics;

@@ -26,6 +26,10 @@ struct PairVariant
   std::vector<ToothModifications> pinion_teeth, gear_teeth; ///< empty, or one per tooth
   std::vector<double>             pinion_pitch, gear_pitch; ///< f_p per tooth [m], or empty
   Runout                          pinion_runout, gear_runout;
+  /// The gear axis turned further about the gear centre (Assembly::tilted; the parallelism
+  /// deviations f_Sigma_beta / L, f_Sigma_delta / L of ISO/TR 10064-3) [rad]: at the cells to
+  /// first order (the gear's material moved by the small rotation), the unloaded TE exact.
+  double crossing_angle = 0, intersecting_angle = 0;
 };
 
 /// One variant's mesh cycles at every torque of the study: tables by torque (M) and position
@@ -97,8 +101,8 @@ public:
   /// members (their own modifications subtracted): the material both members' deviations add
   /// at each cell's flank parameters [m] (modifications and the tooth's own deviations; the
   /// tooth's turn by its cumulative pitch deviation and the toothing's runout, each to first
-  /// order along the flank's normal), and the derivatives of the pinion's modifications by its
-  /// flank parameters (roll angle, z) [m] (FixedZone::solve).
+  /// order along the flank's normal; the gear axis's tilt likewise), and the derivatives of the
+  /// pinion's modifications by its flank parameters (roll angle, z) [m] (FixedZone::solve).
   struct Deviations
   {
     Eigen::VectorXd  added;
@@ -137,11 +141,13 @@ private:
   PairVariant                                   own;
   std::unique_ptr<const UnloadedTca>            tca;
   std::vector<std::unique_ptr<const FixedZone>> zones; ///< [M][N]
-  /// Per zone and cell, each member's flank point and outward normal in its own frame at the
-  /// cell's flank parameters on the zone's tooth (the runout and pitch terms), [M][N].
+  /// Per zone and cell, each member's flank point, outward normal and tangents (d/du, d/dv) in
+  /// its own frame at the cell's flank parameters on the zone's tooth (the rigid motions:
+  /// runout, pitch, tilt), [M][N].
   struct MemberPoints
   {
-    std::vector<Vec3> pinion_point, pinion_normal, gear_point, gear_normal;
+    std::vector<Vec3> pinion_point, pinion_normal, pinion_du, pinion_dv;
+    std::vector<Vec3> gear_point, gear_normal, gear_du, gear_dv;
   };
   std::vector<MemberPoints>      points;
   std::vector<std::vector<char>> warm; ///< [M][N] the active sets to start from (empty: own)

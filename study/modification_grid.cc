@@ -12,20 +12,20 @@ namespace gearkit
 {
 namespace
 {
-const std::vector<std::pair<std::string, double ToothModifications::*>> &
+const GridFields<ToothModifications> &
 fields()
 {
-  static const std::vector<std::pair<std::string, double ToothModifications::*>> f = {
-      {"tip_relief", &ToothModifications::tip_relief},
-      {"tip_relief_length", &ToothModifications::tip_relief_length},
-      {"root_relief", &ToothModifications::root_relief},
-      {"root_relief_length", &ToothModifications::root_relief_length},
-      {"lead_crowning", &ToothModifications::lead_crowning},
-      {"end_relief", &ToothModifications::end_relief},
-      {"end_relief_length", &ToothModifications::end_relief_length},
-      {"profile_crowning", &ToothModifications::profile_crowning},
-      {"profile_slope", &ToothModifications::profile_slope},
-      {"helix_slope", &ToothModifications::helix_slope}};
+  static const GridFields<ToothModifications> f(
+      "modification grid", {{"tip_relief", &ToothModifications::tip_relief},
+                            {"tip_relief_length", &ToothModifications::tip_relief_length},
+                            {"root_relief", &ToothModifications::root_relief},
+                            {"root_relief_length", &ToothModifications::root_relief_length},
+                            {"lead_crowning", &ToothModifications::lead_crowning},
+                            {"end_relief", &ToothModifications::end_relief},
+                            {"end_relief_length", &ToothModifications::end_relief_length},
+                            {"profile_crowning", &ToothModifications::profile_crowning},
+                            {"profile_slope", &ToothModifications::profile_slope},
+                            {"helix_slope", &ToothModifications::helix_slope}});
   return f;
 }
 
@@ -58,71 +58,21 @@ append_torques(VariantCycle &all, VariantCycle more)
 const std::vector<std::string> &
 modification_field_names()
 {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    for (const auto &f : fields())
-      n.push_back(f.first);
-    return n;
-  }();
-  return names;
+  return fields().names();
 }
 
 double ToothModifications::       *
 modification_field(const std::string &name)
 {
-  for (const auto &[n, field] : fields())
-    if (n == name)
-      return field;
-  std::string known;
-  for (const std::string &n : modification_field_names())
-    known += (known.empty() ? "" : ", ") + n;
-  throw InputError("modification grid: '" + name +
-                   "' is not a modification parameter; known: " + known);
+  return fields().field(name);
 }
 
 ModificationGrid::ModificationGrid(PairVariant base_, GridMembers members,
                                    std::vector<ModificationAxis> axes, std::size_t most)
     : base(std::move(base_))
     , on(members)
-    , grid_axes(std::move(axes))
+    , grid(std::move(axes), modification_field_names(), "modification grid", most)
 {
-  double variants = 1;
-  for (std::size_t k = 0; k < grid_axes.size(); ++k)
-    {
-      const ModificationAxis &a = grid_axes[k];
-      modification_field(a.name); // known
-      for (std::size_t j = 0; j < k; ++j)
-        if (grid_axes[j].name == a.name)
-          throw InputError("modification grid: the axis " + a.name + " is given twice");
-      if (a.values.empty())
-        throw InputError("modification grid: the axis " + a.name + " has no values");
-      for (const double v : a.values)
-        if (!std::isfinite(v))
-          throw InputError("modification grid: the axis " + a.name + " has a non-finite value");
-      variants *= double(a.values.size());
-    }
-  if (variants > double(most))
-    throw InputError("modification grid: " + std::to_string(std::llround(variants)) +
-                     " variants exceed the most allowed (" + std::to_string(most) +
-                     "); use fewer values per axis");
-}
-
-std::size_t
-ModificationGrid::size() const
-{
-  std::size_t n = 1;
-  for (const ModificationAxis &a : grid_axes)
-    n *= a.values.size();
-  return n;
-}
-
-std::vector<std::size_t>
-ModificationGrid::index(std::size_t g) const
-{
-  std::vector<std::size_t> at(grid_axes.size());
-  for (std::size_t k = grid_axes.size(); k-- > 0;)
-    at[k] = g % grid_axes[k].values.size(), g /= grid_axes[k].values.size();
-  return at;
 }
 
 PairVariant
@@ -130,10 +80,10 @@ ModificationGrid::variant(std::size_t g) const
 {
   PairVariant                    v  = base;
   const std::vector<std::size_t> at = index(g);
-  for (std::size_t k = 0; k < grid_axes.size(); ++k)
+  for (std::size_t k = 0; k < grid.axes().size(); ++k)
     {
-      const auto   field = modification_field(grid_axes[k].name);
-      const double value = grid_axes[k].values[at[k]];
+      const auto   field = modification_field(grid.axes()[k].name);
+      const double value = grid.axes()[k].values[at[k]];
       if (on != GridMembers::gear)
         v.pinion.*field = value;
       if (on != GridMembers::pinion)

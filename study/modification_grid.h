@@ -6,6 +6,7 @@
 #pragma once
 
 #include "study/mesh_cycle_study.h"
+#include "study/parameter_grid.h"
 
 #include <functional>
 #include <mpi.h>
@@ -24,11 +25,8 @@ modification_field_names();
 double ToothModifications::       *
 modification_field(const std::string &name);
 
-struct ModificationAxis
-{
-  std::string         name;   ///< a modification_field_names entry
-  std::vector<double> values; ///< [m], at least one
-};
+/// An axis of a modification grid: a modification_field_names entry and its values [m].
+using ModificationAxis = GridAxis;
 
 enum class GridMembers
 {
@@ -46,16 +44,27 @@ public:
                    std::size_t most = 100000);
   /// Variants: the product of the axes' sizes (1 without axes: the base).
   std::size_t
-  size() const;
+  size() const
+  {
+    return grid.size();
+  }
   /// Variant g: the base with axis k at its value index(g)[k], the first axis slowest.
   PairVariant
   variant(std::size_t g) const;
   std::vector<std::size_t>
-  index(std::size_t g) const;
+  index(std::size_t g) const
+  {
+    return grid.index(g);
+  }
+  const ParameterGrid &
+  parameters() const
+  {
+    return grid;
+  }
   const std::vector<ModificationAxis> &
   axes() const
   {
-    return grid_axes;
+    return grid.axes();
   }
   GridMembers
   members() const
@@ -64,9 +73,9 @@ public:
   }
 
 private:
-  PairVariant                   base;
-  GridMembers                   on;
-  std::vector<ModificationAxis> grid_axes;
+  PairVariant   base;
+  GridMembers   on;
+  ParameterGrid grid;
 };
 
 /// Variants 0 .. count - 1 (variant(g): deterministic, thread-safe) at every torque of

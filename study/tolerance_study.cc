@@ -19,6 +19,7 @@ tolerance_feature_names()
       for (const char *f : {"cumulative_pitch", "runout", "profile_slope_rms", "profile_form_rms",
                             "helix_slope_rms", "helix_form_rms"})
         n.push_back(std::string(member) + f);
+    n.insert(n.end(), {"assembly_crossing", "assembly_intersecting"});
     return n;
   }();
   return names;
@@ -89,6 +90,22 @@ draw_tolerance_sample(const InvoluteGear &pinion, const InvoluteGear &gear, Flan
               s.variant.pinion_pitch, s.variant.pinion_runout, s.features);
   draw_member(gear, side, o.gear_class, o.distribution, rng, s.variant.gear_teeth,
               s.variant.gear_pitch, s.variant.gear_runout, s.features);
+  // The assembly (after the members: their draws do not depend on it): ISO/TR 10064-3's
+  // parallelism of the axes from F_beta of the gear's class at its face width.
+  const bool          by_gear = o.gear_class > 0;
+  const InvoluteGear &m       = by_gear ? gear : pinion;
+  const int           cls     = by_gear ? o.gear_class : o.pinion_class;
+  const double        b       = m.data().face_width;
+  if (o.assembly && cls > 0)
+    {
+      const double F_beta =
+          iso1328_tolerances(cls, 2 * m.reference_radius, m.data().normal_module, b, m.data().teeth)
+              .helix_total;
+      s.variant.crossing_angle     = draw_within(0.5 * F_beta / b, o.distribution, rng);
+      s.variant.intersecting_angle = draw_within(F_beta / b, o.distribution, rng);
+    }
+  s.features.insert(s.features.end(), {b * std::abs(s.variant.crossing_angle),
+                                       b * std::abs(s.variant.intersecting_angle)});
   return s;
 }
 

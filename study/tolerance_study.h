@@ -22,12 +22,19 @@ struct ToleranceSampling
   int                   pinion_class = 0, gear_class = 0;
   ToleranceDistribution distribution = ToleranceDistribution::normal;
   std::uint64_t         seed         = 1;
+  /// Also draw the gear axis's parallelism deviations within ISO/TR 10064-3's recommendation
+  /// for the gear's class (the pinion's where the gear has none): out of the plane of the axes
+  /// f_Sigma_beta = 0.5 (L / b) F_beta, in it f_Sigma_delta = (L / b) F_beta, as angles
+  /// 0.5 F_beta / b and F_beta / b whatever the bearing span L.
+  bool assembly = true;
 };
 
 /// The features a sample is described by (its deviations summed up per member), in this order:
 /// cumulative pitch (max - min of the pitch positions), runout eccentricity, and the RMS over
 /// the teeth of profile slope, profile form, helix slope and helix form (f_Halpha, f_falpha,
-/// f_Hbeta, f_fbeta) [m]; "pinion_" and "gear_" before each name.
+/// f_Hbeta, f_fbeta) [m]; "pinion_" and "gear_" before each name; then the assembly's crossing
+/// and intersecting angle times the gear's face width, unsigned (assembly_crossing,
+/// assembly_intersecting) [m].
 const std::vector<std::string> &
 tolerance_feature_names();
 
@@ -41,9 +48,9 @@ struct ToleranceSample
 /// the working side drawn within the members' classes (draw_gear_deviations; the profile form as
 /// one wave of a sine over the profile evaluation range, f_falpha its peak-to-peak; the helix
 /// form as a lead crowning of f_fbeta), the toothings' spacing and runout as measured about the
-/// axis. Each sample draws from its own stream, seeded by (seed, index): the same sample
-/// whatever order, thread or process draws it. Throws InputError for a class outside 0..11 and
-/// for gears outside ISO 1328-1's range.
+/// axis; with sampling.assembly the gear axis's tilt. Each sample draws from its own stream, seeded
+/// by (seed, index): the same sample whatever order, thread or process draws it. Throws InputError
+/// for a class outside 0..11 and for gears outside ISO 1328-1's range.
 ToleranceSample
 draw_tolerance_sample(const InvoluteGear &pinion, const InvoluteGear &gear, FlankSide side,
                       const ToleranceSampling &sampling, const PairVariant &base,

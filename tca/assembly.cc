@@ -31,6 +31,17 @@ Assembly::Assembly(double a, int z2, const Misalignment &m)
 {
 }
 
+Assembly
+Assembly::tilted(double crossing, double intersecting) const
+{
+  Assembly a = *this;
+  a.orientation =
+      (Eigen::AngleAxisd(intersecting, Vec3::UnitY()) * Eigen::AngleAxisd(crossing, Vec3::UnitX()))
+          .toRotationMatrix() *
+      orientation;
+  return a;
+}
+
 double
 operating_centre_distance(double a, const Misalignment &m)
 {

@@ -42,6 +42,12 @@ public:
   static Assembly
   bevel(double shaft_angle, double pinion_pitch_angle, int gear_teeth, const Misalignment &m = {});
 
+  /// The same assembly with the gear axis turned further about the gear centre: by `crossing`
+  /// about the global x axis, then by `intersecting` about y (Misalignment's angles; for an
+  /// aligned parallel-axis assembly this is Assembly(a, z2, {crossing, intersecting})).
+  Assembly
+  tilted(double crossing, double intersecting) const;
+
   /// Global position of a pinion-frame point at pinion rotation phi.
   Vec3
   pinion_to_global(const Vec3 &x, double phi) const;

@@ -306,3 +306,67 @@ def test_tolerance_picture_and_report(tmp_path):
     assert drives[3].startswith("pinion F_p: SRC +0.99"), drives
     # the flagged sample is in the page's warnings
     assert 'id="warnings"' in page and "samples 3" in page
+
+
+def write_misalignments(path, pair="pair"):
+    """A misalignment check to the schema: a 3 x 2 grid over offset [m] and pinion axial shift
+    [m] at 20 and 200 N m whose pattern (a 16 x 40 raster of the gear flank) is a blob whose
+    centre moves along the face with the offset (+10 mm per mm) and along the profile with the
+    shift; grid point 4 carries 20 % of its load on an edge. Returns the path and the centres."""
+    offsets, shifts = np.array([-0.2e-3, 0.0, 0.2e-3]), np.array([0.0, 0.2e-3])
+    grid = np.array([(o, s) for o in offsets for s in shifts])
+    G, M, U, V, T, N = len(grid), 2, 16, 40, 12, 8
+    pu, pf = np.array([-2e-3, 2e-3]), np.array([-9e-3, 9e-3])
+    u = pu[0] + (np.arange(U) + 0.5) * (pu[1] - pu[0]) / U
+    v = pf[0] + (np.arange(V) + 0.5) * (pf[1] - pf[0]) / V
+    pattern = np.zeros((G, M, U, V))
+    centre = np.zeros((G, M, 2))
+    for k, (o, s) in enumerate(grid):
+        c = np.array([5 * s, 10 * o])  # (profile, face) [m]
+        for m in range(M):
+            blob = np.exp(-((u[:, None] - c[0]) / 1e-3) ** 2 - ((v[None, :] - c[1]) / 3e-3) ** 2)
+            pattern[k, m] = np.where(blob > 0.05, (m + 1) * 1e9 * blob, 0.0)
+            centre[k, m] = c
+    with h5py.File(path, "w") as f:
+        g = f.create_group(f"study/{pair}")
+        g.attrs["kind"] = "misalignments"
+        g.attrs["parameters"] = "offset,pinion_axial_shift"
+        g["axes/offset"], g["axes/pinion_axial_shift"] = offsets, shifts
+        g["shape"], g["grid"] = np.array([3, 2]), grid
+        g["torques"], g["design_torque"] = np.array([20.0, 200.0]), 200.0
+        g["pitch_radius"] = PITCH_RADIUS
+        g["pattern"], g["pattern_centre"] = pattern, centre
+        g["pattern_extent"] = np.concatenate([centre - 1e-3, centre + 1e-3], axis=2)[..., [0, 2, 1, 3]]
+        g["pattern_profile_range"], g["pattern_face_range"] = pu, pf
+        g["contact_path"] = np.zeros((G, T, 2))
+        g["unloaded_te_peak_to_peak"] = 1e-5 * (1 + np.abs(grid).sum(axis=1) / 1e-4)
+        g["te_peak_to_peak"] = np.full((G, M), 2e-5)
+        edge = np.zeros((G, M))
+        edge[4] = 0.2
+        g["max_edge_share"] = edge
+        g["max_pressure"] = pattern.max(axis=(2, 3))
+    return path, centre
+
+
+def test_misalignment_picture_and_report(tmp_path):
+    results, centre = write_misalignments(str(tmp_path / "results.h5"))
+    with h5py.File(results, "r") as f:
+        plot_study.plot_study(f["study"], str(tmp_path))
+    width, height = is_png(os.path.join(str(tmp_path), "vh_pair.png"))
+    assert 1000 < width < 3500 and 500 < height < 3000
+    assert os.path.getsize(os.path.join(str(tmp_path), "vh_pair.png")) > 50_000
+    subprocess.run([sys.executable, os.path.join(SCRIPTS, "report.py"), results], check=True,
+                   capture_output=True)
+    with open(tmp_path / "report.html", encoding="utf-8") as fh:
+        page = fh.read()
+    assert 'alt="vh_pair.png"' in page
+    rows = table_rows(page, "misalignments")
+    assert len(rows) == 6
+    # grid point 2 is the nominal one (offset 0, shift 0); rows in grid order, at 200 N m
+    assert rows[2][1] == "nominal" and rows[5][1] == "offset +0.2 mm, pinion axial shift +0.2 mm"
+    assert rows[0][2] == "200 N m"
+    profile, face = centre[5, 1] * 1e3
+    assert rows[5][4] == f"({face:+.2f}, {profile:+.2f}) mm", rows[5]
+    assert rows[4][6] == "20.0%"
+    assert re.search(r'<tr class="alarm">(?:(?!</tr>).)*offset \+0\.2 mm, pinion axial shift \+0 mm',
+                     page, re.S)

@@ -14,8 +14,8 @@ import numpy as np
 out = sys.argv[1]
 with h5py.File(os.path.join(out, "results.h5"), "r") as f:
     g = f["study"]["seed"]
-    assert g.attrs["kind"] in ("misalignments", b"misalignments")
-    names = [n.strip() for n in str(g.attrs["parameters"]).split(",")]
+    assert g.attrs.get("kind") in ("misalignments", b"misalignments")
+    names = [n.strip() for n in str(g.attrs.get("parameters")).split(",")]
     assert names == ["offset", "pinion_axial_shift"], names
     shape = tuple(int(n) for n in g["shape"][()])
     grid = g["grid"][()]

@@ -33,6 +33,7 @@ from plot_results import legend_below, save  # noqa: E402  (the same atomic writ
 KIND = "microgeometry map"
 TOLERANCES = "tolerances"
 MISALIGNMENTS = "misalignments"
+EDGE_ALARM = 0.1  # a tenth of the load on a flank edge: the misalignment check's alarm
 INVALID = "the fixed contact zone was too narrow for some variants: their results are not valid"
 
 
@@ -199,7 +200,8 @@ def plot_misalignments(name, g, out_dir):
     cycle: a marking-compound print; the colours stop at the 98th percentile, edge-contact
     peaks beyond it are clipped), the outline of the pattern at the design torque (else the
     largest; cyan), the unloaded contact path (black dots) and the pattern's centre at the
-    design torque (cyan cross), titled with e_0, e_L peak-to-peak and the edge-load share; on
+    design torque (cyan cross), titled with e_0, e_L peak-to-peak and the edge-load share (red
+    above a tenth of the load); on
     the right the V-H chart proper: every grid point's pattern centre at the design torque on
     one flank outline, joined along each axis, and e_0, e_L peak-to-peak per grid point."""
     m, torque = design_index(g)
@@ -231,9 +233,9 @@ def plot_misalignments(name, g, out_dir):
         ax.plot(path[k, :, 1], path[k, :, 0], "k.", ms=1.5)
         ax.plot(*centre[k, ::-1], "x", color="tab:cyan", ms=8, mew=2)
         ax.set_xlim(pf), ax.set_ylim(pu)
-        warn = f", edge {edge[k]:.0%}" if edge[k] > 0.005 else ""
-        ax.set_title(f"{point_label(g, k)}\ne0 {e0[k]:.2f}, eL {eL[k]:.2f} um{warn}",
-                     fontsize=8, color="firebrick" if warn else "k")
+        ax.set_title(f"{point_label(g, k)}\ne0 {e0[k]:.2f} um; at {g['torques'][m]:.4g} N m: "
+                     f"eL {eL[k]:.2f} um, edge {edge[k]:.0%}", fontsize=8,
+                     color="firebrick" if edge[k] > EDGE_ALARM else "k")
         ax.tick_params(labelsize=7)
         if k // cols == rows - 1:
             ax.set_xlabel("face [mm] (toe to heel)", fontsize=8)

@@ -413,7 +413,7 @@ def misalignment_rows(name, g):
     edge = g["max_edge_share"][:, m]
     rows, alarm = [], []
     for k in range(len(e0)):
-        if edge[k] > 0.1:
+        if edge[k] > plot_study.EDGE_ALARM:
             alarm.append(len(rows))
         rows.append([name, esc(plot_study.point_label(g, k)), f"{torque:g} N m",
                      f"{e0[k]:.3g} / {eL[k]:.3g} µm",

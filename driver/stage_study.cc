@@ -4,6 +4,7 @@
 // best variant per torque and the classical tip relief F_bt / (b c_gamma) to compare with. A
 // tolerance Monte Carlo: samples of the design within ISO 1328-1 classes over a pinion
 // revolution, the design alone, percentiles, their convergence and the sensitivities.
+#include "base/parallel.h"
 #include "base/progress.h"
 #include "driver/pair_contact.h"
 #include "driver/stages.h"
@@ -250,14 +251,15 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
                std::ostream &log)
 {
   const ModificationGrid design_grid(scene_design(in), s.members, s.axes);
-  const PairVariant      design = design_grid.variant(0);
-  MeshCycleStudyOptions &o      = in.options;
-  o.cycles                      = s.mesh_cycles > 0 ? s.mesh_cycles : pair.pinion.teeth;
-  const std::size_t S = std::size_t(s.samples), M = o.torques.size();
-  const auto        draw = [&](std::size_t k) {
-    return draw_tolerance_sample(in.pinion->involute(), in.gear->involute(), in.tca.side,
-                                        s.sampling, design, k);
-  };
+  const PairVariant      design  = design_grid.variant(0);
+  MeshCycleStudyOptions &o       = in.options;
+  o.cycles                       = s.mesh_cycles > 0 ? s.mesh_cycles : pair.pinion.teeth;
+  const std::size_t            S = std::size_t(s.samples), M = o.torques.size();
+  std::vector<ToleranceSample> drawn(S); // each from its own stream: the same on any process
+  parallel_for(S, o.threads, [&](std::size_t k) {
+    drawn[k] = draw_tolerance_sample(in.pinion->involute(), in.gear->involute(), in.tca.side,
+                                     s.sampling, design, k);
+  });
   log << "  " << pair.name << ": " << S << " samples (ISO 1328-1 classes "
       << s.sampling.pinion_class << " / " << s.sampling.gear_class << ") x " << M << " torques x "
       << o.cycles << " mesh cycles x " << o.positions << " positions on one compliance"
@@ -268,8 +270,9 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
   // the samples, then the design itself (the nominal run)
   const std::vector<VariantCycle> r = evaluate_variants(
       in.pinion, in.gear, lp.members.assembly, in.tca, lp.options, lp.pinion_compliance,
-      lp.gear_compliance, o, S + 1, [&](std::size_t k) { return k < S ? draw(k).variant : design; },
-      MPI_COMM_WORLD, [&] { progress.advance(); }, &design);
+      lp.gear_compliance, o, S + 1,
+      [&](std::size_t k) { return k < S ? drawn[k].variant : design; }, MPI_COMM_WORLD,
+      [&] { progress.advance(); }, &design);
 
   g.attribute("kind", "tolerances");
   g.attribute("distribution",
@@ -285,10 +288,10 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
   g.write("pitch_radius", lp.members.pitch_radius);
   std::vector<std::vector<double>> features;
   std::vector<double>              flat;
-  for (std::size_t k = 0; k < S; ++k)
+  for (const ToleranceSample &t : drawn)
     {
-      features.push_back(draw(k).features);
-      flat.insert(flat.end(), features.back().begin(), features.back().end());
+      features.push_back(t.features);
+      flat.insert(flat.end(), t.features.begin(), t.features.end());
     }
   const std::size_t F = tolerance_feature_names().size();
   g.write("features", flat, {S, F});

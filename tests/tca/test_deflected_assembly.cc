@@ -119,3 +119,31 @@ TEST(DeflectedAssembly, AStaticMotionOfTheGearBecomesAParallelAxisMisalignment)
                                     std::make_shared<InvoluteMemberFlanks>(gear), assembly,
                                     Assembly(a, gear->teeth(), m), motion, taken, "helical");
 }
+
+TEST(DeflectedAssembly, TiltingAnAlignedAssemblyIsAssemblingItWithTheAngles)
+{
+  // Assembly::tilted on aligned parallel axes places every gear point where the assembly built
+  // with those crossing and intersecting angles does; on a bevel pair it turns the gear about
+  // its frame's origin (the apex) and keeps the pinion.
+  const double   a = 91.5e-3, beta = 0.47e-3, delta = -0.94e-3;
+  const Assembly tilted = Assembly(a, 24).tilted(beta, delta);
+  Misalignment   m;
+  m.crossing_angle = beta, m.intersecting_angle = delta;
+  const Assembly built(a, 24, m);
+  for (const Vec3 &x : {Vec3(40e-3, 5e-3, 7e-3), Vec3(-30e-3, 20e-3, -7e-3), Vec3(0, 0, 0)})
+    for (const double psi : {0.0, 0.3, -1.2})
+      {
+        EXPECT_LT((tilted.gear_to_global(x, psi) - built.gear_to_global(x, psi)).norm(), 1e-15);
+        EXPECT_LT((tilted.pinion_to_global(x, psi) - built.pinion_to_global(x, psi)).norm(), 1e-15);
+      }
+  const Assembly        bevel  = Assembly::bevel(pi / 2, 0.86, 47);
+  const Assembly        turned = bevel.tilted(beta, delta);
+  const Vec3            x(20e-3, 3e-3, 50e-3);
+  const Vec3            X = bevel.gear_to_global(x, 0.2), Y = turned.gear_to_global(x, 0.2);
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(delta, Vec3::UnitY()) * Eigen::AngleAxisd(beta, Vec3::UnitX()))
+          .toRotationMatrix();
+  EXPECT_LT((Y - (bevel.gear_centre() + R * (X - bevel.gear_centre()))).norm(), 1e-15);
+  EXPECT_LT(bevel.gear_centre().norm(), 1e-15); // the apex
+  EXPECT_LT((turned.pinion_to_global(x, 0.2) - bevel.pinion_to_global(x, 0.2)).norm(), 1e-15);
+}

@@ -773,40 +773,28 @@ def main():
                      + ("" if not bad else " — not: " + esc(", ".join(bad[:10])))])
         page.table(["stage", "what", "value"], rows, "key")
 
-        # 1b. Micro-geometry maps: the best design per torque
-        study = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
-                 if plot_study.text(f["study"][pair].attrs.get("kind", "")) == plot_study.KIND]
-        if study:
-            page.h(2, "Micro-geometry map", "study")
+        # 1b. The studies: micro-geometry maps (the best design per torque), tolerance Monte
+        # Carlo runs, misalignment (V-H) checks
+        for kind, title, anchor, header, table_rows in (
+                (plot_study.KIND, "Micro-geometry map", "study",
+                 ["pair", "torque", "what", "value"], study_rows),
+                (plot_study.TOLERANCES, "Tolerance Monte Carlo", "tolerances",
+                 ["pair", "torque", "what", "value"],
+                 lambda pair, g: (tolerance_rows(pair, g), [])),
+                (plot_study.MISALIGNMENTS, "Misalignment (V-H) check", "misalignments",
+                 ["pair", "assembly", "torque", "e0 / eL p-p", "pattern centre (face, profile)",
+                  "pattern face × profile", "edge load (alarm > 10 %)"], misalignment_rows)):
+            studies = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
+                       if plot_study.text(f["study"][pair].attrs.get("kind", "")) == kind]
+            if not studies:
+                continue
+            page.h(2, title, anchor)
             rows, alarm = [], []
-            for pair, g in study:
-                r, a = study_rows(pair, g)
+            for pair, g in studies:
+                r, a = table_rows(pair, g)
                 alarm += [len(rows) + i for i in a]
                 rows += r
-            page.table(["pair", "torque", "what", "value"], rows, "study", alarm)
-        tolerances = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
-                      if plot_study.text(f["study"][pair].attrs.get("kind", ""))
-                      == plot_study.TOLERANCES]
-        if tolerances:
-            page.h(2, "Tolerance Monte Carlo", "tolerances")
-            rows = []
-            for pair, g in tolerances:
-                rows += tolerance_rows(pair, g)
-            page.table(["pair", "torque", "what", "value"], rows, "tolerances")
-
-        vh_checks = [(pair, f["study"][pair]) for pair in (f["study"] if "study" in f else [])
-                  if plot_study.text(f["study"][pair].attrs.get("kind", ""))
-                  == plot_study.MISALIGNMENTS]
-        if vh_checks:
-            page.h(2, "Misalignment (V-H) check", "misalignments")
-            rows, alarm = [], []
-            for pair, g in vh_checks:
-                r, a = misalignment_rows(pair, g)
-                alarm += [len(rows) + i for i in a]
-                rows += r
-            page.table(["pair", "assembly", "torque", "e0 / eL p-p",
-                        "pattern centre (face, profile)", "pattern face × profile",
-                        "edge load (alarm > 10 %)"], rows, "misalignments", alarm)
+            page.table(header, rows, anchor, alarm)
 
         # 2. Pictures
         pngs = sorted((p for p in os.listdir(folder)

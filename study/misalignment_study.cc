@@ -105,7 +105,17 @@ misaligned_mesh(std::shared_ptr<const MemberFlanks> pinion,
   if (o.positions < 4 || o.profile_bins < 1 || o.face_bins < 1)
     throw InputError("misalignment check: at least 4 positions and one bin each way");
   const FlankDomain domain = gear->flank(0, tca_options.side).domain();
-  const UnloadedTca tca(pinion, gear, assembly, tca_options);
+  // Members whose teeth are all alike repeat every mesh cycle: the unloaded TCA over one.
+  const auto alike = [](const MemberFlanks &m) {
+    for (int k = 0; k < m.teeth(); ++k)
+      if (m.flank_class(k) != 0)
+        return false;
+    return true;
+  };
+  TcaOptions once = tca_options;
+  if (alike(*pinion) && alike(*gear))
+    once.mesh_cycles = 1;
+  const UnloadedTca tca(pinion, gear, assembly, once);
 
   // 1. Unloaded: e_0 over the TCA's positions and the leading pair's path on the gear flank.
   MisalignedMesh  r;

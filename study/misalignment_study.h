@@ -41,8 +41,9 @@ struct MisalignmentStudyOptions
 /// One grid point: the pair in one misaligned assembly.
 struct MisalignedMesh
 {
-  /// Unloaded TE over the TCA's positions (its options: positions per mesh cycle, cycles) and
-  /// its peak-to-peak [rad, pinion]; the pinion angles of those positions [rad].
+  /// Unloaded TE over the TCA's positions (its options: positions per mesh cycle, cycles; one
+  /// cycle where every tooth of both members is alike: the others repeat it) and its
+  /// peak-to-peak [rad, pinion]; the pinion angles of those positions [rad].
   std::vector<double> unloaded_te, tca_pinion_angle;
   double              unloaded_peak_to_peak = 0;
   /// The unloaded contact path on the gear flank: the leading pair's contact at each TCA

@@ -397,10 +397,11 @@ run_misalignments(const Scene &scene, const PairScene &pair, const StudyScene &s
         }
       catch (const InputError &e)
         {
-          std::string at;
+          const std::vector<std::size_t> index = grid.index(k);
+          std::string                    at;
           for (std::size_t j = 0; j < grid.axes().size(); ++j)
             at += (at.empty() ? "" : ", ") + grid.axes()[j].name + " " +
-                  std::to_string(grid.axes()[j].values[grid.index(k)[j]]);
+                  std::to_string(grid.axes()[j].values[index[j]]);
           throw InputError("Study/" + pair.name + " (" + at + " [m, rad]): " + e.what());
         }
       progress.advance();

@@ -78,6 +78,15 @@ MemberFlanks::flank_class(int tooth) const
   return tooth;
 }
 
+bool
+MemberFlanks::teeth_alike() const
+{
+  for (int k = 0; k < teeth(); ++k)
+    if (flank_class(k) != 0)
+      return false;
+  return true;
+}
+
 int
 InvoluteMemberFlanks::flank_class(int tooth) const
 {

@@ -43,6 +43,9 @@ public:
   /// default: every tooth its own class (the tooth's index).
   virtual int
   flank_class(int tooth) const;
+  /// Every tooth of one class (0): a contact, or a mesh cycle, computed once serves all.
+  bool
+  teeth_alike() const;
 
 protected:
   /// Implementations add their flanks in the constructor.

@@ -87,12 +87,11 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
     throw InputError("mesh cycle study: at least one mesh cycle (got " + std::to_string(o.cycles) +
                      ")");
   for (const InvoluteMemberFlanks *m : {pinion.get(), gear.get()})
-    for (int k = 0; k < m->teeth(); ++k)
-      if (m->flank_class(k) != 0)
-        throw InputError("mesh cycle study: the members' teeth must be alike (no pitch "
-                         "deviations, runout, per-tooth deviations, eccentric or chipped teeth "
-                         "on " +
-                         m->involute().data().name + "): the variants carry those");
+    if (!m->teeth_alike())
+      throw InputError("mesh cycle study: the members' teeth must be alike (no pitch "
+                       "deviations, runout, per-tooth deviations, eccentric or chipped teeth "
+                       "on " +
+                       m->involute().data().name + "): the variants carry those");
   own.pinion = working_side(pinion->involute().data(), tca_options.side);
   own.gear   = working_side(gear->involute().data(), tca_options.side);
   tca        = std::make_unique<const UnloadedTca>(pinion, gear, assembly, tca_options);

@@ -105,15 +105,10 @@ misaligned_mesh(std::shared_ptr<const MemberFlanks> pinion,
   if (o.positions < 4 || o.profile_bins < 1 || o.face_bins < 1)
     throw InputError("misalignment check: at least 4 positions and one bin each way");
   const FlankDomain domain = gear->flank(0, tca_options.side).domain();
-  // Members whose teeth are all alike repeat every mesh cycle: the unloaded TCA over one.
-  const auto alike = [](const MemberFlanks &m) {
-    for (int k = 0; k < m.teeth(); ++k)
-      if (m.flank_class(k) != 0)
-        return false;
-    return true;
-  };
+  // Members whose teeth are all alike (involute ones) repeat every mesh cycle: the unloaded
+  // TCA over one. (Spiral bevel members count each tooth as its own class: the TCA's cycles.)
   TcaOptions once = tca_options;
-  if (alike(*pinion) && alike(*gear))
+  if (pinion->teeth_alike() && gear->teeth_alike())
     once.mesh_cycles = 1;
   const UnloadedTca tca(pinion, gear, assembly, once);
 
@@ -129,8 +124,7 @@ misaligned_mesh(std::shared_ptr<const MemberFlanks> pinion,
       if (p.leading < 0)
         throw InputError("misalignment check: no pair touches at pinion angle " +
                          std::to_string(p.pinion_angle) +
-                         " rad: the misalignment separates "
-                         "the flanks");
+                         " rad: the misalignment separates the flanks");
       const PairContact &c = p.pairs[std::size_t(p.leading)];
       r.path.insert(r.path.end(), {c.u2, c.v2});
       r.path_centre[0] += c.u2 / double(unloaded.positions.size());

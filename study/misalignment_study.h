@@ -42,7 +42,7 @@ struct MisalignmentStudyOptions
 struct MisalignedMesh
 {
   /// Unloaded TE over the TCA's positions (its options: positions per mesh cycle, cycles; one
-  /// cycle where every tooth of both members is alike: the others repeat it) and its
+  /// cycle where every tooth of both members is alike, MemberFlanks::teeth_alike) and its
   /// peak-to-peak [rad, pinion]; the pinion angles of those positions [rad].
   std::vector<double> unloaded_te, tca_pinion_angle;
   double              unloaded_peak_to_peak = 0;

@@ -11,6 +11,162 @@
 
 namespace gearkit
 {
+namespace
+{
+using blas_int = dealii::types::blas_int;
+
+const std::string not_positive_definite =
+    "contact solver: the compliance matrix is not positive definite";
+} // namespace
+
+ActiveSetFactor::ActiveSetFactor(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells)
+{
+  if (!factorise(matrix, std::move(cells)))
+    throw InputError(not_positive_definite);
+}
+
+void
+ActiveSetFactor::reserve(Eigen::Index m)
+{
+  if (m <= L.rows())
+    return;
+  const Eigen::Index n = size(), room = std::max(m, L.rows() + L.rows() / 2 + 16);
+  Eigen::MatrixXd    bigger(room, room);
+  bigger.topLeftCorner(n, n) = L.topLeftCorner(n, n);
+  L.swap(bigger);
+}
+
+bool
+ActiveSetFactor::factorise(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells)
+{
+  order                = std::move(cells);
+  const Eigen::Index m = size();
+  if (L.rows() < m)
+    L.resize(m + m / 4 + 16, m + m / 4 + 16);
+  for (Eigen::Index b = 0; b < m; ++b)
+    {
+      const double *column = matrix.data() + order[std::size_t(b)] * matrix.rows();
+      for (Eigen::Index a = 0; a < b; ++a)
+        L(a, b) = 0;
+      for (Eigen::Index a = b; a < m; ++a)
+        L(a, b) = column[order[std::size_t(a)]];
+    }
+  // LAPACK's Cholesky factorisation (OpenBLAS's kernels for this processor)
+  const blas_int size = blas_int(m), lda = blas_int(L.rows());
+  blas_int       info = 0;
+  if (m > 0)
+    dealii::potrf("L", &size, L.data(), &lda, &info);
+  return info == 0;
+}
+
+void
+ActiveSetFactor::solve(Eigen::MatrixXd &x) const
+{
+  const blas_int m = blas_int(size()), columns = blas_int(x.cols()), lda = blas_int(L.rows());
+  blas_int       info = 0;
+  if (m > 0)
+    dealii::potrs("L", &m, &columns, L.data(), &lda, x.data(), &m, &info);
+}
+
+void
+ActiveSetFactor::remove(const Eigen::MatrixXd &matrix, const std::vector<char> &leave)
+{
+  const Eigen::Index m  = size();
+  Eigen::Index       r0 = 0; // the first cell to leave
+  while (r0 < m && !leave[std::size_t(order[std::size_t(r0)])])
+    ++r0;
+  if (r0 == m)
+    return;
+  std::vector<Eigen::Index> kept; // the rows after it that stay
+  for (Eigen::Index a = r0 + 1; a < m; ++a)
+    if (!leave[std::size_t(order[std::size_t(a)])])
+      kept.push_back(a);
+  const Eigen::Index        t = Eigen::Index(kept.size()), w = m - r0, left = r0 + t;
+  std::vector<Eigen::Index> cells(order.begin(), order.begin() + r0);
+  for (const Eigen::Index a : kept)
+    cells.push_back(order[std::size_t(a)]);
+  // The kept rows' Schur complement on the first r0 cells is B B^T, B their part of the
+  // factor from column r0 on: t^2 w + t^3 / 3 against (r0 + t)^3 / 3 anew.
+  if (double(t) * double(t) * (double(w) + double(t) / 3) >
+      double(left) * double(left) * double(left) / 3)
+    {
+      if (!factorise(matrix, std::move(cells)))
+        throw InputError(not_positive_definite);
+      return;
+    }
+  work.resize(t, w);
+  for (Eigen::Index i = 0; i < t; ++i)
+    work.row(i) = L.row(kept[std::size_t(i)]).segment(r0, w);
+  for (Eigen::Index i = 0; i < t; ++i) // rows move up (kept[i] > r0 + i)
+    L.row(r0 + i).head(r0) = L.row(kept[std::size_t(i)]).head(r0);
+  const blas_int tt = blas_int(t), ww = blas_int(w), lda = blas_int(L.rows());
+  const double   one = 1, zero = 0;
+  blas_int       info = 0;
+  if (t > 0)
+    {
+      dealii::syrk("L", "N", &tt, &ww, &one, work.data(), &tt, &zero, &L(r0, r0), &lda);
+      dealii::potrf("L", &tt, &L(r0, r0), &lda, &info);
+    }
+  if (info != 0)
+    {
+      if (!factorise(matrix, std::move(cells)))
+        throw InputError(not_positive_definite);
+      return;
+    }
+  for (Eigen::Index c = r0 + 1; c < left; ++c)
+    L.col(c).segment(r0, c - r0).setZero();
+  order = std::move(cells);
+}
+
+void
+ActiveSetFactor::append(const Eigen::MatrixXd &matrix, const std::vector<Eigen::Index> &cells)
+{
+  const Eigen::Index m = size(), k = Eigen::Index(cells.size());
+  if (k == 0)
+    return;
+  std::vector<Eigen::Index> all = order;
+  all.insert(all.end(), cells.begin(), cells.end());
+  // Bordering: m^2 k + m k^2 + k^3 / 3 against (m + k)^3 / 3 anew.
+  if (double(k) * (double(m) * double(m) + double(m) * double(k) + double(k) * double(k) / 3) >
+      double(m + k) * double(m + k) * double(m + k) / 3)
+    {
+      if (!factorise(matrix, std::move(all)))
+        throw InputError(not_positive_definite);
+      return;
+    }
+  reserve(m + k);
+  const Eigen::Index n = matrix.rows();
+  work.resize(m, k);
+  for (Eigen::Index c = 0; c < k; ++c)
+    {
+      const double *column = matrix.data() + cells[std::size_t(c)] * n;
+      for (Eigen::Index a = 0; a < m; ++a)
+        work(a, c) = column[order[std::size_t(a)]];
+      for (Eigen::Index a = 0; a < k; ++a)
+        L(m + a, m + c) = a >= c ? column[cells[std::size_t(a)]] : 0.0;
+    }
+  const blas_int mm = blas_int(m), kk = blas_int(k), lda = blas_int(L.rows());
+  const double   one = 1, minus_one = -1;
+  blas_int       info = 0;
+  if (m > 0)
+    {
+      // W = L^-1 C_AJ; the joining cells' Schur complement C_JJ - W^T W
+      dealii::trtrs("L", "N", "N", &mm, &kk, L.data(), &lda, work.data(), &mm, &info);
+      dealii::syrk("L", "T", &kk, &mm, &minus_one, work.data(), &mm, &one, &L(m, m), &lda);
+    }
+  if (info == 0)
+    dealii::potrf("L", &kk, &L(m, m), &lda, &info);
+  if (info != 0)
+    {
+      if (!factorise(matrix, std::move(all)))
+        throw InputError(not_positive_definite);
+      return;
+    }
+  L.block(m, 0, k, m) = work.transpose();
+  L.block(0, m, m, k).setZero();
+  order = std::move(all);
+}
+
 ContactSolution
 solve_contact(const ContactProblem &p)
 {
@@ -23,67 +179,63 @@ ContactSolution
 solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
               const Eigen::VectorXd &lever, double load, const std::vector<char> &start)
 {
-  const struct
-  {
-    const Eigen::MatrixXd &compliance;
-    const Eigen::VectorXd &gap, &lever;
-    double                 load;
-  } p{compliance, gap, lever, load};
-  const Eigen::Index n = p.gap.size();
-  if (n == 0 || p.compliance.rows() != n || p.compliance.cols() != n || p.lever.size() != n)
+  const Eigen::Index n = gap.size();
+  if (!start.empty() && Eigen::Index(start.size()) != n)
+    throw InputError("contact solver: the warm start has " + std::to_string(start.size()) +
+                     " entries for " + std::to_string(n) + " cells");
+  std::vector<Eigen::Index> cells;
+  for (Eigen::Index j = 0; j < Eigen::Index(start.size()); ++j)
+    if (start[std::size_t(j)])
+      cells.push_back(j);
+  if (cells.empty() || load == 0 || compliance.rows() != n || compliance.cols() != n)
+    return solve_contact(compliance, gap, lever, load, ActiveSetFactor());
+  return solve_contact(compliance, gap, lever, load, ActiveSetFactor(compliance, cells));
+}
+
+ContactSolution
+solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
+              const Eigen::VectorXd &lever, double load, ActiveSetFactor factor)
+{
+  const Eigen::Index n = gap.size();
+  if (n == 0 || compliance.rows() != n || compliance.cols() != n || lever.size() != n)
     throw InputError("contact solver: compliance, gap and lever sizes differ (or are zero)");
-  if (!(p.load >= 0) || !(p.lever.minCoeff() > 0) || !p.gap.allFinite())
+  if (!(load >= 0) || !(lever.minCoeff() > 0) || !gap.allFinite())
     throw InputError("contact solver: the load must be >= 0, the levers > 0 and all data finite");
 
   ContactSolution s;
   s.force                           = Eigen::VectorXd::Zero(n);
-  const Eigen::VectorXd first_touch = p.gap.cwiseQuotient(p.lever);
+  const Eigen::VectorXd first_touch = gap.cwiseQuotient(lever);
   Eigen::Index          first;
   s.approach = first_touch.minCoeff(&first);
-  if (p.load == 0)
+  if (load == 0)
     return s;
 
-  if (!start.empty() && Eigen::Index(start.size()) != n)
-    throw InputError("contact solver: the warm start has " + std::to_string(start.size()) +
-                     " entries for " + std::to_string(n) + " cells");
-  std::vector<char> active(n, 0);
-  if (std::any_of(start.begin(), start.end(), [](char c) { return c != 0; }))
-    for (Eigen::Index j = 0; j < n; ++j)
-      active[j] = start[j] != 0;
-  else
-    active[first] = 1;
-  const double scale = std::max(p.gap.cwiseAbs().maxCoeff(), 1e-9);
+  if (std::any_of(factor.cells().begin(), factor.cells().end(),
+                  [n](Eigen::Index j) { return j < 0 || j >= n; }))
+    throw InputError("contact solver: the warm start names a cell beyond the " + std::to_string(n) +
+                     " cells");
+  if (factor.size() == 0)
+    factor = ActiveSetFactor(compliance, {first});
+  std::vector<char> active(std::size_t(n), 0);
+  for (const Eigen::Index j : factor.cells())
+    active[std::size_t(j)] = 1;
+  const double      scale = std::max(gap.cwiseAbs().maxCoeff(), 1e-9);
+  std::vector<char> leave(std::size_t(n), 0);
   for (int it = 0; it < 4 * n + 50; ++it)
     {
-      std::vector<Eigen::Index> A;
-      for (Eigen::Index j = 0; j < n; ++j)
-        if (active[j])
-          A.push_back(j);
-      const Eigen::Index m = Eigen::Index(A.size());
-      Eigen::MatrixXd    C(m, m);
-      Eigen::VectorXd    lA(m), gA(m);
-      for (Eigen::Index b = 0; b < m; ++b)
-        {
-          lA[b] = p.lever[A[b]], gA[b] = p.gap[A[b]];
-          for (Eigen::Index a = b; a < m; ++a) // the lower triangle
-            C(a, b) = p.compliance(A[a], A[b]);
-        }
-      // LAPACK's Cholesky factorisation and solve (OpenBLAS's kernels for this processor):
-      // x = C^-1 [lA gA]
-      Eigen::MatrixXd               x(m, 2);
-      const dealii::types::blas_int size = dealii::types::blas_int(m), columns = 2;
-      dealii::types::blas_int       info = 0;
-      x << lA, gA;
-      dealii::potrf("L", &size, C.data(), &size, &info);
-      if (info != 0)
-        throw InputError("contact solver: the compliance matrix is not positive definite");
-      dealii::potrs("L", &size, &columns, C.data(), &size, x.data(), &size, &info);
-      const Eigen::VectorXd x1 = x.col(0), x2 = x.col(1);
-      s.approach               = (p.load + lA.dot(x2)) / lA.dot(x1);
-      const Eigen::VectorXd FA = s.approach * x1 - x2;
+      const std::vector<Eigen::Index> &A = factor.cells();
+      const Eigen::Index               m = factor.size();
+      // x = C_AA^-1 [lever_A gap_A]; the approach from the load balance
+      Eigen::MatrixXd x(m, 2);
+      for (Eigen::Index a = 0; a < m; ++a)
+        x(a, 0) = lever[A[std::size_t(a)]], x(a, 1) = gap[A[std::size_t(a)]];
+      const Eigen::VectorXd lA = x.col(0);
+      factor.solve(x);
+      s.approach               = (load + lA.dot(x.col(1))) / lA.dot(x.col(0));
+      const Eigen::VectorXd FA = s.approach * x.col(0) - x.col(1);
       s.force.setZero();
       for (Eigen::Index a = 0; a < m; ++a)
-        s.force[A[a]] = FA[a];
+        s.force[A[std::size_t(a)]] = FA[a];
       s.iterations             = it;
       const bool one_at_a_time = it > 2 * n; // cycling: change one cell per iteration
 
@@ -94,32 +246,38 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
           worst = a;
       if (worst >= 0)
         {
+          std::fill(leave.begin(), leave.end(), 0);
           for (Eigen::Index a = 0; a < m; ++a)
             if (one_at_a_time ? a == worst : FA[a] < 0)
-              active[A[a]] = 0;
+              leave[std::size_t(A[std::size_t(a)])] = 1, active[std::size_t(A[std::size_t(a)])] = 0;
+          factor.remove(compliance, leave);
           continue;
         }
-      // Penetrating cells join: h = approach lever - gap - C F (the loaded columns of C alone).
-      Eigen::VectorXd h = s.approach * p.lever - p.gap;
+      // Penetrating cells join, the deepest first: h = approach lever - gap - C F (the loaded
+      // columns of C alone).
+      Eigen::VectorXd h = s.approach * lever - gap;
       for (Eigen::Index a = 0; a < m; ++a)
-        h.noalias() -= p.compliance.col(A[a]) * FA[a];
-      Eigen::Index deepest = -1;
+        h.noalias() -= compliance.col(A[std::size_t(a)]) * FA[a];
+      std::vector<Eigen::Index> join;
       for (Eigen::Index j = 0; j < n; ++j)
-        if (!active[j] && h[j] > 1e-12 * scale && (deepest < 0 || h[j] > h[deepest]))
-          deepest = j;
-      if (deepest < 0)
+        if (!active[std::size_t(j)] && h[j] > 1e-12 * scale)
+          join.push_back(j);
+      if (join.empty())
         {
-          s.active      = int(m);
-          s.active_set  = active;
-          s.penetration = 0;
+          s.active     = int(m);
+          s.active_set = active;
           for (Eigen::Index j = 0; j < n; ++j)
-            if (!active[j])
+            if (!active[std::size_t(j)])
               s.penetration = std::max(s.penetration, h[j]);
           return s;
         }
-      for (Eigen::Index j = 0; j < n; ++j)
-        if (!active[j] && (one_at_a_time ? j == deepest : h[j] > 1e-12 * scale))
-          active[j] = 1;
+      std::stable_sort(join.begin(), join.end(),
+                       [&h](Eigen::Index a, Eigen::Index b) { return h[a] > h[b]; });
+      if (one_at_a_time)
+        join.resize(1);
+      for (const Eigen::Index j : join)
+        active[std::size_t(j)] = 1;
+      factor.append(compliance, join);
     }
   std::ostringstream msg;
   msg << "contact solver: the active set did not settle after " << 4 * n + 50 << " iterations ("

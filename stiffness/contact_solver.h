@@ -24,6 +24,57 @@ struct ContactProblem
   double          load = 0;   ///< sum lambda F [N or N m], >= 0
 };
 
+/// The Cholesky factor L L^T of a symmetric positive definite matrix's block over a set of its
+/// cells (an active set), kept as the set changes instead of factorised anew (m^3 / 3):
+/// cells that join are appended by bordering (L^-1 of their columns, the Cholesky factor of
+/// their Schur complement: ~m^2 per cell), cells that leave cost a refactorisation of the rows
+/// after the first of them (B B^T of those rows' trailing part), so that cells likely to leave
+/// belong at the end. Where an update would cost more than factorising anew, the block is
+/// factorised anew. Only the block's lower triangle is read.
+class ActiveSetFactor
+{
+public:
+  ActiveSetFactor() = default;
+  /// The block of `cells` of `matrix` (in this order). Throws InputError if it is not positive
+  /// definite.
+  ActiveSetFactor(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells);
+
+  /// The cells, in the factor's order.
+  const std::vector<Eigen::Index> &
+  cells() const
+  {
+    return order;
+  }
+  Eigen::Index
+  size() const
+  {
+    return Eigen::Index(order.size());
+  }
+  /// x := block^-1 x (x: one row per cell, in cells()' order).
+  void
+  solve(Eigen::MatrixXd &x) const;
+  /// Removes the cells whose entry of `leave` (one per row of `matrix`) is set.
+  void
+  remove(const Eigen::MatrixXd &matrix, const std::vector<char> &leave);
+  /// Appends `cells` (not in the set) in this order.
+  void
+  append(const Eigen::MatrixXd &matrix, const std::vector<Eigen::Index> &cells);
+
+private:
+  /// Factorises the block of `cells` anew; false if it is not positive definite.
+  bool
+  factorise(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells);
+  /// Room for `m` cells (keeps the factor).
+  void
+  reserve(Eigen::Index m);
+
+  std::vector<Eigen::Index> order;
+  /// The factor in the leading size() x size() block (its strict upper triangle zero); the
+  /// leading dimension is L.rows() >= size(), room to append.
+  Eigen::MatrixXd L;
+  Eigen::MatrixXd work;
+};
+
 struct ContactSolution
 {
   Eigen::VectorXd   force;           ///< F [N]
@@ -34,7 +85,8 @@ struct ContactSolution
   double            penetration = 0; ///< largest violation of w >= lambda delta - g [m]
 };
 
-/// Active-set solution (Cholesky of the active block, the approach from the load balance);
+/// Active-set solution (Cholesky of the active block, updated as cells leave and join; the
+/// approach from the load balance);
 /// all negative forces leave and all penetrating cells join per iteration, one at a time if
 /// that cycles. Zero load gives zero forces and the first-touch approach min g / lambda.
 /// Throws InputError for inconsistent sizes, negative load or non-positive levers, and when the
@@ -49,4 +101,11 @@ solve_contact(const ContactProblem &problem);
 ContactSolution
 solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
               const Eigen::VectorXd &lever, double load, const std::vector<char> &start = {});
+
+/// The same, from the factor of the cells to start from (their order, the compliance's block
+/// over them factorised: a zone solving many similar problems factorises its own active set
+/// once, the cells most loaded first): each iteration updates it instead of factorising anew.
+ContactSolution
+solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
+              const Eigen::VectorXd &lever, double load, ActiveSetFactor start);
 } // namespace gearkit

@@ -54,8 +54,7 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
     }
   own          = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
   own.gap_band = o.cells.gap_band;
-  for (Eigen::Index i = 0; i < n; ++i)
-    own_active.push_back(own.force.size() == n && own.force[i] > 0);
+  own_active   = warm_start(own);
   std::vector<char> has_cells(position.pairs.size(), 0);
   for (const ContactCell &c : zone_cells)
     has_cells[std::size_t(c.pair)] = 1;
@@ -66,9 +65,26 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
            pinion_lever(position.pairs[k].position, position.pairs[k].normal_pinion)});
 }
 
+ActiveSetFactor
+FixedZone::warm_start(const LoadedPosition &p) const
+{
+  // The cells in contact, the most loaded first: those that leave for a similar variant are
+  // the lightly loaded ones at the contact's edges, at the factor's end where removing them
+  // costs least.
+  if (p.force.size() != gap.size())
+    throw InputError("fixed contact zone: a warm start needs a contact on this zone's cells");
+  std::vector<Eigen::Index> loaded;
+  for (Eigen::Index i = 0; i < p.force.size(); ++i)
+    if (p.force[i] > 0)
+      loaded.push_back(i);
+  std::stable_sort(loaded.begin(), loaded.end(),
+                   [&p](Eigen::Index a, Eigen::Index b) { return p.force[a] > p.force[b]; });
+  return ActiveSetFactor(compliance, loaded);
+}
+
 LoadedPosition
 FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
-                 const Eigen::MatrixX2d *pinion_slope, const std::vector<char> *start) const
+                 const Eigen::MatrixX2d *pinion_slope, const ActiveSetFactor *start) const
 {
   const Eigen::Index n = gap.size();
   if (added.size() != n || !added.allFinite())

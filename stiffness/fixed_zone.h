@@ -13,6 +13,7 @@
 // zone is too narrow for it.
 #pragma once
 
+#include "stiffness/contact_solver.h"
 #include "stiffness/loaded_contact.h"
 
 #include <Eigen/Core>
@@ -59,14 +60,17 @@ public:
   /// the contact force, and so change each cell's moment arm at first order (a tip relief's
   /// slope of 1/200 by up to half a percent). Thread-safe. Throws InputError for sizes other
   /// than the cells' and non-finite entries.
-  /// `start` (optional, one entry per cell): the cells in contact to start the active set
-  /// from, e.g. a similar variant's (force > 0); by default the pair's own. The solution does not
-  /// depend on it.
+  /// `start` (optional): the cells to start the active set from, factorised (warm_start of a
+  /// similar variant's contact); by default the pair's own. The solution does not depend on it.
   LoadedPosition
   solve(const Eigen::VectorXd &added, double torque,
-        double                   e0           = std::numeric_limits<double>::quiet_NaN(),
-        const Eigen::MatrixX2d  *pinion_slope = nullptr,
-        const std::vector<char> *start        = nullptr) const;
+        double                  e0           = std::numeric_limits<double>::quiet_NaN(),
+        const Eigen::MatrixX2d *pinion_slope = nullptr,
+        const ActiveSetFactor  *start        = nullptr) const;
+  /// A warm start for solve from a contact `p` on this zone's cells (a variant's solution): its
+  /// cells in contact, their compliance factorised, the most loaded first.
+  ActiveSetFactor
+  warm_start(const LoadedPosition &p) const;
 
 private:
   const UnloadedTca       *tca;
@@ -76,9 +80,9 @@ private:
   Eigen::VectorXd          gap, lever;
   /// d lever / d (du1, dv1) of the pinion's deviation at each cell [1]: the moment arm of the
   /// tilted normal n - J (J^T J)^-1 grad delta, J = the flank's tangents.
-  Eigen::MatrixX2d  lever_slope;
-  LoadedPosition    own;
-  std::vector<char> own_active; ///< the warm start
+  Eigen::MatrixX2d lever_slope;
+  LoadedPosition   own;
+  ActiveSetFactor  own_active; ///< the warm start: the pair's own active set, factorised
   /// The pairs of the position without cells: separation [m] and lever [m].
   std::vector<std::pair<double, double>> outside;
 };

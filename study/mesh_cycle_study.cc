@@ -263,16 +263,15 @@ MeshCycleStudy::warm_start_from(const PairVariant &v)
   warm.clear();
   const VariantCycle r = evaluate(v);
   o.cycles             = cycles;
-  std::vector<std::vector<char>> sets(M * N);
+  std::vector<ActiveSetFactor> starts(M * N);
   parallel_for(M * N, o.threads, [&](std::size_t k) {
     const std::size_t    m = k / N, i = k % N;
     const Deviations     d = deviations(m, i, 0, v);
     const LoadedPosition p =
         zone(m, i).solve(d.added, o.torques[m], r.unloaded_te[i], &d.pinion_slope);
-    for (Eigen::Index j = 0; j < p.force.size(); ++j)
-      sets[k].push_back(p.force[j] > 0);
+    starts[k] = zone(m, i).warm_start(p);
   });
-  warm = std::move(sets);
+  warm = std::move(starts);
 }
 
 VariantCycle
@@ -321,9 +320,9 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
     r.unloaded_te[job] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {
-        const FixedZone         &z     = zone(m, i);
-        const std::vector<char> *start = warm.empty() ? nullptr : &warm[m * N + i];
-        const LoadedPosition     p =
+        const FixedZone       &z     = zone(m, i);
+        const ActiveSetFactor *start = warm.empty() ? nullptr : &warm[m * N + i];
+        const LoadedPosition   p =
             z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope, start);
         const std::size_t k = m * CN + job;
         r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;

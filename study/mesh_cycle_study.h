@@ -149,7 +149,7 @@ private:
     std::vector<Vec3> pinion_point, pinion_normal, pinion_du, pinion_dv;
     std::vector<Vec3> gear_point, gear_normal, gear_du, gear_dv;
   };
-  std::vector<MemberPoints>      points;
-  std::vector<std::vector<char>> warm; ///< [M][N] the active sets to start from (empty: own)
+  std::vector<MemberPoints>    points;
+  std::vector<ActiveSetFactor> warm; ///< [M][N] the active sets to start from (empty: own)
 };
 } // namespace gearkit

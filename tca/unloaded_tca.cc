@@ -198,7 +198,7 @@ public:
   Sample
   maximum(const std::vector<Sample> &starts);
   Sample
-  pinned(Sample best);
+  pinned(Sample best, bool *converged = nullptr);
   void
   fill(PairContact &c, const Sample &best) const;
 
@@ -240,6 +240,8 @@ private:
   gradient(const Sample &t, bool free_u, bool free_v) const;
   Eigen::Vector2d
   newton_step(const Sample &t, bool free_u, bool free_v, bool *found = nullptr);
+  bool
+  gains_inwards(const Sample &t, bool free_u, bool free_v) const;
   void
   jump(Search &x);
   void
@@ -424,6 +426,21 @@ UnloadedTca::ContactSearch::gradient(const Sample &t, bool free_u, bool free_v) 
   return Eigen::Vector2d(free_u ? d_psi(p.d_du) : 0.0, free_v ? d_psi(p.d_dv) : 0.0);
 }
 
+// Whether a sample held at an edge of the pinion flank would gain, beyond the touch angle's
+// rounding, by moving a millionth of the flank inwards: then the maximum lies inside, closer
+// to the edge than the pattern search's step, and Newton along the edge has not found it.
+bool
+UnloadedTca::ContactSearch::gains_inwards(const Sample &t, bool free_u, bool free_v) const
+{
+  if (free_u && free_v)
+    return false;
+  const Eigen::Vector2d g = gradient(t, true, true);
+  const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
+  const double gain_u = free_u ? 0.0 : (t.u1 - d.u_min < d.u_max - t.u1 ? g.x() : -g.x()) * eu;
+  const double gain_v = free_v ? 0.0 : (t.v1 - d.v_min < d.v_max - t.v1 ? g.y() : -g.y()) * ev;
+  return std::max(gain_u, gain_v) > 1e-15 * (1 + std::abs(t.value));
+}
+
 // (`found`: whether the difference samples touch at all)
 Eigen::Vector2d
 UnloadedTca::ContactSearch::newton_step(const Sample &t, bool free_u, bool free_v, bool *found)
@@ -439,7 +456,12 @@ UnloadedTca::ContactSearch::newton_step(const Sample &t, bool free_u, bool free_
           *found = false;
         H.col(k) = (gradient(near, free_u, free_v) - g0) / (k == 0 ? eu : ev);
       }
-  return Eigen::Vector2d(-H.completeOrthogonalDecomposition().solve(g0));
+  // The Hessian from differences carries the gradient's rounding over the difference step
+  // (~1e-10 of its largest eigenvalue): smaller eigenvalues are a contact line's flat direction,
+  // in which Newton does not step.
+  Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix2d> cod(H);
+  cod.setThreshold(1e-8);
+  return Eigen::Vector2d(-cod.solve(g0));
 }
 
 // A search that keeps moving at one step size crawls along a ridge oblique to the flank
@@ -513,7 +535,10 @@ UnloadedTca::ContactSearch::refine(Search &x, double until)
     }
 }
 
-// Each start coarsely (to 1e-4 of the grid step), then the best of them to the end.
+// Each start coarsely (to 1e-4 of the grid step), the best of them kept; then Newton on the
+// touch angle's stationarity pins an interior maximum to rounding (pinned), and where it does
+// not converge (an edge, a kink of a modification, a face end) the pattern search goes on to
+// the end, pinned again.
 UnloadedTca::ContactSearch::Sample
 UnloadedTca::ContactSearch::maximum(const std::vector<Sample> &starts)
 {
@@ -522,34 +547,47 @@ UnloadedTca::ContactSearch::maximum(const std::vector<Sample> &starts)
     if (start.value > -HUGE_VAL)
       {
         Search x{start, hu0, hv0};
-        if (starts.size() > 1)
-          refine(x, 1e-4);
+        refine(x, 1e-4);
         if (better(x.at, found.at))
           found = x;
       }
+  if (found.at.value == -HUGE_VAL)
+    return found.at;
+  bool         converged = false;
+  const Sample newton    = found.at.face_end ? found.at : pinned(found.at, &converged);
+  if (converged)
+    return newton;
   refine(found, 0);
-  return found.at;
+  return pinned(found.at);
 }
 
 // Newton on the stationarity of the touch angle (the classical tangency condition) in the
 // free parameters: the pattern search locates the maximum to ~1e-8 (the touch angle is flat
 // there), Newton pins it to rounding.
 UnloadedTca::ContactSearch::Sample
-UnloadedTca::ContactSearch::pinned(Sample best)
+UnloadedTca::ContactSearch::pinned(Sample best, bool *converged)
 {
   const bool free_u = !at_edge(best.u1, d.u_min, d.u_max);
   const bool free_v = !at_edge(best.v1, d.v_min, d.v_max);
-  if ((free_u || free_v) && !gear_edge(best))
+  // With `converged` asked for, also where the mate lies on the gear flank's edge (a spur
+  // pair's contact line ending at both faces): the step counts only where its difference
+  // samples touch, and a stationary point reached through touching samples is the maximum.
+  if ((free_u || free_v) && (converged || !gear_edge(best)))
     for (int it = 0; it < 8; ++it)
       {
-        const Eigen::Vector2d step = newton_step(best, free_u, free_v);
-        const Sample          next = sample(best.u1 + step.x(), best.v1 + step.y());
-        if (!(next.value >= best.value - 1e-14))
+        bool                  found = true;
+        const Eigen::Vector2d step  = newton_step(best, free_u, free_v, &found);
+        const Sample          next  = sample(best.u1 + step.x(), best.v1 + step.y());
+        if (!found || !(next.value >= best.value - 1e-14))
           break;
         const bool done = step.norm() < 1e-13;
         best            = next;
         if (done)
-          break;
+          {
+            if (converged)
+              *converged = !best.face_end && !gains_inwards(best, free_u, free_v);
+            break;
+          }
       }
   return best;
 }
@@ -581,7 +619,7 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
   const ContactSearch::Sample best   = search.maximum(starts);
   if (best.value == -HUGE_VAL) // the gear flank reaches no point of the pinion flank
     return c;
-  search.fill(c, search.pinned(best));
+  search.fill(c, best);
   return c;
 }
 
@@ -698,6 +736,15 @@ set_relative_curvature(PairContact &c, const Assembly &assembly, const Flank &pi
   c.curvature_min   = eig.eigenvalues()[0];
   c.curvature_max   = eig.eigenvalues()[1];
   c.major_direction = E * eig.eigenvectors().col(0);
+  // The eigenvector's sign is arbitrary (rounding turns it over): the one along the pinion's
+  // face (its profile where the direction crosses the face at right angles).
+  const FlankPoint f   = pinion_flank.evaluate(c.u1, c.v1);
+  const Vec3       dv  = assembly.pinion_vector_to_global(f.d_dv, phi).normalized();
+  const Vec3       du  = assembly.pinion_vector_to_global(f.d_du, phi).normalized();
+  const double     key = std::abs(c.major_direction.dot(dv)) > 1e-6 ? c.major_direction.dot(dv)
+                                                                   : c.major_direction.dot(du);
+  if (key < 0)
+    c.major_direction = -c.major_direction;
 }
 
 std::pair<double, double>

@@ -39,6 +39,13 @@ public:
   /// definite.
   ActiveSetFactor(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells);
 
+  /// Factorises the block of `cells` anew (as the constructor).
+  void
+  assign(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells);
+  /// Becomes a copy of `other`, in this factor's storage where it has room.
+  void
+  copy(const ActiveSetFactor &other);
+
   /// The cells, in the factor's order.
   const std::vector<Eigen::Index> &
   cells() const
@@ -107,5 +114,5 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
 /// once, the cells most loaded first): each iteration updates it instead of factorising anew.
 ContactSolution
 solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
-              const Eigen::VectorXd &lever, double load, ActiveSetFactor start);
+              const Eigen::VectorXd &lever, double load, const ActiveSetFactor &start);
 } // namespace gearkit

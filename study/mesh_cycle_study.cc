@@ -18,13 +18,24 @@ working_side(const InvoluteGearData &d, FlankSide side)
   return side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
 }
 
+/// Where a variant's search for a pair's contact starts: the pair's cell of the first touch
+/// (the least gap less the added material per moment arm) and steps of about a cell in the
+/// pinion's flank parameters.
+struct SearchStart
+{
+  bool   any = false;
+  double u1 = 0, v1 = 0, du = 0, dv = 0;
+};
+
 /// A variant's unloaded TE at the reference pair's position `at`: the gear's rotation is the
 /// largest touch angle of the pairs that can touch (`has_cells` in a zone, or standing apart by
 /// less than the most material the variant adds anywhere in the zones), each searched on the
-/// variant's flanks (UnloadedTca::pair) also from the reference pair's contact point.
+/// variant's flanks: from the pair's first touch in its cells (`start`), else over the flank
+/// and also from the reference pair's contact point (UnloadedTca::pair).
 double
 variant_unloaded_te(const UnloadedTca &variant, const TcaPosition &at,
-                    const std::vector<char> &has_cells, double most_added)
+                    const std::vector<char> &has_cells, double most_added,
+                    const std::vector<SearchStart> &start)
 {
   const int    z1 = variant.pinion_flanks().teeth(), z2 = variant.gear_flanks().teeth();
   const double s   = variant.options_data().side == FlankSide::drive ? 1.0 : -1.0;
@@ -39,7 +50,12 @@ variant_unloaded_te(const UnloadedTca &variant, const TcaPosition &at,
       for (int k = k0 - 3; k <= k0 + 3; ++k) // the pairing of the pair's pinion tooth
         if (((-k % z1) + z1) % z1 == ref.pinion_tooth)
           {
-            const PairContact c = variant.pair(k, at.pinion_angle, &ref);
+            const SearchStart &a = start[p];
+            PairContact        c;
+            if (a.any)
+              c = variant.pair_from(k, at.pinion_angle, a.u1, a.v1, a.du, a.dv);
+            if (!c.found)
+              c = variant.pair(k, at.pinion_angle, &ref);
             if (c.found && (!any || s * c.touch_angle > s * psi))
               psi = c.touch_angle, any = true;
           }
@@ -110,14 +126,23 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
     zones[k]        = std::make_unique<const FixedZone>(*tca, at[k % N], o.torques[k / N], lo,
                                                  pinion_compliance, gear_compliance, o.widening);
     MemberPoints &q = points[k];
+    // the rows of (J^T J)^-1 J^T, J = [P_u P_v]: flank parameters per tangential motion
+    const auto projection = [](const FlankPoint &f) {
+      Eigen::Matrix<double, 3, 2> J;
+      J << f.d_du, f.d_dv;
+      const Eigen::Matrix<double, 2, 3> G = (J.transpose() * J).inverse() * J.transpose();
+      return std::pair<Vec3, Vec3>(G.row(0).transpose(), G.row(1).transpose());
+    };
     for (const ContactCell &c : zones[k]->cells())
       {
-        const FlankPoint a = pinion->flank(c.pinion_tooth, tca_options.side).evaluate(c.u1, c.v1);
-        const FlankPoint b = gear->flank(c.gear_tooth, tca_options.side).evaluate(c.u2, c.v2);
+        const FlankPoint a  = pinion->flank(c.pinion_tooth, tca_options.side).evaluate(c.u1, c.v1);
+        const FlankPoint b  = gear->flank(c.gear_tooth, tca_options.side).evaluate(c.u2, c.v2);
+        const auto [pu, pv] = projection(a);
+        const auto [gu, gv] = projection(b);
         q.pinion_point.push_back(a.position), q.pinion_normal.push_back(a.normal);
-        q.pinion_du.push_back(a.d_du), q.pinion_dv.push_back(a.d_dv);
+        q.pinion_gu.push_back(pu), q.pinion_gv.push_back(pv);
         q.gear_point.push_back(b.position), q.gear_normal.push_back(b.normal);
-        q.gear_du.push_back(b.d_du), q.gear_dv.push_back(b.d_dv);
+        q.gear_gu.push_back(gu), q.gear_gv.push_back(gv);
       }
   });
 }
@@ -208,14 +233,9 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   // P_u, P_v: the normal part moves the flank (w . n of material where n points out of it);
   // the tangential part brings the material of the flank parameters (u, v) - (du, dv) to the
   // point, and with it the deviation there, to first order value - (d/du du + d/dv dv).
-  const auto moved = [](const Vec3 &w, const Vec3 &n, const Vec3 &Pu, const Vec3 &Pv,
-                        const Change &c) {
-    const Vec3   t = w - w.dot(n) * n;
-    const double a = Pu.dot(Pu), b = Pu.dot(Pv), e = Pv.dot(Pv);
-    const double det = a * e - b * b, ru = Pu.dot(t), rv = Pv.dot(t);
-    const double du = (e * ru - b * rv) / det, dv = (a * rv - b * ru) / det;
-    return w.dot(n) - c.du * du - c.dz * dv;
-  };
+  // (du, dv) = (J^T J)^-1 J^T w, J = [P_u P_v]: the rows of MemberPoints' tangent projection.
+  const auto moved = [](const Vec3 &w, const Vec3 &n, const Vec3 &Gu, const Vec3 &Gv,
+                        const Change &c) { return w.dot(n) - c.du * Gu.dot(w) - c.dz * Gv.dot(w); };
   // The gear axis's tilt: the rotation R = Ry(intersecting) Rx(crossing) about the gear centre
   // (Assembly::tilted) brings to X the gear's material from C + R^T (X - C): it moved by
   // (I - R^T)(X - C) (global; exact: its second-order part, 2e-8 m for 1 mrad at a 50 mm
@@ -229,7 +249,13 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   const Vec3   centre = assembly.gear_centre();
   const bool   tilted = v.crossing_angle != 0 || v.intersecting_angle != 0;
   const double psi    = zn.position().gear_angle;
-  Deviations   d;
+  // (I - R^T) in the gear's frame at the zone's gear angle: Rz(psi) global_to_gear_unrotated
+  Eigen::Matrix3d to_gear;
+  for (int k = 0; k < 3; ++k)
+    to_gear.col(k) = assembly.global_to_gear_unrotated_vector(Vec3::Unit(k));
+  const Eigen::Matrix3d tilt_in_gear =
+      Eigen::AngleAxisd(psi, Vec3::UnitZ()).toRotationMatrix() * to_gear * tilt;
+  Deviations d;
   d.added.resize(Eigen::Index(cells.size()));
   d.pinion_slope.resize(Eigen::Index(cells.size()), 2);
   for (std::size_t j = 0; j < cells.size(); ++j)
@@ -241,14 +267,13 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const Change       dg = change(g, v.gear, v.gear_teeth, tg, own.gear, c.u2, c.v2);
       Vec3               wg = rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j]);
       if (tilted)
-        wg += Eigen::AngleAxisd(psi, Vec3::UnitZ()) *
-              assembly.global_to_gear_unrotated_vector(tilt * (c.position - centre));
+        wg += tilt_in_gear * (c.position - centre);
       const Vec3 wp = rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j]);
       // (the gear's material moving along its outward normal opens the gap: - w . n)
       const auto i = Eigen::Index(j);
       d.added[i]   = dp.change.value + dg.change.value +
-                   moved(wp, q.pinion_normal[j], q.pinion_du[j], q.pinion_dv[j], dp) +
-                   moved(wg, q.gear_normal[j], q.gear_du[j], q.gear_dv[j], dg);
+                   moved(wp, q.pinion_normal[j], q.pinion_gu[j], q.pinion_gv[j], dp) +
+                   moved(wg, q.gear_normal[j], q.gear_gu[j], q.gear_gv[j], dg);
       d.pinion_slope(i, 0) = dp.change.d_dL, d.pinion_slope(i, 1) = dp.change.d_dz;
     }
   return d;
@@ -297,9 +322,11 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
   r.normal_force.assign(M * CN, 0.0), r.peak_pressure.assign(M * CN, 0.0);
   r.edge_load_share.assign(M * CN, 0.0), r.pair_share.assign(M * CN * r.slots, 0.0);
   std::vector<char> edge(M * CN, 0);
-  parallel_for(CN, threads == 0 ? o.threads : threads, [&](std::size_t job) {
-    const std::size_t i     = job % N;
-    const int         cycle = int(job / N);
+  // (each zone's cycles one after the other: its compliance stays in the cache)
+  parallel_for(CN, threads == 0 ? o.threads : threads, [&](std::size_t q) {
+    const std::size_t i     = q / C;
+    const int         cycle = int(q % C);
+    const std::size_t job   = std::size_t(cycle) * N + i;
     // The zone's position one mesh cycle on per cycle: the next teeth in the same place.
     TcaPosition at = zone(0, i).position();
     at.pinion_angle += 2 * pi * cycle / z1, at.gear_angle += 2 * pi * cycle / z2;
@@ -316,7 +343,23 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
         for (const ContactCell &c : zone(m, i).cells())
           has_cells[std::size_t(c.pair)] = 1;
       }
-    const double e0    = variant_unloaded_te(own_tca, at, has_cells, most_added);
+    // each pair's first touch in the first torque's zone
+    std::vector<SearchStart> start(at.pairs.size());
+    std::vector<double>      first(at.pairs.size(), HUGE_VAL);
+    const MemberPoints      &q0 = points[i];
+    for (std::size_t j = 0; j < zone(0, i).cells().size(); ++j)
+      {
+        const ContactCell &c     = zone(0, i).cells()[j];
+        const double       touch = (c.gap - dev[0].added[Eigen::Index(j)]) / c.lever;
+        const std::size_t  p     = std::size_t(c.pair);
+        if (touch < first[p])
+          {
+            const double h = std::max(c.ds, c.dt);
+            first[p]       = touch;
+            start[p] = {true, c.u1, c.v1, h * q0.pinion_gu[j].norm(), h * q0.pinion_gv[j].norm()};
+          }
+      }
+    const double e0    = variant_unloaded_te(own_tca, at, has_cells, most_added, start);
     r.unloaded_te[job] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {

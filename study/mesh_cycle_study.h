@@ -141,13 +141,14 @@ private:
   PairVariant                                   own;
   std::unique_ptr<const UnloadedTca>            tca;
   std::vector<std::unique_ptr<const FixedZone>> zones; ///< [M][N]
-  /// Per zone and cell, each member's flank point, outward normal and tangents (d/du, d/dv) in
-  /// its own frame at the cell's flank parameters on the zone's tooth (the rigid motions:
-  /// runout, pitch, tilt), [M][N].
+  /// Per zone and cell, each member's flank point, outward normal and the rows (g_u, g_v) of
+  /// (J^T J)^-1 J^T, J its tangents (g_u . w, g_v . w: the flank parameters a tangential motion
+  /// w moves by) in its own frame at the cell's flank parameters on the zone's tooth (the rigid
+  /// motions: runout, pitch, tilt), [M][N].
   struct MemberPoints
   {
-    std::vector<Vec3> pinion_point, pinion_normal, pinion_du, pinion_dv;
-    std::vector<Vec3> gear_point, gear_normal, gear_du, gear_dv;
+    std::vector<Vec3> pinion_point, pinion_normal, pinion_gu, pinion_gv;
+    std::vector<Vec3> gear_point, gear_normal, gear_gu, gear_gv;
   };
   std::vector<MemberPoints>    points;
   std::vector<ActiveSetFactor> warm; ///< [M][N] the active sets to start from (empty: own)

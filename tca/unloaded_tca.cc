@@ -197,6 +197,9 @@ public:
   starts(const PairContact *near);
   Sample
   maximum(const std::vector<Sample> &starts);
+  /// maximum from one flank point with initial steps (du, dv).
+  Sample
+  maximum_from(double u1, double v1, double du, double dv);
   Sample
   pinned(Sample best, bool *converged = nullptr);
   void
@@ -246,6 +249,9 @@ private:
   jump(Search &x);
   void
   refine(Search &x, double until);
+  /// Newton from a coarse maximum; where it does not converge, the pattern search to the end.
+  Sample
+  finish(Search &found);
 
   const UnloadedTca &tca;
   const TcaOptions  &options;
@@ -434,7 +440,7 @@ UnloadedTca::ContactSearch::gains_inwards(const Sample &t, bool free_u, bool fre
 {
   if (free_u && free_v)
     return false;
-  const Eigen::Vector2d g = gradient(t, true, true);
+  const Eigen::Vector2d g  = gradient(t, true, true);
   const double          eu = 1e-6 * (d.u_max - d.u_min), ev = 1e-6 * (d.v_max - d.v_min);
   const double gain_u = free_u ? 0.0 : (t.u1 - d.u_min < d.u_max - t.u1 ? g.x() : -g.x()) * eu;
   const double gain_v = free_v ? 0.0 : (t.v1 - d.v_min < d.v_max - t.v1 ? g.y() : -g.y()) * ev;
@@ -551,6 +557,22 @@ UnloadedTca::ContactSearch::maximum(const std::vector<Sample> &starts)
         if (better(x.at, found.at))
           found = x;
       }
+  return finish(found);
+}
+
+UnloadedTca::ContactSearch::Sample
+UnloadedTca::ContactSearch::maximum_from(double u1, double v1, double du, double dv)
+{
+  Search x{sample(u1, v1), du, dv};
+  if (x.at.value == -HUGE_VAL)
+    return x.at;
+  refine(x, du / hu0 / 16); // four halvings of the first step
+  return finish(x);
+}
+
+UnloadedTca::ContactSearch::Sample
+UnloadedTca::ContactSearch::finish(Search &found)
+{
   if (found.at.value == -HUGE_VAL)
     return found.at;
   bool         converged = false;
@@ -604,8 +626,9 @@ UnloadedTca::ContactSearch::fill(PairContact &c, const Sample &best) const
   set_relative_curvature(c, assembly, flank, gear_flank, phi, c.touch_angle);
 }
 
+template <class Find>
 PairContact
-UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
+UnloadedTca::pair_contact(int k, double phi, Find &&find) const
 {
   // Pair k: the k-th pinion tooth to pass the line of centres (tooth -k) and its mate.
   PairContact c;
@@ -615,8 +638,7 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
   if (!pinion->has(c.pinion_tooth, options.side) || !gear->has(c.gear_tooth, options.side))
     return c;
   ContactSearch               search(*this, c.pinion_tooth, c.gear_tooth, phi);
-  const auto                  starts = search.starts(near);
-  const ContactSearch::Sample best   = search.maximum(starts);
+  const ContactSearch::Sample best = find(search);
   if (best.value == -HUGE_VAL) // the gear flank reaches no point of the pinion flank
     return c;
   search.fill(c, best);
@@ -626,7 +648,18 @@ UnloadedTca::pair_contact(int k, double phi, const PairContact *near) const
 PairContact
 UnloadedTca::pair(int k, double phi, const PairContact *near) const
 {
-  return pair_contact(k, phi, near);
+  return pair_contact(
+      k, phi, [near](ContactSearch &search) { return search.maximum(search.starts(near)); });
+}
+
+PairContact
+UnloadedTca::pair_from(int k, double phi, double u1, double v1, double du, double dv) const
+{
+  if (!(du > 0) || !(dv > 0) || !std::isfinite(u1 + v1 + du + dv))
+    throw InputError("unloaded TCA: a local contact search needs a finite flank point and "
+                     "steps > 0");
+  return pair_contact(k, phi,
+                      [=](ContactSearch &search) { return search.maximum_from(u1, v1, du, dv); });
 }
 
 TcaPosition
@@ -638,7 +671,7 @@ UnloadedTca::at(double phi) const
   const double s   = options.side == FlankSide::drive ? 1.0 : -1.0;
   for (int k = k0 - 3; k <= k0 + 3; ++k)
     {
-      PairContact c = pair_contact(k, phi);
+      PairContact c = pair(k, phi);
       if (!c.found)
         continue;
       pos.pairs.push_back(c);
@@ -742,7 +775,7 @@ set_relative_curvature(PairContact &c, const Assembly &assembly, const Flank &pi
   const Vec3       dv  = assembly.pinion_vector_to_global(f.d_dv, phi).normalized();
   const Vec3       du  = assembly.pinion_vector_to_global(f.d_du, phi).normalized();
   const double     key = std::abs(c.major_direction.dot(dv)) > 1e-6 ? c.major_direction.dot(dv)
-                                                                   : c.major_direction.dot(du);
+                                                                    : c.major_direction.dot(du);
   if (key < 0)
     c.major_direction = -c.major_direction;
 }

@@ -152,6 +152,13 @@ public:
   /// step size: their results are those of the plain pattern search.)
   PairContact
   pair(int k, double pinion_angle, const PairContact *near = nullptr) const;
+  /// Pairing k's contact searched from a pinion flank point (u1, v1) alone, where the contact
+  /// is known to lie nearby (a variant of a pair, from the first touch of its contact cells):
+  /// the pattern search starts there with steps (du, dv) (about a cell) instead of covering the
+  /// flank, and is pinned by Newton as pair's. Returns a contact not found where the gear flank
+  /// reaches no point of the search (then search the whole flank with pair).
+  PairContact
+  pair_from(int k, double pinion_angle, double u1, double v1, double du, double dv) const;
 
   /// options.positions_per_mesh x options.mesh_cycles positions from options.start_angle.
   TcaResult
@@ -185,8 +192,11 @@ public:
   }
 
 private:
+  /// Pairing k's teeth at pinion angle phi, their contact where find(ContactSearch &) returns
+  /// the maximum (pair's and pair_from's searches; defined and used in unloaded_tca.cc).
+  template <class Find>
   PairContact
-  pair_contact(int k, double phi, const PairContact *near = nullptr) const;
+  pair_contact(int k, double phi, Find &&find) const;
   /// pair_contact's search in its phases (unloaded_tca.cc).
   class ContactSearch;
   /// touch_angle's solve: none (no solution near `expected`, or off the flank), beyond_face

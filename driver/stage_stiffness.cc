@@ -84,6 +84,24 @@ member_options(double module, int z, bool pinion, const FeScene &fe, FlankSide s
   return o;
 }
 
+/// The pair as its segments are chosen: an involute pair without its flanks' micro-geometry
+/// (modifications, per-tooth deviations, pitch deviations, runout, eccentricity: micrometres
+/// the finite-element mesh does not follow). A tip relief would otherwise take a pair out of
+/// the gap band and with it a tooth out of the segments: a design or tolerance study's
+/// variants keep one compliance, and the modified scene run on its own computes the same one.
+PairScene
+macro_geometry(PairScene pair)
+{
+  for (InvoluteGearData *d : {&pair.pinion, &pair.gear})
+    {
+      d->drive_modifications = d->coast_modifications = ToothModifications{};
+      d->drive_tooth_deviations.clear(), d->coast_tooth_deviations.clear();
+      d->single_pitch_deviations.clear(), d->eccentric_teeth.clear();
+      d->runout = Runout{};
+    }
+  return pair;
+}
+
 /// The compliance table of one member on its tooth segment.
 FlankCompliance
 compliance_table(const PairScene &pair, const MemberFlanks &flanks, bool is_pinion,
@@ -106,9 +124,10 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       const TcaScene &tca  = scene.tca.at(pair.name);
       const FlankSide side = tca.options.side;
       // The teeth that can carry load over a mesh cycle decide the segments.
-      const PairMembers members =
-          theoretical_members(pair, tca, upstream.at("flanks")->group(pair.name));
-      const UnloadedTca        t(members.pinion, members.gear, members.assembly, tca.options);
+      const H5Group            flanks  = upstream.at("flanks")->group(pair.name);
+      const PairMembers        members = theoretical_members(pair, tca, flanks);
+      const PairMembers        macro   = theoretical_members(macro_geometry(pair), tca, flanks);
+      const UnloadedTca        t(macro.pinion, macro.gear, macro.assembly, tca.options);
       std::vector<TcaPosition> positions;
       const int                z1 = members.pinion->teeth();
       for (int i = 0; i < tca.options.positions_per_mesh; ++i)

@@ -84,11 +84,15 @@ member_options(double module, int z, bool pinion, const FeScene &fe, FlankSide s
   return o;
 }
 
-/// The pair as its segments are chosen: an involute pair without its flanks' micro-geometry
+/// The pair as its compliance is computed: an involute pair without its flanks' micro-geometry
 /// (modifications, per-tooth deviations, pitch deviations, runout, eccentricity: micrometres
-/// the finite-element mesh does not follow). A tip relief would otherwise take a pair out of
-/// the gap band and with it a tooth out of the segments: a design or tolerance study's
-/// variants keep one compliance, and the modified scene run on its own computes the same one.
+/// that the finite-element mesh, of elements a quarter module in size, does not follow; they
+/// enter the loaded contact as gaps). The segments follow the macro-geometry's contact (a tip
+/// relief would otherwise take a pair out of the gap band, and with it a tooth out of the
+/// segments), and the unit loads lie on the mesh's surface (on a 50 um tip relief they lay
+/// inside the material, and the tables' structural part, the half-space part removed, came out
+/// negative). A design or tolerance study's variants reuse this compliance, and the modified
+/// scene run on its own computes the same one.
 PairScene
 macro_geometry(PairScene pair)
 {
@@ -123,11 +127,11 @@ run_compliance_stage(const Scene &scene, const Upstream &upstream, const H5Group
       const FeScene   fe   = pair_fe(scene, pair);
       const TcaScene &tca  = scene.tca.at(pair.name);
       const FlankSide side = tca.options.side;
-      // The teeth that can carry load over a mesh cycle decide the segments.
-      const H5Group            flanks  = upstream.at("flanks")->group(pair.name);
-      const PairMembers        members = theoretical_members(pair, tca, flanks);
-      const PairMembers        macro   = theoretical_members(macro_geometry(pair), tca, flanks);
-      const UnloadedTca        t(macro.pinion, macro.gear, macro.assembly, tca.options);
+      // The members' macro-geometry (macro_geometry): the teeth that can carry load over a
+      // mesh cycle decide the segments, and the unit loads lie on the flanks the mesh has.
+      const PairMembers members =
+          theoretical_members(macro_geometry(pair), tca, upstream.at("flanks")->group(pair.name));
+      const UnloadedTca        t(members.pinion, members.gear, members.assembly, tca.options);
       std::vector<TcaPosition> positions;
       const int                z1 = members.pinion->teeth();
       for (int i = 0; i < tca.options.positions_per_mesh; ++i)

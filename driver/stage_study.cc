@@ -44,6 +44,23 @@ best_variant(const std::vector<VariantCycle> &r, std::size_t m)
   return best;
 }
 
+/// A warning where variants loaded a cell on their fixed zone's edge at some torque: their
+/// contact may reach beyond the zone (the map leaves them out of its best variants; the Monte
+/// Carlo's percentiles count them).
+void
+warn_zone_edges(std::ostream &log, const PairScene &pair, const std::vector<VariantCycle> &r,
+                std::size_t count, const char *what)
+{
+  std::size_t at_edge = 0;
+  for (std::size_t k = 0; k < count; ++k)
+    at_edge += std::any_of(r[k].zone_edge.begin(), r[k].zone_edge.end(), [](char e) { return e; });
+  if (at_edge > 0)
+    log << "  warning: Study/" << pair.name << ": " << at_edge << " of " << count << " " << what
+        << " loaded a cell on the edge of their fixed contact zone at some torque (their "
+           "contact may reach beyond it; results/study/"
+        << pair.name << "/zone_edge says which); raise `zone widening`" << std::endl;
+}
+
 /// The relief of least TE p-p along a single axis at torque m: the vertex of the parabola
 /// through the grid's best valid value and its two neighbours (the best value itself at an end
 /// of the axis or where the three do not open upwards).
@@ -194,6 +211,7 @@ run_map(const PairScene &pair, const StudyScene &s, const StudyInputs &in, const
   for (int i = 0; i < o.positions; ++i)
     phi.push_back(in.tca.start_angle + mesh_angle * i / o.positions);
   write_map(g, s, o.torques, grid, r, phi, lp.members.pitch_radius);
+  warn_zone_edges(log, pair, r, r.size(), "variants");
   int unmodified = -1;
   for (std::size_t v = 0; v < grid.size() && unmodified < 0; ++v)
     if (const PairVariant w = grid.variant(v); !w.pinion.any() && !w.gear.any())
@@ -300,6 +318,7 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
     for (const char e : r[k].zone_edge)
       edge.push_back(e);
   g.write("zone_edge", edge, {S, M});
+  warn_zone_edges(log, pair, r, S, "samples");
   const std::vector<double> levels = {5, 50, 95};
   g.write("percentile_levels", levels, {levels.size()});
   // Convergence: the percentiles of the first n samples, n doubling up to all.

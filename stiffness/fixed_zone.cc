@@ -84,7 +84,8 @@ FixedZone::warm_start(const LoadedPosition &p) const
 
 LoadedPosition
 FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
-                 const Eigen::MatrixX2d *pinion_slope, const ActiveSetFactor *start) const
+                 const Eigen::MatrixX2d *pinion_slope, const ActiveSetFactor *start,
+                 double turned) const
 {
   const Eigen::Index n = gap.size();
   if (added.size() != n || !added.allFinite())
@@ -109,18 +110,23 @@ FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
     throw InputError("fixed contact zone: a deviation's slope turns a cell's normal away from "
                      "the pinion's rotation (a moment arm <= 0); slopes of micrometre "
                      "deviations are far smaller");
-  // The variant's first touch: rotation beyond this position's gear angle [rad].
+  if (!std::isfinite(turned))
+    throw InputError("fixed contact zone: the gear's turn must be finite");
+  // The position the pinion rotates from: the gear turned on by `turned`.
+  TcaPosition from = at;
+  from.transmission_error += turned;
+  // The variant's first touch: rotation beyond that position's gear angle [rad].
   const double first_touch =
-      std::isnan(e0) ? g.cwiseQuotient(arm).minCoeff() : sign * (e0 - at.transmission_error);
+      std::isnan(e0) ? g.cwiseQuotient(arm).minCoeff() : sign * (e0 - from.transmission_error);
   if (!std::isfinite(first_touch))
     throw InputError("fixed contact zone: the variant's unloaded TE must be finite");
   ContactSolution s;
   if (torque > 0)
     s = solve_contact(compliance, g, arm, torque, start ? *start : own_active);
-  LoadedPosition r = loaded_position(*tca, at, torque, zone_cells, s, first_touch);
+  LoadedPosition r = loaded_position(*tca, from, torque, zone_cells, s, first_touch);
   r.gap_band       = own.gap_band;
   for (const auto &[separation, arm_outside] : outside)
-    if (s.approach * arm_outside > separation)
+    if ((s.approach + sign * turned) * arm_outside > separation)
       r.zone_edge_reached = true; // a pair without cells would touch
   return r;
 }

@@ -62,11 +62,14 @@ public:
   /// than the cells' and non-finite entries.
   /// `start` (optional): the cells to start the active set from, factorised (warm_start of a
   /// similar variant's contact); by default the pair's own. The solution does not depend on it.
+  /// `turned` [rad, TE]: the part of the unloaded TE beyond this position's that `added`
+  /// already holds as the gear's turn (the variant's members meeting at e0 as its TCA turns
+  /// them); the pinion's rotation, with the moment arms, starts from there.
   LoadedPosition
   solve(const Eigen::VectorXd &added, double torque,
         double                  e0           = std::numeric_limits<double>::quiet_NaN(),
-        const Eigen::MatrixX2d *pinion_slope = nullptr,
-        const ActiveSetFactor  *start        = nullptr) const;
+        const Eigen::MatrixX2d *pinion_slope = nullptr, const ActiveSetFactor *start = nullptr,
+        double turned = 0) const;
   /// A warm start for solve from a contact `p` on this zone's cells (a variant's solution): its
   /// cells in contact, their compliance factorised, the most loaded first.
   ActiveSetFactor

@@ -258,6 +258,8 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   Deviations d;
   d.added.resize(Eigen::Index(cells.size()));
   d.pinion_slope.resize(Eigen::Index(cells.size()), 2);
+  d.gear_turn.resize(Eigen::Index(cells.size()));
+  std::vector<double> ratio(cells.size());
   for (std::size_t j = 0; j < cells.size(); ++j)
     {
       const ContactCell &c  = cells[j];
@@ -275,8 +277,25 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
                    moved(wp, q.pinion_normal[j], q.pinion_gu[j], q.pinion_gv[j], dp) +
                    moved(wg, q.gear_normal[j], q.gear_gu[j], q.gear_gv[j], dg);
       d.pinion_slope(i, 0) = dp.change.d_dL, d.pinion_slope(i, 1) = dp.change.d_dz;
+      const Vec3 turn = Vec3::UnitZ().cross(q.gear_point[j]);
+      d.gear_turn[i]  = moved(turn, q.gear_normal[j], q.gear_gu[j], q.gear_gv[j], dg);
+      ratio[j]        = turn.dot(q.gear_normal[j]) / c.lever;
     }
+  std::nth_element(ratio.begin(), ratio.begin() + long(ratio.size() / 2), ratio.end());
+  d.turn_per_rotation = ratio[ratio.size() / 2];
   return d;
+}
+
+LoadedPosition
+MeshCycleStudy::solve_variant(std::size_t m, std::size_t i, const Deviations &d, double e0,
+                              const ActiveSetFactor *start) const
+{
+  const FixedZone &z        = zone(m, i);
+  const double     sign     = tca_options.side == FlankSide::drive ? 1.0 : -1.0;
+  const double     turned   = e0 - z.position().transmission_error; // [rad, pinion]
+  const double     rotation = sign * turned;
+  return z.solve(d.added + (rotation / d.turn_per_rotation) * d.gear_turn, o.torques[m], e0,
+                 &d.pinion_slope, start, turned);
 }
 
 void
@@ -291,10 +310,8 @@ MeshCycleStudy::warm_start_from(const PairVariant &v)
   std::vector<ActiveSetFactor> starts(M * N);
   parallel_for(M * N, o.threads, [&](std::size_t k) {
     const std::size_t    m = k / N, i = k % N;
-    const Deviations     d = deviations(m, i, 0, v);
-    const LoadedPosition p =
-        zone(m, i).solve(d.added, o.torques[m], r.unloaded_te[i], &d.pinion_slope);
-    starts[k] = zone(m, i).warm_start(p);
+    const LoadedPosition p = solve_variant(m, i, deviations(m, i, 0, v), r.unloaded_te[i], nullptr);
+    starts[k]              = zone(m, i).warm_start(p);
   });
   warm = std::move(starts);
 }
@@ -363,11 +380,9 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
     r.unloaded_te[job] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {
-        const FixedZone       &z     = zone(m, i);
         const ActiveSetFactor *start = warm.empty() ? nullptr : &warm[m * N + i];
-        const LoadedPosition   p =
-            z.solve(dev[m].added, o.torques[m], e0, &dev[m].pinion_slope, start);
-        const std::size_t k = m * CN + job;
+        const LoadedPosition   p     = solve_variant(m, i, dev[m], e0, start);
+        const std::size_t      k     = m * CN + job;
         r.loaded_te[k] = p.eL, r.mesh_stiffness[k] = p.mesh_stiffness;
         r.normal_force[k] = p.normal_force;
         for (std::size_t s = 0; s < p.pair_force.size(); ++s)

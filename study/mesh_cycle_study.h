@@ -103,13 +103,26 @@ public:
   /// tooth's turn by its cumulative pitch deviation and the toothing's runout, each to first
   /// order along the flank's normal; the gear axis's tilt likewise), and the derivatives of the
   /// pinion's modifications by its flank parameters (roll angle, z) [m] (FixedZone::solve).
+  /// `gear_turn`: what the gear's turn by 1 rad about its axis adds at each cell (its normal
+  /// part and the gear's deviation its material brings along) [m]; `turn_per_rotation`: the
+  /// gear's turn equal to a unit pinion rotation at the cells (their median normal motion per
+  /// turn over their moment arm, -z2/z1 r_b2 / r_b1 for an involute pair).
   struct Deviations
   {
     Eigen::VectorXd  added;
     Eigen::MatrixX2d pinion_slope;
+    Eigen::VectorXd  gear_turn;
+    double           turn_per_rotation = 0;
   };
   Deviations
   deviations(std::size_t torque, std::size_t position, int cycle, const PairVariant &variant) const;
+  /// The variant's loaded contact in zone (torque, position) from its unloaded TE e0 (its own
+  /// TCA): the gear turned to e0 (as the TCA and the stiffness stage turn it: its deviations
+  /// slide along; a pinion rotated instead would bring the pinion's, the TE at another pinion
+  /// angle), then the pinion's approach under the torque.
+  LoadedPosition
+  solve_variant(std::size_t torque, std::size_t position, const Deviations &d, double e0,
+                const ActiveSetFactor *start) const;
 
   /// The variant's members: the study's with the variant's modifications.
   std::pair<std::shared_ptr<const InvoluteMemberFlanks>,

@@ -46,10 +46,11 @@ namespace
 /// A variant's loaded contact at zone (m, i) of `study` in mesh cycle `cycle` computed on the
 /// zone's cells from the exact geometry of the variant's flanks: each cell's point on the
 /// modified pinion flank of its renumbered tooth at its flank parameters, that flank's normal
-/// (the force's direction and moment arm), the gap from the rotation at which the modified
+/// (the force's direction and moment arm), the gear turned to e_0 of the variant's TCA (as the
+/// TCA and the stiffness stage turn it) and the gap from the rotation at which the modified
 /// gear flank passes through the point (where a relieved gear tip no longer reaches it, each
-/// flank's own normal displacement), e_0 from the variant's TCA; the same compliance.
-/// `beyond` counts the cells of the second kind.
+/// flank's own normal displacement, less the gear's turn), the pinion's approach from there;
+/// the same compliance. `beyond` counts the cells of the second kind.
 LoadedPosition
 exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, std::size_t m,
              std::size_t i, int cycle, std::size_t &beyond)
@@ -62,6 +63,10 @@ exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, st
   std::vector<ContactCell> cells = z.cells();
   const int                z1 = 16, z2 = 24;
   pos.pinion_angle += 2 * pi * cycle / z1, pos.gear_angle += 2 * pi * cycle / z2;
+  // the gear turned on to the variant's e_0 = phi - (z2 / z1) psi
+  const double e0     = modified.at(pos.pinion_angle).transmission_error;
+  const double turned = e0 - pos.transmission_error;
+  pos.gear_angle -= turned * z1 / z2, pos.transmission_error = e0;
   const Eigen::Index n = Eigen::Index(cells.size());
   Eigen::VectorXd    gap(n), lever(n);
   for (Eigen::Index j = 0; j < n; ++j)
@@ -88,13 +93,18 @@ exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, st
           c.gap -
           moved(vp->flank(tp, FlankSide::drive), s.pinion->flank(tp, FlankSide::drive), c.u1,
                 c.v1) -
-          moved(vg->flank(tg, FlankSide::drive), s.gear->flank(tg, FlankSide::drive), c.u2, c.v2);
+          moved(vg->flank(tg, FlankSide::drive), s.gear->flank(tg, FlankSide::drive), c.u2, c.v2) -
+          c.lever * turned;
     }
-  const double          e0  = modified.at(pos.pinion_angle).transmission_error;
+  // the variant's members touch at e_0: no cell penetrates, and the nearest stands apart by
+  // at most the gap across a cell from the touch (the gear turned the wrong way: 2 e_0 apart)
+  const double first = gap.cwiseQuotient(lever).minCoeff();
+  EXPECT_GT(first, -1e-12);
+  EXPECT_LT(first, 2e-6);
   const double          T   = study.options().torques[m];
   const Eigen::MatrixXd C   = zone_compliance(cells, s.contact, tooth, tooth);
   const ContactSolution sol = solve_contact((C + C.transpose()) / 2, gap, lever, T);
-  return loaded_position(modified, pos, T, cells, sol, e0 - pos.transmission_error);
+  return loaded_position(modified, pos, T, cells, sol, 0);
 }
 } // namespace
 

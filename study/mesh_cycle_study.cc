@@ -294,6 +294,9 @@ MeshCycleStudy::solve_variant(std::size_t m, std::size_t i, const Deviations &d,
   const double     sign     = tca_options.side == FlankSide::drive ? 1.0 : -1.0;
   const double     turned   = e0 - z.position().transmission_error; // [rad, pinion]
   const double     rotation = sign * turned;
+  if (!(std::abs(d.turn_per_rotation) > 0) || !std::isfinite(d.turn_per_rotation + turned))
+    throw InputError("mesh cycle study: the gear's turn to the variant's unloaded TE does not "
+                     "move the zone's cells along their normals (a zone off the flanks?)");
   return z.solve(d.added + (rotation / d.turn_per_rotation) * d.gear_turn, o.torques[m], e0,
                  &d.pinion_slope, start, turned);
 }

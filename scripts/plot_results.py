@@ -29,6 +29,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import matplotlib.tri as mtri  # noqa: E402
+from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 import numpy as np  # noqa: E402
 
 
@@ -105,7 +106,10 @@ def plot_profiles(flanks, out_dir):
         for ax, zoom in zip(row, (False, True)):
             for xy, member, colour in ((pin, p, "tab:blue"), (gea, g, "tab:red")):
                 closed = np.vstack([xy, xy[:1]])
-                ax.fill(closed[:, 0], closed[:, 1], color=colour, alpha=0.15, lw=0)
+                # (a collection: Axes.fill's patch bounds its many-vertex outline in Python,
+                # seconds for a gear of a hundred teeth)
+                ax.add_collection(PolyCollection([closed], facecolors=colour, alpha=0.15,
+                                                 linewidths=0))
                 ax.plot(closed[:, 0], closed[:, 1], color=colour, lw=0.8)
             for member, centre, colour in ((p, 0.0, "tab:blue"), (g, a * 1e3, "tab:red")):
                 t = np.linspace(0, 2 * np.pi, 400)
@@ -305,13 +309,16 @@ def plot_contact_pattern(ste, flanks, out_dir):
         touching = (g["pinion_tooth"][:] >= 0) & (sep <= tol)  # slots in use, in contact
         geo = g["contact_in_gear_frame"][:]
         half_b = gear["face_width"][()] * 500
+        ellipses = []
         for i, k in zip(*np.nonzero(touching)):
             X, A, B = geo[i, k]
             pts = X + np.outer(np.cos(t), A) + np.outer(np.sin(t), B)
-            face, profile = gear_flank_coordinates(flanks, name, pts)
-            patch = ax.fill(face, profile, color="tab:green", alpha=0.08, lw=0)[0]
-            line = ax.plot(face, profile, color="tab:green", lw=0.3, alpha=0.5)[0]
-            clip_items.extend([patch, line])
+            ellipses.append(np.column_stack(gear_flank_coordinates(flanks, name, pts)))
+        if ellipses:  # (collections: one patch a contact took seconds for a hunting cycle)
+            clip_items.append(ax.add_collection(
+                PolyCollection(ellipses, facecolors="tab:green", alpha=0.08, linewidths=0)))
+            clip_items.append(ax.add_collection(
+                LineCollection(ellipses, colors="tab:green", linewidths=0.3, alpha=0.5)))
         face, profile = gear_flank_coordinates(flanks, name, geo[touching][:, 0])
         ax.plot(face, profile, "k.", ms=2, label="contact points")
         if is_bevel(flanks[name]):
@@ -954,7 +961,7 @@ def plot_train(name, g, out_dir):
         row[2].set_ylabel("amplitude of |force| [N]")
         row[2].set_title(f"force spectrum from {sp['start'][()]:.3g} s: GMF {gmf:.2f} Hz\n"
                          "(harmonics red: found, grey: not)", fontsize=9)
-        row[2].legend(fontsize=7)
+        row[2].legend(fontsize=7, loc="upper right")
     last = list(grid[-2]) + list(grid[-1])
     speed = g["speed"][:]
     for i, body in enumerate(bodies):
@@ -962,7 +969,8 @@ def plot_train(name, g, out_dir):
     last[0].set_xlabel(t_label)
     last[0].set_ylabel("speed [rad/s]")
     last[0].set_title(f"{name}: body speeds")
-    last[0].legend(fontsize=7)
+    # (placed, not "best": that scans every point of the long time series, seconds a picture)
+    last[0].legend(fontsize=7, loc="center right")
     work, kin, pot, dis = (g[k][:] for k in ("work", "kinetic", "potential", "dissipated"))
     last[1].plot(t, work, label="work of the torques")
     last[1].plot(t, kin - kin[0], label="kinetic energy change")
@@ -972,7 +980,7 @@ def plot_train(name, g, out_dir):
     last[1].set_xlabel(t_label)
     last[1].set_ylabel("energy [J]")
     last[1].set_title(f"energy balance (error {g['energy_error'][()]:.2g} of the largest term)")
-    last[1].legend(fontsize=7)
+    last[1].legend(fontsize=7, loc="upper left")
     kin_f = g["kinematics"]
     method = g.attrs.get("integrator", "")
     method = method.decode() if isinstance(method, bytes) else str(method)

@@ -170,6 +170,37 @@ TEST_F(StudyStage, MapVariantEqualsTheStandaloneModifiedScene)
               worst_e, worst_K, peak_to_peak(e) / peak_to_peak(c.loaded_te) - 1);
 }
 
+TEST_F(StudyStage, AModifiedSceneComputesItsUnmodifiedPairsCompliance)
+{
+  // The compliance follows the macro-geometry: a 50 um tip relief on both members takes no
+  // tooth out of the segments and moves no unit load off the mesh's surface (on the relieved
+  // flanks they lay 50 um inside it, the tables' structural part came out negative and the
+  // loaded contact refused the torque), so the map's variants reuse the modified scene's own
+  // compliance; its loaded contact solves.
+  const std::string relief_50 = std::regex_replace(relief_20, std::regex("= 20"), "= 50");
+  ASSERT_EQ(run({file("plain.prm", fzg_scene("plain", "stiffness", "", "", ""))}), 0) << err.str();
+  ASSERT_EQ(
+      run({file("relieved.prm", fzg_scene("relieved", "stiffness", relief_50, relief_50, ""))}), 0)
+      << err.str();
+  EXPECT_EQ(out.str().find("refused"), std::string::npos) << out.str();
+  const H5File plain    = H5File::open((dir / "out/plain/results.h5").string());
+  const H5File relieved = H5File::open((dir / "out/relieved/results.h5").string());
+  for (const char *member : {"pinion", "gear"})
+    {
+      const std::string name = std::string("compliance/fzg/") + member;
+      const auto        a    = plain.root().group(name).read_doubles("compliance");
+      EXPECT_EQ(relieved.root().group(name).read_doubles("compliance"), a) << member;
+      EXPECT_EQ(relieved.root().group(name).read_ints("grid_teeth"),
+                plain.root().group(name).read_ints("grid_teeth"))
+          << member;
+    }
+  // the relief lowers the TE's variation at the scene's torque: it was solved, not skipped
+  const auto pp = [](const H5File &f) {
+    return peak_to_peak(f.root().group("stiffness/fzg").read_doubles("transmission_error_loaded"));
+  };
+  EXPECT_NE(pp(relieved), pp(plain));
+}
+
 TEST_F(StudyStage, BadSectionsAreRefusedByName)
 {
   const auto refused = [&](const std::string &rest, const std::vector<std::string> &pieces) {

@@ -250,7 +250,6 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
     active[std::size_t(j)] = 1;
   const double      scale = std::max(gap.cwiseAbs().maxCoeff(), 1e-9);
   std::vector<char> leave(std::size_t(n), 0);
-  std::vector<std::pair<Eigen::Index, Eigen::Index>> runs; // [from, to) of rows checked
   for (int it = 0; it < 4 * n + 50; ++it)
     {
       const std::vector<Eigen::Index> &A = factor.cells();

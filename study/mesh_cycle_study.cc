@@ -364,7 +364,7 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
           has_cells[std::size_t(c.pair)] = 1;
       }
     // each pair's first touch in the first torque's zone
-    std::vector<SearchStart> start(at.pairs.size());
+    std::vector<SearchStart> search_from(at.pairs.size());
     std::vector<double>      first(at.pairs.size(), HUGE_VAL);
     const MemberPoints      &q0 = points[i];
     for (std::size_t j = 0; j < zone(0, i).cells().size(); ++j)
@@ -376,10 +376,11 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
           {
             const double h = std::max(c.ds, c.dt);
             first[p]       = touch;
-            start[p] = {true, c.u1, c.v1, h * q0.pinion_gu[j].norm(), h * q0.pinion_gv[j].norm()};
+            search_from[p] = {true, c.u1, c.v1, h * q0.pinion_gu[j].norm(),
+                              h * q0.pinion_gv[j].norm()};
           }
       }
-    const double e0    = variant_unloaded_te(own_tca, at, has_cells, most_added, start);
+    const double e0    = variant_unloaded_te(own_tca, at, has_cells, most_added, search_from);
     r.unloaded_te[job] = e0;
     for (std::size_t m = 0; m < M; ++m)
       {

@@ -133,6 +133,7 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
       const Eigen::Matrix<double, 2, 3> G = (J.transpose() * J).inverse() * J.transpose();
       return std::pair<Vec3, Vec3>(G.row(0).transpose(), G.row(1).transpose());
     };
+    std::vector<double> ratio;
     for (const ContactCell &c : zones[k]->cells())
       {
         const FlankPoint a  = pinion->flank(c.pinion_tooth, tca_options.side).evaluate(c.u1, c.v1);
@@ -143,7 +144,11 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
         q.pinion_gu.push_back(pu), q.pinion_gv.push_back(pv);
         q.gear_point.push_back(b.position), q.gear_normal.push_back(b.normal);
         q.gear_gu.push_back(gu), q.gear_gv.push_back(gv);
+        ratio.push_back(Vec3::UnitZ().cross(b.position).dot(b.normal) / c.lever);
       }
+    // the gear's turn per unit pinion rotation: the cells' median (a zone's, not a variant's)
+    std::nth_element(ratio.begin(), ratio.begin() + long(ratio.size() / 2), ratio.end());
+    q.turn_per_rotation = ratio.empty() ? 0.0 : ratio[ratio.size() / 2];
   });
 }
 
@@ -259,7 +264,6 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   d.added.resize(Eigen::Index(cells.size()));
   d.pinion_slope.resize(Eigen::Index(cells.size()), 2);
   d.gear_turn.resize(Eigen::Index(cells.size()));
-  std::vector<double> ratio(cells.size());
   for (std::size_t j = 0; j < cells.size(); ++j)
     {
       const ContactCell &c  = cells[j];
@@ -279,10 +283,8 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       d.pinion_slope(i, 0) = dp.change.d_dL, d.pinion_slope(i, 1) = dp.change.d_dz;
       const Vec3 turn = Vec3::UnitZ().cross(q.gear_point[j]);
       d.gear_turn[i]  = moved(turn, q.gear_normal[j], q.gear_gu[j], q.gear_gv[j], dg);
-      ratio[j]        = turn.dot(q.gear_normal[j]) / c.lever;
     }
-  std::nth_element(ratio.begin(), ratio.begin() + long(ratio.size() / 2), ratio.end());
-  d.turn_per_rotation = ratio[ratio.size() / 2];
+  d.turn_per_rotation = q.turn_per_rotation;
   return d;
 }
 

@@ -162,6 +162,7 @@ private:
   {
     std::vector<Vec3> pinion_point, pinion_normal, pinion_gu, pinion_gv;
     std::vector<Vec3> gear_point, gear_normal, gear_gu, gear_gv;
+    double            turn_per_rotation = 0; ///< Deviations::turn_per_rotation of the zone
   };
   std::vector<MemberPoints>    points;
   std::vector<ActiveSetFactor> warm; ///< [M][N] the active sets to start from (empty: own)

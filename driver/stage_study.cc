@@ -272,6 +272,7 @@ run_tolerances(const PairScene &pair, const StudyScene &s, StudyInputs in, const
   const PairVariant      design  = design_grid.variant(0);
   MeshCycleStudyOptions &o       = in.options;
   o.cycles                       = s.mesh_cycles > 0 ? s.mesh_cycles : pair.pinion.teeth;
+  o.turned_gear_compliance       = false; // (MeshCycleStudyOptions: speed)
   const std::size_t            S = std::size_t(s.samples), M = o.torques.size();
   std::vector<ToleranceSample> drawn(S); // each from its own stream: the same on any process
   parallel_for(S, o.threads, [&](std::size_t k) {

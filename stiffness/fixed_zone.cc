@@ -12,6 +12,7 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
                      const StructuralCompliance &gear, double widening)
     : tca(&tca)
     , at(position)
+    , gear_compliance(gear)
 {
   if (!(widening >= 1) || !std::isfinite(widening))
     throw InputError("fixed contact zone: the widening must be finite and >= 1 (got " +
@@ -36,11 +37,27 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
   const Eigen::Index n = Eigen::Index(zone_cells.size());
   gap.resize(n), lever.resize(n);
   lever_slope.resize(n, 2);
-  const FlankSide side = tca.options_data().side;
+  gear_motion.resize(n, 2);
+  const FlankSide     side        = tca.options_data().side;
+  double              least_width = HUGE_VAL, most_slide = 0;
+  std::vector<double> ratio;
   for (Eigen::Index i = 0; i < n; ++i)
     {
       const ContactCell &c = zone_cells[std::size_t(i)];
       gap[i] = c.gap, lever[i] = c.lever;
+      // The gear turned by 1 rad moves its material at the cell by w = e_z x P (its frame):
+      // the normal part per moment arm is the gear's turn per pinion rotation; the tangential
+      // part brings the material of the flank parameters (u2, v2) - G w to the cell, G =
+      // (J^T J)^-1 J^T.
+      const FlankPoint b = tca.gear_flanks().flank(c.gear_tooth, side).evaluate(c.u2, c.v2);
+      Eigen::Matrix<double, 3, 2> Jg;
+      Jg << b.d_du, b.d_dv;
+      const Vec3            w     = Vec3::UnitZ().cross(b.position);
+      const Eigen::Vector2d moved = (Jg.transpose() * Jg).ldlt().solve(Jg.transpose() * w);
+      gear_motion.row(i)          = -moved.transpose();
+      most_slide                  = std::max(most_slide, (Jg * moved).norm());
+      least_width                 = std::min(least_width, c.ds);
+      ratio.push_back(w.dot(b.normal) / c.lever);
       // lever = |a . n| with a = e_z x r; the normal tilted by the deviation's surface gradient
       // J (J^T J)^-1 (d_u, d_v) moves it by -sign(a . n) a . J (J^T J)^-1 (d_u, d_v).
       const FlankPoint f = tca.pinion_flanks().flank(c.pinion_tooth, side).evaluate(c.u1, c.v1);
@@ -52,7 +69,10 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
       lever_slope.row(i) =
           -sign_a * (J.transpose() * J).ldlt().solve(J.transpose() * a).transpose();
     }
-  own          = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
+  std::nth_element(ratio.begin(), ratio.begin() + long(ratio.size() / 2), ratio.end());
+  gear_per_pinion = ratio.empty() ? 0.0 : ratio[ratio.size() / 2];
+  slide_per_turn  = n > 0 ? most_slide / least_width : 0.0;
+  own             = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
   own.gap_band = o.cells.gap_band;
   own_active   = warm_start(own);
   std::vector<char> has_cells(position.pairs.size(), 0);
@@ -85,7 +105,7 @@ FixedZone::warm_start(const LoadedPosition &p) const
 LoadedPosition
 FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
                  const Eigen::MatrixX2d *pinion_slope, const ActiveSetFactor *start,
-                 double turned) const
+                 double turned, bool turned_gear_compliance) const
 {
   const Eigen::Index n = gap.size();
   if (added.size() != n || !added.allFinite())
@@ -123,11 +143,89 @@ FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
   ContactSolution s;
   if (torque > 0)
     s = solve_contact(compliance, g, arm, torque, start ? *start : own_active);
+  if (torque > 0 && turned != 0 && turned_gear_compliance)
+    {
+      if (!(std::abs(gear_per_pinion) > 0))
+        throw InputError("fixed contact zone: the gear's turn does not move the cells along "
+                         "their normals (a zone off the flanks?)");
+      const double gear_turn = sign * turned / gear_per_pinion;
+      if (std::abs(gear_turn) * slide_per_turn > gear_slide_tolerance)
+        s = gear_turned(s, g, arm, torque, gear_turn);
+    }
   LoadedPosition r = loaded_position(*tca, from, torque, zone_cells, s, first_touch);
   r.gap_band       = own.gap_band;
   for (const auto &[separation, arm_outside] : outside)
     if ((s.approach + sign * turned) * arm_outside > separation)
       r.zone_edge_reached = true; // a pair without cells would touch
   return r;
+}
+
+ContactSolution
+FixedZone::gear_turned(const ContactSolution &s, const Eigen::VectorXd &g,
+                       const Eigen::VectorXd &arm, double torque, double gear_turn) const
+{
+  const Eigen::Index        n     = g.size();
+  const double              scale = std::max(g.cwiseAbs().maxCoeff(), 1e-9);
+  std::vector<char>         in(std::size_t(n), 0);
+  std::vector<Eigen::Index> S;
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (s.force[j] > 0)
+      S.push_back(j), in[std::size_t(j)] = 1;
+  for (int pass = 0; pass < 50; ++pass)
+    {
+      // the compliance over S, its gear part read where the turned gear's material lies
+      const auto               k = Eigen::Index(S.size());
+      std::vector<ContactCell> was(S.size()), now(S.size());
+      Eigen::MatrixXd          C(k, k);
+      Eigen::VectorXd          gS(k), armS(k);
+      for (Eigen::Index a = 0; a < k; ++a)
+        {
+          const Eigen::Index j = S[std::size_t(a)];
+          was[std::size_t(a)] = now[std::size_t(a)] = zone_cells[std::size_t(j)];
+          now[std::size_t(a)].table_u2 += gear_turn * gear_motion(j, 0);
+          now[std::size_t(a)].table_v2 += gear_turn * gear_motion(j, 1);
+          gS[a] = g[j], armS[a] = arm[j];
+          for (Eigen::Index b = 0; b < k; ++b)
+            C(b, a) = compliance(S[std::size_t(b)], j);
+        }
+      const Eigen::MatrixXd D = gear_compliance.matrix(now) - gear_compliance.matrix(was);
+      C += (D + D.transpose()) / 2;
+      if (!C.allFinite())
+        throw InputError("fixed contact zone: the gear's compliance where its turned material "
+                         "lies is not finite");
+      const ContactSolution r = solve_contact(C, gS, armS, torque, std::vector<char>(S.size(), 1));
+      // the cells outside S on their rows as they were
+      Eigen::VectorXd h = r.approach * arm - g;
+      for (Eigen::Index a = 0; a < k; ++a)
+        if (r.force[a] != 0)
+          h.noalias() -= compliance.col(S[std::size_t(a)]) * r.force[a];
+      std::vector<Eigen::Index> join;
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (!in[std::size_t(j)] && h[j] > 1e-12 * scale)
+          join.push_back(j);
+      if (join.empty())
+        {
+          ContactSolution out;
+          out.force      = Eigen::VectorXd::Zero(n);
+          out.approach   = r.approach;
+          out.active     = r.active;
+          out.iterations = s.iterations + r.iterations;
+          out.active_set.assign(std::size_t(n), 0);
+          for (Eigen::Index a = 0; a < k; ++a)
+            {
+              out.force[S[std::size_t(a)]]                   = r.force[a];
+              out.active_set[std::size_t(S[std::size_t(a)])] = r.force[a] > 0;
+            }
+          out.penetration = r.penetration;
+          for (Eigen::Index j = 0; j < n; ++j)
+            if (!in[std::size_t(j)])
+              out.penetration = std::max(out.penetration, h[j]);
+          return out;
+        }
+      for (const Eigen::Index j : join)
+        S.push_back(j), in[std::size_t(j)] = 1;
+    }
+  throw InputError("fixed contact zone: the contact on the turned gear's compliance did not "
+                   "settle");
 }
 } // namespace gearkit

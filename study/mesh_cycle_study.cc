@@ -133,7 +133,6 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
       const Eigen::Matrix<double, 2, 3> G = (J.transpose() * J).inverse() * J.transpose();
       return std::pair<Vec3, Vec3>(G.row(0).transpose(), G.row(1).transpose());
     };
-    std::vector<double> ratio;
     for (const ContactCell &c : zones[k]->cells())
       {
         const FlankPoint a  = pinion->flank(c.pinion_tooth, tca_options.side).evaluate(c.u1, c.v1);
@@ -144,11 +143,7 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
         q.pinion_gu.push_back(pu), q.pinion_gv.push_back(pv);
         q.gear_point.push_back(b.position), q.gear_normal.push_back(b.normal);
         q.gear_gu.push_back(gu), q.gear_gv.push_back(gv);
-        ratio.push_back(Vec3::UnitZ().cross(b.position).dot(b.normal) / c.lever);
       }
-    // the gear's turn per unit pinion rotation: the cells' median (a zone's, not a variant's)
-    std::nth_element(ratio.begin(), ratio.begin() + long(ratio.size() / 2), ratio.end());
-    q.turn_per_rotation = ratio.empty() ? 0.0 : ratio[ratio.size() / 2];
   });
 }
 
@@ -284,7 +279,7 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const Vec3 turn = Vec3::UnitZ().cross(q.gear_point[j]);
       d.gear_turn[i]  = moved(turn, q.gear_normal[j], q.gear_gu[j], q.gear_gv[j], dg);
     }
-  d.turn_per_rotation = q.turn_per_rotation;
+  d.turn_per_rotation = zn.turn_per_rotation();
   return d;
 }
 
@@ -300,7 +295,7 @@ MeshCycleStudy::solve_variant(std::size_t m, std::size_t i, const Deviations &d,
     throw InputError("mesh cycle study: the gear's turn to the variant's unloaded TE does not "
                      "move the zone's cells along their normals (a zone off the flanks?)");
   return z.solve(d.added + (rotation / d.turn_per_rotation) * d.gear_turn, o.torques[m], e0,
-                 &d.pinion_slope, start, turned);
+                 &d.pinion_slope, start, turned, o.turned_gear_compliance);
 }
 
 void

@@ -645,6 +645,9 @@ add_study(const Add &add)
           {"stiffness_mean", "variants x torques", "N/m", "K_m mean over the mesh cycle"},
           {"stiffness_range", "variants x torques", "N/m", "K_m max - min over the mesh cycle"},
           {"max_pressure", "variants x torques", "Pa", "largest cell pressure over the cycle"},
+          {"max_interior_pressure", "variants x torques", "Pa",
+           "largest pressure on cells off the flanks' edges over the cycle (Hertz's where the "
+           "flanks are smooth; at a flank edge the cell pressure depends on the cells' layout)"},
           {"max_edge_share", "variants x torques", "1",
            "largest share of the load on cells at a flank edge (edge contact)"},
           {"zone_edge", "variants x torques, integers", "1",
@@ -683,6 +686,7 @@ add_study(const Add &add)
                                     {"stiffness_mean", "N/m"},
                                     {"stiffness_range", "N/m"},
                                     {"max_pressure", "Pa"},
+                                    {"max_interior_pressure", "Pa"},
                                     {"max_edge_share", "1"}})
     {
       nominal.push_back(

@@ -132,6 +132,7 @@ write_map(const H5Group &g, const StudyScene &s, const std::vector<double> &torq
   gather(&VariantCycle::stiffness_mean, {M}, "stiffness_mean");
   gather(&VariantCycle::stiffness_range, {M}, "stiffness_range");
   gather(&VariantCycle::max_pressure, {M}, "max_pressure");
+  gather(&VariantCycle::max_interior_pressure, {M}, "max_interior_pressure");
   gather(&VariantCycle::max_edge_share, {M}, "max_edge_share");
   gather(&VariantCycle::unloaded_te, {N}, "unloaded_te");
   gather(&VariantCycle::loaded_te, {M, N}, "loaded_te");
@@ -260,6 +261,7 @@ tolerance_outputs()
       {"stiffness_mean", &VariantCycle::stiffness_mean},
       {"stiffness_range", &VariantCycle::stiffness_range},
       {"max_pressure", &VariantCycle::max_pressure},
+      {"max_interior_pressure", &VariantCycle::max_interior_pressure},
       {"max_edge_share", &VariantCycle::max_edge_share}};
   return o;
 }
@@ -440,8 +442,8 @@ run_misalignments(const Scene &scene, const PairScene &pair, const StudyScene &s
   g.write("pattern_face_range", std::vector<double>{v0, v1}, {2});
   const std::size_t T = r[0].unloaded_te.size(), N = std::size_t(o.positions),
                     U = std::size_t(o.profile_bins), V = std::size_t(o.face_bins);
-  std::vector<double> e0, e0_tca, e0_pp, eL, K, eL_pp, K_mean, p_max, edge, path, path_centre,
-      pattern, centre, extent;
+  std::vector<double> e0, e0_tca, e0_pp, eL, K, eL_pp, K_mean, p_max, p_interior, edge, path,
+      path_centre, pattern, centre, extent;
   const auto lengths = [&](double u, double v, std::vector<double> &to) {
     const auto [a, b] = flank_lengths(gear, u, v);
     to.insert(to.end(), {a, b});
@@ -456,6 +458,7 @@ run_misalignments(const Scene &scene, const PairScene &pair, const StudyScene &s
       for (auto [from, to] : {std::pair{&m.loaded_peak_to_peak, &eL_pp},
                               {&m.stiffness_mean, &K_mean},
                               {&m.max_pressure, &p_max},
+                              {&m.max_interior_pressure, &p_interior},
                               {&m.max_edge_share, &edge},
                               {&m.pattern, &pattern}})
         to->insert(to->end(), from->begin(), from->end());
@@ -481,6 +484,7 @@ run_misalignments(const Scene &scene, const PairScene &pair, const StudyScene &s
   g.write("te_peak_to_peak", eL_pp, {G, M});
   g.write("stiffness_mean", K_mean, {G, M});
   g.write("max_pressure", p_max, {G, M});
+  g.write("max_interior_pressure", p_interior, {G, M});
   g.write("max_edge_share", edge, {G, M});
   g.write("contact_path", path, {G, T, 2});
   g.write("path_centre", path_centre, {G, 2});

@@ -441,6 +441,12 @@ def tolerance_rows(name, g):
         rows.append([name, f"{t:g} N m", "K_m mean: " + " / ".join(f"{x:g} %" for x in levels),
                      " / ".join(f"{x:.4g}" for x in km)
                      + f" N/µm (design alone {g['nominal/stiffness_mean'][m] / 1e6:.4g})"])
+        if "percentiles/max_interior_pressure" in g:
+            p = g["percentiles/max_interior_pressure"][m] / 1e6
+            rows.append([name, f"{t:g} N m", "largest flank-interior pressure (off the flanks' "
+                         "edges): " + " / ".join(f"{x:g} %" for x in levels),
+                         " / ".join(f"{x:.4g}" for x in p) + " MPa (design alone "
+                         f"{g['nominal/max_interior_pressure'][m] / 1e6:.4g})"])
         if "sensitivity" in g:
             c = g["sensitivity/te_peak_to_peak/coefficient"][m]
             k = int(np.argmax(np.abs(c)))
@@ -476,9 +482,11 @@ def study_rows(name, g):
         unmodified = ("" if zero is None or zero == v else
                       f" (unmodified: {pp[zero, m]:.4g} µm" + (", not valid" if edge[zero, m]
                                                               else "") + ")")
+        interior = (f", flank-interior pressure {g['max_interior_pressure'][v, m] / 1e6:.4g} MPa"
+                    if "max_interior_pressure" in g else "")
         rows.append([label, when,
                      f"best of {valid} valid variants: {esc(plot_study.variant_label(g, v, 'µm'))}",
-                     f"TE p-p {pp[v, m]:.4g} µm at the pitch circle{unmodified}"])
+                     f"TE p-p {pp[v, m]:.4g} µm at the pitch circle{unmodified}{interior}"])
     if design > 0:
         when = f"design {design:g} N m"
         single = len(plot_study.parameters(g)) == 1

@@ -73,8 +73,8 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
   gear_per_pinion = ratio.empty() ? 0.0 : ratio[ratio.size() / 2];
   slide_per_turn  = n > 0 ? most_slide / least_width : 0.0;
   own             = solve(Eigen::VectorXd::Zero(n), torque, position.transmission_error);
-  own.gap_band = o.cells.gap_band;
-  own_active   = warm_start(own);
+  own.gap_band    = o.cells.gap_band;
+  own_active      = warm_start(own);
   std::vector<char> has_cells(position.pairs.size(), 0);
   for (const ContactCell &c : zone_cells)
     has_cells[std::size_t(c.pair)] = 1;
@@ -104,8 +104,8 @@ FixedZone::warm_start(const LoadedPosition &p) const
 
 LoadedPosition
 FixedZone::solve(const Eigen::VectorXd &added, double torque, double e0,
-                 const Eigen::MatrixX2d *pinion_slope, const ActiveSetFactor *start,
-                 double turned, bool turned_gear_compliance) const
+                 const Eigen::MatrixX2d *pinion_slope, const ActiveSetFactor *start, double turned,
+                 bool turned_gear_compliance) const
 {
   const Eigen::Index n = gap.size();
   if (added.size() != n || !added.allFinite())

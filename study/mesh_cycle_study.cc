@@ -337,6 +337,7 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
   r.unloaded_te.assign(CN, 0.0);
   r.loaded_te.assign(M * CN, 0.0), r.mesh_stiffness.assign(M * CN, 0.0);
   r.normal_force.assign(M * CN, 0.0), r.peak_pressure.assign(M * CN, 0.0);
+  r.interior_pressure.assign(M * CN, 0.0);
   r.edge_load_share.assign(M * CN, 0.0), r.pair_share.assign(M * CN * r.slots, 0.0);
   std::vector<char> edge(M * CN, 0);
   // (each zone's cycles one after the other: its compliance stays in the cache)
@@ -389,8 +390,12 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
         for (std::size_t s = 0; s < p.pair_force.size(); ++s)
           r.pair_share[k * r.slots + s] = p.pair_force[s] / p.normal_force;
         for (std::size_t j = 0; j < p.cells.size(); ++j)
-          r.peak_pressure[k] = std::max(r.peak_pressure[k],
-                                        p.force[Eigen::Index(j)] / (p.cells[j].ds * p.cells[j].dt));
+          {
+            const double pressure = p.force[Eigen::Index(j)] / (p.cells[j].ds * p.cells[j].dt);
+            r.peak_pressure[k]    = std::max(r.peak_pressure[k], pressure);
+            if (!p.cells[j].flank_edge)
+              r.interior_pressure[k] = std::max(r.interior_pressure[k], pressure);
+          }
         r.edge_load_share[k] = p.edge_force / p.normal_force;
         edge[k]              = p.zone_edge_reached;
       }
@@ -411,7 +416,9 @@ MeshCycleStudy::evaluate(const PairVariant &v, unsigned threads) const
         mean += k / double(CN);
       r.stiffness_mean.push_back(mean), r.stiffness_range.push_back(*khi - *klo);
       const std::vector<double> p = row(r.peak_pressure), e = row(r.edge_load_share);
+      const std::vector<double> q = row(r.interior_pressure);
       r.max_pressure.push_back(*std::max_element(p.begin(), p.end()));
+      r.max_interior_pressure.push_back(*std::max_element(q.begin(), q.end()));
       r.max_edge_share.push_back(*std::max_element(e.begin(), e.end()));
       r.zone_edge.push_back(std::any_of(edge.begin() + long(m * CN),
                                         edge.begin() + long((m + 1) * CN),

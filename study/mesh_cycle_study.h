@@ -38,19 +38,23 @@ struct PairVariant
 struct VariantCycle
 {
   std::size_t         torques = 0, positions = 0, slots = 0;
-  std::vector<double> unloaded_te;     ///< e_0 [N] [rad, pinion]
-  std::vector<double> loaded_te;       ///< e_L [M][N] [rad, pinion]
-  std::vector<double> mesh_stiffness;  ///< K_m [M][N] [N/m]
-  std::vector<double> normal_force;    ///< F [M][N] [N]
-  std::vector<double> pair_share;      ///< load share of each pair slot [M][N][S]
-  std::vector<double> peak_pressure;   ///< largest cell pressure [M][N] [Pa]
+  std::vector<double> unloaded_te;    ///< e_0 [N] [rad, pinion]
+  std::vector<double> loaded_te;      ///< e_L [M][N] [rad, pinion]
+  std::vector<double> mesh_stiffness; ///< K_m [M][N] [N/m]
+  std::vector<double> normal_force;   ///< F [M][N] [N]
+  std::vector<double> pair_share;     ///< load share of each pair slot [M][N][S]
+  std::vector<double> peak_pressure;  ///< largest cell pressure [M][N] [Pa]
+  /// largest pressure on cells off the flanks' edges [M][N] [Pa] (Hertz's where the flanks
+  /// are smooth; a flank edge's cell pressure depends on the cells' layout)
+  std::vector<double> interior_pressure;
   std::vector<double> edge_load_share; ///< force on flank-edge cells / F [M][N]
   /// Summaries per torque [M]: e_L peak-to-peak over the positions [rad]; amplitudes of mesh
   /// orders 1..H of e_L [M][H] [rad]; K_m mean and range (max - min) [N/m]; the largest cell
-  /// pressure [Pa]; the largest edge-load share; whether a contact reached the edge of the
-  /// fixed zone at some position (the zone was too narrow: the results there are not valid).
+  /// pressure and the largest off the flanks' edges [Pa]; the largest edge-load share; whether
+  /// a contact reached the edge of the fixed zone at some position (the zone was too narrow:
+  /// the results there are not valid).
   std::vector<double> te_peak_to_peak, te_harmonics, stiffness_mean, stiffness_range;
-  std::vector<double> max_pressure, max_edge_share;
+  std::vector<double> max_pressure, max_interior_pressure, max_edge_share;
   std::vector<char>   zone_edge;
   int                 harmonics = 0;
 };

@@ -155,6 +155,8 @@ misaligned_mesh(std::shared_ptr<const MemberFlanks> pinion,
       r.stiffness_mean.push_back(sum / double(c.positions));
       const auto [p0, p1] = row(c.peak_pressure);
       r.max_pressure.push_back(*std::max_element(p0, p1));
+      const auto [q0, q1] = row(c.interior_peak_pressure);
+      r.max_interior_pressure.push_back(*std::max_element(q0, q1));
       const auto [s0, s1] = row(c.edge_load_share);
       r.max_edge_share.push_back(*std::max_element(s0, s1));
       add_pattern(r, c, m, domain, o);

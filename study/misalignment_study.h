@@ -54,9 +54,10 @@ struct MisalignedMesh
   /// The loaded contact at the study's torques (its positions; cell_gear holds each cell's
   /// gear flank parameters).
   MeshCycleContact loaded;
-  /// Per torque [M]: e_L peak-to-peak [rad], K_m mean [N/m], the largest pressure [Pa] and
-  /// edge-load share over the cycle.
-  std::vector<double> loaded_peak_to_peak, stiffness_mean, max_pressure, max_edge_share;
+  /// Per torque [M]: e_L peak-to-peak [rad], K_m mean [N/m], the largest pressure and the
+  /// largest off the flanks' edges [Pa] and edge-load share over the cycle.
+  std::vector<double> loaded_peak_to_peak, stiffness_mean, max_pressure, max_interior_pressure,
+      max_edge_share;
   /// The contact pattern per torque: the largest pressure over the cycle in each bin of the
   /// gear flank's domain [M][profile_bins][face_bins] [Pa]; its centre (pressure-weighted
   /// mean of the loaded cells' gear flank parameters) [M][2] (u, v) and its extent (the

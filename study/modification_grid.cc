@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 #include <utility>
 
 namespace gearkit
@@ -29,13 +30,30 @@ fields()
   return f;
 }
 
-/// The vectors of a VariantCycle, in one order (packing and appending a torque).
+/// The vectors of a VariantCycle, in one order (packing and appending a torque), and the size
+/// of each for M torques, N positions, S pair slots and H harmonics.
 std::vector<std::vector<double> *>
 per_torque(VariantCycle &c)
 {
-  return {&c.loaded_te,      &c.mesh_stiffness,  &c.normal_force,    &c.pair_share,
-          &c.peak_pressure,  &c.edge_load_share, &c.te_peak_to_peak, &c.te_harmonics,
-          &c.stiffness_mean, &c.stiffness_range, &c.max_pressure,    &c.max_edge_share};
+  return {&c.loaded_te,
+          &c.mesh_stiffness,
+          &c.normal_force,
+          &c.pair_share,
+          &c.peak_pressure,
+          &c.interior_pressure,
+          &c.edge_load_share,
+          &c.te_peak_to_peak,
+          &c.te_harmonics,
+          &c.stiffness_mean,
+          &c.stiffness_range,
+          &c.max_pressure,
+          &c.max_interior_pressure,
+          &c.max_edge_share};
+}
+std::vector<std::size_t>
+per_torque_sizes(std::size_t M, std::size_t N, std::size_t S, std::size_t H)
+{
+  return {M * N, M * N, M * N, M * N * S, M * N, M * N, M * N, M, M * H, M, M, M, M, M};
 }
 
 /// Appends the torques of `more` (the same variant, positions and slots) to `all`.
@@ -164,10 +182,11 @@ evaluate_variants(std::shared_ptr<const InvoluteMemberFlanks> pinion,
           at += n;
         };
         take(c.unloaded_te, N);
-        const std::size_t H       = std::size_t(c.harmonics);
-        const std::size_t sizes[] = {
-            M * N, M * N, M * N, M * N * c.slots, M * N, M * N, M, M * H, M, M, M, M};
+        const std::vector<std::size_t> sizes =
+            per_torque_sizes(M, N, c.slots, std::size_t(c.harmonics));
         const std::vector<std::vector<double> *> v = per_torque(c);
+        if (sizes.size() != v.size())
+          throw std::logic_error("modification grid: per_torque and per_torque_sizes differ");
         for (std::size_t k = 0; k < v.size(); ++k)
           take(*v[k], sizes[k]);
         for (std::size_t m = 0; m < M; ++m)

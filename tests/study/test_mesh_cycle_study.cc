@@ -96,7 +96,7 @@ exact_loaded(const Fzg &s, const MeshCycleStudy &study, const PairVariant &v, st
             {
               const Flank &flank = s.gear->flank(tg, FlankSide::drive);
               const Vec3   Y     = Eigen::AngleAxisd(pos.gear_angle, Vec3::UnitZ()) *
-                               assembly.global_to_gear_unrotated(X);
+                             assembly.global_to_gear_unrotated(X);
               double u = c.table_u2, w = c.table_v2;
               for (int it = 0; it < 8; ++it)
                 {
@@ -170,7 +170,7 @@ TEST(MeshCycleStudy, TheTurnedGearsMaterialCarriesItsCompliance)
   const Fzg            s;
   const MeshCycleStudy study = s.study(8, graded);
   PairVariant          v;
-  v.gear.profile_slope     = 25e-6;
+  v.gear.profile_slope      = 25e-6;
   const VariantCycle r      = study.evaluate(v);
   std::size_t        beyond = 0, compared = 0;
   double             worst = 0, unturned = 0;
@@ -272,7 +272,24 @@ TEST(MeshCycleStudy, OwnVariantIsTheZonesNominalSolution)
         EXPECT_DOUBLE_EQ(r.loaded_te[m * 4 + i], own.eL);
         EXPECT_NEAR(r.unloaded_te[i], study.zone(m, i).position().transmission_error, 1e-15);
         EXPECT_NEAR(r.mesh_stiffness[m * 4 + i], own.mesh_stiffness, 1e-11 * own.mesh_stiffness);
+        // the peak pressures over the nominal solution's cells, off the flanks' edges and all
+        double peak = 0, interior = 0;
+        for (std::size_t j = 0; j < own.cells.size(); ++j)
+          {
+            const double p = own.force[Eigen::Index(j)] / (own.cells[j].ds * own.cells[j].dt);
+            peak           = std::max(peak, p);
+            interior       = own.cells[j].flank_edge ? interior : std::max(interior, p);
+          }
+        EXPECT_NEAR(r.peak_pressure[m * 4 + i], peak, 1e-9 * peak);
+        EXPECT_NEAR(r.interior_pressure[m * 4 + i], interior, 1e-9 * peak);
+        EXPECT_GT(interior, 0);
       }
+  for (std::size_t m = 0; m < 2; ++m)
+    {
+      const auto at = r.interior_pressure.begin() + long(m * 4);
+      EXPECT_EQ(r.max_interior_pressure[m], *std::max_element(at, at + 4));
+      EXPECT_LE(r.max_interior_pressure[m], r.max_pressure[m]);
+    }
   // the warm start does not change the solution: a cold start from the first touch
   const FixedZone      &z    = study.zone(1, 2);
   const Eigen::VectorXd none = Eigen::VectorXd::Zero(Eigen::Index(z.cells().size()));

@@ -52,9 +52,9 @@ protected:
 };
 
 // flanks -> measured (synthesised: noise from a seed) -> ste: three stages, a few seconds.
-const std::string small_scene = test_data::scene_section("small", "ste", "p1") +
-                                test_data::flanks_section({test_data::SpurPair{}}) +
-                                R"(subsection Measured flanks
+const std::string integrity_scene = test_data::scene_section("small", "ste", "p1") +
+                                    test_data::flanks_section({test_data::SpurPair{}}) +
+                                    R"(subsection Measured flanks
   subsection p1
     set source         = synthesised
     set profile points = 5
@@ -127,7 +127,7 @@ open_for_writing(const fs::path &file)
 
 TEST_F(CacheIntegrity, DamagedCacheFilesAreRecomputedAndTheResultsEqualACleanRun)
 {
-  const std::string file = this->file("small.prm", small_scene);
+  const std::string file = this->file("small.prm", integrity_scene);
   ASSERT_EQ(run(file), 0) << err.str();
   const auto clean = datasets((dir / "out/small/results.h5").string());
   ASSERT_GT(clean.size(), 30u);
@@ -154,8 +154,8 @@ TEST_F(CacheIntegrity, DamagedCacheFilesAreRecomputedAndTheResultsEqualACleanRun
   // the 21-tooth pinion's flanks of the same scene (another key) for the swap below
   const fs::path other = dir / "other";
   {
-    const std::string text =
-        std::regex_replace(small_scene, std::regex("number of teeth = 19"), "number of teeth = 21");
+    const std::string text = std::regex_replace(integrity_scene, std::regex("number of teeth = 19"),
+                                                "number of teeth = 21");
     ASSERT_EQ(run(this->file("small21.prm", text), other.string()), 0) << err.str();
   }
   fs::path other_flanks;
@@ -263,7 +263,7 @@ TEST_F(CacheIntegrity, NoShellSeesThePathsAndAFailedReportKeepsTheResults)
   const fs::path strange = dir / "it's $(touch INJECTED) `touch INJECTED2` a\nb ÄÖ";
   fs::create_directories(strange);
   const std::string file = (strange / "small.prm").string();
-  std::ofstream(file) << small_scene;
+  std::ofstream(file) << integrity_scene;
   const fs::path root = strange / "out 'x'";
   ASSERT_EQ(run(file, root.string()), 0) << err.str();
   EXPECT_TRUE(fs::exists(root / "small/results.h5"));
@@ -287,7 +287,7 @@ TEST_F(CacheIntegrity, NoShellSeesThePathsAndAFailedReportKeepsTheResults)
 
 TEST_F(CacheIntegrity, OneRunAtATimeInAnOutputFolder)
 {
-  const std::string file = this->file("small.prm", small_scene);
+  const std::string file = this->file("small.prm", integrity_scene);
   ASSERT_EQ(run(file), 0) << err.str();
   // Another run holds the folder (a lock on an open file of its own, as another process would).
   const fs::path lock = dir / "out/small/.gearkit.lock";
@@ -321,7 +321,7 @@ TEST_F(CacheIntegrity, OutputRootWithoutAValueIsNamed)
 // gtest runs this test in a process of its own, so a crash in HDF5's exit handling fails it.
 TEST_F(CacheIntegrity, DiskFullWhileWritingEndsWithTheFileAndTheCauseNamed)
 {
-  const std::string file = this->file("small.prm", small_scene);
+  const std::string file = this->file("small.prm", integrity_scene);
   struct FileSizeLimit
   {
     explicit FileSizeLimit(rlim_t bytes)

@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 namespace
 {
-const std::string source_dir = GEARKIT_SOURCE_DIR;
+const std::string notes_source_dir = GEARKIT_SOURCE_DIR;
 
 class SceneNotes : public test_data::GearkitRun
 {
@@ -162,7 +162,7 @@ TEST_F(SceneNotes, ChangingOnlyANoteLeavesEveryStageKey)
   // The shipped cases with notes, among them trains' (seed002_*), against themselves without.
   int                   noted_cases = 0;
   std::set<std::string> noted_areas;
-  for (const auto &entry : fs::recursive_directory_iterator(source_dir + "/cases"))
+  for (const auto &entry : fs::recursive_directory_iterator(notes_source_dir + "/cases"))
     if (entry.path().extension() == ".prm")
       {
         std::ifstream     in(entry.path());

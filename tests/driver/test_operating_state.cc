@@ -2,6 +2,7 @@
 // other than the zero-backlash one gets its start of active profile, f_Halpha's evaluation range
 // and its contact ratio there, in /flanks and in the contact analysis; the stages that depend on
 // the centre distance re-run when it changes, and only they.
+#include "base/units.h"
 #include "driver/driver.h"
 #include "driver/h5_file.h"
 #include "driver/scene.h"
@@ -18,6 +19,7 @@
 #include <sstream>
 
 using namespace gearkit;
+using units::deg;
 namespace fs = std::filesystem;
 
 namespace
@@ -67,8 +69,6 @@ issue_scene(const std::string &tca, const std::string &outputs = "ste")
 end
 )";
 }
-
-constexpr double deg = pi / 180;
 
 // Closed-form line of action of the pair above at centre distance a, from z, m and alpha alone.
 struct LineOfAction
@@ -291,7 +291,7 @@ namespace
 // One train mesh of the issue's pair, 0.3 mm of circumferential backlash by the centre
 // distance (a = 105.405 mm), the gear's drive flanks with f_Halpha = `slope` um; 2 ms.
 std::string
-train_scene(double slope)
+state_train_scene(double slope)
 {
   std::string s = issue_scene("", "train");
   s = std::regex_replace(s, std::regex("set pairs   = p"), "set pairs   = p\n  set trains  = t");
@@ -350,7 +350,7 @@ TEST_F(OperatingStateTest, TrainMeshTakesTheActiveProfileAtItsOwnCentreDistance)
   for (int k : {0, 1})
     {
       fs::remove_all(dir / "out");
-      ASSERT_EQ(run(train_scene(k == 0 ? 0 : -10)), 0) << err.str();
+      ASSERT_EQ(run(state_train_scene(k == 0 ? 0 : -10)), 0) << err.str();
       half[k] = results().root().group("train/t/meshes/m").read_double("band_half_width");
     }
   const double a = results().root().group("train/t/meshes/m").read_double("centre_distance");

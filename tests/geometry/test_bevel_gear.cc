@@ -1,6 +1,7 @@
 // Spiral bevel blanks, nominal machine settings (reference-data.md section 7) and face-milled
 // flanks generated on the cradle: the equation of meshing, envelope tangency, formate flanks on
 // the cutter cone, hand of spiral.
+#include "base/units.h"
 #include "geometry/bevel_gear.h"
 #include "tests/seed_bevel_pair.h"
 
@@ -9,10 +10,10 @@
 #include <cmath>
 
 using namespace gearkit;
+using units::deg;
 
 namespace
 {
-constexpr double deg = pi / 180;
 }
 
 TEST(BevelGear, NominalSettingsWorkedExample)

@@ -1,6 +1,7 @@
 // Involute gear geometry against exact values (ISO 21771 formulas, generation kinematics, and
 // independent integrations). Tolerances: 1e-12 relative where both sides are closed-form double
 // arithmetic of a few dozen operations; looser ones are justified where they appear.
+#include "base/units.h"
 #include "geometry/involute_gear.h"
 #include "tests/fzg_c_pair.h"
 
@@ -9,10 +10,10 @@
 #include <cmath>
 
 using namespace gearkit;
+using units::deg;
 
 namespace
 {
-constexpr double deg = pi / 180;
 
 InvoluteGearData
 spur(int z = 20, double x = 0)

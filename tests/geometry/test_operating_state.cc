@@ -3,6 +3,7 @@
 // and the f_Halpha acting over it, the transverse contact ratio. Every expectation is computed
 // here from the line-of-action geometry alone (radii from z, m and alpha_n; no InvoluteGear
 // member), at an operating centre distance a != a_w.
+#include "base/units.h"
 #include "geometry/involute_gear.h"
 #include "geometry/modifications.h"
 
@@ -11,10 +12,10 @@
 #include <cmath>
 
 using namespace gearkit;
+using units::deg;
 
 namespace
 {
-constexpr double deg = pi / 180;
 
 // The pair: 29/41 teeth, m 3 mm, alpha 20 deg, spur, no profile shift: a_w = 105 mm.
 constexpr int    z1 = 29, z2 = 41;

@@ -14,8 +14,6 @@ using namespace gearkit;
 
 namespace
 {
-const StructuralCompliance &tooth = test_data::tooth_compliance;
-using Fzg                         = test_data::FzgStudyPair;
 
 PairVariant
 design()
@@ -29,8 +27,8 @@ design()
 
 TEST(ToleranceStudy, ZeroTolerancesGiveTheNominalRun)
 {
-  const Fzg             s;
-  MeshCycleStudyOptions o;
+  const test_data::FzgStudyPair s;
+  MeshCycleStudyOptions         o;
   o.positions = 4, o.cycles = 2, o.harmonics = 2, o.torques = {150};
   ToleranceSampling zero; // classes 0
   const auto        variant = [&](std::size_t k) {
@@ -42,9 +40,11 @@ TEST(ToleranceStudy, ZeroTolerancesGiveTheNominalRun)
                                                   FlankSide::drive, zero, design(), 3);
   EXPECT_TRUE(t.variant.pinion_teeth.empty() && t.variant.gear_pitch.empty());
   EXPECT_EQ(t.features, std::vector<double>(tolerance_feature_names().size(), 0.0));
-  const std::vector<VariantCycle> r = evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact,
-                                                        tooth, tooth, o, 3, variant, MPI_COMM_SELF);
-  const MeshCycleStudy study(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o);
+  const std::vector<VariantCycle> r =
+      evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, test_data::tooth_compliance,
+                        test_data::tooth_compliance, o, 3, variant, MPI_COMM_SELF);
+  const MeshCycleStudy study(s.pinion, s.gear, s.assembly, {}, s.contact,
+                             test_data::tooth_compliance, test_data::tooth_compliance, o);
   const VariantCycle   nominal = study.evaluate(design());
   for (const VariantCycle &c : r)
     {
@@ -59,8 +59,8 @@ TEST(ToleranceStudy, ZeroTolerancesGiveTheNominalRun)
 
 TEST(ToleranceStudy, SamplesAreDeterministicAndWithinTheirClass)
 {
-  const Fzg         s;
-  ToleranceSampling o;
+  const test_data::FzgStudyPair s;
+  ToleranceSampling             o;
   o.pinion_class = 6, o.gear_class = 5, o.seed = 42;
   const InvoluteGear   &p = s.pinion->involute(), &g = s.gear->involute();
   const ToleranceSample a = draw_tolerance_sample(p, g, FlankSide::drive, o, design(), 17);
@@ -155,8 +155,8 @@ TEST(ToleranceStudy, StandardizedRegressionRecoversALinearModel)
 
 TEST(ToleranceStudy, SamplesDoNotDependOnTheThreads)
 {
-  const Fzg             s;
-  MeshCycleStudyOptions o;
+  const test_data::FzgStudyPair s;
+  MeshCycleStudyOptions         o;
   o.positions = 4, o.cycles = 2, o.harmonics = 2, o.torques = {150};
   ToleranceSampling classes;
   classes.pinion_class = 7, classes.gear_class = 7;
@@ -165,12 +165,14 @@ TEST(ToleranceStudy, SamplesDoNotDependOnTheThreads)
                                  classes, design(), k)
         .variant;
   };
-  o.threads      = 1;
-  const auto one = evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o,
-                                     3, variant, MPI_COMM_SELF);
-  o.threads      = 2;
-  const auto two = evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, tooth, tooth, o,
-                                     3, variant, MPI_COMM_SELF);
+  o.threads = 1;
+  const auto one =
+      evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, test_data::tooth_compliance,
+                        test_data::tooth_compliance, o, 3, variant, MPI_COMM_SELF);
+  o.threads = 2;
+  const auto two =
+      evaluate_variants(s.pinion, s.gear, s.assembly, {}, s.contact, test_data::tooth_compliance,
+                        test_data::tooth_compliance, o, 3, variant, MPI_COMM_SELF);
   // equal to rounding (OpenBLAS's own threads, where more than one, round differently)
   for (std::size_t k = 0; k < 3; ++k)
     for (std::size_t i = 0; i < one[k].loaded_te.size(); ++i)

@@ -2,6 +2,7 @@
 // zero offset over the path of contact, the backlash from the involute functions, the eccentric
 // tooth's e / r_b2, the chip that shortens the path, pitch deviations; and the convention of
 // base/tooth_pairs.h against UnloadedTca itself (pairings, local angles, interpenetration).
+#include "base/units.h"
 #include "tca/tooth_pairs.h"
 #include "tca/unloaded_tca.h"
 
@@ -11,10 +12,10 @@
 #include <random>
 
 using namespace gearkit;
+using units::deg;
 
 namespace
 {
-constexpr double deg = pi / 180;
 
 /// The 23/31 spur pair of the impact-model seed: m 2.54 mm, 20 deg, b 12.7 mm, no shift.
 std::pair<InvoluteGearData, InvoluteGearData>

@@ -1,4 +1,5 @@
 // Unloaded TCA of involute pairs against the exact relations of reference-data.md section 6.
+#include "base/units.h"
 #include "tca/unloaded_tca.h"
 #include "tests/fzg_c_pair.h"
 
@@ -7,10 +8,10 @@
 #include <cmath>
 
 using namespace gearkit;
+using units::deg;
 
 namespace
 {
-constexpr double deg = pi / 180;
 
 std::pair<InvoluteGearData, InvoluteGearData>
 c_pair(double helix = 0)
@@ -18,14 +19,14 @@ c_pair(double helix = 0)
   return test_data::fzg_c_pair(helix);
 }
 
-struct Pair
+struct TcaPair
 {
   std::shared_ptr<const InvoluteGear> pinion, gear;
   double                              a_w;
 };
 
-Pair
-make(const std::pair<InvoluteGearData, InvoluteGearData> &d)
+TcaPair
+make_tca_pair(const std::pair<InvoluteGearData, InvoluteGearData> &d)
 {
   // assembled as a pair: each member's start of active profile from the other
   auto [p, g] = create_pair(d.first, d.second);
@@ -46,8 +47,8 @@ TEST(UnloadedTca, PerfectInvolutesHaveZeroTransmissionError)
 {
   for (double beta : {0.0, 15 * deg})
     {
-      const Pair s = make(c_pair(beta));
-      TcaOptions o;
+      const TcaPair s = make_tca_pair(c_pair(beta));
+      TcaOptions    o;
       o.positions_per_mesh = 24;
       const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
       for (const TcaPosition &p : r.positions)
@@ -61,12 +62,12 @@ TEST(UnloadedTca, ShiftedCentreDistanceGivesConstantErrorOfHalfTheBacklash)
   // At a' = a_w + 0.1 mm the involutes stay conjugate (TE constant); the pinion takes up half the
   // circumferential backlash j on the operating pitch circle: e = j / (2 r'_1) with
   // j = p' - s_1(r'_1) - s_2(r'_2), cos(alpha') = (r_b1 + r_b2) / a'.
-  const Pair   s  = make(c_pair());
-  const double a  = s.a_w + 0.1e-3;
-  const double ca = (s.pinion->base_radius + s.gear->base_radius) / a;
-  const double r1 = s.pinion->base_radius / ca, r2 = s.gear->base_radius / ca;
-  const double j = 2 * pi * r1 / 16 - s.pinion->tooth_thickness(r1) - s.gear->tooth_thickness(r2);
-  TcaOptions   o;
+  const TcaPair s  = make_tca_pair(c_pair());
+  const double  a  = s.a_w + 0.1e-3;
+  const double  ca = (s.pinion->base_radius + s.gear->base_radius) / a;
+  const double  r1 = s.pinion->base_radius / ca, r2 = s.gear->base_radius / ca;
+  const double  j = 2 * pi * r1 / 16 - s.pinion->tooth_thickness(r1) - s.gear->tooth_thickness(r2);
+  TcaOptions    o;
   o.positions_per_mesh = 12;
   const auto r         = UnloadedTca(s.pinion, s.gear, a, {}, o).run();
   EXPECT_LT(peak_to_peak(r), 1e-9);
@@ -77,10 +78,10 @@ TEST(UnloadedTca, ContactRatioOfPerfectSpurPair)
 {
   // eps_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a_w sin(alpha_w)) / p_bt; counting
   // touching pairs at N positions per cycle resolves it to 1/N.
-  const Pair   s = make(c_pair());
-  const auto  &p = *s.pinion, &g = *s.gear;
-  const double aw  = working_pressure_angle(p, g);
-  const double eps = (std::sqrt(p.tip_radius * p.tip_radius - p.base_radius * p.base_radius) +
+  const TcaPair s = make_tca_pair(c_pair());
+  const auto   &p = *s.pinion, &g = *s.gear;
+  const double  aw  = working_pressure_angle(p, g);
+  const double  eps = (std::sqrt(p.tip_radius * p.tip_radius - p.base_radius * p.base_radius) +
                       std::sqrt(g.tip_radius * g.tip_radius - g.base_radius * g.base_radius) -
                       s.a_w * std::sin(aw)) /
                      p.transverse_base_pitch;
@@ -98,7 +99,7 @@ TEST(UnloadedTca, TotalContactRatioOfPerfectHelicalPair)
 {
   // Helical: the pairs in contact average eps_gamma = eps_alpha + eps_beta, and at a larger
   // centre distance eps_alpha drops as the formula says.
-  const Pair s = make(c_pair(15 * deg));
+  const TcaPair s = make_tca_pair(c_pair(15 * deg));
   for (double da : {0.0, 0.3e-3})
     {
       const ContactRatios c = contact_ratios(*s.pinion, *s.gear, s.a_w + da);
@@ -113,8 +114,8 @@ TEST(UnloadedTca, TotalContactRatioOfPerfectHelicalPair)
 TEST(UnloadedTca, TorqueRatioEqualsToothRatio)
 {
   // T2 / T1 = (lambda_g . a_g) / (lambda_p . e_z) = z2 / z1 at every contact of perfect involutes.
-  const Pair  s = make(c_pair(12 * deg));
-  UnloadedTca tca(s.pinion, s.gear, s.a_w);
+  const TcaPair s = make_tca_pair(c_pair(12 * deg));
+  UnloadedTca   tca(s.pinion, s.gear, s.a_w);
   for (double phi : {0.0, 0.07, 0.21})
     {
       const TcaPosition  p = tca.at(phi);
@@ -130,8 +131,8 @@ TEST(UnloadedTca, EccentricToothStepsByEOverBaseRadius)
   // by e / r_b1 (the gear runs ahead), elsewhere it is zero.
   auto d                  = c_pair();
   d.first.eccentric_teeth = {{0, FlankSide::drive, 4.5e-6}};
-  const Pair  s           = make(d);
-  UnloadedTca tca(s.pinion, s.gear, s.a_w);
+  const TcaPair s         = make_tca_pair(d);
+  UnloadedTca   tca(s.pinion, s.gear, s.a_w);
   EXPECT_NEAR(tca.at(0).transmission_error, -4.5e-6 / s.pinion->base_radius, 1e-9);
   EXPECT_NEAR(tca.at(-3 * 2 * pi / 16).transmission_error, 0, 1e-9); // tooth 0 far from mesh
 }
@@ -141,8 +142,8 @@ TEST(UnloadedTca, LeadCrowningAloneLeavesSpurErrorZero)
   auto d                                     = c_pair();
   d.first.drive_modifications.lead_crowning  = 10e-6;
   d.second.drive_modifications.lead_crowning = 5e-6;
-  const Pair s                               = make(d);
-  TcaOptions o;
+  const TcaPair s                            = make_tca_pair(d);
+  TcaOptions    o;
   o.positions_per_mesh = 10;
   const auto r         = UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run();
   for (const TcaPosition &p : r.positions)
@@ -164,7 +165,7 @@ TEST(UnloadedTca, ProfileSlopeGivesTheExpectedRamp)
   auto departure = [](double f_Ha) {
     auto d                                    = c_pair();
     d.first.drive_modifications.profile_slope = f_Ha;
-    const Pair          s                     = make(d);
+    const TcaPair       s                     = make_tca_pair(d);
     const InvoluteGear &p = *s.pinion, &g = *s.gear;
     const double        cos_alpha = (p.base_radius + g.base_radius) / s.a_w;
     const double        L_A       = s.a_w * std::sqrt(1 - cos_alpha * cos_alpha) -
@@ -188,8 +189,8 @@ TEST(UnloadedTca, CrossedAxesGiveLinearErrorWithJumps)
 {
   // A helical pair with a 0.5 mrad crossing misalignment: the contact runs to the face edge and
   // the TE is piecewise linear in phi, jumping where the next pair takes over.
-  const Pair   s = make(c_pair(15 * deg));
-  Misalignment m;
+  const TcaPair s = make_tca_pair(c_pair(15 * deg));
+  Misalignment  m;
   m.crossing_angle = 0.5e-3;
   TcaOptions o;
   o.positions_per_mesh = 40;
@@ -237,7 +238,7 @@ TEST(UnloadedTca, CrossedAxesGiveLinearErrorWithJumps)
 
 TEST(UnloadedTca, FlanksThatDoNotMeshAreRefused)
 {
-  const Pair s = make(c_pair());
+  const TcaPair s = make_tca_pair(c_pair());
   EXPECT_THROW(UnloadedTca(s.pinion, s.gear, s.a_w + 20e-3).at(0), InputError); // apart
   Misalignment off;
   off.gear_axial_shift = 20e-3; // faces do not overlap
@@ -258,10 +259,10 @@ TEST(UnloadedTca, ProfileCrowningGivesParabolicArcs)
   // tolerance 1 %). L_A from the line of action: the gear's tip circle crosses it there.
   auto d                                       = c_pair();
   d.first.drive_modifications.profile_crowning = 4e-6;
-  const Pair   s                               = make(d);
-  const double rb = s.pinion->base_radius, Lt = rb * s.pinion->roll_angle_tip;
-  const double rb2 = s.gear->base_radius, ra2 = s.gear->tip_radius;
-  const double Lf =
+  const TcaPair s                              = make_tca_pair(d);
+  const double  rb = s.pinion->base_radius, Lt = rb * s.pinion->roll_angle_tip;
+  const double  rb2 = s.gear->base_radius, ra2 = s.gear->tip_radius;
+  const double  Lf =
       std::sqrt(s.a_w * s.a_w - (rb + rb2) * (rb + rb2)) - std::sqrt(ra2 * ra2 - rb2 * rb2); // L_A
   ASSERT_GT(Lf, rb * s.pinion->roll_angle_form);
   TcaOptions o;
@@ -287,8 +288,8 @@ TEST(UnloadedTca, CoastFlanksCloseTheBacklashFromTheOtherSide)
   // On the coast flanks the same exact relations hold with the signs turned: zero TE at zero
   // backlash; at a' = a_w + 0.1 mm the drive and coast errors lie the whole backlash j / r'_1
   // apart, symmetrically; a 4.5 um proud coast flank holds the gear back by e / r_b1.
-  const Pair s = make(c_pair(10 * deg));
-  TcaOptions o;
+  const TcaPair s = make_tca_pair(c_pair(10 * deg));
+  TcaOptions    o;
   o.positions_per_mesh = 12;
   o.side               = FlankSide::coast;
   for (const TcaPosition &p : UnloadedTca(s.pinion, s.gear, s.a_w, {}, o).run().positions)
@@ -308,8 +309,8 @@ TEST(UnloadedTca, CoastFlanksCloseTheBacklashFromTheOtherSide)
 
   auto d                  = c_pair();
   d.first.eccentric_teeth = {{0, FlankSide::coast, 4.5e-6}};
-  const Pair e            = make(d);
-  TcaOptions oc;
+  const TcaPair e         = make_tca_pair(d);
+  TcaOptions    oc;
   oc.side = FlankSide::coast;
   UnloadedTca tca(e.pinion, e.gear, e.a_w, {}, oc);
   EXPECT_NEAR(tca.at(0).transmission_error, 4.5e-6 / e.pinion->base_radius, 1e-9);
@@ -326,8 +327,8 @@ TEST(UnloadedTca, RelativeCurvaturesOfACrownedSpurPair)
   // sqrt(2 delta / k).
   auto d                                    = c_pair();
   d.first.drive_modifications.lead_crowning = 5e-6;
-  const Pair  s                             = make(d);
-  UnloadedTca tca(s.pinion, s.gear, s.a_w);
+  const TcaPair s                           = make_tca_pair(d);
+  UnloadedTca   tca(s.pinion, s.gear, s.a_w);
   for (double phi : {0.0, 0.05, -0.1})
     {
       const TcaPosition  p = tca.at(phi);

@@ -239,27 +239,32 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
     throw InputError("contact solver: the warm start names a cell beyond the " + std::to_string(n) +
                      " cells");
   // The factor updated from the start's: each thread's own storage, reused from solve to solve
-  // (no allocation, a copy of the start's block alone).
+  // (no allocation, a copy of the start's block alone, made when the set first changes: a
+  // start that is the solution's own is only read).
   thread_local ActiveSetFactor factor;
+  const ActiveSetFactor       *current = &start;
   if (start.size() == 0)
-    factor.assign(compliance, {first});
-  else
-    factor.copy(start);
+    factor.assign(compliance, {first}), current = &factor;
+  const auto changing = [&]() -> ActiveSetFactor & {
+    if (current != &factor)
+      factor.copy(*current), current = &factor;
+    return factor;
+  };
   std::vector<char> active(std::size_t(n), 0);
-  for (const Eigen::Index j : factor.cells())
+  for (const Eigen::Index j : current->cells())
     active[std::size_t(j)] = 1;
   const double      scale = std::max(gap.cwiseAbs().maxCoeff(), 1e-9);
   std::vector<char> leave(std::size_t(n), 0);
   for (int it = 0; it < 4 * n + 50; ++it)
     {
-      const std::vector<Eigen::Index> &A = factor.cells();
-      const Eigen::Index               m = factor.size();
+      const std::vector<Eigen::Index> &A = current->cells();
+      const Eigen::Index               m = current->size();
       // x = C_AA^-1 [lever_A gap_A]; the approach from the load balance
       Eigen::MatrixXd x(m, 2);
       for (Eigen::Index a = 0; a < m; ++a)
         x(a, 0) = lever[A[std::size_t(a)]], x(a, 1) = gap[A[std::size_t(a)]];
       const Eigen::VectorXd lA = x.col(0);
-      factor.solve(x);
+      current->solve(x);
       s.approach               = (load + lA.dot(x.col(1))) / lA.dot(x.col(0));
       const Eigen::VectorXd FA = s.approach * x.col(0) - x.col(1);
       s.force.setZero();
@@ -279,7 +284,7 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
           for (Eigen::Index a = 0; a < m; ++a)
             if (one_at_a_time ? a == worst : FA[a] < 0)
               leave[std::size_t(A[std::size_t(a)])] = 1, active[std::size_t(A[std::size_t(a)])] = 0;
-          factor.remove(compliance, leave);
+          changing().remove(compliance, leave);
           continue;
         }
       // Penetrating cells join, the deepest first: h = approach lever - gap - C F (the loaded
@@ -313,7 +318,7 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
         join.resize(1);
       for (const Eigen::Index j : join)
         active[std::size_t(j)] = 1;
-      factor.append(compliance, join);
+      changing().append(compliance, join);
     }
   std::ostringstream msg;
   msg << "contact solver: the active set did not settle after " << 4 * n + 50 << " iterations ("

@@ -279,7 +279,6 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const Vec3 turn = Vec3::UnitZ().cross(q.gear_point[j]);
       d.gear_turn[i]  = moved(turn, q.gear_normal[j], q.gear_gu[j], q.gear_gv[j], dg);
     }
-  d.turn_per_rotation = zn.turn_per_rotation();
   return d;
 }
 
@@ -287,14 +286,15 @@ LoadedPosition
 MeshCycleStudy::solve_variant(std::size_t m, std::size_t i, const Deviations &d, double e0,
                               const ActiveSetFactor *start) const
 {
-  const FixedZone &z        = zone(m, i);
-  const double     sign     = tca_options.side == FlankSide::drive ? 1.0 : -1.0;
-  const double     turned   = e0 - z.position().transmission_error; // [rad, pinion]
-  const double     rotation = sign * turned;
-  if (!(std::abs(d.turn_per_rotation) > 0) || !std::isfinite(d.turn_per_rotation + turned))
+  const FixedZone &z            = zone(m, i);
+  const double     sign         = tca_options.side == FlankSide::drive ? 1.0 : -1.0;
+  const double     turned       = e0 - z.position().transmission_error; // [rad, pinion]
+  const double     rotation     = sign * turned;
+  const double     per_rotation = z.turn_per_rotation();
+  if (!(std::abs(per_rotation) > 0) || !std::isfinite(per_rotation + turned))
     throw InputError("mesh cycle study: the gear's turn to the variant's unloaded TE does not "
                      "move the zone's cells along their normals (a zone off the flanks?)");
-  return z.solve(d.added + (rotation / d.turn_per_rotation) * d.gear_turn, o.torques[m], e0,
+  return z.solve(d.added + (rotation / per_rotation) * d.gear_turn, o.torques[m], e0,
                  &d.pinion_slope, start, turned, o.turned_gear_compliance);
 }
 

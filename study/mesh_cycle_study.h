@@ -113,15 +113,13 @@ public:
   /// order along the flank's normal; the gear axis's tilt likewise), and the derivatives of the
   /// pinion's modifications by its flank parameters (roll angle, z) [m] (FixedZone::solve).
   /// `gear_turn`: what the gear's turn by 1 rad about its axis adds at each cell (its normal
-  /// part and the gear's deviation its material brings along) [m]; `turn_per_rotation`: the
-  /// gear's turn equal to a unit pinion rotation at the cells (their median normal motion per
-  /// turn over their moment arm, -z2/z1 r_b2 / r_b1 for an involute pair).
+  /// part and the gear's deviation its material brings along) [m]; the gear's turn equal to a
+  /// unit pinion rotation is the zone's (FixedZone::turn_per_rotation).
   struct Deviations
   {
     Eigen::VectorXd  added;
     Eigen::MatrixX2d pinion_slope;
     Eigen::VectorXd  gear_turn;
-    double           turn_per_rotation = 0;
   };
   Deviations
   deviations(std::size_t torque, std::size_t position, int cycle, const PairVariant &variant) const;

@@ -1,14 +1,18 @@
 #!/usr/bin/env python3
 """One micro-geometry map variant against the stiffness stage of the same modified scene.
 
-usage: compare_study_stage.py STUDY_RESULTS.h5 STAGE_RESULTS.h5 VARIANT [PAIR] [FINE_RESULTS.h5]
+usage: compare_study_stage.py STUDY_RESULTS.h5 STAGE_RESULTS.h5 VARIANT [PAIR]
+                              [FINE_RESULTS.h5 [LAYOUT_RESULTS.h5 ...]]
 
 STUDY_RESULTS holds /study/<pair> of a map (kind = microgeometry map); STAGE_RESULTS the
 /stiffness/<pair> of a scene with the variant's modifications written into its flanks and the
 map's torques and positions (its compliance computed again: the compliance stage takes the
 pair's macro-geometry, so it equals the map's). Prints per torque the TE peak-to-peak of both,
 K_m's mean and its worst position, and the largest e_L difference; with FINE_RESULTS (the same
-scene on finer contact cells, some of the torques) both against it. bench/README.md quotes it.
+scene on finer contact cells, some of the torques) both against it; LAYOUT_RESULTS (the same
+scene on other cell layouts, e.g. another `cells across`) against it as well: the stage's own
+sensitivity to its cells, which the study's fixed zones are to be judged by. bench/README.md
+quotes it.
 """
 import sys
 
@@ -28,7 +32,7 @@ def compare(label, a, Ka, b, Kb):
 
 
 def main(argv):
-    if len(argv) not in (4, 5, 6):
+    if len(argv) < 4:
         sys.exit(__doc__)
     variant = int(argv[3])
     pair = argv[4] if len(argv) > 4 else "fzg"
@@ -55,6 +59,13 @@ def main(argv):
                                               study["mesh_stiffness"][variant, m], f, Kf))
             print(f"{T:6.0f} N m  " + compare("stage vs fine", stage["transmission_error_loaded"][s],
                                               stage["mesh_stiffness"][s], f, Kf))
+            for path in argv[6:]:
+                other = h5py.File(path, "r")[f"stiffness/{pair}"]
+                if T in list(other["torque"][()]):
+                    o = list(other["torque"][()]).index(T)
+                    print(f"{T:6.0f} N m  " + compare(f"{path} vs fine",
+                                                      other["transmission_error_loaded"][o],
+                                                      other["mesh_stiffness"][o], f, Kf))
 
 
 if __name__ == "__main__":

@@ -2,11 +2,46 @@
 
 #include "stiffness/contact_solver.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 namespace gearkit
 {
+namespace
+{
+/// Each loaded cell's depth inside its pair's contact, in cells: the distance (the larger of
+/// its parts across and along the line, each in the cell's own size) to the nearest unloaded
+/// cell of its pair, at most the distance to the pair's first or last column and half a cell
+/// on an edge of a flank or of the zone; 0 where unloaded.
+std::vector<double>
+contact_depth(const std::vector<ContactCell> &cells, const Eigen::VectorXd &force)
+{
+  std::map<int, std::pair<double, double>> along; // each pair's cells' extent in t
+  for (const ContactCell &c : cells)
+    {
+      const auto [it, fresh] = along.try_emplace(c.pair, c.t, c.t);
+      it->second             = {std::min(it->second.first, c.t), std::max(it->second.second, c.t)};
+    }
+  std::vector<double> depth(cells.size(), 0);
+  for (std::size_t a = 0; a < cells.size(); ++a)
+    {
+      if (!(force[Eigen::Index(a)] > 0))
+        continue;
+      const ContactCell &c = cells[a];
+      const auto [t0, t1]  = along.at(c.pair);
+      double d = c.flank_edge || c.zone_edge ? 0.5 : std::min(c.t - t0, t1 - c.t) / c.dt + 0.5;
+      for (std::size_t b = 0; b < cells.size() && d > 0.5; ++b)
+        if (cells[b].pair == c.pair && !(force[Eigen::Index(b)] > 0))
+          d = std::min(
+              d, std::max(std::abs(cells[b].s - c.s) / c.ds, std::abs(cells[b].t - c.t) / c.dt));
+      depth[a] = d;
+    }
+  return depth;
+}
+} // namespace
+
 FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double torque,
                      const LoadedContactOptions &options, const StructuralCompliance &pinion,
                      const StructuralCompliance &gear, double widening)
@@ -88,17 +123,21 @@ FixedZone::FixedZone(const UnloadedTca &tca, const TcaPosition &position, double
 ActiveSetFactor
 FixedZone::warm_start(const LoadedPosition &p) const
 {
-  // The cells in contact, the most loaded first: those that leave for a similar variant are
-  // the lightly loaded ones at the contact's edges, at the factor's end where removing them
-  // costs least.
+  // The cells in contact, the deepest inside the contact first: those that leave for a
+  // similar variant lie at the contact's edges (across the line, and along it where a helix
+  // slope unloads a face end), at the factor's end where removing them costs least; among
+  // cells as deep, the most loaded first.
   if (p.force.size() != gap.size())
     throw InputError("fixed contact zone: a warm start needs a contact on this zone's cells");
+  const std::vector<double> depth = contact_depth(zone_cells, p.force);
   std::vector<Eigen::Index> loaded;
   for (Eigen::Index i = 0; i < p.force.size(); ++i)
     if (p.force[i] > 0)
       loaded.push_back(i);
-  std::stable_sort(loaded.begin(), loaded.end(),
-                   [&p](Eigen::Index a, Eigen::Index b) { return p.force[a] > p.force[b]; });
+  std::stable_sort(loaded.begin(), loaded.end(), [&](Eigen::Index a, Eigen::Index b) {
+    const double da = depth[std::size_t(a)], db = depth[std::size_t(b)];
+    return da != db ? da > db : p.force[a] > p.force[b];
+  });
   return ActiveSetFactor(compliance, loaded);
 }
 

@@ -77,7 +77,8 @@ public:
         const Eigen::MatrixX2d *pinion_slope = nullptr, const ActiveSetFactor *start = nullptr,
         double turned = 0, bool turned_gear_compliance = true) const;
   /// A warm start for solve from a contact `p` on this zone's cells (a variant's solution): its
-  /// cells in contact, their compliance factorised, the most loaded first.
+  /// cells in contact, their compliance factorised, the deepest inside the contact first (then
+  /// the most loaded): those a similar variant unloads come last, where removing them is cheap.
   ActiveSetFactor
   warm_start(const LoadedPosition &p) const;
 

@@ -51,22 +51,21 @@ def main(argv):
             stage["transmission_error_loaded"][k], stage["mesh_stiffness"][k]))
     if len(argv) > 5:
         fine = h5py.File(argv[5], "r")[f"stiffness/{pair}"]
+        # the stage and any further layouts of the same scene, each against the fine cells
+        runs = [("stage", stage)] + [(path, h5py.File(path, "r")[f"stiffness/{pair}"])
+                                     for path in argv[6:]]
+        run_torques = [list(run["torque"][()]) for _, run in runs]
         for k, T in enumerate(fine["torque"][()]):
             f, Kf = fine["transmission_error_loaded"][k], fine["mesh_stiffness"][k]
-            s = list(stage["torque"][()]).index(T)
             m = torques.index(T)
             print(f"{T:6.0f} N m  " + compare("study vs fine", study["loaded_te"][variant, m],
                                               study["mesh_stiffness"][variant, m], f, Kf))
-            print(f"{T:6.0f} N m  " + compare("stage vs fine", stage["transmission_error_loaded"][s],
-                                              stage["mesh_stiffness"][s], f, Kf))
-            for path in argv[6:]:
-                other = h5py.File(path, "r")[f"stiffness/{pair}"]
-                if T in list(other["torque"][()]):
-                    o = list(other["torque"][()]).index(T)
-                    print(f"{T:6.0f} N m  " + compare(f"{path} vs fine",
-                                                      other["transmission_error_loaded"][o],
-                                                      other["mesh_stiffness"][o], f, Kf))
-
+            for (label, run), listed in zip(runs, run_torques):
+                if T in listed:
+                    o = listed.index(T)
+                    print(f"{T:6.0f} N m  " + compare(f"{label} vs fine",
+                                                      run["transmission_error_loaded"][o],
+                                                      run["mesh_stiffness"][o], f, Kf))
 
 if __name__ == "__main__":
     main(sys.argv)

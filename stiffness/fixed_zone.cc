@@ -21,8 +21,8 @@ contact_depth(const std::vector<ContactCell> &cells, const Eigen::VectorXd &forc
   std::map<int, std::pair<double, double>> along; // each pair's cells' extent in t
   for (const ContactCell &c : cells)
     {
-      const auto [it, fresh] = along.try_emplace(c.pair, c.t, c.t);
-      it->second             = {std::min(it->second.first, c.t), std::max(it->second.second, c.t)};
+      auto &[lo, hi] = along.try_emplace(c.pair, c.t, c.t).first->second;
+      lo = std::min(lo, c.t), hi = std::max(hi, c.t);
     }
   std::vector<double> depth(cells.size(), 0);
   for (std::size_t a = 0; a < cells.size(); ++a)

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace gearkit
 {
@@ -14,6 +15,22 @@ ToothModifications::any() const
   return tip_relief != 0 || root_relief != 0 || lead_crowning != 0 || end_relief != 0 ||
          profile_crowning != 0 || profile_slope != 0 || helix_slope != 0 ||
          (waviness_amplitude != 0 && waviness_wavelength > 0);
+}
+
+bool
+ToothModifications::operator==(const ToothModifications &o) const
+{
+  const auto fields = [](const ToothModifications &m) {
+    return std::tie(m.tip_relief, m.tip_relief_length, m.tip_relief_shape, m.root_relief,
+                    m.root_relief_length, m.root_relief_shape, m.lead_crowning, m.end_relief,
+                    m.end_relief_length, m.profile_crowning, m.profile_slope, m.helix_slope,
+                    m.waviness_amplitude, m.waviness_wavelength, m.waviness_phase);
+  };
+  // 13 doubles and 2 shapes (each padded to a double): a field added to the struct must be
+  // compared above
+  static_assert(sizeof(ToothModifications) == 15 * sizeof(double),
+                "ToothModifications changed: compare its new fields in operator==");
+  return fields(*this) == fields(o);
 }
 
 namespace

@@ -44,6 +44,14 @@ struct ToothModifications
 
   bool
   any() const;
+  /// Every field equal (the same modifications).
+  bool
+  operator==(const ToothModifications &other) const;
+  bool
+  operator!=(const ToothModifications &other) const
+  {
+    return !(*this == other);
+  }
 };
 
 /// The extent of the flank the modifications refer to.

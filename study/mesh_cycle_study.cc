@@ -18,6 +18,13 @@ working_side(const InvoluteGearData &d, FlankSide side)
   return side == FlankSide::drive ? d.drive_modifications : d.coast_modifications;
 }
 
+/// A member's modifications `m` at flank parameters (roll angle u, z).
+NormalDeviation
+at_cell(const InvoluteGear &member, const ToothModifications &m, double u, double z)
+{
+  return evaluate_modifications(m, member.modification_frame(), member.base_radius * u, z);
+}
+
 /// Where a variant's search for a pair's contact starts: the pair's cell of the first touch
 /// (the least gap less the added material per moment arm) and steps of about a cell in the
 /// pinion's flank parameters.
@@ -143,6 +150,8 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
         q.pinion_gu.push_back(pu), q.pinion_gv.push_back(pv);
         q.gear_point.push_back(b.position), q.gear_normal.push_back(b.normal);
         q.gear_gu.push_back(gu), q.gear_gv.push_back(gv);
+        q.pinion_own.push_back(at_cell(pinion->involute(), own.pinion, c.u1, c.v1));
+        q.gear_own.push_back(at_cell(gear->involute(), own.gear, c.u2, c.v2));
       }
   });
 }
@@ -176,25 +185,24 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   const InvoluteGear             &p = pinion->involute(), &g = gear->involute();
   const int                       z1 = p.teeth(), z2 = g.teeth();
   // The change of a member's deviations at roll angle u and z on its tooth k (value, d/du,
-  // d/dz) and the derivatives of the variant's whole deviation there.
+  // d/dz) and the derivatives of the variant's whole deviation there; `was`: the study's own
+  // modifications there, which the variant's `now` replace (the same ones on tolerance samples).
   struct Change
   {
     NormalDeviation change;
     double          du = 0, dz = 0;
   };
-  const auto change = [](const InvoluteGear &m, const ToothModifications &now,
+  const bool pinion_same = v.pinion == own.pinion, gear_same = v.gear == own.gear;
+  const auto change = [](const InvoluteGear &m, const ToothModifications &now, bool same,
                          const std::vector<ToothModifications> &teeth, int k,
-                         const ToothModifications &was, double u, double z) {
-    const double    L = m.base_radius * u;
-    NormalDeviation a = evaluate_modifications(now, m.modification_frame(), L, z);
+                         const NormalDeviation &was, double u, double z) {
+    NormalDeviation a = same ? was : at_cell(m, now, u, z);
     if (!teeth.empty())
       {
-        const NormalDeviation t =
-            evaluate_modifications(teeth[std::size_t(k)], m.modification_frame(), L, z);
+        const NormalDeviation t = at_cell(m, teeth[std::size_t(k)], u, z);
         a.value += t.value, a.d_dL += t.d_dL, a.d_dz += t.d_dz;
       }
-    const NormalDeviation b = evaluate_modifications(was, m.modification_frame(), L, z);
-    return Change{{a.value - b.value, (a.d_dL - b.d_dL) * m.base_radius, a.d_dz - b.d_dz},
+    return Change{{a.value - was.value, (a.d_dL - was.d_dL) * m.base_radius, a.d_dz - was.d_dz},
                   a.d_dL * m.base_radius,
                   a.d_dz};
   };
@@ -264,8 +272,9 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const ContactCell &c  = cells[j];
       const int          tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1;
       const int          tg = (c.gear_tooth + cycle) % z2;
-      const Change       dp = change(p, v.pinion, v.pinion_teeth, tp, own.pinion, c.u1, c.v1);
-      const Change       dg = change(g, v.gear, v.gear_teeth, tg, own.gear, c.u2, c.v2);
+      const Change dp = change(p, v.pinion, pinion_same, v.pinion_teeth, tp, q.pinion_own[j], c.u1,
+                               c.v1);
+      const Change dg = change(g, v.gear, gear_same, v.gear_teeth, tg, q.gear_own[j], c.u2, c.v2);
       Vec3               wg = rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j]);
       if (tilted)
         wg += tilt_in_gear * (c.position - centre);

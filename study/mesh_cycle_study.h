@@ -169,6 +169,8 @@ private:
   {
     std::vector<Vec3> pinion_point, pinion_normal, pinion_gu, pinion_gv;
     std::vector<Vec3> gear_point, gear_normal, gear_gu, gear_gv;
+    /// the study's members' own modifications at each cell (those a variant replaces)
+    std::vector<NormalDeviation> pinion_own, gear_own;
   };
   std::vector<MemberPoints>    points;
   std::vector<ActiveSetFactor> warm; ///< [M][N] the active sets to start from (empty: own)

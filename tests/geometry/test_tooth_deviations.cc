@@ -46,3 +46,34 @@ TEST(ToothDeviations, AddToTheSidesModificationsOnTheirToothAlone)
   d.drive_tooth_deviations[0].tip_relief = 5e-6; // a relief without its length
   EXPECT_THROW(InvoluteGear::create(d), InputError);
 }
+
+// Equality of modifications (a study reuses its own modifications' values at the cells for the
+// variants that keep them): every field takes part.
+TEST(ToothDeviations, ModificationsAreEqualOnlyWithEveryFieldEqual)
+{
+  ToothModifications a;
+  a.tip_relief        = 20e-6;
+  a.tip_relief_length = 4e-3;
+  EXPECT_TRUE(a == a);
+  const std::vector<double ToothModifications::*> fields = {
+      &ToothModifications::tip_relief,          &ToothModifications::tip_relief_length,
+      &ToothModifications::root_relief,         &ToothModifications::root_relief_length,
+      &ToothModifications::lead_crowning,       &ToothModifications::end_relief,
+      &ToothModifications::end_relief_length,   &ToothModifications::profile_crowning,
+      &ToothModifications::profile_slope,       &ToothModifications::helix_slope,
+      &ToothModifications::waviness_amplitude,  &ToothModifications::waviness_wavelength,
+      &ToothModifications::waviness_phase};
+  for (const auto f : fields)
+    {
+      ToothModifications b = a;
+      b.*f += 1e-9;
+      EXPECT_TRUE(a != b);
+      EXPECT_FALSE(a == b);
+    }
+  ToothModifications b = a;
+  b.tip_relief_shape   = ReliefShape::parabolic;
+  EXPECT_TRUE(a != b);
+  b                   = a;
+  b.root_relief_shape = ReliefShape::parabolic;
+  EXPECT_TRUE(a != b);
+}

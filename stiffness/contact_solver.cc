@@ -31,7 +31,8 @@ ActiveSetFactor::reserve(Eigen::Index m)
     return;
   const Eigen::Index n = size(), room = std::max(m, L.rows() + L.rows() / 2 + 16);
   Eigen::MatrixXd    bigger(room, room);
-  bigger.topLeftCorner(n, n) = L.topLeftCorner(n, n);
+  for (Eigen::Index c = 0; c < n; ++c)
+    bigger.col(c).segment(c, n - c) = L.col(c).segment(c, n - c);
   L.swap(bigger);
 }
 
@@ -48,8 +49,9 @@ ActiveSetFactor::copy(const ActiveSetFactor &other)
   const Eigen::Index m = other.size();
   if (L.rows() < m)
     L.resize(other.L.rows(), other.L.rows());
-  L.topLeftCorner(m, m) = other.L.topLeftCorner(m, m);
-  order                 = other.order;
+  for (Eigen::Index c = 0; c < m; ++c) // (the lower triangle: the factor)
+    L.col(c).segment(c, m - c) = other.L.col(c).segment(c, m - c);
+  order = other.order;
 }
 
 bool
@@ -62,8 +64,6 @@ ActiveSetFactor::factorise(const Eigen::MatrixXd &matrix, std::vector<Eigen::Ind
   for (Eigen::Index b = 0; b < m; ++b)
     {
       const double *column = matrix.data() + order[std::size_t(b)] * matrix.rows();
-      for (Eigen::Index a = 0; a < b; ++a)
-        L(a, b) = 0;
       for (Eigen::Index a = b; a < m; ++a)
         L(a, b) = column[order[std::size_t(a)]];
     }
@@ -90,22 +90,29 @@ ActiveSetFactor::solve(Eigen::MatrixXd &x) const
 }
 
 void
-ActiveSetFactor::remove(const Eigen::MatrixXd &matrix, const std::vector<char> &leave)
+ActiveSetFactor::remove(const Eigen::MatrixXd &matrix, const std::vector<char> &leave,
+                        const ActiveSetFactor *source)
 {
-  const Eigen::Index m  = size();
-  Eigen::Index       r0 = 0; // the first cell to leave
-  while (r0 < m && !leave[std::size_t(order[std::size_t(r0)])])
+  const ActiveSetFactor           &S  = source ? *source : *this;
+  const std::vector<Eigen::Index> &so = S.order;
+  const Eigen::Index               m  = S.size();
+  Eigen::Index                     r0 = 0; // the first cell to leave
+  while (r0 < m && !leave[std::size_t(so[std::size_t(r0)])])
     ++r0;
   if (r0 == m)
-    return;
+    {
+      if (&S != this)
+        copy(S);
+      return;
+    }
   std::vector<Eigen::Index> kept; // the rows after it that stay
   for (Eigen::Index a = r0 + 1; a < m; ++a)
-    if (!leave[std::size_t(order[std::size_t(a)])])
+    if (!leave[std::size_t(so[std::size_t(a)])])
       kept.push_back(a);
   const Eigen::Index        t = Eigen::Index(kept.size()), w = m - r0, left = r0 + t;
-  std::vector<Eigen::Index> cells(order.begin(), order.begin() + r0);
+  std::vector<Eigen::Index> cells(so.begin(), so.begin() + r0);
   for (const Eigen::Index a : kept)
-    cells.push_back(order[std::size_t(a)]);
+    cells.push_back(so[std::size_t(a)]);
   // The kept rows' Schur complement on the first r0 cells is B B^T, B their part of the
   // factor from column r0 on: t^2 w + t^3 / 3 against (r0 + t)^3 / 3 anew.
   if (double(t) * double(t) * (double(w) + double(t) / 3) >
@@ -115,14 +122,21 @@ ActiveSetFactor::remove(const Eigen::MatrixXd &matrix, const std::vector<char> &
         throw InputError(not_positive_definite);
       return;
     }
-  // (column by column: the factor is stored by columns)
+  // (column by column: the factor is stored by columns; its lower triangle alone)
   work.resize(t, w);
   for (Eigen::Index c = r0; c < m; ++c)
     for (Eigen::Index i = 0; i < t; ++i)
-      work(i, c - r0) = L(kept[std::size_t(i)], c);
+      work(i, c - r0) = kept[std::size_t(i)] >= c ? S.L(kept[std::size_t(i)], c) : 0.0;
+  if (&S != this) // the rows before the first to leave, read from the source alone
+    {
+      if (L.rows() < m)
+        L.resize(S.L.rows(), S.L.rows());
+      for (Eigen::Index c = 0; c < r0; ++c)
+        L.col(c).segment(c, r0 - c) = S.L.col(c).segment(c, r0 - c);
+    }
   for (Eigen::Index c = 0; c < r0; ++c) // rows move up (kept[i] > r0 + i)
     for (Eigen::Index i = 0; i < t; ++i)
-      L(r0 + i, c) = L(kept[std::size_t(i)], c);
+      L(r0 + i, c) = S.L(kept[std::size_t(i)], c);
   const blas_int tt = blas_int(t), ww = blas_int(w), lda = blas_int(L.rows());
   const double   one = 1, zero = 0;
   blas_int       info = 0;
@@ -137,8 +151,6 @@ ActiveSetFactor::remove(const Eigen::MatrixXd &matrix, const std::vector<char> &
         throw InputError(not_positive_definite);
       return;
     }
-  for (Eigen::Index c = r0 + 1; c < left; ++c)
-    L.col(c).segment(r0, c - r0).setZero();
   order = std::move(cells);
 }
 
@@ -166,8 +178,8 @@ ActiveSetFactor::append(const Eigen::MatrixXd &matrix, const std::vector<Eigen::
       const double *column = matrix.data() + cells[std::size_t(c)] * n;
       for (Eigen::Index a = 0; a < m; ++a)
         work(a, c) = column[order[std::size_t(a)]];
-      for (Eigen::Index a = 0; a < k; ++a)
-        L(m + a, m + c) = a >= c ? column[cells[std::size_t(a)]] : 0.0;
+      for (Eigen::Index a = c; a < k; ++a)
+        L(m + a, m + c) = column[cells[std::size_t(a)]];
     }
   const blas_int mm = blas_int(m), kk = blas_int(k), lda = blas_int(L.rows());
   const double   one = 1, minus_one = -1;
@@ -187,8 +199,7 @@ ActiveSetFactor::append(const Eigen::MatrixXd &matrix, const std::vector<Eigen::
       return;
     }
   L.block(m, 0, k, m) = work.transpose();
-  L.block(0, m, m, k).setZero();
-  order = std::move(all);
+  order               = std::move(all);
 }
 
 ContactSolution
@@ -284,7 +295,10 @@ solve_contact(const Eigen::MatrixXd &compliance, const Eigen::VectorXd &gap,
           for (Eigen::Index a = 0; a < m; ++a)
             if (one_at_a_time ? a == worst : FA[a] < 0)
               leave[std::size_t(A[std::size_t(a)])] = 1, active[std::size_t(A[std::size_t(a)])] = 0;
-          changing().remove(compliance, leave);
+          // (the start's factor read, not copied: the rows after the first to leave are
+          // computed anew anyway)
+          factor.remove(compliance, leave, current == &factor ? nullptr : current);
+          current = &factor;
           continue;
         }
       // Penetrating cells join, the deepest first: h = approach lever - gap - C F (the loaded

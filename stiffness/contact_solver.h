@@ -60,9 +60,12 @@ public:
   /// x := block^-1 x (x: one row per cell, in cells()' order).
   void
   solve(Eigen::MatrixXd &x) const;
-  /// Removes the cells whose entry of `leave` (one per row of `matrix`) is set.
+  /// Removes the cells whose entry of `leave` (one per row of `matrix`) is set; with a
+  /// `source`, becomes `source` less those cells (reading of it only the rows it keeps: less
+  /// than a copy followed by the removal).
   void
-  remove(const Eigen::MatrixXd &matrix, const std::vector<char> &leave);
+  remove(const Eigen::MatrixXd &matrix, const std::vector<char> &leave,
+         const ActiveSetFactor *source = nullptr);
   /// Appends `cells` (not in the set) in this order.
   void
   append(const Eigen::MatrixXd &matrix, const std::vector<Eigen::Index> &cells);
@@ -76,8 +79,9 @@ private:
   reserve(Eigen::Index m);
 
   std::vector<Eigen::Index> order;
-  /// The factor in the leading size() x size() block (its strict upper triangle zero); the
-  /// leading dimension is L.rows() >= size(), room to append.
+  /// The factor in the lower triangle of the leading size() x size() block (the strict upper
+  /// triangle is neither read nor kept); the leading dimension is L.rows() >= size(), room to
+  /// append.
   Eigen::MatrixXd L;
   Eigen::MatrixXd work;
 };

@@ -566,7 +566,7 @@ UnloadedTca::ContactSearch::maximum_from(double u1, double v1, double du, double
   Search x{sample(u1, v1), du, dv};
   if (x.at.value == -HUGE_VAL)
     return x.at;
-  refine(x, du / hu0 / 16); // four halvings of the first step
+  refine(x, du / hu0 / 2); // one halving of the first step: Newton (finish) from there
   return finish(x);
 }
 

@@ -91,6 +91,47 @@ TEST(ActiveSetFactor, UpdatesSolveAsAFactorisationAnew)
     }
 }
 
+// A factor becoming another one less some cells (the solver's first change of a warm start)
+// equals that other one copied and updated, in storage that held a different factor before
+// (its stale entries above the diagonal are not read).
+TEST(ActiveSetFactor, RemovalFromASourceEqualsACopyUpdated)
+{
+  const Eigen::MatrixXd     C = zone_like_compliance(12, 10);
+  const Eigen::Index        n = C.rows();
+  std::mt19937              random(11);
+  std::vector<Eigen::Index> cells, other;
+  for (Eigen::Index j = 0; j < n; ++j)
+    (j % 3 == 0 ? cells : other).push_back(j);
+  std::shuffle(cells.begin(), cells.end(), random);
+  const ActiveSetFactor source(C, cells);
+  for (int trial = 0; trial < 12; ++trial)
+    {
+      std::vector<char> leave(std::size_t(n), 0);
+      const int         changes = trial == 0 ? 0 : 1 + trial % 6;
+      for (int k = 0; k < changes; ++k) // near the end mostly (updates), now and then anywhere
+        {
+          const std::size_t from = trial % 4 == 0 ? 0 : cells.size() - 12;
+          leave[std::size_t(cells[from + std::size_t(random()) % (cells.size() - from)])] = 1;
+        }
+      ActiveSetFactor copied;
+      copied.copy(source);
+      copied.remove(C, leave);
+      ActiveSetFactor from(C, other); // storage holding another factor
+      from.remove(C, leave, &source);
+      ASSERT_EQ(from.cells(), copied.cells()) << "trial " << trial;
+      Eigen::MatrixXd x(from.size(), 1);
+      for (Eigen::Index a = 0; a < from.size(); ++a)
+        x(a, 0) = 1 + 0.1 * double(a % 5);
+      const Eigen::VectorXd b = x.col(0);
+      Eigen::MatrixXd       y = x;
+      from.solve(x);
+      copied.solve(y);
+      const Eigen::VectorXd r = direct(C, from.cells(), b);
+      EXPECT_LT((x.col(0) - r).norm(), 1e-11 * r.norm()) << "trial " << trial;
+      EXPECT_LT((x - y).norm(), 1e-13 * r.norm()) << "trial " << trial;
+    }
+}
+
 TEST(ActiveSetFactor, NotPositiveDefiniteIsRefused)
 {
   Eigen::MatrixXd C = Eigen::MatrixXd::Identity(3, 3);

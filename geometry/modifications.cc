@@ -76,6 +76,22 @@ helix_evaluation_range(const ModificationFrame &f)
   return {-0.5 * f.face_width + e, 0.5 * f.face_width - e};
 }
 
+double
+profile_form_wavelength(const ModificationFrame &f)
+{
+  const auto [L0, L1] = profile_evaluation_range(f);
+  return L1 - L0;
+}
+
+NormalDeviation
+waviness_term(double amplitude, double wavelength, double sin_phase, double cos_phase,
+              double sin_at, double cos_at)
+{
+  const double k = 2 * pi / wavelength;
+  return {amplitude * (sin_at * cos_phase + cos_at * sin_phase),
+          amplitude * k * (cos_at * cos_phase - sin_at * sin_phase), 0};
+}
+
 NormalDeviation
 evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, double L, double z)
 {
@@ -123,10 +139,12 @@ evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, 
     }
   if (m.waviness_amplitude != 0 && m.waviness_wavelength > 0)
     {
-      const double k = 2 * pi / m.waviness_wavelength;
-      const double a = k * (L - f.roll_length_form) + m.waviness_phase;
-      d.value += m.waviness_amplitude * std::sin(a);
-      d.d_dL += m.waviness_amplitude * k * std::cos(a);
+      const double          a = 2 * pi / m.waviness_wavelength * (L - f.roll_length_form) +
+                       m.waviness_phase;
+      const NormalDeviation w =
+          waviness_term(m.waviness_amplitude, m.waviness_wavelength, 0, 1, std::sin(a), std::cos(a));
+      d.value += w.value;
+      d.d_dL += w.d_dL;
     }
   if (m.lead_crowning != 0)
     {

@@ -83,6 +83,11 @@ profile_evaluation_range(const ModificationFrame &frame);
 std::pair<double, double>
 helix_evaluation_range(const ModificationFrame &frame);
 
+/// The wavelength of the profile form deviation tolerance samples take (one wave over the
+/// profile evaluation range: its peak-to-peak is f_falpha) [m].
+double
+profile_form_wavelength(const ModificationFrame &frame);
+
 /// delta and its derivatives with respect to L and z.
 struct NormalDeviation
 {
@@ -90,6 +95,14 @@ struct NormalDeviation
   double d_dL  = 0;
   double d_dz  = 0;
 };
+
+/// A profile waviness of `amplitude` and `wavelength` from the sine and cosine of its phase
+/// (sin_phase, cos_phase) and of k (L - L_form) at the point, k = 2 pi / wavelength (the angle
+/// sum): value and d/dL (evaluate_modifications' term; a caller evaluating many teeth's
+/// waviness of one wavelength at the same points takes the sines of each once).
+NormalDeviation
+waviness_term(double amplitude, double wavelength, double sin_phase, double cos_phase,
+              double sin_at, double cos_at);
 
 /// Sum of all modifications at (L, z).
 NormalDeviation

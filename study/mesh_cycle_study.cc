@@ -25,6 +25,57 @@ at_cell(const InvoluteGear &member, const ToothModifications &m, double u, doubl
   return evaluate_modifications(m, member.modification_frame(), member.base_radius * u, z);
 }
 
+/// sin and cos of k (L - L_form) at roll angle u on `member`, k = 2 pi / its
+/// profile_form_wavelength.
+std::pair<double, double>
+form_wave(const InvoluteGear &member, double u)
+{
+  const ModificationFrame &f = member.modification_frame();
+  const double             a =
+      2 * pi / profile_form_wavelength(f) * (member.base_radius * u - f.roll_length_form);
+  return {std::sin(a), std::cos(a)};
+}
+
+/// A member's per-tooth deviations for evaluation at many cells: each tooth's profile waviness
+/// of the profile form wavelength taken out (`rest`), to be added from the cells' sines
+/// (form_wave) with the tooth's amplitude and its phase's sine and cosine.
+struct ToothWaves
+{
+  std::vector<ToothModifications> rest;
+  std::vector<double>             amplitude, sin_phase, cos_phase;
+  double                          wavelength = 0;
+
+  ToothWaves(const InvoluteGear &member, const std::vector<ToothModifications> &teeth)
+      : rest(teeth)
+      , amplitude(teeth.size(), 0.0)
+      , sin_phase(teeth.size(), 0.0)
+      , cos_phase(teeth.size(), 1.0)
+      , wavelength(profile_form_wavelength(member.modification_frame()))
+  {
+    for (std::size_t k = 0; k < rest.size(); ++k)
+      if (rest[k].waviness_wavelength == wavelength)
+        {
+          amplitude[k] = rest[k].waviness_amplitude, rest[k].waviness_amplitude = 0;
+          sin_phase[k] = std::sin(rest[k].waviness_phase);
+          cos_phase[k] = std::cos(rest[k].waviness_phase);
+        }
+  }
+  /// tooth k's deviations at a cell at (u, z) whose form_wave is `wave`
+  NormalDeviation
+  at(const InvoluteGear &member, std::size_t k, double u, double z,
+     const std::pair<double, double> &wave) const
+  {
+    NormalDeviation d = at_cell(member, rest[k], u, z);
+    if (amplitude[k] != 0)
+      {
+        const NormalDeviation w = waviness_term(amplitude[k], wavelength, sin_phase[k],
+                                                cos_phase[k], wave.first, wave.second);
+        d.value += w.value, d.d_dL += w.d_dL;
+      }
+    return d;
+  }
+};
+
 /// Where a variant's search for a pair's contact starts: the pair's cell of the first touch
 /// (the least gap less the added material per moment arm) and steps of about a cell in the
 /// pinion's flank parameters.
@@ -152,6 +203,8 @@ MeshCycleStudy::MeshCycleStudy(std::shared_ptr<const InvoluteMemberFlanks> pinio
         q.gear_gu.push_back(gu), q.gear_gv.push_back(gv);
         q.pinion_own.push_back(at_cell(pinion->involute(), own.pinion, c.u1, c.v1));
         q.gear_own.push_back(at_cell(gear->involute(), own.gear, c.u2, c.v2));
+        q.pinion_wave.push_back(form_wave(pinion->involute(), c.u1));
+        q.gear_wave.push_back(form_wave(gear->involute(), c.u2));
       }
   });
 }
@@ -192,14 +245,15 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
     NormalDeviation change;
     double          du = 0, dz = 0;
   };
-  const bool pinion_same = v.pinion == own.pinion, gear_same = v.gear == own.gear;
+  const bool       pinion_same = v.pinion == own.pinion, gear_same = v.gear == own.gear;
+  const ToothWaves pinion_teeth(p, v.pinion_teeth), gear_teeth(g, v.gear_teeth);
   const auto change = [](const InvoluteGear &m, const ToothModifications &now, bool same,
-                         const std::vector<ToothModifications> &teeth, int k,
-                         const NormalDeviation &was, double u, double z) {
+                         const ToothWaves &teeth, int k, const NormalDeviation &was,
+                         const std::pair<double, double> &wave, double u, double z) {
     NormalDeviation a = same ? was : at_cell(m, now, u, z);
-    if (!teeth.empty())
+    if (!teeth.rest.empty())
       {
-        const NormalDeviation t = at_cell(m, teeth[std::size_t(k)], u, z);
+        const NormalDeviation t = teeth.at(m, std::size_t(k), u, z, wave);
         a.value += t.value, a.d_dL += t.d_dL, a.d_dz += t.d_dz;
       }
     return Change{{a.value - was.value, (a.d_dL - was.d_dL) * m.base_radius, a.d_dz - was.d_dz},
@@ -272,9 +326,10 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const ContactCell &c  = cells[j];
       const int          tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1;
       const int          tg = (c.gear_tooth + cycle) % z2;
-      const Change dp = change(p, v.pinion, pinion_same, v.pinion_teeth, tp, q.pinion_own[j], c.u1,
-                               c.v1);
-      const Change dg = change(g, v.gear, gear_same, v.gear_teeth, tg, q.gear_own[j], c.u2, c.v2);
+      const Change dp = change(p, v.pinion, pinion_same, pinion_teeth, tp, q.pinion_own[j],
+                               q.pinion_wave[j], c.u1, c.v1);
+      const Change dg = change(g, v.gear, gear_same, gear_teeth, tg, q.gear_own[j],
+                               q.gear_wave[j], c.u2, c.v2);
       Vec3               wg = rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j]);
       if (tilted)
         wg += tilt_in_gear * (c.position - centre);

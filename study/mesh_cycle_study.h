@@ -171,6 +171,9 @@ private:
     std::vector<Vec3> gear_point, gear_normal, gear_gu, gear_gv;
     /// the study's members' own modifications at each cell (those a variant replaces)
     std::vector<NormalDeviation> pinion_own, gear_own;
+    /// sin and cos of k (L - L_form) at each cell, k = 2 pi / profile_form_wavelength: the
+    /// tolerance samples' profile form deviations (waviness_term)
+    std::vector<std::pair<double, double>> pinion_wave, gear_wave;
   };
   std::vector<MemberPoints>    points;
   std::vector<ActiveSetFactor> warm; ///< [M][N] the active sets to start from (empty: own)

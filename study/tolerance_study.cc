@@ -49,7 +49,6 @@ draw_member(const InvoluteGear &gear, FlankSide side, int flank_class,
   const double            b = d.face_width, m_n = d.normal_module, r = gear.reference_radius;
   const Iso1328Tolerances t = iso1328_tolerances(flank_class, 2 * r, m_n, b, d.teeth);
   const GearDeviations    g = draw_gear_deviations(t, d.teeth, distribution, rng);
-  const auto [L0, L1]       = profile_evaluation_range(gear.modification_frame());
   double profile_slope = 0, profile_form = 0, helix_slope = 0, helix_form = 0;
   double lo = HUGE_VAL, hi = -HUGE_VAL;
   for (const ToothDeviations &k : g.teeth)
@@ -58,7 +57,7 @@ draw_member(const InvoluteGear &gear, FlankSide side, int flank_class,
       m.profile_slope       = k.profile_slope;
       m.helix_slope         = k.helix_slope;
       m.waviness_amplitude  = std::abs(k.profile_form_amplitude);
-      m.waviness_wavelength = L1 - L0; // one wave over the evaluation range: f_falpha p-p
+      m.waviness_wavelength = profile_form_wavelength(gear.modification_frame());
       m.waviness_phase      = k.profile_form_amplitude < 0 ? pi : 0;
       m.lead_crowning       = 2 * std::abs(k.helix_form_amplitude); // f_fbeta
       teeth.push_back(m);

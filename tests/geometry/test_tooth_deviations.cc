@@ -77,3 +77,27 @@ TEST(ToothDeviations, ModificationsAreEqualOnlyWithEveryFieldEqual)
   b.root_relief_shape = ReliefShape::parabolic;
   EXPECT_TRUE(a != b);
 }
+
+// A waviness from the sines of its phase and of the point's phase (a study's teeth evaluated
+// at fixed cells) equals the waviness evaluated directly, at any phase.
+TEST(ToothDeviations, WavinessFromTheAngleSumEqualsTheDirectOne)
+{
+  ModificationFrame f{0.004, 0.022, 0.014, 0.0045};
+  ToothModifications m;
+  m.waviness_amplitude  = 3e-6;
+  m.waviness_wavelength = profile_form_wavelength(f);
+  for (const double phase : {0.0, 0.7, pi, -2.1})
+    for (const double L : {0.004, 0.0091, 0.0133, 0.0217})
+      {
+        m.waviness_phase        = phase;
+        const NormalDeviation d = evaluate_modifications(m, f, L, 0.001);
+        const double a = 2 * pi / m.waviness_wavelength * (L - f.roll_length_form);
+        const NormalDeviation w = waviness_term(m.waviness_amplitude, m.waviness_wavelength,
+                                                std::sin(phase), std::cos(phase), std::sin(a),
+                                                std::cos(a));
+        EXPECT_NEAR(w.value, d.value, 1e-15 * m.waviness_amplitude) << phase << " " << L;
+        const double k = 2 * pi / m.waviness_wavelength;
+        EXPECT_NEAR(w.d_dL, d.d_dL, 1e-14 * k * m.waviness_amplitude) << phase << " " << L;
+        EXPECT_NEAR(d.value, m.waviness_amplitude * std::sin(a + phase), 1e-15 * 3e-6);
+      }
+}

@@ -139,10 +139,9 @@ evaluate_modifications(const ToothModifications &m, const ModificationFrame &f, 
     }
   if (m.waviness_amplitude != 0 && m.waviness_wavelength > 0)
     {
-      const double          a = 2 * pi / m.waviness_wavelength * (L - f.roll_length_form) +
-                       m.waviness_phase;
-      const NormalDeviation w =
-          waviness_term(m.waviness_amplitude, m.waviness_wavelength, 0, 1, std::sin(a), std::cos(a));
+      const double a = 2 * pi / m.waviness_wavelength * (L - f.roll_length_form) + m.waviness_phase;
+      const NormalDeviation w = waviness_term(m.waviness_amplitude, m.waviness_wavelength, 0, 1,
+                                              std::sin(a), std::cos(a));
       d.value += w.value;
       d.d_dL += w.d_dL;
     }

@@ -247,7 +247,7 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
   };
   const bool       pinion_same = v.pinion == own.pinion, gear_same = v.gear == own.gear;
   const ToothWaves pinion_teeth(p, v.pinion_teeth), gear_teeth(g, v.gear_teeth);
-  const auto change = [](const InvoluteGear &m, const ToothModifications &now, bool same,
+  const auto       change = [](const InvoluteGear &m, const ToothModifications &now, bool same,
                          const ToothWaves &teeth, int k, const NormalDeviation &was,
                          const std::pair<double, double> &wave, double u, double z) {
     NormalDeviation a = same ? was : at_cell(m, now, u, z);
@@ -326,11 +326,11 @@ MeshCycleStudy::deviations(std::size_t torque, std::size_t position, int cycle,
       const ContactCell &c  = cells[j];
       const int          tp = ((c.pinion_tooth - cycle) % z1 + z1) % z1;
       const int          tg = (c.gear_tooth + cycle) % z2;
-      const Change dp = change(p, v.pinion, pinion_same, pinion_teeth, tp, q.pinion_own[j],
-                               q.pinion_wave[j], c.u1, c.v1);
-      const Change dg = change(g, v.gear, gear_same, gear_teeth, tg, q.gear_own[j],
-                               q.gear_wave[j], c.u2, c.v2);
-      Vec3               wg = rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j]);
+      const Change       dp = change(p, v.pinion, pinion_same, pinion_teeth, tp, q.pinion_own[j],
+                                     q.pinion_wave[j], c.u1, c.v1);
+      const Change       dg =
+          change(g, v.gear, gear_same, gear_teeth, tg, q.gear_own[j], q.gear_wave[j], c.u2, c.v2);
+      Vec3 wg = rigid(rg, z2, tg, c.gear_tooth, q.gear_point[j]);
       if (tilted)
         wg += tilt_in_gear * (c.position - centre);
       const Vec3 wp = rigid(rp, z1, tp, c.pinion_tooth, q.pinion_point[j]);

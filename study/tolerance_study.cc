@@ -47,10 +47,10 @@ draw_member(const InvoluteGear &gear, FlankSide side, int flank_class,
                      "to 11 (0: no deviations)");
   const InvoluteGearData &d = gear.data();
   const double            b = d.face_width, m_n = d.normal_module, r = gear.reference_radius;
-  const Iso1328Tolerances t = iso1328_tolerances(flank_class, 2 * r, m_n, b, d.teeth);
-  const GearDeviations    g = draw_gear_deviations(t, d.teeth, distribution, rng);
-  double profile_slope = 0, profile_form = 0, helix_slope = 0, helix_form = 0;
-  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  const Iso1328Tolerances t             = iso1328_tolerances(flank_class, 2 * r, m_n, b, d.teeth);
+  const GearDeviations    g             = draw_gear_deviations(t, d.teeth, distribution, rng);
+  double                  profile_slope = 0, profile_form = 0, helix_slope = 0, helix_form = 0;
+  double                  lo = HUGE_VAL, hi = -HUGE_VAL;
   for (const ToothDeviations &k : g.teeth)
     {
       ToothModifications m;

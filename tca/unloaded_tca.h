@@ -156,8 +156,8 @@ public:
   /// is known to lie nearby (a variant of a pair, from the first touch of its contact cells):
   /// the pattern search starts there with steps (du, dv) (about a cell) instead of covering the
   /// flank, halves them once, and is pinned by Newton as pair's (where Newton does not
-  /// converge, the pattern search goes on to the end). Returns a contact not found where the gear flank
-  /// reaches no point of the search (then search the whole flank with pair).
+  /// converge, the pattern search goes on to the end). Returns a contact not found where the gear
+  /// flank reaches no point of the search (then search the whole flank with pair).
   PairContact
   pair_from(int k, double pinion_angle, double u1, double v1, double du, double dv) const;
 

@@ -56,12 +56,12 @@ TEST(ToothDeviations, ModificationsAreEqualOnlyWithEveryFieldEqual)
   a.tip_relief_length = 4e-3;
   EXPECT_TRUE(a == a);
   const std::vector<double ToothModifications::*> fields = {
-      &ToothModifications::tip_relief,          &ToothModifications::tip_relief_length,
-      &ToothModifications::root_relief,         &ToothModifications::root_relief_length,
-      &ToothModifications::lead_crowning,       &ToothModifications::end_relief,
-      &ToothModifications::end_relief_length,   &ToothModifications::profile_crowning,
-      &ToothModifications::profile_slope,       &ToothModifications::helix_slope,
-      &ToothModifications::waviness_amplitude,  &ToothModifications::waviness_wavelength,
+      &ToothModifications::tip_relief,         &ToothModifications::tip_relief_length,
+      &ToothModifications::root_relief,        &ToothModifications::root_relief_length,
+      &ToothModifications::lead_crowning,      &ToothModifications::end_relief,
+      &ToothModifications::end_relief_length,  &ToothModifications::profile_crowning,
+      &ToothModifications::profile_slope,      &ToothModifications::helix_slope,
+      &ToothModifications::waviness_amplitude, &ToothModifications::waviness_wavelength,
       &ToothModifications::waviness_phase};
   for (const auto f : fields)
     {
@@ -82,7 +82,7 @@ TEST(ToothDeviations, ModificationsAreEqualOnlyWithEveryFieldEqual)
 // at fixed cells) equals the waviness evaluated directly, at any phase.
 TEST(ToothDeviations, WavinessFromTheAngleSumEqualsTheDirectOne)
 {
-  ModificationFrame f{0.004, 0.022, 0.014, 0.0045};
+  ModificationFrame  f{0.004, 0.022, 0.014, 0.0045};
   ToothModifications m;
   m.waviness_amplitude  = 3e-6;
   m.waviness_wavelength = profile_form_wavelength(f);
@@ -91,10 +91,10 @@ TEST(ToothDeviations, WavinessFromTheAngleSumEqualsTheDirectOne)
       {
         m.waviness_phase        = phase;
         const NormalDeviation d = evaluate_modifications(m, f, L, 0.001);
-        const double a = 2 * pi / m.waviness_wavelength * (L - f.roll_length_form);
-        const NormalDeviation w = waviness_term(m.waviness_amplitude, m.waviness_wavelength,
-                                                std::sin(phase), std::cos(phase), std::sin(a),
-                                                std::cos(a));
+        const double          a = 2 * pi / m.waviness_wavelength * (L - f.roll_length_form);
+        const NormalDeviation w =
+            waviness_term(m.waviness_amplitude, m.waviness_wavelength, std::sin(phase),
+                          std::cos(phase), std::sin(a), std::cos(a));
         EXPECT_NEAR(w.value, d.value, 1e-15 * m.waviness_amplitude) << phase << " " << L;
         const double k = 2 * pi / m.waviness_wavelength;
         EXPECT_NEAR(w.d_dL, d.d_dL, 1e-14 * k * m.waviness_amplitude) << phase << " " << L;

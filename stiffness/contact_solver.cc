@@ -17,6 +17,14 @@ using blas_int = dealii::types::blas_int;
 
 const std::string not_positive_definite =
     "contact solver: the compliance matrix is not positive definite";
+
+/// The lower triangle of the leading n x n block of `from` into `to` (a factor's entries).
+void
+copy_lower(Eigen::MatrixXd &to, const Eigen::MatrixXd &from, Eigen::Index n)
+{
+  for (Eigen::Index c = 0; c < n; ++c)
+    to.col(c).segment(c, n - c) = from.col(c).segment(c, n - c);
+}
 } // namespace
 
 ActiveSetFactor::ActiveSetFactor(const Eigen::MatrixXd &matrix, std::vector<Eigen::Index> cells)
@@ -31,8 +39,7 @@ ActiveSetFactor::reserve(Eigen::Index m)
     return;
   const Eigen::Index n = size(), room = std::max(m, L.rows() + L.rows() / 2 + 16);
   Eigen::MatrixXd    bigger(room, room);
-  for (Eigen::Index c = 0; c < n; ++c)
-    bigger.col(c).segment(c, n - c) = L.col(c).segment(c, n - c);
+  copy_lower(bigger, L, n);
   L.swap(bigger);
 }
 
@@ -49,8 +56,7 @@ ActiveSetFactor::copy(const ActiveSetFactor &other)
   const Eigen::Index m = other.size();
   if (L.rows() < m)
     L.resize(other.L.rows(), other.L.rows());
-  for (Eigen::Index c = 0; c < m; ++c) // (the lower triangle: the factor)
-    L.col(c).segment(c, m - c) = other.L.col(c).segment(c, m - c);
+  copy_lower(L, other.L, m);
   order = other.order;
 }
 
@@ -131,8 +137,7 @@ ActiveSetFactor::remove(const Eigen::MatrixXd &matrix, const std::vector<char> &
     {
       if (L.rows() < m)
         L.resize(S.L.rows(), S.L.rows());
-      for (Eigen::Index c = 0; c < r0; ++c)
-        L.col(c).segment(c, r0 - c) = S.L.col(c).segment(c, r0 - c);
+      copy_lower(L, S.L, r0);
     }
   for (Eigen::Index c = 0; c < r0; ++c) // rows move up (kept[i] > r0 + i)
     for (Eigen::Index i = 0; i < t; ++i)

@@ -252,6 +252,12 @@ LoadedScene::declare(ParameterHandler &prm)
                     "Contact cells across each contact line (odd: a row on the line).");
   prm.declare_entry("cells along", "24", Patterns::Integer(1, 1000),
                     "Contact cells along each contact line.");
+  prm.declare_entry("cells along grading", "0", Patterns::Double(0, 1),
+                    "How the cells along a contact line crowd towards an end at a flank's edge "
+                    "(face end, tip) that the contact reaches, where a line contact's pressure "
+                    "peaks: 0 uniform, 1 cosine spacing (FZG C at 350 N m: TE peak-to-peak "
+                    "within 0.1 % of 4 times the cells along, uniform cells 0.45 % off; "
+                    "bench/README.md).");
   prm.declare_entry("gap band", "0", Patterns::Double(0),
                     "[um] Where the contact zone starts: it reaches where the unloaded gap opens "
                     "to this. 0: from the load (four times the gap at the edge of Hertz's line "
@@ -287,6 +293,7 @@ LoadedScene::parse(ParameterHandler &prm)
   positions                   = prm.get_integer("positions per mesh cycle");
   cells.cells_across          = prm.get_integer("cells across");
   cells.cells_along           = prm.get_integer("cells along");
+  cells.along_grading         = prm.get_double("cells along grading");
   cells.gap_band              = prm.get_double("gap band") * um;
   measured                    = prm.get_bool("measured flanks");
   follow_load                 = prm.get("table interpolation") == "load following";

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -178,6 +179,12 @@ struct Extent
 {
   double t0 = 0, t1 = 0;
   bool   band_end[2] = {false, false};
+  /// How far the columns crowd towards each end (0 ... 1): 1 where the line reaches a flank's
+  /// edge with the gap there inside the contact (below a quarter of the band, where the
+  /// contact's edge sits: a line contact's pressure peaks at the edge), falling linearly to 0 as
+  /// that gap opens to the band (the contact stops short of the edge) - and so continuous as
+  /// the end passes from the flank's edge to the band's.
+  double grading[2] = {0, 0};
 };
 
 Extent
@@ -228,7 +235,7 @@ extent_along(const PairZone &z, double span, double w)
   // Along the line the zone ends at the flank's edges, or where the gap on the line opens
   // beyond twice the band (crowning: a point contact): there its end column is a zone edge.
   auto across      = [&](int j) { return (j % 2 ? 1 : -1) * ((j + 1) / 2) * w / 8; };
-  auto within_band = [&](double t_) {
+  auto gap_on_line = [&](double t_) {
     // on the line, else (a contact on an edge: the line just off the flank) from the
     // column's points on both flanks, less the opening across, k_max s^2 / 2 (at most an
     // underestimate: the zone grows rather than shrinks)
@@ -237,13 +244,29 @@ extent_along(const PairZone &z, double span, double w)
     for (int j = 0; j <= (c.edge ? 16 : 0) && !(j == 1 && least < HUGE_VAL); ++j)
       if (z.gap_at(c.position + across(j) * z.e_s + t_ * z.e_t, across(j), t_, probe))
         least = std::min(least, probe.gap - z.k_max * across(j) * across(j) / 2);
-    return least == HUGE_VAL || least - c.separation <= 2 * o.gap_band;
+    return least == HUGE_VAL ? -HUGE_VAL : least - c.separation;
+  };
+  auto within_band = [&](double t_) { return gap_on_line(t_) <= 2 * o.gap_band; };
+  // The gap at an end of the line, for the columns' grading: where the end's point falls just
+  // off the other flank (the line's end found on the pinion's flank, to rounding), a little
+  // inside it - by fractions of the extent, so alike at every scale.
+  auto gap_at_end = [&](double t_) {
+    double g = -HUGE_VAL;
+    for (const double back : {0.0, 1e-9, 1e-6, 1e-4, 1e-3, 1e-2})
+      if ((g = gap_on_line(t_ * (1 - back))) > -HUGE_VAL)
+        break;
+    return g;
   };
   for (int e = 0; e < 2; ++e)
     {
       double &end = e == 0 ? t0 : t1;
-      if (within_band(end))
-        continue;
+      if (gap_on_line(end) <= 2 * o.gap_band)
+        {
+          if (o.along_grading > 0)
+            x.grading[e] =
+                std::clamp((o.gap_band - gap_at_end(end)) / (0.75 * o.gap_band), 0.0, 1.0);
+          continue;
+        }
       double in = 0, out = end;
       for (int it = 0; it < 40 && std::abs(out - in) > 1e-9 * (t1 - t0); ++it)
         {
@@ -256,17 +279,33 @@ extent_along(const PairZone &z, double span, double w)
   return x;
 }
 
+/// The edge j (0 ... cells_along) between columns along the line, graded towards the ends by
+/// the extent's weights: a blend of uniform spacing, cosine spacing (both ends graded) and a
+/// quarter cosine (one end), each weighted by the ends' gradings - a convex combination of
+/// increasing maps of [0, 1] onto itself, and continuous in the weights.
+double
+along_edge(const Extent &x, const ContactCellOptions &o, int j)
+{
+  const double xi = double(j) / o.cells_along, q = pi / 2 * xi;
+  const double a0 = o.along_grading * x.grading[0], a1 = o.along_grading * x.grading[1];
+  const double both = (1 - std::cos(pi * xi)) / 2, to0 = 1 - std::cos(q), to1 = std::sin(q);
+  const double f =
+      a0 * a1 * both + a0 * (1 - a1) * to0 + (1 - a0) * a1 * to1 + (1 - a0) * (1 - a1) * xi;
+  return x.t0 + (x.t1 - x.t0) * f;
+}
+
 /// The cells of column i (of the pair k) on both flanks, appended to `cells`: dt and ds the
 /// cells' sizes along and across, w the band's half width (w_band: before the flank's span
 /// cut it).
 void
-add_column(const PairZone &z, std::size_t k, int i, const Extent &extent, double dt, double ds,
-           double w, double w_band, std::vector<ContactCell> &cells)
+add_column(const PairZone &z, std::size_t k, int i, const Extent &extent, double ds, double w,
+           double w_band, std::vector<ContactCell> &cells)
 {
   const PairContact        &c        = z.c;
   const ContactCellOptions &o        = z.o;
   const auto               &band_end = extent.band_end;
-  const double              t_cell   = extent.t0 + (i + 0.5) * dt;
+  const double              ta = along_edge(extent, o, i), tb = along_edge(extent, o, i + 1);
+  const double              t_cell = (ta + tb) / 2, dt = tb - ta;
   // The column's part on both flanks, [s_lo, s_hi] within the band: where an edge of
   // either flank (a tip) crosses the band, the column's cells share the part on the
   // flanks - cells kept or dropped whole by their centres would gain or lose a row in
@@ -317,7 +356,7 @@ add_column(const PairZone &z, std::size_t k, int i, const Extent &extent, double
                    s_cell = cut ? (a + b) / 2 : -w + (j + 0.5) * ds, size = cut ? b - a : ds;
       ContactCell cell;
       cell.pair = int(k), cell.pinion_tooth = c.pinion_tooth, cell.gear_tooth = c.gear_tooth;
-      cell.dt = dt, cell.ds = size;
+      cell.column = i, cell.dt = dt, cell.ds = size;
       cell.zone_edge = (w == w_band && (a <= -w + tol || b >= w - tol)) ||
                        (i == 0 && band_end[0]) || (i == o.cells_along - 1 && band_end[1]);
       cell.flank_edge = (i == 0 && !band_end[0]) || (i == o.cells_along - 1 && !band_end[1]) ||
@@ -353,11 +392,11 @@ contact_cells(const UnloadedTca &tca, const TcaPosition &position, const Contact
       const double w_band = band_width(z, span);
       const double w      = std::min(w_band, span / 2);
       const Extent x      = extent_along(z, span, w);
-      const double dt = (x.t1 - x.t0) / o.cells_along, ds = 2 * w / o.cells_across;
-      if (!(dt > 0))
+      const double ds     = 2 * w / o.cells_across;
+      if (!(x.t1 - x.t0 > 0))
         continue; // the contact sits on a corner of the flank: no extent along the line
       for (int i = 0; i < o.cells_along; ++i)
-        add_column(z, k, i, x, dt, ds, w, w_band, cells);
+        add_column(z, k, i, x, ds, w, w_band, cells);
     }
   return cells;
 }

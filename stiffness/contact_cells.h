@@ -16,6 +16,12 @@ struct ContactCellOptions
 {
   int cells_across = 17; ///< cells across the contact line (s); odd: a row on the line
   int cells_along  = 24; ///< cells along it (t), over the flank
+  /// Grading of the columns along the line towards an end at a flank's edge (a face end, a tip)
+  /// that the contact reaches, where a line contact's pressure peaks: 0 uniform; 1 cosine
+  /// spacing (both ends at flank edges: the edge column 1 - cos(pi / n) over 2 of the extent,
+  /// 0.1 of a uniform one at 24 columns; one end: a quarter cosine towards it). Between: the
+  /// blend, and so for an end whose gap lies between a quarter of gap_band and gap_band.
+  double along_grading = 0;
   /// Largest unloaded gap the zone covers [m], measured from each pair's own contact point:
   /// the band across the line reaches where the relative curvature opens the gap to this
   /// (s = sqrt(2 g / k_max)), and along the line where the gap on the line (crowning, a
@@ -35,6 +41,7 @@ struct ContactCellOptions
 struct ContactCell
 {
   int    pair         = 0; ///< index into TcaPosition::pairs
+  int    column       = 0; ///< index along the contact line (0 ... cells_along - 1)
   int    pinion_tooth = 0, gear_tooth = 0;
   double u1 = 0, v1 = 0, u2 = 0, v2 = 0; ///< flank parameters on pinion and gear
   Vec3   position = Vec3::Zero();        ///< pinion flank point, global [m]

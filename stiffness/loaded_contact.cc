@@ -151,8 +151,8 @@ contact_edge_gap(const TcaPosition &position, const LoadedPosition &r,
     double q      = 0;
     int    loaded = 0;
   };
-  double                                 g = 0;
-  std::map<std::pair<int, long>, Column> column;
+  double                                g = 0;
+  std::map<std::pair<int, int>, Column> column;
   for (std::size_t i = 0; i < r.cells.size(); ++i)
     {
       const ContactCell &c = r.cells[i];
@@ -160,7 +160,7 @@ contact_edge_gap(const TcaPosition &position, const LoadedPosition &r,
       if (!(f > 0))
         continue;
       g = std::max(g, c.gap - std::max(0.0, position.pairs[std::size_t(c.pair)].separation));
-      Column &k = column[{c.pair, std::lround(c.t / c.dt)}];
+      Column &k = column[{c.pair, c.column}];
       k.q += f / c.dt, ++k.loaded;
     }
   for (const auto &[key, k] : column)

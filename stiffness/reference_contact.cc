@@ -314,7 +314,10 @@ reference_contact(const ReferenceMember &pinion, const ReferenceMember &gear,
   lo.covered              = [&](int p, int g) {
     return in_segment(out.pinion_segment, z1, p) && in_segment(out.gear_segment, z2, g);
   };
-  lo.table_parameters            = nullptr;
+  lo.table_parameters = nullptr;
+  // Uniform columns along: the members' face layers are uniform, and graded columns would ask
+  // for layers of the narrowest (ten times the elements at 24 columns).
+  lo.cells.along_grading         = 0;
   std::vector<ContactCell> cells = loaded_cells(tca, position, lo);
   const Eigen::Index       n     = Eigen::Index(cells.size());
   if (n == 0)

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 using namespace gearkit;
@@ -19,18 +20,26 @@ TEST(ContactCells, SpurPairLeversGapsAndExtent)
   const double      alpha = working_pressure_angle(*pinion, *gear);
   const UnloadedTca tca(pinion, gear, a);
   const double      mesh = 2 * pi / pd.teeth;
-  for (double phase : {0.1, 0.5})
+  for (const auto [phase, grading] : {std::pair{0.1, 0.0}, {0.5, 0.0}, {0.1, 1.0}, {0.5, 1.0}})
     {
       const TcaPosition  pos = tca.at(phase * mesh);
       ContactCellOptions o;
-      const auto         cells = contact_cells(tca, pos, o);
+      o.along_grading  = grading;
+      const auto cells = contact_cells(tca, pos, o);
       ASSERT_FALSE(cells.empty());
       int    touching_cells  = 0;
       double worst_curvature = 0;
+      // the columns span the face, uniform or graded by cosine spacing towards both face ends
+      // (every pair's line, touching or not, runs from face end to face end at no gap)
+      std::map<int, double> length; // pair -> sum of its cells' dt
       for (const ContactCell &c : cells)
         {
           EXPECT_NEAR(c.lever, pinion->base_radius, 1e-9 * pinion->base_radius);
-          EXPECT_NEAR(c.dt * o.cells_along, pd.face_width, 1e-9);
+          const double xi0 = double(c.column) / o.cells_along, xi1 = xi0 + 1.0 / o.cells_along;
+          const double cosine = (std::cos(pi * xi0) - std::cos(pi * xi1)) / 2;
+          EXPECT_NEAR(c.dt, pd.face_width * (grading * cosine + (1 - grading) * (xi1 - xi0)),
+                      1e-12);
+          length[c.pair] += c.dt / o.cells_across;
           EXPECT_GE(c.gap, 0);
           const PairContact &p = pos.pairs[c.pair];
           if (p.separation > 0)
@@ -51,7 +60,9 @@ TEST(ContactCells, SpurPairLeversGapsAndExtent)
               EXPECT_LT(c.gap, 1e-10);
             }
         }
-      EXPECT_LT(worst_curvature, 0.03) << phase;
+      EXPECT_LT(worst_curvature, 0.03) << phase << ", grading " << grading;
+      for (const auto &[pair, l] : length)
+        EXPECT_NEAR(l, pd.face_width, 1e-12) << pair;
       EXPECT_EQ(touching_cells % o.cells_along, 0);
       EXPECT_GE(touching_cells, o.cells_along);
     }

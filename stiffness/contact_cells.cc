@@ -25,7 +25,11 @@ project(const Flank &flank, const Assembly &assembly, double phi, const Vec3 &ta
   const FlankDomain d = flank.domain();
   try
     {
-      for (int it = 0; it < 20; ++it)
+      // Gauss-Newton on the foot point; one that has not settled (a target far off the flank,
+      // beyond a fold near the base circle, sends it back and forth) is no projection: taken
+      // as it stood, it put cells on flank points other cells already held.
+      double last = HUGE_VAL; // the last step, in fractions of the domain
+      for (int it = 0; it < 20 && last >= 1e-13; ++it)
         {
           const FlankPoint            p = flank.evaluate(u, v);
           Eigen::Matrix<double, 3, 2> J;
@@ -34,11 +38,11 @@ project(const Flank &flank, const Assembly &assembly, double phi, const Vec3 &ta
           const Vec3 r    = target - assembly.pinion_to_global(p.position, phi);
           const Vec2 step = (J.transpose() * J).ldlt().solve(J.transpose() * r);
           u += step.x(), v += step.y();
-          if (std::abs(step.x()) < 1e-13 * (d.u_max - d.u_min) &&
-              std::abs(step.y()) < 1e-13 * (d.v_max - d.v_min))
-            break;
+          last = std::max(std::abs(step.x()) / (d.u_max - d.u_min),
+                          std::abs(step.y()) / (d.v_max - d.v_min));
         }
-      if (!(u >= d.u_min && u <= d.u_max && v >= d.v_min && v <= d.v_max) || !flank.contains(u, v))
+      if (!(last < 1e-9) || !(u >= d.u_min && u <= d.u_max && v >= d.v_min && v <= d.v_max) ||
+          !flank.contains(u, v))
         return std::nullopt;
       const FlankPoint p = flank.evaluate(u, v);
       return Projection{u, v, assembly.pinion_to_global(p.position, phi),

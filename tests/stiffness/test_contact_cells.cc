@@ -122,3 +122,40 @@ TEST(ContactCells, ZoneCutAtTheTipContinuously)
   EXPECT_LT(largest_step, 0.01 * full);  // whole rows would be 1/17 = 0.059
   EXPECT_GT(largest_step, 0.001 * full); // and it does move
 }
+
+// A zone as wide as a study's widened one (a 60 um band, 51 cells across) reaches past the
+// pinion's active profile towards its base circle, where the projection onto the flank folds:
+// every cell still lies on its own flank point - along each column across the line the pinion's
+// profile parameter runs one way - and every column keeps its cells across (its cut shares
+// them). A projection taken before it had settled once put cells of a tip contact's column back
+// onto points near the contact, with small gaps: spurious load carriers (e_L 3 % low).
+TEST(ContactCells, WideZoneCellsLieOnDistinctFlankPoints)
+{
+  const auto [pd, gd]       = test_data::fzg_c_pair();
+  const auto         pinion = InvoluteGear::create(pd), gear = InvoluteGear::create(gd);
+  const UnloadedTca  tca(pinion, gear, working_centre_distance(*pinion, *gear));
+  const double       mesh = 2 * pi / pd.teeth;
+  ContactCellOptions o;
+  o.gap_band = 60e-6, o.cells_across = 51;
+  int columns = 0;
+  for (int k = 0; k < 40; ++k)
+    {
+      const double                                                          phi = mesh * k / 40;
+      std::map<std::pair<int, int>, std::vector<std::pair<double, double>>> column; // s, u1
+      for (const ContactCell &c : contact_cells(tca, tca.at(phi), o))
+        column[{c.pair, c.column}].push_back({c.s, c.u1});
+      for (auto &[key, cells] : column)
+        {
+          ++columns;
+          EXPECT_EQ(int(cells.size()), o.cells_across) << "phi " << phi << ", pair " << key.first;
+          std::sort(cells.begin(), cells.end());
+          int rising = 0, falling = 0;
+          for (std::size_t j = 1; j < cells.size(); ++j)
+            (cells[j].second > cells[j - 1].second ? rising : falling) += 1;
+          EXPECT_TRUE(rising == 0 || falling == 0)
+              << "phi " << phi << ", pair " << key.first << ", column " << key.second << ": "
+              << rising << " up, " << falling << " down";
+        }
+    }
+  EXPECT_GT(columns, 40 * o.cells_along);
+}

@@ -264,7 +264,7 @@ extent_along(const PairZone &z, double span, double w)
   for (int e = 0; e < 2; ++e)
     {
       double &end = e == 0 ? t0 : t1;
-      if (gap_on_line(end) <= 2 * o.gap_band)
+      if (within_band(end))
         {
           if (o.along_grading > 0)
             x.grading[e] =
